@@ -1,0 +1,42 @@
+#pragma once
+#include <cstdint>
+#include <optional>
+
+#include "config/sensor_config.hpp"
+
+namespace aesim {
+
+struct PixelAddress {
+  std::uint32_t x = 0, y = 0;  // global, (0, 0) top-left
+};
+
+// SPEC section 2: tiles row-major from the top-left, bus address (y_local << xbits) | x_local,
+// AEDAT address (tile << bus_bits) | bus address. Arrays that are not a whole number of tiles
+// get narrower tiles on the right and bottom edges, with the same address widths.
+class AddressMap {
+ public:
+  explicit AddressMap(const SensorConfig::Array& array);
+
+  int tiles() const { return tiles_per_row_ * tiles_per_col_; }
+  int tiles_per_row() const { return tiles_per_row_; }
+  int xbits() const { return xbits_; }
+  int ybits() const { return ybits_; }
+  int bus_bits() const { return xbits_ + ybits_; }
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+
+  std::uint32_t tile_of(PixelAddress p) const;
+  std::uint32_t bus_address(PixelAddress p) const;
+  std::uint32_t word(PixelAddress p) const { return (tile_of(p) << bus_bits()) | bus_address(p); }
+  // Inverse of word(); empty when the word names no pixel of this array.
+  std::optional<PixelAddress> decode(std::uint32_t word) const;
+
+ private:
+  int rows_, cols_, tile_rows_, tile_cols_;
+  int tiles_per_row_, tiles_per_col_;
+  int xbits_, ybits_;
+};
+
+int address_bits_for(int n);
+
+}  // namespace aesim

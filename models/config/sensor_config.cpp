@@ -1,0 +1,269 @@
+#include "config/sensor_config.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <map>
+
+#include <fmt/format.h>
+#include <toml.hpp>
+
+#include "array/address_map.hpp"
+#include "config/data_dir.hpp"
+#include "config/input_error.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+struct KeySpec {
+  std::function<void(SensorConfig&, const std::string&)> set;
+  std::function<nlohmann::json(const SensorConfig&)> get;
+};
+
+using Json = nlohmann::json;
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+bool parse_bool(const std::string& text, const std::string& key) {
+  const std::string t = lower(text);
+  if (t == "true" || t == "1" || t == "yes" || t == "on") return true;
+  if (t == "false" || t == "0" || t == "no" || t == "off") return false;
+  throw InputError(fmt::format("{}: expected true or false (got '{}')", key, text));
+}
+
+long long parse_integer(const std::string& text, const std::string& key) {
+  const double v = parse_si(text, "", key);
+  if (v != std::floor(v) || std::fabs(v) > 9.0e15) {
+    throw InputError(fmt::format("{}: expected a whole number (got '{}')", key, text));
+  }
+  return static_cast<long long>(v);
+}
+
+template <typename Enum>
+Enum parse_enum(const std::string& text, const std::string& key,
+                const std::vector<std::pair<const char*, Enum>>& names) {
+  const std::string t = lower(text);
+  std::string allowed;
+  for (const auto& [name, value] : names) {
+    if (t == name) return value;
+    allowed += allowed.empty() ? name : std::string("|") + name;
+  }
+  throw InputError(fmt::format("{}: expected one of {} (got '{}')", key, allowed, text));
+}
+
+const std::vector<std::pair<const char*, InitialState>> kInitial = {
+    {"reset", InitialState::Reset}, {"random", InitialState::Random}};
+const std::vector<std::pair<const char*, BusAccess>> kAccess = {
+    {"aloha", BusAccess::Aloha}, {"arbitrated", BusAccess::Arbitrated}, {"ideal", BusAccess::Ideal}};
+const std::vector<std::pair<const char*, Fidelity>> kFidelity = {{"queue", Fidelity::Queue},
+                                                                 {"event", Fidelity::Event},
+                                                                 {"cycle", Fidelity::Cycle},
+                                                                 {"auto", Fidelity::Auto}};
+
+const std::map<std::string, KeySpec>& registry() {
+  static const std::map<std::string, KeySpec> table = [] {
+    std::map<std::string, KeySpec> t;
+    auto real = [&t](const std::string& key, const char* unit, auto field) {
+      t[key] = {[key, unit, field](SensorConfig& c, const std::string& v) {
+                  field(c) = parse_si(v, unit, key);
+                },
+                [field](const SensorConfig& c) {
+                  return Json(field(c));
+                }};
+    };
+    auto integer = [&t](const std::string& key, auto field) {
+      t[key] = {[key, field](SensorConfig& c, const std::string& v) {
+                  const long long n = parse_integer(v, key);
+                  if (n < 0 || n > (1LL << 30)) {
+                    throw InputError(fmt::format("{}: {} is out of range", key, v));
+                  }
+                  field(c) = static_cast<int>(n);
+                },
+                [field](const SensorConfig& c) {
+                  return Json(field(c));
+                }};
+    };
+    auto boolean = [&t](const std::string& key, auto field) {
+      t[key] = {[key, field](SensorConfig& c, const std::string& v) { field(c) = parse_bool(v, key); },
+                [field](const SensorConfig& c) {
+                  return Json(field(c));
+                }};
+    };
+    auto enumerated = [&t](const std::string& key, auto field, const auto& names) {
+      t[key] = {[key, field, &names](SensorConfig& c, const std::string& v) {
+                  field(c) = parse_enum(v, key, names);
+                },
+                [field](const SensorConfig& c) {
+                  return Json(to_string(field(c)));
+                }};
+    };
+    real("pixel.c_int", "F", [](auto& c) -> auto& { return c.pixel.c_int; });
+    real("pixel.dv_int", "V", [](auto& c) -> auto& { return c.pixel.dv_int; });
+    real("pixel.i_max", "A", [](auto& c) -> auto& { return c.pixel.i_max; });
+    real("pixel.i_dark", "A", [](auto& c) -> auto& { return c.pixel.i_dark; });
+    real("pixel.t_reset", "s", [](auto& c) -> auto& { return c.pixel.t_reset; });
+    real("pixel.mismatch", "", [](auto& c) -> auto& { return c.pixel.mismatch; });
+    boolean("pixel.shot_noise", [](auto& c) -> auto& { return c.pixel.shot_noise; });
+    enumerated("pixel.initial", [](auto& c) -> auto& { return c.pixel.initial; },
+               kInitial);
+    integer("array.rows", [](auto& c) -> auto& { return c.array.rows; });
+    integer("array.cols", [](auto& c) -> auto& { return c.array.cols; });
+    integer("array.tile_rows", [](auto& c) -> auto& { return c.array.tile_rows; });
+    integer("array.tile_cols", [](auto& c) -> auto& { return c.array.tile_cols; });
+    enumerated("bus.access", [](auto& c) -> auto& { return c.bus.access; }, kAccess);
+    real("bus.t_event", "s", [](auto& c) -> auto& { return c.bus.t_event; });
+    boolean("bus.contention_detect",
+            [](auto& c) -> auto& { return c.bus.contention_detect; });
+    real("receiver.clock", "Hz", [](auto& c) -> auto& { return c.receiver.clock; });
+    real("receiver.tick", "s", [](auto& c) -> auto& { return c.receiver.tick; });
+    integer("receiver.fifo_depth", [](auto& c) -> auto& { return c.receiver.fifo_depth; });
+    real("sim.duration", "s", [](auto& c) -> auto& { return c.sim.duration; });
+    t["sim.seed"] = {[](SensorConfig& c, const std::string& v) {
+                       const long long n = parse_integer(v, "sim.seed");
+                       if (n < 0) throw InputError("sim.seed: must not be negative (got '" + v + "')");
+                       c.sim.seed = static_cast<std::uint64_t>(n);
+                     },
+                     [](const SensorConfig& c) { return Json(c.sim.seed); }};
+    enumerated("sim.fidelity", [](auto& c) -> auto& { return c.sim.fidelity; },
+               kFidelity);
+    real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; });
+    boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; });
+    return t;
+  }();
+  return table;
+}
+
+void require(bool ok, const char* key, const std::string& why) {
+  if (!ok) throw InputError(fmt::format("{}: {}", key, why));
+}
+
+}  // namespace
+
+const char* to_string(InitialState v) { return v == InitialState::Reset ? "reset" : "random"; }
+const char* to_string(BusAccess v) {
+  switch (v) {
+    case BusAccess::Aloha: return "aloha";
+    case BusAccess::Arbitrated: return "arbitrated";
+    case BusAccess::Ideal: return "ideal";
+  }
+  return "?";
+}
+const char* to_string(Fidelity v) {
+  switch (v) {
+    case Fidelity::Queue: return "queue";
+    case Fidelity::Event: return "event";
+    case Fidelity::Cycle: return "cycle";
+    case Fidelity::Auto: return "auto";
+  }
+  return "?";
+}
+
+void SensorConfig::set(const std::string& key, const std::string& value) {
+  const auto& table = registry();
+  const auto it = table.find(key);
+  if (it == table.end()) throw InputError(fmt::format("unknown key '{}'", key));
+  it->second.set(*this, value);
+}
+
+nlohmann::json SensorConfig::to_json() const {
+  Json out = Json::object();
+  for (const auto& [key, spec] : registry()) {
+    const auto dot = key.find('.');
+    out[key.substr(0, dot)][key.substr(dot + 1)] = spec.get(*this);
+  }
+  return out;
+}
+
+const std::vector<std::string>& SensorConfig::keys() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const auto& entry : registry()) v.push_back(entry.first);
+    return v;
+  }();
+  return names;
+}
+
+void SensorConfig::validate() const {
+  require(pixel.c_int > 0, "pixel.c_int", "capacitance must be positive");
+  require(pixel.dv_int > 0, "pixel.dv_int", "swing must be positive");
+  require(pixel.i_max >= 0, "pixel.i_max", "photocurrent must not be negative");
+  require(pixel.i_dark >= 0, "pixel.i_dark", "dark current must not be negative");
+  require(pixel.t_reset >= 0, "pixel.t_reset", "reset time must not be negative");
+  require(pixel.mismatch >= 0 && pixel.mismatch <= 1, "pixel.mismatch",
+          "relative standard deviation must be within [0, 1]");
+  require(array.rows >= 1, "array.rows", "must be at least 1");
+  require(array.cols >= 1, "array.cols", "must be at least 1");
+  require(static_cast<long long>(array.rows) * array.cols <= (1LL << 26), "array.rows",
+          "array larger than 64 Mpixel");
+  require(array.tile_rows >= 1 && array.tile_rows <= array.rows, "array.tile_rows",
+          "must be between 1 and array.rows");
+  require(array.tile_cols >= 1 && array.tile_cols <= array.cols, "array.tile_cols",
+          "must be between 1 and array.cols");
+  const AddressMap map(array);
+  require(map.bus_bits() + address_bits_for(map.tiles()) <= 31,
+          "array.tile_rows", "tile address and tile number do not fit a 31-bit AEDAT address");
+  require(bus.t_event > 0, "bus.t_event", "must be positive");
+  require(receiver.clock > 0, "receiver.clock", "must be positive");
+  require(receiver.tick > 0, "receiver.tick", "must be positive");
+  require(receiver.fifo_depth >= 1, "receiver.fifo_depth", "must be at least 1");
+  // SystemC time is a 64-bit count of 1 ps steps; keep well inside it.
+  require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
+          "must be positive and at most 1e6 s (SystemC's 1 ps time base)");
+  require(scene.frame_rate > 0 && scene.frame_rate <= 1e9, "scene.frame_rate",
+          "must be positive and at most 1 GHz");
+}
+
+std::string sensors_dir() { return data_dir() + "/models/sensors"; }
+
+SensorConfig load_sensor(const std::string& name_or_file) {
+  namespace fs = std::filesystem;
+  const bool is_path = name_or_file.find('/') != std::string::npos ||
+                       fs::path(name_or_file).extension() == ".toml";
+  const std::string path = is_path ? name_or_file : sensors_dir() + "/" + name_or_file + ".toml";
+  if (!fs::is_regular_file(path)) {
+    throw InputError(is_path ? fmt::format("sensor file '{}' not found", path)
+                             : fmt::format("unknown sensor '{}' (no {})", name_or_file, path));
+  }
+  toml::value doc;
+  try {
+    doc = toml::parse(path);
+  } catch (const std::exception& e) {
+    std::string msg = e.what();
+    const auto nl = msg.find('\n');
+    throw InputError(fmt::format("sensor file '{}': malformed TOML: {}", path, msg.substr(0, nl)));
+  }
+  SensorConfig config;
+  if (!doc.is_table()) throw InputError(fmt::format("sensor file '{}': not a TOML table", path));
+  for (const auto& [section, body] : doc.as_table()) {
+    if (!body.is_table()) {
+      throw InputError(fmt::format("sensor file '{}': '{}' is not a [section]", path, section));
+    }
+    for (const auto& [name, value] : body.as_table()) {
+      const std::string key = section + "." + name;
+      std::string text;
+      if (value.is_string()) {
+        text = value.as_string().str;
+      } else if (value.is_integer()) {
+        text = std::to_string(value.as_integer());
+      } else if (value.is_floating()) {
+        text = fmt::format("{:.17g}", value.as_floating());
+      } else if (value.is_boolean()) {
+        text = value.as_boolean() ? "true" : "false";
+      } else {
+        throw InputError(fmt::format("sensor file '{}': {}: unsupported value type", path, key));
+      }
+      try {
+        config.set(key, text);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("sensor file '{}': {}", path, e.what()));
+      }
+    }
+  }
+  return config;
+}
+
+}  // namespace aesim

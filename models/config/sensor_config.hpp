@@ -1,0 +1,68 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace aesim {
+
+enum class InitialState { Reset, Random };
+enum class BusAccess { Aloha, Arbitrated, Ideal };
+enum class Fidelity { Queue, Event, Cycle, Auto };
+
+// Every parameter of a run, in SI units. Field names are the keys of SPEC section 3.
+struct SensorConfig {
+  struct Pixel {
+    double c_int = 100e-15;   // F, integration capacitance
+    double dv_int = 1.0;      // V, swing at which the pixel fires
+    double i_max = 1e-12;     // A, photocurrent at full-scale scene value 1
+    double i_dark = 0.0;      // A
+    double t_reset = 0.0;     // s, no integration after each firing
+    double mismatch = 0.0;    // relative std of the per-pixel threshold charge
+    bool shot_noise = false;  // Gamma-distributed integration times
+    InitialState initial = InitialState::Reset;
+  } pixel;
+  struct Array {
+    int rows = 64, cols = 64, tile_rows = 32, tile_cols = 32;
+  } array;
+  struct Bus {
+    BusAccess access = BusAccess::Aloha;
+    double t_event = 100e-9;  // s, tau: how long one event holds the bus
+    bool contention_detect = true;
+  } bus;
+  struct Receiver {
+    double clock = 50e6;  // Hz
+    double tick = 1e-6;   // s, timestamp resolution
+    int fifo_depth = 16;
+  } receiver;
+  struct Sim {
+    double duration = 1.0;  // s
+    std::uint64_t seed = 1;
+    Fidelity fidelity = Fidelity::Auto;
+  } sim;
+  struct Scene {
+    double frame_rate = 25.0;  // Hz, for frame folders without their own scene.toml
+    bool loop = false;         // after the last frame: repeat the sequence, or hold the last frame
+  } scene;
+
+  // Sets one key ("pixel.c_int") from text with SI units; throws InputError naming the key.
+  void set(const std::string& key, const std::string& value);
+  // Every key with its value, as the summary and the AEDAT header echo them.
+  nlohmann::json to_json() const;
+  // Physical and structural consistency; throws InputError naming the offending key.
+  void validate() const;
+
+  static const std::vector<std::string>& keys();
+};
+
+// Loads a preset: NAME (a file in the sensors folder) or a path to a .toml file.
+SensorConfig load_sensor(const std::string& name_or_file);
+// The folder where named presets live.
+std::string sensors_dir();
+
+const char* to_string(InitialState v);
+const char* to_string(BusAccess v);
+const char* to_string(Fidelity v);
+
+}  // namespace aesim

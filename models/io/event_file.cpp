@@ -1,0 +1,77 @@
+#include "io/event_file.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "array/address_map.hpp"
+#include "config/input_error.hpp"
+#include "config/sensor_config.hpp"
+#include "io/aedat.hpp"
+#include "io/events_csv.hpp"
+
+namespace aesim {
+namespace {
+
+EventRecording from_aedat(const std::string& path) {
+  const AedatFile file = read_aedat(path);
+  SensorConfig sensor;
+  for (const char* key : {"array.rows", "array.cols", "array.tile_rows", "array.tile_cols"}) {
+    const auto it = file.metadata.find(std::string("sensor.") + key);
+    if (it == file.metadata.end()) {
+      throw InputError(fmt::format("event file '{}': header has no aesim.sensor.{} (not written by aesim?)", path, key));
+    }
+    try {
+      sensor.set(key, it->second);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("event file '{}': header: {}", path, e.what()));
+    }
+  }
+  try {
+    sensor.validate();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("event file '{}': header: {}", path, e.what()));
+  }
+  const AddressMap map(sensor.array);
+  EventRecording rec;
+  rec.width = map.cols();
+  rec.height = map.rows();
+  rec.tiles = map.tiles();
+  rec.events.reserve(file.records.size());
+  for (std::size_t i = 0; i < file.records.size(); ++i) {
+    const AedatRecord& r = file.records[i];
+    const auto p = map.decode(r.address);
+    if (!p) throw InputError(fmt::format("event file '{}': event {} has address 0x{:x}, outside the array", path, i, r.address));
+    AddressEvent e;
+    e.t = r.timestamp_us * 1e-6;
+    e.x = p->x;
+    e.y = p->y;
+    e.tile = map.tile_of(*p);
+    e.bus_address = map.bus_address(*p);
+    rec.events.push_back(e);
+  }
+  return rec;
+}
+
+EventRecording from_csv(const std::string& path) {
+  EventRecording rec;
+  rec.events = read_events_csv(path);
+  for (const AddressEvent& e : rec.events) {
+    rec.width = std::max(rec.width, static_cast<int>(e.x) + 1);
+    rec.height = std::max(rec.height, static_cast<int>(e.y) + 1);
+    rec.tiles = std::max(rec.tiles, static_cast<int>(e.tile) + 1);
+  }
+  return rec;
+}
+
+}  // namespace
+
+EventRecording load_events(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".csv") return from_csv(path);
+  if (ext == ".aedat" || ext == ".dat") return from_aedat(path);
+  throw InputError(fmt::format("event file '{}': unsupported format (use .aedat or .csv)", path));
+}
+
+}  // namespace aesim

@@ -1,0 +1,78 @@
+#include "pixel/integrate_fire.hpp"
+
+#include <algorithm>
+#include <random>
+
+namespace aesim {
+namespace {
+
+double draw_target(const IntegrateFire::Params& p, SplitMix64& rng) {
+  if (!p.shot_noise) return p.threshold;
+  const double electrons = p.threshold / kElectronCharge;
+  std::gamma_distribution<double> gamma(electrons, 1.0);
+  return kElectronCharge * gamma(rng);
+}
+
+}  // namespace
+
+IntegrateFire::IntegrateFire(const Params& params, double t0, double current,
+                             double initial_fraction, SplitMix64& rng)
+    : params_(params), target_(draw_target(params, rng)), current_(current), anchor_t_(t0) {
+  anchor_q_ = std::clamp(initial_fraction, 0.0, 1.0) * target_;
+  update_next_fire();
+}
+
+void IntegrateFire::update_next_fire() {
+  if (!(current_ > 0)) {
+    next_fire_ = kNever;
+    return;
+  }
+  const double first = anchor_t_ + (target_ - anchor_q_) / current_;
+  next_fire_ = cycles_ == 0
+                   ? first
+                   : first + static_cast<double>(cycles_) * (target_ / current_ + params_.t_reset);
+}
+
+double IntegrateFire::reset_end_of_last_cycle() const {
+  // Only meaningful when cycles_ > 0: the previous firing's time plus the reset.
+  const double period = target_ / current_ + params_.t_reset;
+  return anchor_t_ + (target_ - anchor_q_) / current_ +
+         static_cast<double>(cycles_ - 1) * period + params_.t_reset;
+}
+
+void IntegrateFire::fire(SplitMix64& rng) {
+  if (params_.shot_noise) {
+    // Each integration has its own random target, so re-anchor after every firing.
+    anchor_t_ = next_fire_ + params_.t_reset;
+    anchor_q_ = 0;
+    cycles_ = 0;
+    target_ = draw_target(params_, rng);
+  } else {
+    ++cycles_;
+  }
+  update_next_fire();
+}
+
+double IntegrateFire::charge_at(double t) const {
+  double start = anchor_t_;
+  double q0 = anchor_q_;
+  if (cycles_ > 0) {
+    start = reset_end_of_last_cycle();
+    q0 = 0;
+  }
+  if (t <= start || !(current_ > 0)) return q0;
+  return std::min(target_, q0 + current_ * (t - start));
+}
+
+void IntegrateFire::set_current(double t, double current) {
+  const double q = charge_at(t);
+  const double resume = cycles_ > 0 ? reset_end_of_last_cycle() : anchor_t_;
+  // In reset (t before the integration resumes) the new anchor is the end of the reset.
+  anchor_t_ = std::max(t, resume);
+  anchor_q_ = q;
+  cycles_ = 0;
+  current_ = current;
+  update_next_fire();
+}
+
+}  // namespace aesim

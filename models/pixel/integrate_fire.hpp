@@ -1,0 +1,62 @@
+#pragma once
+#include <cstdint>
+#include <limits>
+
+#include "random/splitmix64.hpp"
+
+namespace aesim {
+
+// Elementary charge, C: sets the electron count of a shot-noise integration.
+inline constexpr double kElectronCharge = 1.602176634e-19;
+inline constexpr double kNever = std::numeric_limits<double>::infinity();
+
+// The arithmetic of one integrate-and-fire pixel (eq. 2: dt_int = c_int * dv_int / I), shared by
+// every fidelity. Times are exact doubles in seconds; nothing is time-stepped.
+//
+// The pixel collects charge at its current I until it holds `target` coulombs, fires, spends
+// t_reset in reset, and starts again from zero. Without shot noise the target is the pixel's
+// threshold charge c_int*dv_int (with its mismatch). With shot noise each integration draws its
+// target as q * Gamma(N, 1), N = threshold/q: the N-th arrival of a unit-rate Poisson process in
+// collected charge, so a constant current gives Gamma(N, q/I) integration times and a current
+// change mid-integration (a new frame) is still exact.
+//
+// With constant current the k-th firing after an anchor is computed in closed form from the
+// anchor, so firing times do not accumulate rounding error over long runs.
+class IntegrateFire {
+ public:
+  struct Params {
+    double threshold = 0;   // C, this pixel's c_int * dv_int including mismatch
+    double t_reset = 0;     // s
+    bool shot_noise = false;
+  };
+
+  IntegrateFire() = default;
+  // Starts at time t0 with current `current` and `initial_fraction` of the swing already
+  // collected (0 for pixel.initial=reset). `rng` is the pixel's shot-noise stream.
+  IntegrateFire(const Params& params, double t0, double current, double initial_fraction,
+                SplitMix64& rng);
+
+  // Time of the next firing, or kNever when the current is zero.
+  double next_fire() const { return next_fire_; }
+  // Consumes the firing at next_fire(): the pixel enters reset and starts a new integration.
+  void fire(SplitMix64& rng);
+  // The current changes at time t (last firing <= t <= next_fire()); collected charge carries over.
+  void set_current(double t, double current);
+  // Charge collected at time t (zero during reset); t within [last firing, next_fire()].
+  double charge_at(double t) const;
+  double current() const { return current_; }
+
+ private:
+  double reset_end_of_last_cycle() const;
+  void update_next_fire();
+
+  Params params_;
+  double target_ = 0;      // charge to collect in this integration
+  double current_ = 0;     // A
+  double anchor_t_ = 0;    // integration started (or resumed) at this time...
+  double anchor_q_ = 0;    // ...holding this charge
+  std::uint64_t cycles_ = 0;  // firings since the anchor (constant current, no shot noise)
+  double next_fire_ = kNever;
+};
+
+}  // namespace aesim

@@ -1,0 +1,47 @@
+#include "pixel/pixel.hpp"
+
+#include "pixel/pixel_draws.hpp"
+
+namespace aesim {
+
+Pixel::Pixel(const sc_core::sc_module_name& name, const SensorConfig& config,
+             const Photocurrents& light, std::size_t index, const AddressEvent& identity)
+    : sc_module(name),
+      light_(light),
+      index_(index),
+      identity_(identity),
+      t_end_(config.sim.duration),
+      rng_(shot_noise_stream(config, index)),
+      core_(pixel_params(config, index), 0.0, light.current(0, index), initial_fraction(config, index),
+            rng_),
+      next_boundary_(light.next_change(0, index)) {
+  SC_METHOD(step);
+}
+
+void Pixel::step() {
+  if (!started_) {
+    started_ = true;
+  } else if (pending_fire_) {
+    AddressEvent e = identity_;
+    e.t = core_.next_fire();
+    bus->request(e);
+    core_.fire(rng_);
+  } else {
+    core_.set_current(light_.boundary_time(next_boundary_), light_.current(next_boundary_, index_));
+    next_boundary_ = light_.next_change(next_boundary_, index_);
+  }
+  schedule();
+}
+
+void Pixel::schedule() {
+  const double t_fire = core_.next_fire();
+  const double t_boundary =
+      next_boundary_ == Photocurrents::kNoChange ? kNever : light_.boundary_time(next_boundary_);
+  // On a tie the firing comes first: the charge reached threshold under the old light.
+  pending_fire_ = t_fire <= t_boundary;
+  const double t_next = pending_fire_ ? t_fire : t_boundary;
+  if (!(t_next <= t_end_)) return;  // nothing more happens to this pixel within the run
+  next_trigger(sc_core::sc_time(t_next, sc_core::SC_SEC) - sc_core::sc_time_stamp());
+}
+
+}  // namespace aesim

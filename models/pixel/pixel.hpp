@@ -1,0 +1,37 @@
+#pragma once
+#include <cstdint>
+#include <systemc>
+
+#include "bus/pixel_bus_if.hpp"
+#include "pixel/integrate_fire.hpp"
+#include "scene/photocurrents.hpp"
+
+namespace aesim {
+
+// An integrate-and-fire pixel as a SystemC module. It wakes only when something happens to it:
+// its next firing (computed in closed form by IntegrateFire) or a frame boundary where its own
+// light changes. A dark pixel of a still scene never wakes at all.
+class Pixel : public sc_core::sc_module {
+ public:
+  sc_core::sc_port<PixelBusIf> bus;
+
+  Pixel(const sc_core::sc_module_name& name, const SensorConfig& config,
+        const Photocurrents& light, std::size_t index, const AddressEvent& identity);
+  SC_HAS_PROCESS(Pixel);
+
+ private:
+  void step();
+  void schedule();
+
+  const Photocurrents& light_;
+  std::size_t index_;
+  AddressEvent identity_;
+  double t_end_;
+  SplitMix64 rng_;
+  IntegrateFire core_;
+  std::uint64_t next_boundary_;
+  bool started_ = false;
+  bool pending_fire_ = false;
+};
+
+}  // namespace aesim

@@ -1,0 +1,17 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace aesim {
+
+// A grey image, row-major from the top-left, values normalised to full scale (1.0 = white;
+// HDR scenes may exceed 1).
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<double> pixels;
+
+  double at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+}  // namespace aesim

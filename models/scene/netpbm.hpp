@@ -1,0 +1,15 @@
+#pragma once
+#include <string>
+
+#include "scene/image.hpp"
+
+namespace aesim {
+
+// PGM (P2 ASCII, P5 binary; 8 or 16 bit, value/maxval) and PFM (Pf grey, PF colour taken as
+// Rec. 709 luminance; values as is). Throws InputError naming the file and the defect.
+Image read_pgm(const std::string& path);
+Image read_pfm(const std::string& path);
+// Chooses by extension: .pgm or .pfm.
+Image read_image(const std::string& path);
+
+}  // namespace aesim

@@ -1,0 +1,106 @@
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <toml.hpp>
+
+#include "config/input_error.hpp"
+#include "scene/netpbm.hpp"
+#include "scene/resample.hpp"
+
+namespace aesim {
+namespace fs = std::filesystem;
+namespace {
+
+// The last run of digits in a file name orders the frames ("frame_9" before "frame_10").
+long long frame_number(const std::string& stem) {
+  auto end = stem.find_last_of("0123456789");
+  if (end == std::string::npos) return -1;
+  auto begin = end;
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(stem[begin - 1]))) --begin;
+  const std::string digits = stem.substr(begin, std::min<std::size_t>(end - begin + 1, 15));
+  return std::stoll(digits);
+}
+
+}  // namespace
+
+SceneFiles find_scene(const std::string& file_or_dir) {
+  SceneFiles files;
+  files.source = file_or_dir;
+  if (fs::is_regular_file(file_or_dir)) {
+    files.frames.push_back(file_or_dir);
+    return files;
+  }
+  if (!fs::is_directory(file_or_dir)) {
+    throw InputError(fmt::format("scene '{}' not found", file_or_dir));
+  }
+  std::vector<std::pair<long long, std::string>> numbered;
+  for (const auto& entry : fs::directory_iterator(file_or_dir)) {
+    const fs::path& p = entry.path();
+    if (!entry.is_regular_file()) continue;
+    if (p.filename() == "scene.toml") files.settings = p.string();
+    if (p.extension() != ".pgm" && p.extension() != ".pfm") continue;
+    const long long n = frame_number(p.stem().string());
+    if (n < 0) throw InputError(fmt::format("scene folder '{}': frame '{}' has no number", file_or_dir, p.filename().string()));
+    numbered.emplace_back(n, p.string());
+  }
+  if (numbered.empty()) {
+    throw InputError(fmt::format("scene folder '{}' has no numbered .pgm or .pfm frames", file_or_dir));
+  }
+  std::sort(numbered.begin(), numbered.end());
+  for (std::size_t i = 1; i < numbered.size(); ++i) {
+    if (numbered[i].first == numbered[i - 1].first) {
+      throw InputError(fmt::format("scene folder '{}': frames '{}' and '{}' share number {}", file_or_dir,
+                                   numbered[i - 1].second, numbered[i].second, numbered[i].first));
+    }
+  }
+  for (auto& entry : numbered) files.frames.push_back(std::move(entry.second));
+  return files;
+}
+
+void apply_scene_settings(const SceneFiles& files, SensorConfig& config) {
+  if (files.settings.empty()) return;
+  toml::value doc;
+  try {
+    doc = toml::parse(files.settings);
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    throw InputError(fmt::format("'{}': malformed TOML: {}", files.settings, msg.substr(0, msg.find('\n'))));
+  }
+  for (const auto& [name, value] : doc.as_table()) {
+    std::string text;
+    if (value.is_string()) text = value.as_string().str;
+    else if (value.is_integer()) text = std::to_string(value.as_integer());
+    else if (value.is_floating()) text = fmt::format("{:.17g}", value.as_floating());
+    else if (value.is_boolean()) text = value.as_boolean() ? "true" : "false";
+    else throw InputError(fmt::format("'{}': {}: unsupported value type", files.settings, name));
+    try {
+      config.set("scene." + name, text);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("'{}': {}", files.settings, e.what()));
+    }
+  }
+}
+
+Scene load_scene(const SceneFiles& files, const SensorConfig& config) {
+  Scene scene;
+  scene.frame_period = 1.0 / config.scene.frame_rate;
+  scene.loop = config.scene.loop;
+  for (const std::string& path : files.frames) {
+    Image img = read_image(path);
+    if (scene.frames.empty()) {
+      scene.source_width = img.width;
+      scene.source_height = img.height;
+    } else if (img.width != scene.source_width || img.height != scene.source_height) {
+      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", path, img.width,
+                                   img.height, scene.source_width, scene.source_height));
+    }
+    scene.frames.push_back(resample_area(img, config.array.cols, config.array.rows));
+  }
+  return scene;
+}
+
+}  // namespace aesim

@@ -1,0 +1,32 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "config/sensor_config.hpp"
+#include "scene/image.hpp"
+
+namespace aesim {
+
+// Where a scene comes from: one image file, or a folder of numbered frames with an optional
+// scene.toml (frame_rate, loop) that sets the scene.* keys before the command line does.
+struct SceneFiles {
+  std::string source;
+  std::vector<std::string> frames;  // in frame order
+  std::string settings;             // scene.toml, or empty
+};
+
+SceneFiles find_scene(const std::string& file_or_dir);
+// Applies the folder's scene.toml to config.scene (command-line --set applies after this).
+void apply_scene_settings(const SceneFiles& files, SensorConfig& config);
+
+// A scene at the array's resolution: frames shown one after the other, each for frame_period.
+struct Scene {
+  std::vector<Image> frames;
+  double frame_period = 0;  // s; irrelevant for a single frame
+  bool loop = false;
+  int source_width = 0, source_height = 0;
+};
+
+Scene load_scene(const SceneFiles& files, const SensorConfig& config);
+
+}  // namespace aesim

@@ -1,0 +1,46 @@
+#include <algorithm>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "aesim/commands.hpp"
+#include "io/event_file.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+int info(const std::string& path) {
+  const EventRecording rec = load_events(path);
+  const std::size_t n = rec.events.size();
+  const double span = n > 1 ? rec.events.back().t - rec.events.front().t : 0.0;
+  std::vector<std::size_t> per_tile(static_cast<std::size_t>(std::max(rec.tiles, 1)), 0);
+  std::size_t ghosts = 0;
+  for (const AddressEvent& e : rec.events) {
+    if (e.tile < per_tile.size()) ++per_tile[e.tile];
+    ghosts += (e.flags & kGhostEvent) ? 1 : 0;
+  }
+  fmt::print("{}: {} events, array {}x{}, {} tiles\n", path, n, rec.width, rec.height, rec.tiles);
+  if (n > 0) {
+    fmt::print("  first {:.6f} s, last {:.6f} s, span {}\n", rec.events.front().t, rec.events.back().t,
+               format_si(span, "s"));
+  }
+  if (span > 0) fmt::print("  rate {}\n", format_si(static_cast<double>(n) / span, "events/s"));
+  if (ghosts > 0) fmt::print("  ghost events {}\n", ghosts);
+  for (std::size_t t = 0; t < per_tile.size() && n > 0; ++t) {
+    fmt::print("  tile {}: {} events ({:.1f} %){}\n", t, per_tile[t], 100.0 * per_tile[t] / n,
+               span > 0 ? ", " + format_si(per_tile[t] / span, "events/s") : "");
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app, int& status) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("info", "Counts, time span, rate and per-tile breakdown of an event file");
+  cmd->add_option("EVENTS", *path, "Event file (.aedat or .csv)")->required();
+  cmd->callback([path, &status] { status = info(*path); });
+}
+
+}  // namespace aesim

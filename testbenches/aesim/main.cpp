@@ -1,0 +1,40 @@
+// The aesim program: SystemC's library supplies main(), which calls sc_main.
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <systemc>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "aesim/commands.hpp"
+#include "config/input_error.hpp"
+
+int sc_main(int argc, char* argv[]) {
+  CLI::App app{"aesim: cycle-level simulator of address-event (ALOHA) image sensors", "aesim"};
+  app.require_subcommand(1);
+  int status = 0;
+  aesim::add_run_command(app, status);
+  aesim::add_recon_command(app, status);
+  aesim::add_info_command(app, status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "aesim: %s\n", e.what());
+    return 2;
+  } catch (const aesim::InputError& e) {
+    std::fprintf(stderr, "aesim: %s\n", e.what());
+    return 2;
+  } catch (const sc_core::sc_report& e) {
+    std::fprintf(stderr, "aesim: internal error: SystemC: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "aesim: internal error: %s\n", e.what());
+    return 1;
+  }
+  return status;
+}

@@ -1,0 +1,57 @@
+#include <fmt/format.h>
+
+#include "aesim/commands.hpp"
+#include "config/input_error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/event_file.hpp"
+#include "io/image_file.hpp"
+#include "recon/reconstruct.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+struct ReconOptions {
+  std::string events, output, window, mode = "histogram";
+  long long count = -1;
+};
+
+int recon(const ReconOptions& opt) {
+  if (opt.mode != "histogram" && opt.mode != "interval") {
+    throw InputError(fmt::format("--mode: expected histogram or interval (got '{}')", opt.mode));
+  }
+  check_image_path(opt.output);
+  if (opt.count == 0 || opt.count < -1) throw InputError("--events: must be a positive count");
+  const double window = opt.window.empty() ? 0 : parse_si(opt.window, "s", "--window");
+  if (!opt.window.empty() && window <= 0) throw InputError("--window: must be positive");
+
+  const EventRecording rec = load_events(opt.events);
+  std::vector<AddressEvent> chosen = rec.events;
+  if (opt.count > 0) chosen = first_events(rec.events, static_cast<std::size_t>(opt.count));
+  if (!opt.window.empty()) chosen = first_window(rec.events, window);
+  if (rec.width == 0) throw InputError(fmt::format("event file '{}' has no events and no array size", opt.events));
+
+  const ReconMode mode = opt.mode == "histogram" ? ReconMode::Histogram : ReconMode::Interval;
+  OutputFiles files;
+  write_image(files.open(opt.output), opt.output, reconstruct(chosen, rec.width, rec.height, mode));
+  files.commit();
+  fmt::print("aesim recon: {} of {} events, {} reconstruction {}x{} -> {}\n", chosen.size(), rec.events.size(),
+             opt.mode, rec.width, rec.height, opt.output);
+  return 0;
+}
+
+}  // namespace
+
+void add_recon_command(CLI::App& app, int& status) {
+  auto opt = std::make_shared<ReconOptions>();
+  CLI::App* cmd = app.add_subcommand("recon", "Reconstruct an image from an event file (.aedat or .csv)");
+  cmd->add_option("EVENTS", opt->events, "Event file")->required();
+  auto* window = cmd->add_option("--window", opt->window, "Use the events within this time of the first, e.g. 100ms");
+  cmd->add_option("--events", opt->count, "Use the first N events")->excludes(window);
+  cmd->add_option("--mode", opt->mode, "histogram (events per pixel) or interval (1 / time between a pixel's last two events)")
+      ->capture_default_str();
+  cmd->add_option("-o,--output", opt->output, "Output image (.png or .pgm)")->required();
+  cmd->callback([opt, &status] { status = recon(*opt); });
+}
+
+}  // namespace aesim
