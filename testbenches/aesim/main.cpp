@@ -1,4 +1,4 @@
-// The aesim program: SystemC's library supplies main(), which calls sc_main.
+// The aesim program.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -38,3 +38,4 @@ int sc_main(int argc, char* argv[]) {
   }
   return status;
 }
+

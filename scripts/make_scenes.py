@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""Regenerates the scenes under scenes/ (committed, so users need not run this).
+
+Plain Python (no numpy here). Shapes are drawn with 4x4 supersampling so that edges carry
+the partial grey levels a real optical image would.
+"""
+import math
+import os
+import struct
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
+SS = 4  # supersampling per axis
+
+
+def write_pgm(path, width, height, values, maxval=255):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(b"P5\n%d %d\n%d\n" % (width, height, maxval))
+        if maxval < 256:
+            f.write(bytes(values))
+        else:
+            f.write(b"".join(struct.pack(">H", v) for v in values))
+
+
+def write_pfm(path, width, height, values):
+    """Grey PFM, little-endian (negative scale), rows stored bottom to top."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(b"Pf\n%d %d\n-1.0\n" % (width, height))
+        for y in reversed(range(height)):
+            f.write(struct.pack("<%df" % width, *values[y * width:(y + 1) * width]))
+
+
+def render(width, height, inside):
+    """Coverage in [0, 1] of each pixel by the shape `inside(u, v)`, u and v in pixel units."""
+    out = []
+    for y in range(height):
+        for x in range(width):
+            hits = sum(inside(x + (i + 0.5) / SS, y + (j + 0.5) / SS) for j in range(SS) for i in range(SS))
+            out.append(hits / (SS * SS))
+    return out
+
+
+def to8(coverage, lo=0, hi=255):
+    return [int(round(lo + (hi - lo) * c)) for c in coverage]
+
+
+def segment_distance(px, py, ax, ay, bx, by):
+    dx, dy = bx - ax, by - ay
+    t = max(0.0, min(1.0, ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy)))
+    return math.hypot(px - (ax + t * dx), py - (ay + t * dy))
+
+
+STROKE = 2.2  # half-width of a letter stroke, pixels
+
+
+def letter_a(u, v):
+    return (segment_distance(u, v, 16, 4, 6.5, 28) < STROKE or segment_distance(u, v, 16, 4, 25.5, 28) < STROKE
+            or (abs(v - 19) < STROKE * 0.8 and 9.5 < u < 22.5))
+
+
+def ring(u, v, cx=16, cy=16, r=10.5):
+    return abs(math.hypot(u - cx, v - cy) - r) < STROKE
+
+
+def letter_c(u, v):
+    angle = math.degrees(math.atan2(v - 16, u - 16))
+    return ring(u, v) and not (-40 < angle < 40)
+
+
+def letter_o(u, v):
+    return ring(u, v)
+
+
+def letter_q(u, v):
+    return ring(u, v) or segment_distance(u, v, 19, 19, 27, 28) < STROKE
+
+
+def main():
+    for name, shape in (("A", letter_a), ("C", letter_c), ("O", letter_o), ("Q", letter_q)):
+        write_pgm(os.path.join(ROOT, "letters", name + ".pgm"), 32, 32, to8(render(32, 32, shape)))
+
+    n = 64
+    write_pgm(os.path.join(ROOT, "uniform.pgm"), n, n, [255] * (n * n))
+    write_pgm(os.path.join(ROOT, "gradient.pgm"), n, n,
+              [int(round(65535 * x / (n - 1))) for y in range(n) for x in range(n)], maxval=65535)
+    write_pgm(os.path.join(ROOT, "checkerboard.pgm"), n, n,
+              [255 if ((x // 8) + (y // 8)) % 2 == 0 else 0 for y in range(n) for x in range(n)])
+
+    # A dim room (1e-4 .. 1e-3 of full scale, log ramp), a window (0.3 .. 1) and the sun (20):
+    # 5.3 decades in one frame.
+    hdr = []
+    for y in range(n):
+        for x in range(n):
+            value = 1e-4 * 10 ** (x / (n - 1))
+            if 36 <= x < 60 and 6 <= y < 30:
+                value = 0.3 + 0.7 * (y - 6) / 23
+            if math.hypot(x - 50, y - 14) < 4:
+                value = 20.0
+            hdr.append(value)
+    write_pfm(os.path.join(ROOT, "hdr", "window.pfm"), n, n, hdr)
+
+    # A bright disc (radius 8) crossing a dark background (2 % of full scale), 2 px per frame.
+    folder = os.path.join(ROOT, "moving_disc")
+    for k in range(24):
+        cx = 8 + 2 * k
+        coverage = render(n, n, lambda u, v: math.hypot(u - cx, v - 32) < 8)
+        write_pgm(os.path.join(folder, "frame_%03d.pgm" % k), n, n, to8(coverage, lo=5, hi=255))
+    with open(os.path.join(folder, "scene.toml"), "w") as f:
+        f.write("# 24 frames at 10 Hz: the disc crosses the field in 2.4 s, then the last frame holds.\n")
+        f.write('frame_rate = "10Hz"\nloop = false\n')
+
+
+if __name__ == "__main__":
+    main()

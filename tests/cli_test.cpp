@@ -1,0 +1,175 @@
+// The aesim program as a user meets it: default run, outputs, bad input, reproducibility.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "scene/netpbm.hpp"
+
+namespace aesim {
+namespace {
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("aesim_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Outcome aesim(const std::string& args) {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" AESIM_BINARY "' " + args + " >stdout.txt 2>stderr.txt";
+    Outcome o;
+    const int raw = std::system(cmd.c_str());
+    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    o.out = slurp(dir_ / "stdout.txt");
+    o.err = slurp(dir_ / "stderr.txt");
+    fs::remove(dir_ / "stdout.txt");
+    fs::remove(dir_ / "stderr.txt");
+    return o;
+  }
+  std::string write(const std::string& name, const std::string& bytes) {
+    std::ofstream(dir_ / name, std::ios::binary) << bytes;
+    return (dir_ / name).string();
+  }
+  std::size_t files_in_dir() const {
+    std::size_t n = 0;
+    for (const auto& e : fs::recursive_directory_iterator(dir_)) n += e.is_regular_file() ? 1 : 0;
+    return n;
+  }
+  fs::path dir_;
+};
+
+const std::string kScenes = std::string(AESIM_SOURCE_DIR) + "/scenes";
+
+TEST_F(CliTest, DefaultRunWritesEveryOutputUnderOut) {
+  const Outcome o = aesim("run");
+  ASSERT_EQ(o.status, 0) << o.err;
+  for (const char* f : {"events.aedat", "events.csv", "recon.png", "summary.json"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / f)) << f;
+  }
+  EXPECT_NE(o.out.find("fired"), std::string::npos);
+  EXPECT_NE(o.out.find("out/events.aedat"), std::string::npos);
+  const auto summary = nlohmann::json::parse(slurp(dir_ / "out" / "summary.json"));
+  for (const char* key : {"events_fired", "events_delivered", "events_collided", "events_ghost", "events_dropped",
+                          "offered_load", "throughput", "tau_s", "sim_time_s", "wall_time_s", "fidelity", "sensor"}) {
+    EXPECT_TRUE(summary.contains(key)) << key;
+  }
+  EXPECT_GT(summary["events_fired"].get<double>(), 0);
+  EXPECT_EQ(summary["events_fired"], summary["events_delivered"]);  // ideal bus
+  EXPECT_EQ(summary["fidelity"], "event");
+  EXPECT_EQ(summary["sensor"]["pixel"]["c_int"].get<double>(), 100e-15);
+  // CSV rows match the summary's count, and the header is SPEC's.
+  const std::string csv = slurp(dir_ / "out" / "events.csv");
+  EXPECT_EQ(csv.rfind("t_us,x,y,tile,flags\n", 0), 0u);
+  EXPECT_EQ(static_cast<double>(std::count(csv.begin(), csv.end(), '\n') - 1),
+            summary["events_delivered"].get<double>());
+}
+
+TEST_F(CliTest, SameSeedSameBytesOtherSeedOtherBytes) {
+  const std::string common = "--scene " + kScenes +
+                             "/moving_disc --duration 1s --set pixel.shot_noise=true "
+                             "--set pixel.initial=random ";
+  auto run = [&](const std::string& tag, int seed) {
+    const Outcome o = aesim("run " + common + "--set sim.seed=" + std::to_string(seed) + " --out " + tag +
+                            ".aedat --csv " + tag + ".csv --recon " + tag + ".pgm");
+    EXPECT_EQ(o.status, 0) << o.err;
+  };
+  run("a", 3);
+  run("b", 3);
+  run("c", 4);
+  for (const char* ext : {".aedat", ".csv", ".pgm"}) {
+    EXPECT_EQ(slurp(dir_ / (std::string("a") + ext)), slurp(dir_ / (std::string("b") + ext))) << ext;
+  }
+  EXPECT_NE(slurp(dir_ / "a.aedat"), slurp(dir_ / "c.aedat"));
+}
+
+TEST_F(CliTest, BadInputIsOneLineExitTwoAndNoOutput) {
+  const std::string truncated = write("truncated.pgm", std::string("P5\n8 8\n255\n") + std::string(20, '\x80'));
+  const std::string malformed = write("malformed.pgm", "P7\nhello\n");
+  const std::string outputs = " --out o.aedat --csv o.csv --summary o.json --recon o.png";
+  const std::pair<std::string, std::string> cases[] = {
+      {"run --scene " + truncated, "truncated"},
+      {"run --scene " + malformed, "not a PGM"},
+      {"run --scene " + write("t.pfm", "Pf\n2 2\n-1.0\nabc"), "truncated"},
+      {"run --set pixel.c_intt=1fF", "pixel.c_intt"},
+      {"run --set pixel.c_int=abc", "pixel.c_int"},
+      {"run --set pixel.c_int=100pA", "pixel.c_int"},
+      {"run --set pixel.c_int=-100fF", "pixel.c_int"},
+      {"run --set pixel.dv_int=0", "pixel.dv_int"},
+      {"run --set array.rows=0", "array.rows"},
+      {"run --set sim.duration=-1s", "sim.duration"},
+      {"run --set novalue", "--set"},
+      {"run --scene /no/such/scene.pgm", "not found"},
+      {"run --sensor no_such_sensor", "unknown sensor"},
+      {"run --set sim.fidelity=cycle", "sim.fidelity"},
+      {"run --frobnicate", "frobnicate"},
+      {"run --recon o.jpg", "--recon"},
+  };
+  for (const auto& [args, needle] : cases) {
+    const Outcome o = aesim(args + (args.find("--recon") == std::string::npos ? outputs : ""));
+    EXPECT_EQ(o.status, 2) << args << ": " << o.err;
+    EXPECT_NE(o.err.find(needle), std::string::npos) << args << ": " << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << args << ": " << o.err;
+    EXPECT_EQ(files_in_dir(), 3u) << args << " left files behind";  // only the scenes written above
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << args;
+  }
+}
+
+TEST_F(CliTest, ReconReproducesTheCheckerboardAndInfoCountsEvents) {
+  ASSERT_EQ(aesim("run --scene " + kScenes + "/checkerboard.pgm --duration 3s --out e.aedat --summary s.json").status, 0);
+  const Outcome recon = aesim("recon e.aedat --mode histogram -o r.pgm");
+  ASSERT_EQ(recon.status, 0) << recon.err;
+  const Image img = read_pgm((dir_ / "r.pgm").string());
+  ASSERT_EQ(img.width, 64);
+  // Lit squares fire ~30 times in 3 s, dark ones (1 fA) essentially never.
+  for (int y = 4; y < 64; y += 8) {
+    for (int x = 4; x < 64; x += 8) {
+      const bool lit = ((x / 8) + (y / 8)) % 2 == 0;
+      if (lit) EXPECT_GT(img.at(x, y), 0.85) << x << "," << y;
+      else EXPECT_LT(img.at(x, y), 0.1) << x << "," << y;
+    }
+  }
+  const Outcome interval = aesim("recon e.aedat --mode interval --events 5000 -o i.png");
+  EXPECT_EQ(interval.status, 0) << interval.err;
+  EXPECT_NE(interval.out.find("5000 of"), std::string::npos);
+
+  const auto summary = nlohmann::json::parse(slurp(dir_ / "s.json"));
+  const Outcome info = aesim("info e.aedat");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_NE(info.out.find(std::to_string(summary["events_delivered"].get<long long>()) + " events"), std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("tile 3:"), std::string::npos);
+}
+
+TEST_F(CliTest, ReconAndInfoRejectBadInput) {
+  EXPECT_EQ(aesim("recon missing.aedat -o r.png").status, 2);
+  EXPECT_EQ(aesim("info missing.aedat").status, 2);
+  write("bad.aedat", "#!AER-DAT2.0\r\nxyz");
+  EXPECT_EQ(aesim("info bad.aedat").status, 2);
+  EXPECT_EQ(aesim("recon bad.aedat --mode sideways -o r.png").status, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "r.png"));
+}
+
+}  // namespace
+}  // namespace aesim

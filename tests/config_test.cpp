@@ -1,0 +1,102 @@
+// SI values, presets, --set overrides and validation (SPEC section 3).
+#include <gtest/gtest.h>
+
+#include "config/input_error.hpp"
+#include "config/sensor_config.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+TEST(SiUnits, PrefixesAndUnits) {
+  EXPECT_DOUBLE_EQ(parse_si("100fF", "F", "k"), 100e-15);
+  EXPECT_DOUBLE_EQ(parse_si("1 pA", "A", "k"), 1e-12);
+  EXPECT_DOUBLE_EQ(parse_si("2us", "s", "k"), 2e-6);
+  EXPECT_DOUBLE_EQ(parse_si("2\xC2\xB5s", "s", "k"), 2e-6);
+  EXPECT_DOUBLE_EQ(parse_si("5ms", "s", "k"), 5e-3);
+  EXPECT_DOUBLE_EQ(parse_si("50MHz", "Hz", "k"), 50e6);
+  EXPECT_DOUBLE_EQ(parse_si("1e-13", "F", "k"), 1e-13);
+  EXPECT_DOUBLE_EQ(parse_si("3k", "", "k"), 3000);
+  EXPECT_DOUBLE_EQ(parse_si("0.5V", "V", "k"), 0.5);
+}
+
+TEST(SiUnits, RejectsWrongUnitsAndGarbageNamingTheKey) {
+  for (const char* bad : {"100pA", "abc", "", "1 furlong", "1e999", "nan", "10 F F"}) {
+    try {
+      parse_si(bad, "F", "pixel.c_int");
+      FAIL() << "accepted '" << bad << "'";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("pixel.c_int"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SensorConfig, AlohaPresetHasTheSpecConstants) {
+  const SensorConfig c = load_sensor("aloha");
+  EXPECT_DOUBLE_EQ(c.pixel.c_int, 100e-15);
+  EXPECT_DOUBLE_EQ(c.pixel.dv_int, 1.0);
+  EXPECT_DOUBLE_EQ(c.pixel.i_max, 1e-12);
+  EXPECT_EQ(c.array.rows, 64);
+  EXPECT_EQ(c.array.cols, 64);
+  EXPECT_EQ(c.array.tile_rows, 32);
+  EXPECT_EQ(c.array.tile_cols, 32);
+  // f_max = i_max / (c_int * dv_int) = 10 Hz
+  EXPECT_NEAR(c.pixel.i_max / (c.pixel.c_int * c.pixel.dv_int), 10.0, 1e-9);
+  EXPECT_NO_THROW(c.validate());
+}
+
+TEST(SensorConfig, SetAcceptsEveryKeyAndEchoesIt) {
+  SensorConfig c;
+  c.set("pixel.c_int", "50fF");
+  c.set("bus.access", "ideal");
+  c.set("pixel.shot_noise", "on");
+  c.set("sim.seed", "12345");
+  c.set("array.rows", "128");
+  const nlohmann::json j = c.to_json();
+  EXPECT_DOUBLE_EQ(j["pixel"]["c_int"].get<double>(), 50e-15);
+  EXPECT_EQ(j["bus"]["access"], "ideal");
+  EXPECT_EQ(j["pixel"]["shot_noise"], true);
+  EXPECT_EQ(j["sim"]["seed"], 12345);
+  EXPECT_EQ(j["array"]["rows"], 128);
+  std::size_t keys = 0;
+  for (const auto& section : j) keys += section.size();
+  EXPECT_EQ(keys, SensorConfig::keys().size());
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SensorConfig, BadKeysValuesAndPhysicsNameTheKey) {
+  SensorConfig c;
+  EXPECT_NE(error_of([&] { c.set("pixel.c_intt", "1fF"); }).find("pixel.c_intt"), std::string::npos);
+  EXPECT_NE(error_of([&] { c.set("array.rows", "12.5"); }).find("array.rows"), std::string::npos);
+  EXPECT_NE(error_of([&] { c.set("bus.access", "token-ring"); }).find("bus.access"), std::string::npos);
+  EXPECT_NE(error_of([&] { c.set("pixel.shot_noise", "maybe"); }).find("pixel.shot_noise"), std::string::npos);
+
+  SensorConfig negative;
+  negative.set("pixel.c_int", "-100fF");
+  EXPECT_NE(error_of([&] { negative.validate(); }).find("pixel.c_int"), std::string::npos);
+  SensorConfig zero_swing;
+  zero_swing.set("pixel.dv_int", "0V");
+  EXPECT_NE(error_of([&] { zero_swing.validate(); }).find("pixel.dv_int"), std::string::npos);
+  SensorConfig big_tile;
+  big_tile.set("array.tile_rows", "65");
+  EXPECT_NE(error_of([&] { big_tile.validate(); }).find("array.tile_rows"), std::string::npos);
+  SensorConfig long_run;
+  long_run.set("sim.duration", "1e7s");
+  EXPECT_NE(error_of([&] { long_run.validate(); }).find("sim.duration"), std::string::npos);
+}
+
+TEST(SensorConfig, UnknownPresetIsAnInputError) {
+  EXPECT_THROW(load_sensor("no_such_sensor"), InputError);
+  EXPECT_THROW(load_sensor("/nonexistent/x.toml"), InputError);
+}
+
+}  // namespace
+}  // namespace aesim

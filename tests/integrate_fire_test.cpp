@@ -1,0 +1,126 @@
+// The pixel arithmetic against eq. 2 and hand-computed cases.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "pixel/integrate_fire.hpp"
+
+namespace aesim {
+namespace {
+
+constexpr double kQ = 100e-15 * 1.0;  // c_int * dv_int
+
+IntegrateFire make(double current, double t_reset, double fraction = 0.0) {
+  SplitMix64 rng(1);
+  return IntegrateFire({kQ, t_reset, false}, 0.0, current, fraction, rng);
+}
+
+std::vector<double> fire_until(IntegrateFire& p, double t_end) {
+  SplitMix64 rng(1);
+  std::vector<double> times;
+  while (p.next_fire() <= t_end) {
+    times.push_back(p.next_fire());
+    p.fire(rng);
+  }
+  return times;
+}
+
+TEST(IntegrateFire, ConstantCurrentFiresAtKTimesDtPlusResets) {
+  for (double t_reset : {0.0, 1e-3}) {
+    IntegrateFire p = make(1e-12, t_reset);  // dt_int = 100 ms
+    const std::vector<double> times = fire_until(p, 10.0);
+    const std::size_t expected = t_reset == 0 ? 100 : 99;  // 100*0.1 + 99*1e-3 > 10
+    ASSERT_EQ(times.size(), expected);
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      const double k = static_cast<double>(i + 1);
+      EXPECT_NEAR(times[i], k * 0.1 + (k - 1) * t_reset, 1e-13 * times[i]) << "firing " << k;
+    }
+  }
+}
+
+TEST(IntegrateFire, CurrentChangeMidIntegrationCarriesChargeOver) {
+  // 1 pA for 0.25 s fires at 0.1, 0.2 and holds half the swing at 0.25; at 0.5 pA the other
+  // half takes 0.1 s, so the next firing is at 0.35, then every 0.2 s.
+  IntegrateFire p = make(1e-12, 0.0);
+  SplitMix64 rng(1);
+  EXPECT_NEAR(p.next_fire(), 0.1, 1e-15);
+  p.fire(rng);
+  EXPECT_NEAR(p.next_fire(), 0.2, 1e-15);
+  p.fire(rng);
+  EXPECT_NEAR(p.charge_at(0.25), 0.5 * kQ, 1e-12 * kQ);
+  p.set_current(0.25, 0.5e-12);
+  EXPECT_NEAR(p.next_fire(), 0.35, 1e-15);
+  p.fire(rng);
+  EXPECT_NEAR(p.next_fire(), 0.55, 1e-15);
+}
+
+TEST(IntegrateFire, CurrentChangeDuringResetStartsFromZeroAfterReset) {
+  // Fires at 0.1 and 0.21; in reset until 0.22. A change at 0.215 applies from 0.22 with no
+  // charge: 0.5 pA needs 0.2 s, so the next firing is at 0.42.
+  IntegrateFire p = make(1e-12, 0.01);
+  SplitMix64 rng(1);
+  p.fire(rng);
+  EXPECT_NEAR(p.next_fire(), 0.21, 1e-15);
+  p.fire(rng);
+  EXPECT_EQ(p.charge_at(0.215), 0.0);
+  p.set_current(0.215, 0.5e-12);
+  EXPECT_NEAR(p.next_fire(), 0.42, 1e-15);
+}
+
+TEST(IntegrateFire, InitialFractionShortensTheFirstIntegration) {
+  IntegrateFire p = make(1e-12, 0.0, 0.25);
+  EXPECT_NEAR(p.next_fire(), 0.075, 1e-15);
+}
+
+TEST(IntegrateFire, ZeroCurrentNeverFiresAndResumesWhenLit) {
+  IntegrateFire p = make(0.0, 1e-3, 0.5);
+  EXPECT_TRUE(std::isinf(p.next_fire()));
+  EXPECT_EQ(p.charge_at(1e9), 0.5 * kQ);
+  p.set_current(1e9, 1e-12);  // the held half swing fires 50 ms after the light comes on
+  EXPECT_NEAR(p.next_fire(), 1e9 + 0.05, 1e-6);
+}
+
+TEST(IntegrateFire, TinyCurrentsGiveHugeFiniteTimesNotNaN) {
+  for (double current : {1e-30, 1e-300, 5e-324}) {
+    IntegrateFire p = make(current, 1e-6);
+    const double t = p.next_fire();
+    EXPECT_FALSE(std::isnan(t)) << current;
+    EXPECT_GT(t, 1e15) << current;
+    SplitMix64 rng(1);
+    p.fire(rng);
+    EXPECT_FALSE(std::isnan(p.next_fire())) << current;
+  }
+}
+
+TEST(IntegrateFire, ShotNoiseIntegrationTimesFollowTheGammaLaw) {
+  // N electrons collected at rate I/q: integration time ~ Gamma(N, q/I), mean N q/I, var N (q/I)^2.
+  const double electrons = 1000;
+  const double threshold = electrons * kElectronCharge;
+  const double current = 1e-15;
+  const double scale = kElectronCharge / current;
+  SplitMix64 rng(42);
+  IntegrateFire p({threshold, 0.0, true}, 0.0, current, 0.0, rng);
+  const int n = 20000;
+  double previous = 0, sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const double dt = p.next_fire() - previous;
+    previous = p.next_fire();
+    p.fire(rng);
+    sum += dt;
+    sum2 += dt * dt;
+  }
+  const double mean = sum / n;
+  const double var = (sum2 - n * mean * mean) / (n - 1);
+  const double true_mean = electrons * scale;
+  const double true_var = electrons * scale * scale;
+  // Four standard errors: of the mean sqrt(var/n); of the variance var*sqrt(2/(n-1)) (Gamma
+  // with N = 1000 is near-normal, excess kurtosis 6/N).
+  EXPECT_NEAR(mean, true_mean, 4 * std::sqrt(true_var / n));
+  EXPECT_NEAR(var, true_var, 4 * true_var * std::sqrt(2.0 / (n - 1) + 6.0 / electrons / n));
+  // And it is noise: the relative spread is 1/sqrt(N), about 3 %.
+  EXPECT_GT(std::sqrt(var) / mean, 0.025);
+}
+
+}  // namespace
+}  // namespace aesim

@@ -1,0 +1,160 @@
+// Scene files: PGM/PFM decoding, malformed files, resampling, frame folders.
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "config/input_error.hpp"
+#include "scene/netpbm.hpp"
+#include "scene/resample.hpp"
+#include "scene/scene.hpp"
+
+namespace aesim {
+namespace {
+namespace fs = std::filesystem;
+
+class SceneFilesTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("aesim_scene_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& bytes) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  }
+  fs::path dir_;
+};
+
+TEST_F(SceneFilesTest, AsciiAndBinaryPgmIn8And16Bit) {
+  const Image a = read_pgm(write("a.pgm", "P2\n# comment\n3 2\n255\n0 51 255\n# inline\n102 153 204\n"));
+  ASSERT_EQ(a.width, 3);
+  ASSERT_EQ(a.height, 2);
+  EXPECT_DOUBLE_EQ(a.at(1, 0), 51 / 255.0);
+  EXPECT_DOUBLE_EQ(a.at(2, 1), 204 / 255.0);
+
+  const Image b = read_pgm(write("b.pgm", std::string("P5\n2 1\n255\n") + char(0) + char(255)));
+  EXPECT_DOUBLE_EQ(b.at(0, 0), 0.0);
+  EXPECT_DOUBLE_EQ(b.at(1, 0), 1.0);
+
+  // 16-bit samples are big-endian: 0x0100 = 256, 0xFFFF = full scale.
+  const Image c = read_pgm(write("c.pgm", std::string("P5\n2 1\n65535\n") + char(1) + char(0) + char(255) + char(255)));
+  EXPECT_DOUBLE_EQ(c.at(0, 0), 256 / 65535.0);
+  EXPECT_DOUBLE_EQ(c.at(1, 0), 1.0);
+}
+
+std::string pfm_bytes(const char* magic, int w, int h, float scale, const std::vector<float>& rows_bottom_up) {
+  std::string s = std::string(magic) + "\n" + std::to_string(w) + " " + std::to_string(h) + "\n" +
+                  std::to_string(scale) + "\n";
+  for (float v : rows_bottom_up) {
+    char b[4];
+    std::memcpy(b, &v, 4);
+    if (scale > 0) {
+      std::swap(b[0], b[3]);
+      std::swap(b[1], b[2]);
+    }
+    s.append(b, 4);
+  }
+  return s;
+}
+
+TEST_F(SceneFilesTest, PfmIsBottomUpInEitherByteOrderAndKeepsHdrValues) {
+  for (float scale : {-1.0f, 1.0f}) {
+    const Image img = read_pfm(write("h.pfm", pfm_bytes("Pf", 2, 2, scale, {1e-4f, 2e-4f, 10.0f, 1000.0f})));
+    EXPECT_FLOAT_EQ(static_cast<float>(img.at(0, 0)), 10.0f);  // top row is stored last
+    EXPECT_FLOAT_EQ(static_cast<float>(img.at(1, 0)), 1000.0f);
+    EXPECT_FLOAT_EQ(static_cast<float>(img.at(0, 1)), 1e-4f);
+  }
+  const Image rgb = read_pfm(write("c.pfm", pfm_bytes("PF", 1, 1, -1.0f, {1.0f, 1.0f, 1.0f})));
+  EXPECT_NEAR(rgb.at(0, 0), 1.0, 1e-6);
+}
+
+TEST_F(SceneFilesTest, MalformedFilesAreInputErrorsNamingTheDefect) {
+  const std::pair<const char*, std::string> cases[] = {
+      {"truncated", std::string("P5\n4 4\n255\n") + std::string(10, 'x')},
+      {"not a PGM", "P6\n1 1\n255\n\xff\xff\xff"},
+      {"maxval", "P2\n1 1\n70000\n5\n"},
+      {"pixel value 101", "P2\n1 1\n100\n101\n"},
+      {"malformed width", "P2\nx 1\n255\n0\n"},
+      {"truncated header", "P5\n4"},
+      {"exceeds 64 Mpixel", "P5\n65536 65536\n255\n"},
+      {"", ""},
+  };
+  for (const auto& [needle, bytes] : cases) {
+    try {
+      read_pgm(write("bad.pgm", bytes));
+      FAIL() << "accepted a file that should fail with '" << needle << "'";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line: " << e.what();
+    }
+  }
+  EXPECT_THROW(read_pfm(write("t.pfm", pfm_bytes("Pf", 2, 2, -1.0f, {1, 2, 3}))), InputError);
+  EXPECT_THROW(read_pfm(write("n.pfm", pfm_bytes("Pf", 1, 1, -1.0f, {-1.0f}))), InputError);
+  EXPECT_THROW(read_pfm(write("nan.pfm", pfm_bytes("Pf", 1, 1, -1.0f, {std::nanf("")}))), InputError);
+  EXPECT_THROW(read_pfm(write("s.pfm", "Pf\n1 1\n0\nxxxx")), InputError);
+  EXPECT_THROW(read_image((dir_ / "missing.pgm").string()), InputError);
+  EXPECT_THROW(read_image(write("x.png", "x")), InputError);
+}
+
+TEST(Resample, IntegerUpsamplingReplicatesDownsamplingAverages) {
+  Image in;
+  in.width = 2;
+  in.height = 1;
+  in.pixels = {0.2, 0.8};
+  const Image up = resample_area(in, 4, 2);
+  EXPECT_DOUBLE_EQ(up.at(0, 0), 0.2);
+  EXPECT_DOUBLE_EQ(up.at(1, 1), 0.2);
+  EXPECT_DOUBLE_EQ(up.at(2, 0), 0.8);
+  const Image down = resample_area(in, 1, 1);
+  EXPECT_DOUBLE_EQ(down.at(0, 0), 0.5);
+}
+
+TEST(Resample, NonIntegerRatiosWeightPartialOverlapsAndKeepTheMean) {
+  Image in;
+  in.width = 3;
+  in.height = 1;
+  in.pixels = {0.0, 0.3, 0.9};
+  const Image out = resample_area(in, 2, 1);
+  // Output 0 covers source [0, 1.5): (0 * 1 + 0.3 * 0.5) / 1.5; output 1 covers [1.5, 3).
+  EXPECT_NEAR(out.at(0, 0), 0.1, 1e-12);
+  EXPECT_NEAR(out.at(1, 0), (0.3 * 0.5 + 0.9) / 1.5, 1e-12);
+  EXPECT_NEAR((out.at(0, 0) + out.at(1, 0)) / 2, 0.4, 1e-12);
+}
+
+TEST_F(SceneFilesTest, FrameFolderOrdersByNumberAndReadsSceneToml) {
+  const std::string frame = std::string("P5\n1 1\n255\n");
+  write("f_10.pgm", frame + char(10));
+  write("f_9.pgm", frame + char(9));
+  write("f_100.pgm", frame + char(100));
+  write("scene.toml", "frame_rate = \"4Hz\"\nloop = true\n");
+  const SceneFiles files = find_scene(dir_.string());
+  ASSERT_EQ(files.frames.size(), 3u);
+  EXPECT_NE(files.frames[0].find("f_9"), std::string::npos);
+  EXPECT_NE(files.frames[2].find("f_100"), std::string::npos);
+  SensorConfig c;
+  c.array.rows = c.array.cols = 1;
+  c.array.tile_rows = c.array.tile_cols = 1;
+  apply_scene_settings(files, c);
+  EXPECT_DOUBLE_EQ(c.scene.frame_rate, 4.0);
+  EXPECT_TRUE(c.scene.loop);
+  const Scene s = load_scene(files, c);
+  EXPECT_DOUBLE_EQ(s.frame_period, 0.25);
+  EXPECT_DOUBLE_EQ(s.frames[1].at(0, 0), 10 / 255.0);
+}
+
+TEST_F(SceneFilesTest, FramesOfDifferentSizesAreRejected) {
+  write("f_1.pgm", std::string("P5\n1 1\n255\n") + char(1));
+  write("f_2.pgm", std::string("P5\n2 1\n255\n") + char(1) + char(2));
+  SensorConfig c;
+  EXPECT_THROW(load_scene(find_scene(dir_.string()), c), InputError);
+}
+
+}  // namespace
+}  // namespace aesim
