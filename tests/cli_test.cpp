@@ -125,13 +125,15 @@ TEST_F(CliTest, BadInputIsOneLineExitTwoAndNoOutput) {
       {"run --set sim.fidelity=cycle", "sim.fidelity"},
       {"run --frobnicate", "frobnicate"},
       {"run --recon o.jpg", "--recon"},
+      {"run --sensor " + write("bad.toml", "[pixel\nc_int = "), "malformed TOML"},
+      {"run --sensor " + write("unit.toml", "[pixel]\nc_int = \"1V\"\n"), "pixel.c_int"},
   };
   for (const auto& [args, needle] : cases) {
     const Outcome o = aesim(args + (args.find("--recon") == std::string::npos ? outputs : ""));
     EXPECT_EQ(o.status, 2) << args << ": " << o.err;
     EXPECT_NE(o.err.find(needle), std::string::npos) << args << ": " << o.err;
     EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << args << ": " << o.err;
-    EXPECT_EQ(files_in_dir(), 3u) << args << " left files behind";  // only the scenes written above
+    EXPECT_EQ(files_in_dir(), 5u) << args << " left files behind";  // only the inputs written above
     EXPECT_FALSE(fs::exists(dir_ / "out")) << args;
   }
 }

@@ -217,6 +217,37 @@ void SensorConfig::validate() const {
           "must be positive and at most 1 GHz");
 }
 
+void apply_toml_file(SensorConfig& config, const std::string& path, const std::string& section) {
+  toml::value doc;
+  try {
+    doc = toml::parse(path);
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    throw InputError(fmt::format("'{}': malformed TOML: {}", path, msg.substr(0, msg.find('\n'))));
+  }
+  auto apply = [&](const std::string& key, const toml::value& value) {
+    std::string text;
+    if (value.is_string()) text = value.as_string().str;
+    else if (value.is_integer()) text = std::to_string(value.as_integer());
+    else if (value.is_floating()) text = fmt::format("{:.17g}", value.as_floating());
+    else if (value.is_boolean()) text = value.as_boolean() ? "true" : "false";
+    else throw InputError(fmt::format("'{}': {}: unsupported value type", path, key));
+    try {
+      config.set(key, text);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("'{}': {}", path, e.what()));
+    }
+  };
+  for (const auto& [name, body] : doc.as_table()) {
+    if (!section.empty()) {
+      apply(section + "." + name, body);
+      continue;
+    }
+    if (!body.is_table()) throw InputError(fmt::format("'{}': '{}' is not a [section]", path, name));
+    for (const auto& [key, value] : body.as_table()) apply(name + "." + key, value);
+  }
+}
+
 std::string sensors_dir() { return data_dir() + "/models/sensors"; }
 
 SensorConfig load_sensor(const std::string& name_or_file) {
@@ -228,41 +259,8 @@ SensorConfig load_sensor(const std::string& name_or_file) {
     throw InputError(is_path ? fmt::format("sensor file '{}' not found", path)
                              : fmt::format("unknown sensor '{}' (no {})", name_or_file, path));
   }
-  toml::value doc;
-  try {
-    doc = toml::parse(path);
-  } catch (const std::exception& e) {
-    std::string msg = e.what();
-    const auto nl = msg.find('\n');
-    throw InputError(fmt::format("sensor file '{}': malformed TOML: {}", path, msg.substr(0, nl)));
-  }
   SensorConfig config;
-  if (!doc.is_table()) throw InputError(fmt::format("sensor file '{}': not a TOML table", path));
-  for (const auto& [section, body] : doc.as_table()) {
-    if (!body.is_table()) {
-      throw InputError(fmt::format("sensor file '{}': '{}' is not a [section]", path, section));
-    }
-    for (const auto& [name, value] : body.as_table()) {
-      const std::string key = section + "." + name;
-      std::string text;
-      if (value.is_string()) {
-        text = value.as_string().str;
-      } else if (value.is_integer()) {
-        text = std::to_string(value.as_integer());
-      } else if (value.is_floating()) {
-        text = fmt::format("{:.17g}", value.as_floating());
-      } else if (value.is_boolean()) {
-        text = value.as_boolean() ? "true" : "false";
-      } else {
-        throw InputError(fmt::format("sensor file '{}': {}: unsupported value type", path, key));
-      }
-      try {
-        config.set(key, text);
-      } catch (const InputError& e) {
-        throw InputError(fmt::format("sensor file '{}': {}", path, e.what()));
-      }
-    }
-  }
+  apply_toml_file(config, path, "");
   return config;
 }
 

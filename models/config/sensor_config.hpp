@@ -58,6 +58,9 @@ struct SensorConfig {
 
 // Loads a preset: NAME (a file in the sensors folder) or a path to a .toml file.
 SensorConfig load_sensor(const std::string& name_or_file);
+// Sets keys from a TOML file: "[section] key = value" tables, or, when `section` is given, plain
+// "key = value" lines within that section. Values are strings with units, numbers or booleans.
+void apply_toml_file(SensorConfig& config, const std::string& path, const std::string& section);
 // The folder where named presets live.
 std::string sensors_dir();
 

@@ -80,8 +80,18 @@ class HeaderReader {
   std::size_t pos_ = 0;
 };
 
-void check_size(const HeaderReader& header, long long w, long long h) {
-  if (w * h > kMaxPixels) header.fail(fmt::format("{}x{} exceeds 64 Mpixel", w, h));
+// Checks the magic number and reads width and height into `img`; returns the magic.
+std::string read_preamble(HeaderReader& header, const std::string& data, const char* a, const char* b,
+                          const char* kind, Image& img) {
+  const std::string magic = data.size() >= 2 ? data.substr(0, 2) : std::string();
+  if (magic != a && magic != b) header.fail(fmt::format("not a {} (expected {} or {})", kind, a, b));
+  header.token();
+  img.width = static_cast<int>(header.integer("width", 1, kMaxSide));
+  img.height = static_cast<int>(header.integer("height", 1, kMaxSide));
+  if (static_cast<long long>(img.width) * img.height > kMaxPixels) {
+    header.fail(fmt::format("{}x{} exceeds 64 Mpixel", img.width, img.height));
+  }
+  return magic;
 }
 
 }  // namespace
@@ -89,13 +99,8 @@ void check_size(const HeaderReader& header, long long w, long long h) {
 Image read_pgm(const std::string& path) {
   const std::string data = slurp(path);
   HeaderReader header(data, path);
-  const std::string magic = data.size() >= 2 ? data.substr(0, 2) : std::string();
-  if (magic != "P2" && magic != "P5") header.fail("not a PGM (expected P2 or P5)");
-  header.token();
   Image img;
-  img.width = static_cast<int>(header.integer("width", 1, kMaxSide));
-  img.height = static_cast<int>(header.integer("height", 1, kMaxSide));
-  check_size(header, img.width, img.height);
+  const std::string magic = read_preamble(header, data, "P2", "P5", "PGM", img);
   const long long maxval = header.integer("maxval", 1, 65535);
   const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
   img.pixels.resize(count);
@@ -125,13 +130,8 @@ Image read_pgm(const std::string& path) {
 Image read_pfm(const std::string& path) {
   const std::string data = slurp(path);
   HeaderReader header(data, path);
-  const std::string magic = data.size() >= 2 ? data.substr(0, 2) : std::string();
-  if (magic != "Pf" && magic != "PF") header.fail("not a PFM (expected Pf or PF)");
-  header.token();
   Image img;
-  img.width = static_cast<int>(header.integer("width", 1, kMaxSide));
-  img.height = static_cast<int>(header.integer("height", 1, kMaxSide));
-  check_size(header, img.width, img.height);
+  const std::string magic = read_preamble(header, data, "Pf", "PF", "PFM", img);
   const std::string scale_text = header.token();
   char* end = nullptr;
   const double scale = std::strtod(scale_text.c_str(), &end);

@@ -5,7 +5,6 @@
 #include <filesystem>
 
 #include <fmt/format.h>
-#include <toml.hpp>
 
 #include "config/input_error.hpp"
 #include "scene/netpbm.hpp"
@@ -63,26 +62,7 @@ SceneFiles find_scene(const std::string& file_or_dir) {
 
 void apply_scene_settings(const SceneFiles& files, SensorConfig& config) {
   if (files.settings.empty()) return;
-  toml::value doc;
-  try {
-    doc = toml::parse(files.settings);
-  } catch (const std::exception& e) {
-    const std::string msg = e.what();
-    throw InputError(fmt::format("'{}': malformed TOML: {}", files.settings, msg.substr(0, msg.find('\n'))));
-  }
-  for (const auto& [name, value] : doc.as_table()) {
-    std::string text;
-    if (value.is_string()) text = value.as_string().str;
-    else if (value.is_integer()) text = std::to_string(value.as_integer());
-    else if (value.is_floating()) text = fmt::format("{:.17g}", value.as_floating());
-    else if (value.is_boolean()) text = value.as_boolean() ? "true" : "false";
-    else throw InputError(fmt::format("'{}': {}: unsupported value type", files.settings, name));
-    try {
-      config.set("scene." + name, text);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("'{}': {}", files.settings, e.what()));
-    }
-  }
+  apply_toml_file(config, files.settings, "scene");
 }
 
 Scene load_scene(const SceneFiles& files, const SensorConfig& config) {
