@@ -28,7 +28,9 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
   const Fidelity fidelity = resolve_fidelity(config);
   const auto wall_start = std::chrono::steady_clock::now();
 
-  // A fresh kernel per run: SystemC allows one elaboration per simulation context.
+  // A fresh kernel per run: SystemC allows one elaboration per simulation context. The old
+  // context is deliberately not deleted: SystemC 2.3.4 still touches it from static teardown
+  // (valgrind shows invalid reads), and once the run's modules are gone it holds only a few KB.
   sc_core::sc_curr_simcontext = new sc_core::sc_simcontext;
   sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
   sc_core::sc_report_handler::set_actions(sc_core::SC_ID_NO_SC_START_ACTIVITY_, sc_core::SC_DO_NOTHING);
