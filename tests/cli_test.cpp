@@ -76,7 +76,10 @@ TEST_F(CliTest, DefaultRunWritesEveryOutputUnderOut) {
     EXPECT_TRUE(summary.contains(key)) << key;
   }
   EXPECT_GT(summary["events_fired"].get<double>(), 0);
-  EXPECT_EQ(summary["events_fired"], summary["events_delivered"]);  // ideal bus
+  // The aloha bus with contention detection: every fired event is delivered or lost.
+  EXPECT_EQ(summary["events_fired"].get<double>(),
+            summary["events_delivered"].get<double>() + summary["events_collided"].get<double>());
+  EXPECT_EQ(summary["events_ghost"], 0);
   EXPECT_EQ(summary["fidelity"], "event");
   EXPECT_EQ(summary["sensor"]["pixel"]["c_int"].get<double>(), 100e-15);
   // CSV rows match the summary's count, and the header is SPEC's.
@@ -122,7 +125,10 @@ TEST_F(CliTest, BadInputIsOneLineExitTwoAndNoOutput) {
       {"run --set novalue", "--set"},
       {"run --scene /no/such/scene.pgm", "not found"},
       {"run --sensor no_such_sensor", "unknown sensor"},
-      {"run --set sim.fidelity=cycle", "sim.fidelity"},
+      {"run --set sim.fidelity=queue", "sim.fidelity"},
+      {"run --set sim.fidelity=event --vcd w.vcd", "--vcd"},
+      {"run --set sim.fidelity=cycle --set bus.access=arbitrated", "bus.access"},
+      {"run --set sim.fidelity=cycle --vcd w.vcd --vcd-from 2s --vcd-to 1s", "--vcd-from"},
       {"run --frobnicate", "frobnicate"},
       {"run --recon o.jpg", "--recon"},
       {"run --sensor " + write("bad.toml", "[pixel\nc_int = "), "malformed TOML"},

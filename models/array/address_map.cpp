@@ -26,6 +26,11 @@ std::uint32_t AddressMap::bus_address(PixelAddress p) const {
   return ((p.y % tile_rows_) << xbits_) | (p.x % tile_cols_);
 }
 
+PixelAddress AddressMap::locate(std::uint32_t tile, std::uint32_t bus_address) const {
+  return {(tile % tiles_per_row_) * tile_cols_ + (bus_address & ((1u << xbits_) - 1u)),
+          (tile / tiles_per_row_) * tile_rows_ + (bus_address >> xbits_)};
+}
+
 std::optional<PixelAddress> AddressMap::decode(std::uint32_t word) const {
   const std::uint32_t tile = word >> bus_bits();
   const std::uint32_t local = word & ((1u << bus_bits()) - 1u);
@@ -35,7 +40,7 @@ std::optional<PixelAddress> AddressMap::decode(std::uint32_t word) const {
       yl >= static_cast<std::uint32_t>(tile_rows_)) {
     return std::nullopt;
   }
-  PixelAddress p{(tile % tiles_per_row_) * tile_cols_ + xl, (tile / tiles_per_row_) * tile_rows_ + yl};
+  const PixelAddress p = locate(tile, local);
   if (p.x >= static_cast<std::uint32_t>(cols_) || p.y >= static_cast<std::uint32_t>(rows_)) return std::nullopt;
   return p;
 }

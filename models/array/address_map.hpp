@@ -28,6 +28,9 @@ class AddressMap {
   std::uint32_t tile_of(PixelAddress p) const;
   std::uint32_t bus_address(PixelAddress p) const;
   std::uint32_t word(PixelAddress p) const { return (tile_of(p) << bus_bits()) | bus_address(p); }
+  // The pixel a bus address names in a tile, without checking it lies inside the array (a ghost
+  // address, the OR of several, may name a column past a narrow edge tile).
+  PixelAddress locate(std::uint32_t tile, std::uint32_t bus_address) const;
   // Inverse of word(); empty when the word names no pixel of this array.
   std::optional<PixelAddress> decode(std::uint32_t word) const;
 

@@ -2,23 +2,41 @@
 
 #include <fmt/format.h>
 
+#include "bus/aloha_bus.hpp"
+#include "bus/clocked_aloha_bus.hpp"
 #include "bus/ideal_bus.hpp"
 #include "config/input_error.hpp"
 
 namespace aesim {
+namespace {
 
-Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config,
-               const Photocurrents& light, EventLog& log)
-    : sc_module(name), map_(config.array) {
-  if (config.bus.access != BusAccess::Ideal) {
-    throw InputError(fmt::format("bus.access={} is not modelled yet; use bus.access=ideal",
-                                 to_string(config.bus.access)));
+std::unique_ptr<TileBus> make_bus(const std::string& name, std::uint32_t tile, const SensorConfig& c,
+                                  Fidelity fidelity, const AddressMap& map, EventLog& log, VcdRecorder* vcd) {
+  if (fidelity == Fidelity::Cycle) {
+    if (c.bus.access != BusAccess::Aloha) {
+      throw InputError(fmt::format("bus.access={} has no cycle-level model; the cycle fidelity models the "
+                                   "aloha bus (use sim.fidelity=event)", to_string(c.bus.access)));
+    }
+    return std::make_unique<ClockedAlohaBus>(name.c_str(), tile, map, c, log, vcd);
   }
-  std::vector<PixelBusIf*> tile_bus;
+  switch (c.bus.access) {
+    case BusAccess::Ideal: return std::make_unique<IdealBus>(name.c_str(), log);
+    case BusAccess::Aloha:
+      return std::make_unique<AlohaBus>(name.c_str(), log, map, c.bus.t_event, c.bus.contention_detect);
+    case BusAccess::Arbitrated:
+      return std::make_unique<ArbitratedBus>(name.c_str(), log, c.bus.t_event, c.sim.duration);
+  }
+  throw std::logic_error("unknown bus access");
+}
+
+}  // namespace
+
+Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
+               const Photocurrents& light, EventLog& log, VcdRecorder* vcd)
+    : sc_module(name), config_(config), map_(config.array) {
   for (int t = 0; t < map_.tiles(); ++t) {
-    auto bus = std::make_unique<IdealBus>(fmt::format("bus_{}", t).c_str(), log);
-    tile_bus.push_back(bus.get());
-    buses_.push_back(std::move(bus));
+    buses_.push_back(make_bus(fmt::format("tile{}", t), static_cast<std::uint32_t>(t), config, fidelity, map_,
+                              log, vcd));
   }
   pixels_.reserve(light.pixels());
   for (int y = 0; y < map_.rows(); ++y) {
@@ -32,10 +50,42 @@ Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config,
       const std::size_t index = static_cast<std::size_t>(y) * map_.cols() + x;
       auto pixel = std::make_unique<Pixel>(fmt::format("px_{}_{}", x, y).c_str(), config, light, index,
                                            identity);
-      pixel->bus.bind(*tile_bus[identity.tile]);
+      pixel->bus.bind(*buses_[identity.tile]);
       pixels_.push_back(std::move(pixel));
     }
   }
+}
+
+void Imager::finish() {
+  for (auto& bus : buses_) bus->finish();
+}
+
+double Imager::tau() const {
+  double sum = 0;
+  int measured = 0;
+  for (const auto& bus : buses_) {
+    if (bus->measured_tau() > 0) {
+      sum += bus->measured_tau();
+      ++measured;
+    }
+  }
+  return measured > 0 ? sum / measured : config_.bus.t_event;
+}
+
+std::uint64_t Imager::protocol_violations() const {
+  std::uint64_t n = 0;
+  for (const auto& bus : buses_) {
+    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->protocol_violations();
+  }
+  return n;
+}
+
+std::uint64_t Imager::receiver_clock_edges() const {
+  std::uint64_t n = 0;
+  for (const auto& bus : buses_) {
+    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->clock_edges();
+  }
+  return n;
 }
 
 }  // namespace aesim

@@ -4,24 +4,32 @@
 #include <vector>
 
 #include "array/address_map.hpp"
-#include "bus/pixel_bus_if.hpp"
+#include "bus/tile_bus.hpp"
+#include "io/vcd_recorder.hpp"
 #include "pixel/pixel.hpp"
 #include "receiver/event_log.hpp"
 
 namespace aesim {
 
-// The pixel array split into tiles, each tile with its own bus. The bus model is chosen by
-// bus.access; every pixel of a tile is bound to that tile's bus.
+// The pixel array split into tiles, each tile with its own bus. The bus model follows
+// bus.access and the fidelity; every pixel of a tile is bound to that tile's bus.
 class Imager : public sc_core::sc_module {
  public:
-  Imager(const sc_core::sc_module_name& name, const SensorConfig& config, const Photocurrents& light,
-         EventLog& log);
+  Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
+         const Photocurrents& light, EventLog& log, VcdRecorder* vcd);
 
-  const AddressMap& address_map() const { return map_; }
+  // After the run: lets every bus settle what it still holds.
+  void finish();
+  // Mean bus transaction time: measured by clocked buses, bus.t_event otherwise.
+  double tau() const;
+  // Handshake rule breaks seen by the clocked buses' monitors (always 0 at the event fidelity).
+  std::uint64_t protocol_violations() const;
+  std::uint64_t receiver_clock_edges() const;
 
  private:
+  const SensorConfig& config_;
   AddressMap map_;
-  std::vector<std::unique_ptr<sc_core::sc_module>> buses_;
+  std::vector<std::unique_ptr<TileBus>> buses_;
   std::vector<std::unique_ptr<Pixel>> pixels_;
 };
 

@@ -1,18 +1,17 @@
 #pragma once
-#include <systemc>
-
-#include "bus/pixel_bus_if.hpp"
+#include "bus/tile_bus.hpp"
 #include "receiver/event_log.hpp"
 
 namespace aesim {
 
 // bus.access=ideal: infinite bandwidth, no loss, no delay. Isolates pixel physics.
-class IdealBus : public sc_core::sc_module, public PixelBusIf {
+class IdealBus : public TileBus {
  public:
-  IdealBus(const sc_core::sc_module_name& name, EventLog& log) : sc_module(name), log_(log) {}
+  IdealBus(const sc_core::sc_module_name& name, EventLog& log) : TileBus(name), log_(log) {}
   void request(const AddressEvent& firing) override {
-    log_.fired(firing.tile);
-    log_.deliver(firing);
+    log_.fired(firing);
+    log_.resolve(firing, Fate::Delivered, firing.t);
+    log_.output(firing);
   }
 
  private:

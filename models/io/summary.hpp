@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -10,9 +11,11 @@ namespace aesim {
 
 struct RunFacts {
   Fidelity fidelity = Fidelity::Event;  // the fidelity that ran (never Auto)
-  double tau_s = 0;                     // bus transaction time the loads are computed with
+  double tau_s = 0;                     // bus transaction time: measured at the cycle fidelity
   double sim_time_s = 0;
   double wall_time_s = 0;
+  std::uint64_t protocol_violations = 0;  // handshake rule breaks (cycle fidelity)
+  std::uint64_t receiver_clock_edges = 0; // clock edges the receivers simulated (cycle fidelity)
 };
 
 // Summary JSON of SPEC section 5. offered_load G = fired rate per bus * tau and throughput

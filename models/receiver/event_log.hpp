@@ -6,33 +6,60 @@
 
 namespace aesim {
 
-// What a run produced, per tile and in total: the receiver's output plus the fate counters of
-// SPEC section 5.
-struct TileCounters {
-  std::uint64_t fired = 0, delivered = 0, collided = 0, ghost = 0, dropped = 0;
+// What became of a fired event.
+enum class Fate : std::uint8_t {
+  Delivered,  // reached the receiver output intact
+  Collided,   // lost in a collision the receiver detected and discarded
+  Ghost,      // lost in a collision the receiver did not detect: it output the OR of the addresses
+  Dropped,    // lost for another reason (receiver FIFO full)
+  Pending,    // still waiting for the bus when the run ended (arbitrated bus past saturation)
+};
+const char* to_string(Fate fate);
+
+// Ground truth for one fired event (--truth).
+struct TruthRecord {
+  AddressEvent firing;  // firing.t is the fire time
+  Fate fate = Fate::Delivered;
+  double t_deliver = 0;  // when the receiver took it (Delivered only)
 };
 
+// Counters of SPEC section 5, per tile. `collided` counts fired events lost to collisions,
+// whether detected (Fate::Collided) or not (Fate::Ghost); `ghost` counts the wrong events the
+// receiver output for undetected collisions; `delivered` counts every output event, ghosts too.
+struct TileCounters {
+  std::uint64_t fired = 0, delivered = 0, collided = 0, ghost = 0, dropped = 0, pending = 0;
+};
+
+struct LatencyStats {
+  double mean = 0, p99 = 0, max = 0;  // s, fire to delivery, over delivered events
+};
+
+// The record of a run, filled in by the bus models (fates) and the receivers (output).
 class EventLog {
  public:
-  explicit EventLog(int tiles) : tiles_(static_cast<std::size_t>(tiles)) {}
+  EventLog(int tiles, bool keep_truth);
 
-  void fired(std::uint32_t tile) { ++tiles_[tile].fired; }
-  void deliver(const AddressEvent& e) {
-    ++tiles_[e.tile].delivered;
-    if (e.flags & kGhostEvent) ++tiles_[e.tile].ghost;
-    events_.push_back(e);
-  }
-  // Orders delivered events by (time, tile, address) so outputs do not depend on the order
-  // in which simultaneous processes ran.
+  void fired(const AddressEvent& firing) { ++tiles_[firing.tile].fired; }
+  // Every fired event is resolved exactly once, when its fate is known.
+  void resolve(const AddressEvent& firing, Fate fate, double t_deliver = 0);
+  // The receiver's output: a delivered event, or a ghost (flags & kGhostEvent).
+  void output(const AddressEvent& e);
+  // Orders outputs by (time, tile, address) and truth by (fire time, tile, address), so files do
+  // not depend on the order in which simultaneous processes ran.
   void finish();
 
   const std::vector<AddressEvent>& events() const { return events_; }
+  const std::vector<TruthRecord>& truth() const { return truth_; }
   const std::vector<TileCounters>& tiles() const { return tiles_; }
   TileCounters totals() const;
+  LatencyStats latency() const;
 
  private:
   std::vector<TileCounters> tiles_;
   std::vector<AddressEvent> events_;
+  std::vector<TruthRecord> truth_;
+  std::vector<double> latencies_;
+  bool keep_truth_;
 };
 
 }  // namespace aesim

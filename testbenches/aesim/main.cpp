@@ -1,6 +1,7 @@
 // The aesim program.
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <exception>
 #include <systemc>
 
@@ -30,7 +31,9 @@ int sc_main(int argc, char* argv[]) {
     std::fprintf(stderr, "aesim: %s\n", e.what());
     return 2;
   } catch (const sc_core::sc_report& e) {
-    std::fprintf(stderr, "aesim: internal error: SystemC: %s\n", e.what());
+    std::string what = e.what();
+    for (char& c : what) c = c == '\n' ? ' ' : c;
+    std::fprintf(stderr, "aesim: internal error: SystemC: %s\n", what.c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "aesim: internal error: %s\n", e.what());

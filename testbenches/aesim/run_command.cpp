@@ -13,6 +13,7 @@
 #include "io/atomic_file.hpp"
 #include "io/events_csv.hpp"
 #include "io/image_file.hpp"
+#include "io/truth_csv.hpp"
 #include "recon/reconstruct.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
@@ -27,7 +28,8 @@ struct RunOptions {
   std::string scene;
   std::string duration;
   std::vector<std::string> sets;
-  std::string out, csv, recon, vcd, summary;
+  std::string out, csv, recon, vcd, summary, truth;
+  std::string vcd_from = "0s", vcd_to;
 };
 
 // "pixel.c_int" -> "1e-13" for the AEDAT header, one line per key.
@@ -67,9 +69,17 @@ int run(RunOptions opt) {
   if (opt.scene.empty()) opt.scene = data_dir() + "/scenes/letters/A.pgm";
   const SceneFiles scene_files = find_scene(opt.scene);
   const SensorConfig config = resolve_config(opt, scene_files);
-  if (!opt.vcd.empty()) {
-    throw InputError("--vcd dumps the clocked bus signals, which need sim.fidelity=cycle (not modelled yet)");
+  SimulationRequest request;
+  request.keep_truth = !opt.truth.empty();
+  request.waveforms = !opt.vcd.empty();
+  if (request.waveforms) {
+    request.vcd_from = parse_si(opt.vcd_from, "s", "--vcd-from");
+    request.vcd_to = opt.vcd_to.empty() ? config.sim.duration : parse_si(opt.vcd_to, "s", "--vcd-to");
+    if (request.vcd_from < 0 || request.vcd_to <= request.vcd_from) {
+      throw InputError("--vcd-from/--vcd-to: need 0 <= from < to");
+    }
   }
+  const Fidelity fidelity = resolve_fidelity(config, request);
   if (!opt.recon.empty()) {
     try {
       check_image_path(opt.recon);
@@ -83,7 +93,7 @@ int run(RunOptions opt) {
 
   const Scene scene = load_scene(scene_files, config);
   const Photocurrents light(scene, config.pixel);
-  const SimulationResult result = simulate(config, light);
+  const SimulationResult result = simulate(config, light, request);
   const AddressMap map(config.array);
 
   OutputFiles files;
@@ -98,6 +108,8 @@ int run(RunOptions opt) {
                 reconstruct(result.log.events(), map.cols(), map.rows(), ReconMode::Histogram));
   }
   if (!opt.summary.empty()) files.open(opt.summary) << summary.dump(2) << '\n';
+  if (!opt.truth.empty()) write_truth_csv(files.open(opt.truth), result.log.truth());
+  if (!opt.vcd.empty()) result.vcd->write(files.open(opt.vcd));
   files.commit();
 
   const TileCounters total = result.log.totals();
@@ -105,16 +117,21 @@ int run(RunOptions opt) {
               opt.sensor.c_str(), map.cols(), map.rows(), map.tiles(), config.array.tile_cols,
               config.array.tile_rows, opt.scene.c_str(), scene.source_width, scene.source_height,
               scene.frames.size() > 1 ? fmt::format(", {} frames", scene.frames.size()).c_str() : "");
-  std::printf("  simulated %s at fidelity %s, bus %s, in %.3g s wall time\n",
-              format_si(config.sim.duration, "s").c_str(), to_string(result.facts.fidelity),
-              to_string(config.bus.access), result.facts.wall_time_s);
-  std::printf("  events: %llu fired (%s), %llu delivered, %llu collided, %llu dropped\n",
+  std::printf("  simulated %s at fidelity %s%s, bus %s (tau %s%s), in %.3g s wall time\n",
+              format_si(config.sim.duration, "s").c_str(), to_string(fidelity),
+              config.sim.fidelity == Fidelity::Auto ? " (chosen by auto)" : "", to_string(config.bus.access),
+              format_si(result.facts.tau_s, "s").c_str(), fidelity == Fidelity::Cycle ? " measured" : "",
+              result.facts.wall_time_s);
+  std::printf("  events: %llu fired (%s), %llu delivered, %llu lost to collisions (%.2f %%), %llu ghosts\n",
               static_cast<unsigned long long>(total.fired),
               format_si(static_cast<double>(total.fired) / config.sim.duration, "events/s").c_str(),
               static_cast<unsigned long long>(total.delivered), static_cast<unsigned long long>(total.collided),
-              static_cast<unsigned long long>(total.dropped));
+              total.fired ? 100.0 * static_cast<double>(total.collided) / static_cast<double>(total.fired) : 0.0,
+              static_cast<unsigned long long>(total.ghost));
+  std::printf("  bus load per tile: G = %.4g offered, S = %.4g delivered\n", summary["offered_load"].get<double>(),
+              summary["throughput"].get<double>());
   std::string written;
-  for (const std::string* path : {&opt.out, &opt.csv, &opt.recon, &opt.summary}) {
+  for (const std::string* path : {&opt.out, &opt.csv, &opt.recon, &opt.summary, &opt.truth, &opt.vcd}) {
     if (!path->empty()) written += (written.empty() ? "" : ", ") + *path;
   }
   std::printf("  wrote %s\n", written.c_str());
@@ -137,7 +154,10 @@ void add_run_command(CLI::App& app, int& status) {
   cmd->add_option("--out", opt->out, "Events as AEDAT 2.0");
   cmd->add_option("--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction image (.png or .pgm)");
-  cmd->add_option("--vcd", opt->vcd, "Bus waveforms (cycle fidelity)");
+  cmd->add_option("--vcd", opt->vcd, "Bus wires of every tile as a VCD file (needs sim.fidelity=cycle or auto)");
+  cmd->add_option("--vcd-from", opt->vcd_from, "Start of the VCD window, e.g. 100ms")->capture_default_str();
+  cmd->add_option("--vcd-to", opt->vcd_to, "End of the VCD window (default: end of the run)");
+  cmd->add_option("--truth", opt->truth, "Ground truth CSV: every fired event, its fate, delivery time and latency");
   cmd->add_option("--summary", opt->summary, "Summary JSON");
   cmd->callback([opt, &status] { status = run(*opt); });
 }

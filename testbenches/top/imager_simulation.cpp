@@ -11,41 +11,53 @@
 
 namespace aesim {
 
-Fidelity resolve_fidelity(const SensorConfig& config) {
+Fidelity resolve_fidelity(const SensorConfig& config, const SimulationRequest& request) {
   switch (config.sim.fidelity) {
     case Fidelity::Auto:
+      return request.waveforms ? Fidelity::Cycle : Fidelity::Event;
     case Fidelity::Event:
+      if (request.waveforms) {
+        throw InputError("--vcd dumps the clocked bus wires, which exist at sim.fidelity=cycle (or auto), not event");
+      }
       return Fidelity::Event;
-    case Fidelity::Queue:
     case Fidelity::Cycle:
+      return Fidelity::Cycle;
+    case Fidelity::Queue:
       break;
   }
-  throw InputError(fmt::format("sim.fidelity={} is not modelled yet; use event or auto",
+  throw InputError(fmt::format("sim.fidelity={} is not modelled yet; use event, cycle or auto",
                                to_string(config.sim.fidelity)));
 }
 
-SimulationResult simulate(const SensorConfig& config, const Photocurrents& light) {
-  const Fidelity fidelity = resolve_fidelity(config);
-  const auto wall_start = std::chrono::steady_clock::now();
-
-  // A fresh kernel per run: SystemC allows one elaboration per simulation context. The old
-  // context is deliberately not deleted: SystemC 2.3.4 still touches it from static teardown
-  // (valgrind shows invalid reads), and once the run's modules are gone it holds only a few KB.
+void install_fresh_kernel() {
+  // SystemC allows one elaboration per simulation context. The old context is deliberately not
+  // deleted: SystemC 2.3.4 still touches it from static teardown (valgrind shows invalid reads),
+  // and once its modules are gone it holds only a few KB.
   sc_core::sc_curr_simcontext = new sc_core::sc_simcontext;
   sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
   sc_core::sc_report_handler::set_actions(sc_core::SC_ID_NO_SC_START_ACTIVITY_, sc_core::SC_DO_NOTHING);
+}
 
+SimulationResult simulate(const SensorConfig& config, const Photocurrents& light, const SimulationRequest& request) {
+  const Fidelity fidelity = resolve_fidelity(config, request);
+  const auto wall_start = std::chrono::steady_clock::now();
+
+  install_fresh_kernel();
   const AddressMap map(config.array);
-  SimulationResult result{EventLog(map.tiles()), {}};
+  SimulationResult result{EventLog(map.tiles(), request.keep_truth), {}, nullptr};
+  if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);
   {
-    Imager imager("imager", config, light, result.log);
-    // Every pixel stops scheduling itself past sim.duration, so the kernel starves exactly
-    // when the run is complete, with firings at t == duration included.
+    Imager imager("imager", config, fidelity, light, result.log, result.vcd.get());
+    // Every pixel stops scheduling itself past sim.duration and receivers stop their clocks
+    // when idle, so the kernel starves exactly when the run (and any last handshake) is done.
     sc_core::sc_start();
+    imager.finish();
+    result.facts.tau_s = imager.tau();
+    result.facts.protocol_violations = imager.protocol_violations();
+    result.facts.receiver_clock_edges = imager.receiver_clock_edges();
   }
   result.log.finish();
   result.facts.fidelity = fidelity;
-  result.facts.tau_s = config.bus.t_event;
   result.facts.sim_time_s = config.sim.duration;
   result.facts.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

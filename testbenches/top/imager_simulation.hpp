@@ -1,23 +1,39 @@
 #pragma once
+#include <memory>
+
 #include "array/address_map.hpp"
 #include "config/sensor_config.hpp"
 #include "io/summary.hpp"
+#include "io/vcd_recorder.hpp"
 #include "receiver/event_log.hpp"
 #include "scene/photocurrents.hpp"
 
 namespace aesim {
 
+// What a run must produce beyond events and counters.
+struct SimulationRequest {
+  bool keep_truth = false;       // a TruthRecord per fired event (--truth)
+  bool waveforms = false;        // bus waveforms (--vcd): needs the cycle fidelity
+  double vcd_from = 0, vcd_to = 0;  // s, the VCD window
+};
+
 struct SimulationResult {
   EventLog log;
   RunFacts facts;
+  std::unique_ptr<VcdRecorder> vcd;
 };
 
-// The fidelity a run uses: sim.fidelity, with auto resolved to the cheapest rung that
-// produces what was asked. Throws InputError for a fidelity this build does not model.
-Fidelity resolve_fidelity(const SensorConfig& config);
+// The fidelity a run uses: sim.fidelity, with auto resolved to the cheapest rung that produces
+// what was asked (event, or cycle when waveforms are wanted). Throws InputError for a fidelity
+// this build does not model or one that cannot produce the request.
+Fidelity resolve_fidelity(const SensorConfig& config, const SimulationRequest& request);
+
+// Installs a new, empty SystemC kernel, so that one process can elaborate and run many designs.
+void install_fresh_kernel();
 
 // Elaborates the imager in a fresh SystemC kernel, simulates sim.duration and returns what the
 // receivers got, time-ordered. Each call is independent, so one process may run many.
-SimulationResult simulate(const SensorConfig& config, const Photocurrents& light);
+SimulationResult simulate(const SensorConfig& config, const Photocurrents& light,
+                          const SimulationRequest& request = {});
 
 }  // namespace aesim

@@ -1,0 +1,231 @@
+// The cycle fidelity: a clocked wired-OR bus, Req/Ack and the reference receiver, on
+// hand-computed timings, protocol invariants, and against the event fidelity at low load.
+#include <algorithm>
+#include <set>
+#include <systemc>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bus/clocked_aloha_bus.hpp"
+#include "bus/handshake_monitor.hpp"
+#include "scene/photocurrents.hpp"
+#include "support/scenes.hpp"
+#include "top/imager_simulation.hpp"
+
+namespace aesim {
+namespace {
+
+constexpr double kPeriod = 20e-9;  // 50 MHz receiver clock
+
+// Fires chosen pixels at chosen times into a bus, as pixels would.
+class Stimulus : public sc_core::sc_module {
+ public:
+  sc_core::sc_port<PixelBusIf> bus;
+  Stimulus(const sc_core::sc_module_name& name, std::vector<AddressEvent> firings)
+      : sc_module(name), firings_(std::move(firings)) {
+    SC_THREAD(run);
+  }
+  SC_HAS_PROCESS(Stimulus);
+
+ private:
+  void run() {
+    for (const AddressEvent& f : firings_) {
+      wait(sc_core::sc_time(f.t, sc_core::SC_SEC) - sc_core::sc_time_stamp());
+      bus->request(f);
+    }
+  }
+  std::vector<AddressEvent> firings_;
+};
+
+struct CycleRun {
+  EventLog log{1, true};
+  double tau = 0;
+  std::uint64_t violations = 0;
+};
+
+// Two pixels of a 32x32 tile: (1, 2) fires at 1 us (exactly on a clock edge), (4, 8) `delta` later.
+CycleRun two_firings(double delta, bool detect) {
+  install_fresh_kernel();
+  SensorConfig c = testing::exact_sensor(32, 32, 32);
+  c.bus.access = BusAccess::Aloha;
+  c.bus.contention_detect = detect;
+  const AddressMap map(c.array);
+  CycleRun out;
+  auto make = [&](double t, std::uint32_t x, std::uint32_t y) {
+    AddressEvent e;
+    e.t = t;
+    e.x = x;
+    e.y = y;
+    e.bus_address = map.bus_address({x, y});
+    return e;
+  };
+  ClockedAlohaBus bus("tile0", 0, map, c, out.log, nullptr);
+  Stimulus stim("stim", {make(1e-6, 1, 2), make(1e-6 + delta, 4, 8)});
+  stim.bus.bind(bus);
+  sc_core::sc_start();
+  out.log.finish();
+  out.tau = bus.measured_tau();
+  out.violations = bus.protocol_violations();
+  return out;
+}
+
+std::vector<Fate> fates(const EventLog& log) {
+  std::vector<Fate> v;
+  for (const TruthRecord& r : log.truth()) v.push_back(r.fate);
+  return v;
+}
+
+// Req rises on an edge at t0, so the synchronizer sees it at t0 + 1, 2 periods, the receiver
+// latches and raises Ack at t0 + 3 periods; Req falls at once, Ack falls 3 edges later at
+// t0 + 6 periods: a 120 ns transaction.
+TEST(CycleBus, LoneEventIsLatchedOnTheThirdEdge) {
+  const CycleRun r = two_firings(1e-3, true);  // the second firing is far away
+  EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Delivered, Fate::Delivered}));
+  ASSERT_EQ(r.log.events().size(), 2u);
+  EXPECT_NEAR(r.log.events()[0].t, 1e-6 + 3 * kPeriod, 1e-15);
+  EXPECT_NEAR(r.log.truth()[0].t_deliver - r.log.truth()[0].firing.t, 3 * kPeriod, 1e-15);
+  EXPECT_NEAR(r.tau, 6 * kPeriod, 1e-15);
+  EXPECT_EQ(r.violations, 0u);
+}
+
+TEST(CycleBus, SecondDriverBeforeTheLatchCorruptsBoth) {
+  const CycleRun r = two_firings(1.5 * kPeriod, true);
+  EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Collided, Fate::Collided}));
+  EXPECT_TRUE(r.log.events().empty());  // flagged by the contention line and discarded
+  EXPECT_EQ(r.log.totals().collided, 2u);
+}
+
+TEST(CycleBus, WithoutContentionDetectionTheOrIsOutputAsAGhost) {
+  const CycleRun r = two_firings(1.5 * kPeriod, false);
+  EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Ghost, Fate::Ghost}));
+  ASSERT_EQ(r.log.events().size(), 1u);
+  EXPECT_EQ(r.log.events()[0].bus_address, (10u << 5) | 5u);  // (1,2) | (4,8) = (5,10)
+  EXPECT_EQ(r.log.events()[0].x, 5u);
+  EXPECT_EQ(r.log.events()[0].y, 10u);
+  EXPECT_EQ(r.log.events()[0].flags, kGhostEvent);
+}
+
+TEST(CycleBus, FiringWhileAckIsHighIsAbsorbed) {
+  // 3.5 periods after the first: the receiver has latched (at 3) and Ack is high until 6.
+  const CycleRun r = two_firings(3.5 * kPeriod, true);
+  EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Delivered, Fate::Collided}));
+  ASSERT_EQ(r.log.events().size(), 1u);
+  EXPECT_EQ(r.log.events()[0].x, 1u);
+  EXPECT_EQ(r.violations, 0u);
+}
+
+TEST(CycleBus, FiringAfterAckFallsStartsItsOwnTransaction) {
+  const CycleRun r = two_firings(6.5 * kPeriod, true);
+  EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Delivered, Fate::Delivered}));
+  // The second Req rises between edges, so it waits 2.5 periods for its 3rd edge.
+  EXPECT_NEAR(r.log.truth()[1].t_deliver - r.log.truth()[1].firing.t, 2.5 * kPeriod, 1e-15);
+}
+
+TEST(HandshakeMonitor, CountsBrokenRules) {
+  // A driver that raises Ack with no Req, and drops Req before any Ack: both must be caught.
+  install_fresh_kernel();
+  sc_core::sc_signal<bool> req, ack, contention;
+  sc_core::sc_signal<std::uint32_t> addr;
+  HandshakeMonitor monitor("monitor", "tile0", 10, nullptr);
+  monitor.req(req);
+  monitor.ack(ack);
+  monitor.contention(contention);
+  monitor.addr(addr);
+  struct Bad : sc_core::sc_module {
+    sc_core::sc_signal<bool>&r, &a;
+    Bad(const sc_core::sc_module_name& n, sc_core::sc_signal<bool>& r_, sc_core::sc_signal<bool>& a_)
+        : sc_module(n), r(r_), a(a_) {
+      SC_THREAD(run);
+    }
+    SC_HAS_PROCESS(Bad);
+    void run() {
+      wait(10, sc_core::SC_NS);
+      a.write(true);  // Ack without Req
+      wait(10, sc_core::SC_NS);
+      a.write(false);
+      wait(10, sc_core::SC_NS);
+      r.write(true);
+      wait(10, sc_core::SC_NS);
+      r.write(false);  // Req dropped before any Ack
+    }
+  } bad("bad", req, ack);
+  sc_core::sc_start();
+  EXPECT_EQ(monitor.violations(), 2u);
+}
+
+SimulationResult run_scene(SensorConfig c, const Image& img) {
+  const Photocurrents light(testing::make_scene({img}), c.pixel);
+  return simulate(c, light, {true});
+}
+
+TEST(CycleFidelity, LoadedBusKeepsTheHandshakeAndDeliversOnlyFiredPixels) {
+  // The letter-like load of the aloha preset, with a slow clock (1 MHz: tau ~5.5 us) so that the
+  // offered load reaches ~0.1 and collisions are common.
+  SensorConfig c = testing::exact_sensor(64, 64, 32);
+  c.bus.access = BusAccess::Aloha;
+  c.sim.fidelity = Fidelity::Cycle;
+  c.receiver.clock = 1e6;
+  c.pixel.initial = InitialState::Random;
+  c.pixel.mismatch = 0.02;
+  c.sim.duration = 1.0;
+  const SimulationResult r = run_scene(c, testing::make_image(64, 64, [](int x, int y) { return (x + y) % 3 ? 1.0 : 0.0; }));
+  EXPECT_EQ(r.facts.protocol_violations, 0u);
+  const TileCounters t = r.log.totals();
+  EXPECT_GT(t.collided, 100u);
+  EXPECT_EQ(t.fired, t.delivered + t.collided);
+  EXPECT_GT(r.facts.tau_s, 5 * 1e-6);
+  EXPECT_LT(r.facts.tau_s, 6 * 1e-6);
+  // Every output event is a firing that the truth says was delivered, at the same instant.
+  std::set<std::tuple<double, std::uint32_t, std::uint32_t>> delivered;
+  for (const TruthRecord& rec : r.log.truth()) {
+    if (rec.fate == Fate::Delivered) delivered.insert({rec.t_deliver, rec.firing.x, rec.firing.y});
+  }
+  ASSERT_EQ(delivered.size(), r.log.events().size());
+  for (const AddressEvent& e : r.log.events()) {
+    ASSERT_TRUE(delivered.count({e.t, e.x, e.y})) << e.x << "," << e.y << " at " << e.t;
+    ASSERT_TRUE((e.x + e.y) % 3 != 0) << "a dark pixel was delivered";
+  }
+}
+
+TEST(CycleFidelity, AtLowLoadDeliversExactlyWhatTheEventFidelityDelivers) {
+  SensorConfig c = testing::exact_sensor(64, 64, 32);
+  c.bus.access = BusAccess::Aloha;
+  c.bus.t_event = 110e-9;
+  c.pixel.initial = InitialState::Random;
+  c.pixel.mismatch = 0.02;
+  c.sim.duration = 1.0;
+  const Image img = testing::make_image(64, 64, [](int x, int y) { return (7 * x + 13 * y) % 29 == 0 ? 1.0 : 0.0; });
+  c.sim.fidelity = Fidelity::Event;
+  const SimulationResult ev = run_scene(c, img);
+  c.sim.fidelity = Fidelity::Cycle;
+  const SimulationResult cy = run_scene(c, img);
+
+  // Precondition on the stimulus: G < 0.01 and no two firings on one bus within 20 clock
+  // periods, so neither model has a collision to judge differently.
+  const auto s = make_summary(c, cy.log, cy.facts);
+  ASSERT_LT(s["offered_load"].get<double>(), 0.01);
+  std::vector<std::vector<double>> per_tile(4);
+  for (const TruthRecord& t : ev.log.truth()) per_tile[t.firing.tile].push_back(t.firing.t);
+  for (auto& times : per_tile) {
+    std::sort(times.begin(), times.end());
+    for (std::size_t i = 1; i < times.size(); ++i) ASSERT_GT(times[i] - times[i - 1], 20 * kPeriod);
+  }
+
+  ASSERT_GT(ev.log.events().size(), 500u);
+  ASSERT_EQ(ev.log.events().size(), cy.log.events().size());
+  EXPECT_EQ(ev.log.totals().collided, 0u);
+  EXPECT_EQ(cy.log.totals().collided, 0u);
+  for (std::size_t i = 0; i < ev.log.events().size(); ++i) {
+    const AddressEvent& a = ev.log.events()[i];
+    const AddressEvent& b = cy.log.events()[i];
+    ASSERT_EQ(a.x, b.x) << i;
+    ASSERT_EQ(a.y, b.y) << i;
+    // The receiver latches on the 3rd clock edge after Req: 2 to 3 periods later.
+    ASSERT_GE(b.t - a.t, 2 * kPeriod - 1e-12) << i;
+    ASSERT_LE(b.t - a.t, 3 * kPeriod + 1e-12) << i;
+  }
+}
+
+}  // namespace
+}  // namespace aesim
