@@ -5,6 +5,7 @@ Plain Python (no numpy here). Shapes are drawn with 4x4 supersampling so that ed
 the partial grey levels a real optical image would.
 """
 import math
+import random
 import os
 import struct
 
@@ -76,6 +77,39 @@ def letter_q(u, v):
     return ring(u, v) or segment_distance(u, v, 19, 19, 27, 28) < STROKE
 
 
+def natural(n, seed=7):
+    """A landscape-like scene: fractal value noise (octaves of bilinearly interpolated random
+    grids, amplitude halving per octave) for clouds and ground, a bright sky toward the top,
+    and a darker hill whose ridge is itself fractal. Seeded, so it regenerates identically."""
+    rng = random.Random(seed)
+
+    def octave(cells):
+        grid = [[rng.random() for _ in range(cells + 1)] for _ in range(cells + 1)]
+
+        def sample(u, v):
+            gx, gy = u * cells / n, v * cells / n
+            x0, y0 = int(gx), int(gy)
+            fx, fy = gx - x0, gy - y0
+            top = grid[y0][x0] * (1 - fx) + grid[y0][x0 + 1] * fx
+            bottom = grid[y0 + 1][x0] * (1 - fx) + grid[y0 + 1][x0 + 1] * fx
+            return top * (1 - fy) + bottom * fy
+        return sample
+
+    octaves = [(octave(2 ** k), 0.5 ** k) for k in range(1, 6)]
+    ridge = [octave(2 ** k) for k in range(1, 5)]
+    values = []
+    for y in range(n):
+        for x in range(n):
+            noise = sum(a * f(x, y) for f, a in octaves) / sum(a for _, a in octaves)
+            height = n * (0.55 + 0.25 * (sum(0.5 ** k * r(x, 0) for k, r in enumerate(ridge)) - 0.6))
+            if y < height:
+                value = 0.55 + 0.35 * (1 - y / n) + 0.25 * (noise - 0.5)
+            else:
+                value = 0.12 + 0.3 * noise
+            values.append(int(round(255 * min(1.0, max(0.0, value)))))
+    return values
+
+
 def main():
     for name, shape in (("A", letter_a), ("C", letter_c), ("O", letter_o), ("Q", letter_q)):
         write_pgm(os.path.join(ROOT, "letters", name + ".pgm"), 32, 32, to8(render(32, 32, shape)))
@@ -86,6 +120,8 @@ def main():
               [int(round(65535 * x / (n - 1))) for y in range(n) for x in range(n)], maxval=65535)
     write_pgm(os.path.join(ROOT, "checkerboard.pgm"), n, n,
               [255 if ((x // 8) + (y // 8)) % 2 == 0 else 0 for y in range(n) for x in range(n)])
+
+    write_pgm(os.path.join(ROOT, "natural.pgm"), n, n, natural(n))
 
     # A dim room (1e-4 .. 1e-3 of full scale, log ramp), a window (0.3 .. 1) and the sun (20):
     # 5.3 decades in one frame.

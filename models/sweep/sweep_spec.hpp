@@ -1,0 +1,34 @@
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace aesim {
+
+// One design point: a scene and the --set overrides that make it.
+struct SweepPoint {
+  std::string group;
+  std::string scene;
+  std::vector<std::pair<std::string, std::string>> sets;  // fixed [set] first, then the group's values
+};
+
+// A sweep spec (TOML), documented in the README:
+//   sensor = "aloha"   duration = "2s"   jobs = 0   chart = "../charts/collisions.gp"
+//   [set]       "key" = value, ...                    overrides for every point
+//   [[group]]   name = "...", scene = [...], "key" = value | [values] | {from, to, points, scale}
+// Each group is the Cartesian product of its lists and ranges; the sweep is the groups in order.
+struct SweepSpec {
+  std::string path;
+  std::string sensor = "aloha";
+  std::string duration;
+  std::string chart;  // gnuplot script, resolved to a path; empty for none
+  int jobs = 0;       // 0: all cores
+  std::vector<std::string> swept_keys;  // every key any group varies or sets, in first-seen order
+  std::vector<SweepPoint> points;
+};
+
+// Parses, expands and validates every point (each resolves to a valid sensor configuration)
+// before anything runs. Throws InputError naming the spec, the group and the key.
+SweepSpec load_sweep_spec(const std::string& path);
+
+}  // namespace aesim

@@ -1,0 +1,194 @@
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "aesim/commands.hpp"
+#include "config/data_dir.hpp"
+#include "config/input_error.hpp"
+#include "io/atomic_file.hpp"
+#include "sweep/sweep_spec.hpp"
+
+extern char** environ;
+
+namespace aesim {
+namespace fs = std::filesystem;
+namespace {
+
+struct SweepOptions {
+  std::string spec, output;
+  int jobs = -1;
+  bool no_chart = false;
+};
+
+// The SPEC section 5 summary columns, then aesim's extra ones, in this order.
+const char* const kSummaryColumns[] = {
+    "events_fired", "events_delivered", "events_collided", "events_ghost", "events_dropped",
+    "offered_load", "throughput", "tau_s", "sim_time_s", "wall_time_s", "fidelity",
+    "events_pending", "collision_fraction", "latency_mean_s", "latency_p99_s", "latency_max_s",
+    "protocol_violations"};
+
+// RFC 4180: a field holding a comma, quote or newline is quoted, quotes doubled.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string cell(const nlohmann::json& v) { return csv_field(v.is_string() ? v.get<std::string>() : v.dump()); }
+
+std::string display_path(const std::string& p) {
+  const std::string root = fs::weakly_canonical(data_dir()).string() + "/";
+  return p.rfind(root, 0) == 0 ? p.substr(root.size()) : p;
+}
+
+// Runs `aesim run` for each point as a child process, `jobs` at a time.
+class PointRunner {
+ public:
+  PointRunner(const SweepSpec& spec, fs::path work) : spec_(spec), work_(std::move(work)) {}
+
+  void run_all(int jobs) {
+    std::map<pid_t, std::size_t> running;
+    std::size_t next = 0, done = 0;
+    const bool tty = isatty(STDERR_FILENO);
+    while (done < spec_.points.size()) {
+      while (next < spec_.points.size() && static_cast<int>(running.size()) < jobs) {
+        running[start(next)] = next;
+        ++next;
+      }
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, 0);
+      if (pid < 0) throw std::runtime_error("waitpid failed");
+      const auto it = running.find(pid);
+      if (it == running.end()) continue;
+      const std::size_t index = it->second;
+      running.erase(it);
+      ++done;
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        for (const auto& [other, unused] : running) kill(other, SIGTERM);
+        for (std::size_t i = running.size(); i > 0; --i) waitpid(-1, nullptr, 0);
+        std::ifstream log(work_ / fmt::format("point_{}.log", index));
+        const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+        throw std::runtime_error(fmt::format("point {} failed: {}", index + 1, text.substr(0, text.find('\n'))));
+      }
+      if (tty) std::fprintf(stderr, "\raesim sweep: %zu/%zu points", done, spec_.points.size());
+    }
+    if (tty) std::fprintf(stderr, "\n");
+  }
+
+  nlohmann::json summary(std::size_t index) const {
+    std::ifstream in(work_ / fmt::format("point_{}.json", index));
+    return nlohmann::json::parse(in);
+  }
+
+ private:
+  pid_t start(std::size_t index) {
+    const SweepPoint& p = spec_.points[index];
+    std::vector<std::string> args = {"aesim", "run", "--sensor", spec_.sensor, "--scene", p.scene};
+    if (!spec_.duration.empty()) args.insert(args.end(), {"--duration", spec_.duration});
+    for (const auto& [k, v] : p.sets) args.insert(args.end(), {"--set", k + "=" + v});
+    args.insert(args.end(), {"--summary", (work_ / fmt::format("point_{}.json", index)).string()});
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const std::string log = (work_ / fmt::format("point_{}.log", index)).string();
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = 0;
+    const int rc = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) throw std::runtime_error(fmt::format("cannot start a sweep point: {}", std::strerror(rc)));
+    return pid;
+  }
+
+  const SweepSpec& spec_;
+  fs::path work_;
+};
+
+int sweep(SweepOptions opt) {
+  const SweepSpec spec = load_sweep_spec(opt.spec);
+  if (opt.output.empty()) opt.output = "out/" + fs::path(opt.spec).stem().string() + ".csv";
+  if (fs::path(opt.output).extension() != ".csv") throw InputError(fmt::format("-o '{}': use a .csv file name", opt.output));
+  int jobs = opt.jobs >= 0 ? opt.jobs : spec.jobs;
+  if (jobs == 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+
+  const auto wall_start = std::chrono::steady_clock::now();
+  OutputFiles files;
+  std::ostream& csv = files.open(opt.output);  // also creates the output folder
+  const fs::path work = fs::path(opt.output).parent_path() / fmt::format(".{}.points.{}", fs::path(opt.output).stem().string(), getpid());
+  fs::create_directories(work);
+  struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  } cleanup{work};
+
+  PointRunner runner(spec, work);
+  runner.run_all(jobs);
+
+  csv << "group,scene";
+  for (const std::string& k : spec.swept_keys) csv << ',' << k;
+  for (const char* c : kSummaryColumns) csv << ',' << c;
+  csv << ",theory_throughput,theory_collision_fraction\n";
+  for (std::size_t i = 0; i < spec.points.size(); ++i) {
+    const nlohmann::json s = runner.summary(i);
+    csv << csv_field(spec.points[i].group) << ',' << csv_field(display_path(spec.points[i].scene));
+    for (const std::string& k : spec.swept_keys) {
+      const auto dot = k.find('.');
+      csv << ',' << cell(s["sensor"][k.substr(0, dot)][k.substr(dot + 1)]);
+    }
+    for (const char* c : kSummaryColumns) csv << ',' << cell(s[c]);
+    const double g = s["offered_load"];
+    csv << ',' << fmt::format("{:.17g}", g * std::exp(-2 * g)) << ',' << fmt::format("{:.17g}", 1 - std::exp(-2 * g))
+        << '\n';
+  }
+  files.commit();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  fmt::print("aesim sweep: {} points on {} jobs in {:.1f} s -> {}\n", spec.points.size(), jobs, wall, opt.output);
+
+  if (!spec.chart.empty() && !opt.no_chart) {
+    const std::string stem = (fs::path(opt.output).parent_path() / fs::path(opt.output).stem()).string();
+    const std::string cmd = fmt::format("gnuplot -e \"csv='{}'; stem='{}'\" '{}'", opt.output, stem, spec.chart);
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+      std::fprintf(stderr, "aesim sweep: gnuplot not found; chart skipped (apt-get install gnuplot-nox)\n");
+    } else if (std::system(cmd.c_str()) != 0) {
+      throw std::runtime_error("gnuplot failed on " + spec.chart);
+    } else {
+      fmt::print("  chart {}.png, {}.svg\n", stem, stem);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, int& status) {
+  auto opt = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand("sweep", "Run a sweep of design points (a TOML spec) in parallel and write one CSV");
+  cmd->add_option("SPEC", opt->spec, "Sweep spec, e.g. scripts/sweeps/collisions.toml")->required();
+  cmd->add_option("-o,--output", opt->output, "CSV file (default out/SPEC_NAME.csv)");
+  cmd->add_option("-j,--jobs", opt->jobs, "Parallel processes (default: the spec's jobs; 0 = all cores)");
+  cmd->add_flag("--no-chart", opt->no_chart, "Do not draw the spec's chart");
+  cmd->callback([opt, &status] { status = sweep(*opt); });
+}
+
+}  // namespace aesim
