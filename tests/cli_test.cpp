@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -168,6 +169,45 @@ TEST_F(CliTest, ReconReproducesTheCheckerboardAndInfoCountsEvents) {
   EXPECT_NE(info.out.find(std::to_string(summary["events_delivered"].get<long long>()) + " events"), std::string::npos)
       << info.out;
   EXPECT_NE(info.out.find("tile 3:"), std::string::npos);
+}
+
+TEST_F(CliTest, TruthHasEveryFiredEventAndVcdHoldsTheWindow) {
+  const Outcome o = aesim("run --set sim.fidelity=cycle --set receiver.clock=200kHz --duration 1s --truth t.csv "
+                          "--summary s.json --vcd w.vcd --vcd-from 10ms --vcd-to 20ms");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto summary = nlohmann::json::parse(slurp(dir_ / "s.json"));
+  const std::string truth = slurp(dir_ / "t.csv");
+  EXPECT_EQ(truth.rfind("x,y,tile,t_fire_us,fate,t_deliver_us,latency_us\n", 0), 0u);
+  std::istringstream lines(truth);
+  std::string line;
+  std::getline(lines, line);
+  std::map<std::string, double> fates;
+  double rows = 0;
+  while (std::getline(lines, line)) {
+    ++rows;
+    const auto a = line.find(',', line.find(',', line.find(',', line.find(',') + 1) + 1) + 1);
+    fates[line.substr(a + 1, line.find(',', a + 1) - a - 1)] += 1;
+  }
+  EXPECT_EQ(rows, summary["events_fired"].get<double>());
+  EXPECT_EQ(fates["delivered"], summary["events_delivered"].get<double>());
+  EXPECT_EQ(fates["collided"], summary["events_collided"].get<double>());
+  EXPECT_GT(fates["collided"], 0);  // a 200 kHz receiver makes tau ~27 us: collisions happen
+
+  const std::string vcd = slurp(dir_ / "w.vcd");
+  EXPECT_NE(vcd.find("$timescale 1ps $end"), std::string::npos);
+  EXPECT_NE(vcd.find("$var wire 10 $ addr $end"), std::string::npos);
+  EXPECT_NE(vcd.find("$scope module tile3 $end"), std::string::npos);
+  // Every timestamp lies in the window, and there is activity in it.
+  std::istringstream v(vcd.substr(vcd.find("$enddefinitions")));
+  std::size_t stamps = 0;
+  while (std::getline(v, line)) {
+    if (line.empty() || line[0] != '#') continue;
+    const double t = std::stod(line.substr(1));
+    EXPECT_GE(t, 10e9);
+    EXPECT_LE(t, 20e9);
+    ++stamps;
+  }
+  EXPECT_GT(stamps, 20u);
 }
 
 TEST_F(CliTest, ReconAndInfoRejectBadInput) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include <fmt/format.h>
 #include <toml.hpp>
@@ -20,7 +21,11 @@ namespace {
 
 constexpr std::size_t kMaxPoints = 100000;
 
-std::string scalar_text(const toml::value& v, const std::string& where) {
+// Tables in key order (std::map), so that axes vary in a defined order whatever the hashing.
+using Value = toml::basic_value<toml::discard_comments, std::map, std::vector>;
+using Table = Value::table_type;
+
+std::string scalar_text(const Value& v, const std::string& where) {
   if (v.is_string()) return v.as_string().str;
   if (v.is_integer()) return std::to_string(v.as_integer());
   if (v.is_floating()) return fmt::format("{:.17g}", v.as_floating());
@@ -29,7 +34,7 @@ std::string scalar_text(const toml::value& v, const std::string& where) {
 }
 
 // A range table {from, to, points, scale = "linear"|"log"}, in the key's unit.
-std::vector<std::string> expand_range(const toml::table& t, const std::string& where) {
+std::vector<std::string> expand_range(const Table& t, const std::string& where) {
   for (const auto& [k, v] : t) {
     if (k != "from" && k != "to" && k != "points" && k != "scale") {
       throw InputError(fmt::format("{}: unknown range field '{}' (use from, to, points, scale)", where, k));
@@ -58,7 +63,7 @@ std::vector<std::string> expand_range(const toml::table& t, const std::string& w
   if (split(to_text) != unit) throw InputError(fmt::format("{}: from and to have different units", where));
   const double from = parse_si(from_text, unit, where + ".from");
   const double to = parse_si(to_text, unit, where + ".to");
-  const toml::value& pv = t.at("points");
+  const Value& pv = t.at("points");
   if (!pv.is_integer() || pv.as_integer() < 2 || pv.as_integer() > 10000) {
     throw InputError(fmt::format("{}: points must be a whole number from 2 to 10000", where));
   }
@@ -75,10 +80,10 @@ std::vector<std::string> expand_range(const toml::table& t, const std::string& w
   return values;
 }
 
-std::vector<std::string> expand_values(const toml::value& v, const std::string& where) {
+std::vector<std::string> expand_values(const Value& v, const std::string& where) {
   if (v.is_array()) {
     std::vector<std::string> out;
-    for (const toml::value& item : v.as_array()) out.push_back(scalar_text(item, where));
+    for (const Value& item : v.as_array()) out.push_back(scalar_text(item, where));
     if (out.empty()) throw InputError(fmt::format("{}: empty list", where));
     return out;
   }
@@ -96,9 +101,9 @@ std::string resolve_path(const std::string& p, const fs::path& spec_dir) {
 
 SweepSpec load_sweep_spec(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(fmt::format("sweep spec '{}' not found", path));
-  toml::value doc;
+  Value doc;
   try {
-    doc = toml::parse(path);
+    doc = toml::parse<toml::discard_comments, std::map, std::vector>(path);
   } catch (const std::exception& e) {
     const std::string msg = e.what();
     throw InputError(fmt::format("sweep spec '{}': malformed TOML: {}", path, msg.substr(0, msg.find('\n'))));
@@ -107,7 +112,7 @@ SweepSpec load_sweep_spec(const std::string& path) {
   SweepSpec spec;
   spec.path = path;
   std::vector<std::pair<std::string, std::string>> fixed;
-  const toml::value* groups = nullptr;
+  const Value* groups = nullptr;
   for (const auto& [key, value] : doc.as_table()) {
     const std::string where = fmt::format("sweep spec '{}': {}", path, key);
     if (key == "sensor") spec.sensor = scalar_text(value, where);
@@ -136,7 +141,7 @@ SweepSpec load_sweep_spec(const std::string& path) {
   const SensorConfig base = load_sensor(spec.sensor);
 
   std::size_t group_index = 0;
-  for (const toml::value& group : groups->as_array()) {
+  for (const Value& group : groups->as_array()) {
     ++group_index;
     if (!group.is_table()) throw InputError(fmt::format("sweep spec '{}': group {} is not a table", path, group_index));
     std::string name = fmt::format("{}", group_index);

@@ -16,7 +16,8 @@ struct SweepPoint {
 //   sensor = "aloha"   duration = "2s"   jobs = 0   chart = "../charts/collisions.gp"
 //   [set]       "key" = value, ...                    overrides for every point
 //   [[group]]   name = "...", scene = [...], "key" = value | [values] | {from, to, points, scale}
-// Each group is the Cartesian product of its lists and ranges; the sweep is the groups in order.
+// Each group is the Cartesian product of its lists and ranges, scenes outermost and the other keys
+// in alphabetical order, the last varying fastest; the sweep is the groups in file order.
 struct SweepSpec {
   std::string path;
   std::string sensor = "aloha";

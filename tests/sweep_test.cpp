@@ -1,0 +1,146 @@
+// aesim sweep: spec expansion, bad specs, and a small sweep end to end.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "config/input_error.hpp"
+#include "sweep/sweep_spec.hpp"
+
+namespace aesim {
+namespace {
+namespace fs = std::filesystem;
+
+class SweepTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("aesim_sweep_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string spec(const std::string& text) {
+    const fs::path p = dir_ / "spec.toml";
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  int aesim(const std::string& args, std::string* err = nullptr) {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" AESIM_BINARY "' " + args + " >/dev/null 2>err.txt";
+    const int raw = std::system(cmd.c_str());
+    if (err) {
+      std::ifstream in(dir_ / "err.txt");
+      std::getline(in, *err);
+    }
+    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  }
+  fs::path dir_;
+};
+
+TEST_F(SweepTest, GroupsExpandToTheCartesianProductWithLogRanges) {
+  const SweepSpec s = load_sweep_spec(spec(R"(
+sensor = "aloha"
+[set]
+"pixel.mismatch" = 0
+[[group]]
+name = "a"
+scene = ["scenes/letters/A.pgm", "scenes/letters/O.pgm"]
+"bus.t_event" = { from = "1us", to = "100us", points = 3, scale = "log" }
+"pixel.initial" = ["reset", "random"]
+[[group]]
+name = "b"
+"receiver.clock" = { from = "1MHz", to = "3MHz", points = 3 }
+)"));
+  ASSERT_EQ(s.points.size(), 2u * 3 * 2 + 3);
+  EXPECT_EQ(s.swept_keys, (std::vector<std::string>{"bus.t_event", "pixel.initial", "receiver.clock"}));
+  // Last axis fastest; the fixed [set] comes first in every point.
+  EXPECT_EQ(s.points[0].sets[0], (std::pair<std::string, std::string>{"pixel.mismatch", "0"}));
+  EXPECT_EQ(s.points[0].sets[1].second, "1e-06s");
+  EXPECT_EQ(s.points[1].sets[2].second, "random");
+  EXPECT_EQ(s.points[2].sets[1].second, "1e-05s");  // the log midpoint of 1 us and 100 us
+  EXPECT_NE(s.points[6].scene.find("O.pgm"), std::string::npos);
+  EXPECT_EQ(s.points[13].sets[1].second, "2000000Hz");  // the linear midpoint
+  EXPECT_EQ(s.points[13].group, "b");
+}
+
+TEST_F(SweepTest, BadSpecsAreOneLineErrorsWithExitTwo) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"[[group]]\n\"pixel.c_intt\" = [\"1fF\"]\n", "pixel.c_intt"},
+      {"[[group]]\n\"bus.t_event\" = []\n", "empty list"},
+      {"sensor = \"aloha\"\n", "no [[group]]"},
+      {"[[group]]\n\"pixel.c_int\" = [\"lots\"]\n", "pixel.c_int"},
+      {"[[group]]\n\"pixel.c_int\" = [\"-1fF\"]\n", "pixel.c_int"},
+      {"[[group]]\n\"bus.t_event\" = { from = \"1us\", to = \"2ms\", points = 1 }\n", "points"},
+      {"[[group]]\n\"bus.t_event\" = { from = \"1us\", to = \"2V\", points = 3 }\n", "units"},
+      {"[[group]]\nscene = \"no/such.pgm\"\n", "not found"},
+      {"colour = 3\n[[group]]\nname = \"x\"\n", "colour"},
+      {"[[group\n", "malformed TOML"},
+  };
+  for (const auto& [text, needle] : cases) {
+    std::string err;
+    EXPECT_EQ(aesim("sweep " + spec(text) + " -o s.csv", &err), 2) << text;
+    EXPECT_NE(err.find(needle), std::string::npos) << text << " -> " << err;
+    EXPECT_FALSE(fs::exists(dir_ / "s.csv")) << text;
+  }
+}
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(p);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST_F(SweepTest, SmallSweepWritesOneRowPerPointWithTheoryAndMatchesAcrossJobCounts) {
+  const std::string s = spec(R"(
+sensor = "aloha"
+duration = "500ms"
+[set]
+"bus.access" = "aloha"
+[[group]]
+name = "load"
+scene = "scenes/uniform.pgm"
+"bus.t_event" = { from = "10us", to = "100us", points = 3, scale = "log" }
+)");
+  ASSERT_EQ(aesim("sweep " + s + " -o one.csv --jobs 1 --no-chart"), 0);
+  ASSERT_EQ(aesim("sweep " + s + " -o two.csv --jobs 2 --no-chart"), 0);
+  const auto one = read_csv(dir_ / "one.csv");
+  const auto two = read_csv(dir_ / "two.csv");
+  ASSERT_EQ(one.size(), 4u);
+  const auto& h = one[0];
+  EXPECT_EQ(h[0], "group");
+  EXPECT_EQ(h[1], "scene");
+  EXPECT_EQ(h[2], "bus.t_event");
+  EXPECT_EQ(h[3], "events_fired");
+  EXPECT_EQ(h.back(), "theory_collision_fraction");
+  auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(h.begin(), h.end(), name) - h.begin());
+  };
+  ASSERT_LT(col("wall_time_s"), h.size());
+  for (std::size_t r = 1; r < one.size(); ++r) {
+    const double g = std::stod(one[r][col("offered_load")]);
+    EXPECT_NEAR(std::stod(one[r][col("theory_throughput")]), g * std::exp(-2 * g), 1e-12);
+    EXPECT_NEAR(std::stod(one[r][col("theory_collision_fraction")]), 1 - std::exp(-2 * g), 1e-12);
+    // Same results whatever the number of parallel jobs (wall time aside).
+    for (std::size_t c = 0; c < h.size(); ++c) {
+      if (c != col("wall_time_s")) {
+        EXPECT_EQ(one[r][c], two[r][c]) << h[c];
+      }
+    }
+  }
+  // tau grows along the rows, and so does the offered load.
+  EXPECT_LT(std::stod(one[1][col("offered_load")]), std::stod(one[3][col("offered_load")]));
+}
+
+}  // namespace
+}  // namespace aesim
