@@ -10,55 +10,22 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/netpbm.hpp"
+#include "support/temp_dir_test.hpp"
 
 namespace aesim {
 namespace {
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
+using testing::Outcome;
+using testing::slurp;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class CliTest : public ::testing::Test {
+class CliTest : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("aesim_cli_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Outcome aesim(const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" AESIM_BINARY "' " + args + " >stdout.txt 2>stderr.txt";
-    Outcome o;
-    const int raw = std::system(cmd.c_str());
-    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    o.out = slurp(dir_ / "stdout.txt");
-    o.err = slurp(dir_ / "stderr.txt");
-    fs::remove(dir_ / "stdout.txt");
-    fs::remove(dir_ / "stderr.txt");
-    return o;
-  }
-  std::string write(const std::string& name, const std::string& bytes) {
-    std::ofstream(dir_ / name, std::ios::binary) << bytes;
-    return (dir_ / name).string();
-  }
   std::size_t files_in_dir() const {
     std::size_t n = 0;
     for (const auto& e : fs::recursive_directory_iterator(dir_)) n += e.is_regular_file() ? 1 : 0;
     return n;
   }
-  fs::path dir_;
 };
 
 const std::string kScenes = std::string(AESIM_SOURCE_DIR) + "/scenes";

@@ -11,26 +11,13 @@
 #include "scene/netpbm.hpp"
 #include "scene/resample.hpp"
 #include "scene/scene.hpp"
+#include "support/temp_dir_test.hpp"
 
 namespace aesim {
 namespace {
 namespace fs = std::filesystem;
 
-class SceneFilesTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("aesim_scene_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& bytes) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
-  fs::path dir_;
-};
+using SceneFilesTest = testing::TempDirTest;
 
 TEST_F(SceneFilesTest, AsciiAndBinaryPgmIn8And16Bit) {
   const Image a = read_pgm(write("a.pgm", "P2\n# comment\n3 2\n255\n0 51 255\n# inline\n102 153 204\n"));

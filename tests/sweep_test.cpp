@@ -8,36 +8,21 @@
 #include <gtest/gtest.h>
 
 #include "config/input_error.hpp"
+#include "support/temp_dir_test.hpp"
 #include "sweep/sweep_spec.hpp"
 
 namespace aesim {
 namespace {
 namespace fs = std::filesystem;
 
-class SweepTest : public ::testing::Test {
+class SweepTest : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("aesim_sweep_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string spec(const std::string& text) {
-    const fs::path p = dir_ / "spec.toml";
-    std::ofstream(p) << text;
-    return p.string();
-  }
+  std::string spec(const std::string& text) { return write("spec.toml", text); }
   int aesim(const std::string& args, std::string* err = nullptr) {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" AESIM_BINARY "' " + args + " >/dev/null 2>err.txt";
-    const int raw = std::system(cmd.c_str());
-    if (err) {
-      std::ifstream in(dir_ / "err.txt");
-      std::getline(in, *err);
-    }
-    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    const testing::Outcome o = TempDirTest::aesim(args);
+    if (err) *err = o.err.substr(0, o.err.find('\n'));
+    return o.status;
   }
-  fs::path dir_;
 };
 
 TEST_F(SweepTest, GroupsExpandToTheCartesianProductWithLogRanges) {

@@ -1,0 +1,63 @@
+#pragma once
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace aesim::testing {
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+// A test with its own empty folder (removed afterwards), in which it can write inputs and run
+// the aesim program as a user would.
+class TempDirTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("aesim_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& bytes) {
+    std::ofstream(dir_ / name, std::ios::binary) << bytes;
+    return (dir_ / name).string();
+  }
+
+#ifdef AESIM_BINARY
+  // Runs `aesim ARGS` in the folder and captures its exit status, stdout and stderr.
+  Outcome aesim(const std::string& args) {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" AESIM_BINARY "' " + args + " >stdout.txt 2>stderr.txt";
+    Outcome o;
+    const int raw = std::system(cmd.c_str());
+    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    o.out = slurp(dir_ / "stdout.txt");
+    o.err = slurp(dir_ / "stderr.txt");
+    std::filesystem::remove(dir_ / "stdout.txt");
+    std::filesystem::remove(dir_ / "stderr.txt");
+    return o;
+  }
+#endif
+
+  std::filesystem::path dir_;
+};
+
+}  // namespace aesim::testing
