@@ -1,6 +1,7 @@
 // The cycle fidelity: a clocked wired-OR bus, Req/Ack and the reference receiver, on
 // hand-computed timings, protocol invariants, and against the event fidelity at low load.
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <systemc>
 #include <vector>
@@ -17,6 +18,13 @@ namespace aesim {
 namespace {
 
 constexpr double kPeriod = 20e-9;  // 50 MHz receiver clock
+
+// The timestamp a receiver gives an event it latched at time t_latch: the free-running counter
+// holds floor((k - 1) / prescale) ticks before edge k = t_latch / period.
+double stamp(double t_latch, double period, unsigned prescale) {
+  const auto k = static_cast<std::uint64_t>(std::llround(t_latch / period));
+  return static_cast<double>((k - 1) / prescale) * prescale * period;
+}
 
 // Fires chosen pixels at chosen times into a bus, as pixels would.
 class Stimulus : public sc_core::sc_module {
@@ -60,7 +68,7 @@ CycleRun two_firings(double delta, bool detect) {
     e.bus_address = map.bus_address({x, y});
     return e;
   };
-  ClockedAlohaBus bus("tile0", 0, map, c, out.log, nullptr);
+  ClockedAlohaBus bus("tile0", 0, map, c, out.log, nullptr, reference_receiver_factory());
   Stimulus stim("stim", {make(1e-6, 1, 2), make(1e-6 + delta, 4, 8)});
   stim.bus.bind(bus);
   sc_core::sc_start();
@@ -76,16 +84,17 @@ std::vector<Fate> fates(const EventLog& log) {
   return v;
 }
 
-// Req rises on an edge at t0, so the synchronizer sees it at t0 + 1, 2 periods, the receiver
-// latches and raises Ack at t0 + 3 periods; Req falls at once, Ack falls 3 edges later at
-// t0 + 6 periods: a 120 ns transaction.
+// The firing falls exactly on an edge at t0, so it drives 1 ps later; the synchronizer sees it
+// at t0 + 1, 2 periods, the receiver latches and raises Ack at t0 + 3 periods; Req falls at once,
+// Ack falls 3 edges later at t0 + 6 periods: a 120 ns transaction less that picosecond.
 TEST(CycleBus, LoneEventIsLatchedOnTheThirdEdge) {
   const CycleRun r = two_firings(1e-3, true);  // the second firing is far away
   EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Delivered, Fate::Delivered}));
   ASSERT_EQ(r.log.events().size(), 2u);
-  EXPECT_NEAR(r.log.events()[0].t, 1e-6 + 3 * kPeriod, 1e-15);
   EXPECT_NEAR(r.log.truth()[0].t_deliver - r.log.truth()[0].firing.t, 3 * kPeriod, 1e-15);
-  EXPECT_NEAR(r.tau, 6 * kPeriod, 1e-15);
+  // Latched at edge 53 of the 50 MHz clock; 50 cycles per 1 us tick: timestamp 1 tick.
+  EXPECT_NEAR(r.log.events()[0].t, 1e-6, 1e-15);
+  EXPECT_NEAR(r.tau, 6 * kPeriod - 1e-12, 1e-15);
   EXPECT_EQ(r.violations, 0u);
 }
 
@@ -176,10 +185,11 @@ TEST(CycleFidelity, LoadedBusKeepsTheHandshakeAndDeliversOnlyFiredPixels) {
   EXPECT_EQ(t.fired, t.delivered + t.collided);
   EXPECT_GT(r.facts.tau_s, 5 * 1e-6);
   EXPECT_LT(r.facts.tau_s, 6 * 1e-6);
-  // Every output event is a firing that the truth says was delivered, at the same instant.
+  // Every output event is a firing that the truth says was delivered, stamped with its latch
+  // time (1 MHz clock, 1 us tick: one cycle per tick).
   std::set<std::tuple<double, std::uint32_t, std::uint32_t>> delivered;
   for (const TruthRecord& rec : r.log.truth()) {
-    if (rec.fate == Fate::Delivered) delivered.insert({rec.t_deliver, rec.firing.x, rec.firing.y});
+    if (rec.fate == Fate::Delivered) delivered.insert({stamp(rec.t_deliver, 1e-6, 1), rec.firing.x, rec.firing.y});
   }
   ASSERT_EQ(delivered.size(), r.log.events().size());
   for (const AddressEvent& e : r.log.events()) {
@@ -216,14 +226,26 @@ TEST(CycleFidelity, AtLowLoadDeliversExactlyWhatTheEventFidelityDelivers) {
   ASSERT_EQ(ev.log.events().size(), cy.log.events().size());
   EXPECT_EQ(ev.log.totals().collided, 0u);
   EXPECT_EQ(cy.log.totals().collided, 0u);
+  std::vector<TruthRecord> latched;
+  for (const TruthRecord& t : cy.log.truth()) {
+    if (t.fate == Fate::Delivered) latched.push_back(t);
+  }
+  std::sort(latched.begin(), latched.end(),
+            [](const TruthRecord& a, const TruthRecord& b) { return a.t_deliver < b.t_deliver; });
+  ASSERT_EQ(latched.size(), ev.log.events().size());
   for (std::size_t i = 0; i < ev.log.events().size(); ++i) {
     const AddressEvent& a = ev.log.events()[i];
     const AddressEvent& b = cy.log.events()[i];
     ASSERT_EQ(a.x, b.x) << i;
     ASSERT_EQ(a.y, b.y) << i;
-    // The receiver latches on the 3rd clock edge after Req: 2 to 3 periods later.
-    ASSERT_GE(b.t - a.t, 2 * kPeriod - 1e-12) << i;
-    ASSERT_LE(b.t - a.t, 3 * kPeriod + 1e-12) << i;
+    ASSERT_EQ(latched[i].firing.x, a.x) << i;
+    ASSERT_EQ(latched[i].firing.t, a.t) << i;  // the same firing
+    // The receiver latches on the 3rd clock edge after Req: 2 to 3 periods after the firing, and
+    // stamps it from its counter.
+    const double delay = latched[i].t_deliver - a.t;
+    ASSERT_GE(delay, 2 * kPeriod - 1e-12) << i;
+    ASSERT_LE(delay, 3 * kPeriod + 1e-12) << i;
+    ASSERT_NEAR(b.t, stamp(latched[i].t_deliver, kPeriod, 50), 1e-12) << i;
   }
 }
 

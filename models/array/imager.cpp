@@ -1,5 +1,7 @@
 #include "array/imager.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "bus/aloha_bus.hpp"
@@ -11,13 +13,25 @@ namespace aesim {
 namespace {
 
 std::unique_ptr<TileBus> make_bus(const std::string& name, std::uint32_t tile, const SensorConfig& c,
-                                  Fidelity fidelity, const AddressMap& map, EventLog& log, VcdRecorder* vcd) {
+                                  Fidelity fidelity, const AddressMap& map, EventLog& log, VcdRecorder* vcd,
+                                  const ReceiverFactory& receiver) {
   if (fidelity == Fidelity::Cycle) {
     if (c.bus.access != BusAccess::Aloha) {
       throw InputError(fmt::format("bus.access={} has no cycle-level model; the cycle fidelity models the "
                                    "aloha bus (use sim.fidelity=event)", to_string(c.bus.access)));
     }
-    return std::make_unique<ClockedAlohaBus>(name.c_str(), tile, map, c, log, vcd);
+    if (map.bus_bits() > kReceiverAddrWidth) {
+      throw InputError(fmt::format("array.tile_rows: a {}-bit tile address exceeds the receiver's {} address bits",
+                                   map.bus_bits(), kReceiverAddrWidth));
+    }
+    if (static_cast<unsigned>(c.receiver.fifo_depth) > kReceiverFifoCapacity) {
+      throw InputError(fmt::format("receiver.fifo_depth: at most {} at the cycle fidelity (the receiver's FIFO)",
+                                   kReceiverFifoCapacity));
+    }
+    if (std::round(c.receiver.tick * c.receiver.clock) > kReceiverMaxPrescale) {
+      throw InputError(fmt::format("receiver.tick: at most {} clock cycles per tick", kReceiverMaxPrescale));
+    }
+    return std::make_unique<ClockedAlohaBus>(name.c_str(), tile, map, c, log, vcd, receiver);
   }
   switch (c.bus.access) {
     case BusAccess::Ideal: return std::make_unique<IdealBus>(name.c_str(), log);
@@ -32,11 +46,11 @@ std::unique_ptr<TileBus> make_bus(const std::string& name, std::uint32_t tile, c
 }  // namespace
 
 Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
-               const Photocurrents& light, EventLog& log, VcdRecorder* vcd)
+               const Photocurrents& light, EventLog& log, VcdRecorder* vcd, const ReceiverFactory& receiver)
     : sc_module(name), config_(config), map_(config.array) {
   for (int t = 0; t < map_.tiles(); ++t) {
     buses_.push_back(make_bus(fmt::format("tile{}", t), static_cast<std::uint32_t>(t), config, fidelity, map_,
-                              log, vcd));
+                              log, vcd, receiver));
   }
   pixels_.reserve(light.pixels());
   for (int y = 0; y < map_.rows(); ++y) {
@@ -76,6 +90,22 @@ std::uint64_t Imager::protocol_violations() const {
   std::uint64_t n = 0;
   for (const auto& bus : buses_) {
     if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->protocol_violations();
+  }
+  return n;
+}
+
+std::uint64_t Imager::scoreboard_mismatches() const {
+  std::uint64_t n = 0;
+  for (const auto& bus : buses_) {
+    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->receiver().scoreboard_mismatches();
+  }
+  return n;
+}
+
+std::uint64_t Imager::scoreboard_beats() const {
+  std::uint64_t n = 0;
+  for (const auto& bus : buses_) {
+    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->receiver().scoreboard_beats();
   }
   return n;
 }

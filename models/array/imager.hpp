@@ -8,6 +8,7 @@
 #include "io/vcd_recorder.hpp"
 #include "pixel/pixel.hpp"
 #include "receiver/event_log.hpp"
+#include "receiver/receiver_module.hpp"
 
 namespace aesim {
 
@@ -16,7 +17,7 @@ namespace aesim {
 class Imager : public sc_core::sc_module {
  public:
   Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
-         const Photocurrents& light, EventLog& log, VcdRecorder* vcd);
+         const Photocurrents& light, EventLog& log, VcdRecorder* vcd, const ReceiverFactory& receiver);
 
   // After the run: lets every bus settle what it still holds.
   void finish();
@@ -25,6 +26,9 @@ class Imager : public sc_core::sc_module {
   // Handshake rule breaks seen by the clocked buses' monitors (always 0 at the event fidelity).
   std::uint64_t protocol_violations() const;
   std::uint64_t receiver_clock_edges() const;
+  // Co-simulation scoreboard totals over the tiles (RTL receivers only).
+  std::uint64_t scoreboard_mismatches() const;
+  std::uint64_t scoreboard_beats() const;
 
  private:
   const SensorConfig& config_;

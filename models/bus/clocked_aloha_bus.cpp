@@ -1,45 +1,72 @@
 #include "bus/clocked_aloha_bus.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 namespace aesim {
+namespace {
 
-ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint32_t tile,
-                                 const AddressMap& map, const SensorConfig& config, EventLog& log,
-                                 VcdRecorder* vcd)
+sc_core::sc_time clock_period(const SensorConfig& config) {
+  // A whole number of picoseconds, so edges fall exactly on SystemC's time grid.
+  return sc_core::sc_time(static_cast<double>(std::max<long long>(1, std::llround(1e12 / config.receiver.clock))),
+                          sc_core::SC_PS);
+}
+
+}  // namespace
+
+ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
+                                 const SensorConfig& config, EventLog& log, VcdRecorder* vcd,
+                                 const ReceiverFactory& receiver)
     : TileBus(name),
-      req_("req"),
-      contention_("contention"),
-      addr_("addr"),
-      ack_("ack"),
-      receiver_("receiver", tile, map, config.receiver.clock, config.bus.contention_detect, log),
+      clock_("clock", s_, clock_period(config), receiver_prescale(config), kReceiverTsWidth),
+      receiver_(receiver("receiver", s_, receiver_model_config(config))),
+      sink_("sink", s_, tile, map, receiver_tick(config), kReceiverTsWidth, log),
       monitor_("monitor", fmt::format("tile{}", tile), map.bus_bits(), vcd),
       log_(log),
       detect_(config.bus.contention_detect) {
-  receiver_.req(req_);
-  receiver_.addr(addr_);
-  receiver_.contention(contention_);
-  receiver_.ack(ack_);
-  monitor_.req(req_);
-  monitor_.ack(ack_);
-  monitor_.contention(contention_);
-  monitor_.addr(addr_);
+  const ReceiverCycleModel::Config rc = receiver_model_config(config);
+  s_.prescale.write(rc.prescale);
+  s_.fifo_limit.write(rc.fifo_limit);
+  s_.discard_collisions.write(rc.discard_collisions);
+  s_.ts_external.write(rc.ts_external);
+  monitor_.req(s_.req);
+  monitor_.ack(s_.ack);
+  monitor_.contention(s_.contention);
+  monitor_.addr(s_.addr);
   SC_METHOD(on_ack);
-  sensitive << ack_;
+  sensitive << s_.ack;
+  dont_initialize();
+  SC_METHOD(apply_deferred);
+  sensitive << deferred_event_;
   dont_initialize();
 }
 
 void ClockedAlohaBus::drive() {
   std::uint32_t address = 0;
   for (const Driver& d : drivers_) address |= d.firing.bus_address;
-  addr_.write(address);
-  req_.write(!drivers_.empty());
-  contention_.write(drivers_.size() >= 2);
+  s_.addr.write(address);
+  s_.req.write(!drivers_.empty());
+  s_.contention.write(drivers_.size() >= 2);
 }
 
 void ClockedAlohaBus::request(const AddressEvent& firing) {
   log_.fired(firing);
-  if (ack_.read()) {
+  if (sc_core::sc_time_stamp().value() % clock_.period().value() == 0) {
+    deferred_.push_back(firing);
+    deferred_event_.notify(sc_core::sc_time(1, sc_core::SC_PS));
+    return;
+  }
+  join(firing);
+}
+
+void ClockedAlohaBus::apply_deferred() {
+  for (const AddressEvent& f : deferred_) join(f);
+  deferred_.clear();
+}
+
+void ClockedAlohaBus::join(const AddressEvent& firing) {
+  if (s_.ack.read()) {
     log_.resolve(firing, Fate::Collided);  // absorbed by a transaction already acknowledged
     return;
   }
@@ -53,20 +80,19 @@ void ClockedAlohaBus::request(const AddressEvent& firing) {
 
 void ClockedAlohaBus::on_ack() {
   const sc_core::sc_time now = sc_core::sc_time_stamp();
-  if (!ack_.read()) {
+  if (!s_.ack.read()) {
     busy_time_ += (now - transaction_start_).to_seconds();
     ++transactions_;
     in_transaction_ = false;
     return;
   }
-  // The receiver latched at this very edge, reading the wires as they were before it: drivers
-  // that started at this instant were not on them yet, and now meet a raised Ack.
-  std::size_t latched = 0;
-  for (const Driver& d : drivers_) latched += d.since < now ? 1 : 0;
-  const Fate lost = detect_ ? Fate::Collided : Fate::Ghost;
+  // The receiver latched at this edge: every driver on the wires then was seen. It may have
+  // stored the event, discarded a flagged collision, or dropped it for a full FIFO.
+  const bool dropped = s_.overflows.read() != overflows_seen_;
+  overflows_seen_ = s_.overflows.read();
+  const Fate lost = dropped ? Fate::Dropped : detect_ ? Fate::Collided : Fate::Ghost;
   for (const Driver& d : drivers_) {
-    if (!(d.since < now)) log_.resolve(d.firing, Fate::Collided);
-    else if (latched == 1) log_.resolve(d.firing, Fate::Delivered, now.to_seconds());
+    if (drivers_.size() == 1 && !dropped) log_.resolve(d.firing, Fate::Delivered, now.to_seconds());
     else log_.resolve(d.firing, lost);
   }
   drivers_.clear();

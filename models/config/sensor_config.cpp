@@ -59,6 +59,10 @@ const std::vector<std::pair<const char*, InitialState>> kInitial = {
     {"reset", InitialState::Reset}, {"random", InitialState::Random}};
 const std::vector<std::pair<const char*, BusAccess>> kAccess = {
     {"aloha", BusAccess::Aloha}, {"arbitrated", BusAccess::Arbitrated}, {"ideal", BusAccess::Ideal}};
+const std::vector<std::pair<const char*, ReceiverModel>> kReceiverModel = {{"reference", ReceiverModel::Reference},
+                                                                          {"rtl", ReceiverModel::Rtl}};
+const std::vector<std::pair<const char*, FullPolicy>> kFullPolicy = {{"drop", FullPolicy::Drop},
+                                                                    {"hold", FullPolicy::Hold}};
 const std::vector<std::pair<const char*, Fidelity>> kFidelity = {{"queue", Fidelity::Queue},
                                                                  {"event", Fidelity::Event},
                                                                  {"cycle", Fidelity::Cycle},
@@ -121,6 +125,8 @@ const std::map<std::string, KeySpec>& registry() {
     real("receiver.clock", "Hz", [](auto& c) -> auto& { return c.receiver.clock; });
     real("receiver.tick", "s", [](auto& c) -> auto& { return c.receiver.tick; });
     integer("receiver.fifo_depth", [](auto& c) -> auto& { return c.receiver.fifo_depth; });
+    enumerated("receiver.model", [](auto& c) -> auto& { return c.receiver.model; }, kReceiverModel);
+    enumerated("receiver.full_policy", [](auto& c) -> auto& { return c.receiver.full_policy; }, kFullPolicy);
     real("sim.duration", "s", [](auto& c) -> auto& { return c.sim.duration; });
     t["sim.seed"] = {[](SensorConfig& c, const std::string& v) {
                        const long long n = parse_integer(v, "sim.seed");
@@ -152,6 +158,8 @@ const char* to_string(BusAccess v) {
   }
   return "?";
 }
+const char* to_string(ReceiverModel v) { return v == ReceiverModel::Reference ? "reference" : "rtl"; }
+const char* to_string(FullPolicy v) { return v == FullPolicy::Drop ? "drop" : "hold"; }
 const char* to_string(Fidelity v) {
   switch (v) {
     case Fidelity::Queue: return "queue";

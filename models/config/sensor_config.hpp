@@ -10,6 +10,8 @@ namespace aesim {
 enum class InitialState { Reset, Random };
 enum class BusAccess { Aloha, Arbitrated, Ideal };
 enum class Fidelity { Queue, Event, Cycle, Auto };
+enum class ReceiverModel { Reference, Rtl };
+enum class FullPolicy { Drop, Hold };
 
 // Every parameter of a run, in SI units. Field names are the keys of SPEC section 3.
 struct SensorConfig {
@@ -35,6 +37,8 @@ struct SensorConfig {
     double clock = 50e6;  // Hz
     double tick = 1e-6;   // s, timestamp resolution
     int fifo_depth = 16;
+    ReceiverModel model = ReceiverModel::Reference;  // cycle fidelity: SystemC reference or Verilated RTL
+    FullPolicy full_policy = FullPolicy::Drop;       // a full FIFO drops the event, or holds Ack back
   } receiver;
   struct Sim {
     double duration = 1.0;  // s
@@ -67,5 +71,7 @@ std::string sensors_dir();
 const char* to_string(InitialState v);
 const char* to_string(BusAccess v);
 const char* to_string(Fidelity v);
+const char* to_string(ReceiverModel v);
+const char* to_string(FullPolicy v);
 
 }  // namespace aesim

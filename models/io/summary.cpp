@@ -31,6 +31,9 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
       {"fidelity", to_string(facts.fidelity)},
       {"protocol_violations", facts.protocol_violations},
       {"receiver_clock_edges", facts.receiver_clock_edges},
+      {"receiver_tick_s", facts.tick_s},
+      {"scoreboard_beats", facts.scoreboard_beats},
+      {"scoreboard_mismatches", facts.scoreboard_mismatches},
       {"tiles", tiles},
       {"sensor", config.to_json()},
   };

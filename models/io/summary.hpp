@@ -16,6 +16,9 @@ struct RunFacts {
   double wall_time_s = 0;
   std::uint64_t protocol_violations = 0;  // handshake rule breaks (cycle fidelity)
   std::uint64_t receiver_clock_edges = 0; // clock edges the receivers simulated (cycle fidelity)
+  std::uint64_t scoreboard_mismatches = 0;  // RTL outputs that differed from the reference model
+  std::uint64_t scoreboard_beats = 0;       // output beats the scoreboard compared
+  double tick_s = 0;                        // the receiver's timestamp resolution
 };
 
 // Summary JSON of SPEC section 5. offered_load G = fired rate per bus * tau and throughput

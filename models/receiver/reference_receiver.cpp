@@ -1,67 +1,48 @@
 #include "receiver/reference_receiver.hpp"
 
-#include <cmath>
-
 namespace aesim {
 
-ReferenceReceiver::ReferenceReceiver(const sc_core::sc_module_name& name, std::uint32_t tile,
-                                     const AddressMap& map, double clock_hz, bool contention_detect,
-                                     EventLog& log)
-    : sc_module(name),
-      tile_(tile),
-      map_(map),
-      detect_(contention_detect),
-      log_(log),
-      // A whole number of picoseconds, so edges fall exactly on SystemC's time grid.
-      period_(static_cast<double>(std::max<long long>(1, std::llround(1e12 / clock_hz))), sc_core::SC_PS) {
-  SC_THREAD(run);
+ReceiverCycleModel::Inputs sample_inputs(const ReceiverSignals& s) {
+  ReceiverCycleModel::Inputs in;
+  in.req = s.req.read();
+  in.addr = s.addr.read();
+  in.contention = s.contention.read();
+  in.ready = s.evt_ready.read();
+  in.ts = s.ts.read();
+  return in;
 }
 
-void ReferenceReceiver::run() {
-  const sc_core::sc_time zero = sc_core::SC_ZERO_TIME;
-  ack.write(false);
-  for (;;) {
-    if (!req.read()) wait(req.posedge_event());
-    // The first edge strictly after now: a Req rising exactly on an edge is seen at the next.
-    const auto now = sc_core::sc_time_stamp().value();
-    const auto p = period_.value();
-    sc_core::sc_time next = sc_core::sc_time::from_value((now / p + 1) * p);
-    for (;;) {
-      const sc_core::sc_time delay = next - sc_core::sc_time_stamp();
-      if (delay > zero) wait(delay);
-      edge();
-      if (!acking_ && !sync1_ && !sync2_ && !req.read()) break;
-      next += period_;
-    }
-  }
+ReferenceReceiver::ReferenceReceiver(const sc_core::sc_module_name& name, ReceiverSignals& s,
+                                     const ReceiverCycleModel::Config& config)
+    : sc_module(name), s_(s), model_(config) {
+  // One process, like the RTL's always @(posedge clk_i or negedge rst_ni): reset is asynchronous.
+  SC_METHOD(on_clock_or_reset);
+  sensitive << s_.clk.posedge_event() << s_.rst_n;
 }
 
-void ReferenceReceiver::edge() {
-  ++edges_;
-  const bool seen = sync2_;
-  sync2_ = sync1_;
-  sync1_ = req.read();
-  if (!acking_ && seen) {
-    const bool collided = contention.read();
-    acking_ = true;
-    ack.write(true);
-    if (collided && detect_) {
-      ++collisions_;
-      return;
-    }
-    AddressEvent e;
-    e.t = sc_core::sc_time_stamp().to_seconds();
-    e.tile = tile_;
-    e.bus_address = addr.read();
-    const PixelAddress p = map_.locate(tile_, e.bus_address);
-    e.x = p.x;
-    e.y = p.y;
-    e.flags = collided ? kGhostEvent : kNormalEvent;
-    log_.output(e);
-  } else if (acking_ && !seen) {
-    acking_ = false;
-    ack.write(false);
+void ReferenceReceiver::on_clock_or_reset() {
+  if (!s_.rst_n.read()) {
+    model_.reset();
+  } else if (s_.clk.posedge()) {
+    model_.clock(sample_inputs(s_));
+  } else {
+    return;
   }
+  drive();
+}
+
+void ReferenceReceiver::drive() {
+  const ReceiverCycleModel::Outputs o = model_.outputs();
+  s_.ack.write(o.ack);
+  s_.evt_valid.write(o.valid);
+  s_.evt_ts.write(static_cast<std::uint32_t>(o.beat.ts));
+  s_.evt_addr.write(o.beat.addr);
+  s_.evt_flags.write(o.beat.flags);
+  s_.events.write(static_cast<std::uint32_t>(o.events));
+  s_.collisions.write(static_cast<std::uint32_t>(o.collisions));
+  s_.overflows.write(static_cast<std::uint32_t>(o.overflows));
+  s_.fifo_count.write(o.fifo_count);
+  s_.idle.write(o.idle);
 }
 
 }  // namespace aesim

@@ -100,9 +100,9 @@ int run(RunOptions opt) {
   const nlohmann::json summary = make_summary(config, result.log, result.facts);
   if (!opt.out.empty()) {
     write_aedat(files.open(opt.out), aedat_header(map, flatten(config.to_json())),
-                aedat_records(result.log.events(), map, config.receiver.tick));
+                aedat_records(result.log.events(), map, result.facts.tick_s));
   }
-  if (!opt.csv.empty()) write_events_csv(files.open(opt.csv), result.log.events(), config.receiver.tick);
+  if (!opt.csv.empty()) write_events_csv(files.open(opt.csv), result.log.events(), result.facts.tick_s);
   if (!opt.recon.empty()) {
     write_image(files.open(opt.recon), opt.recon,
                 reconstruct(result.log.events(), map.cols(), map.rows(), ReconMode::Histogram));

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "array/imager.hpp"
+#include "cosim/rtl_receiver.hpp"
 #include "config/input_error.hpp"
 
 namespace aesim {
@@ -47,7 +48,10 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
   SimulationResult result{EventLog(map.tiles(), request.keep_truth), {}, nullptr};
   if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);
   {
-    Imager imager("imager", config, fidelity, light, result.log, result.vcd.get());
+    const ReceiverFactory receiver = config.receiver.model == ReceiverModel::Rtl
+                                         ? rtl_receiver_factory(config.receiver.full_policy)
+                                         : reference_receiver_factory();
+    Imager imager("imager", config, fidelity, light, result.log, result.vcd.get(), receiver);
     // Every pixel stops scheduling itself past sim.duration and receivers stop their clocks
     // when idle, so the kernel starves exactly when the run (and any last handshake) is done.
     sc_core::sc_start();
@@ -55,10 +59,13 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
     result.facts.tau_s = imager.tau();
     result.facts.protocol_violations = imager.protocol_violations();
     result.facts.receiver_clock_edges = imager.receiver_clock_edges();
+    result.facts.scoreboard_mismatches = imager.scoreboard_mismatches();
+    result.facts.scoreboard_beats = imager.scoreboard_beats();
   }
   result.log.finish();
   result.facts.fidelity = fidelity;
   result.facts.sim_time_s = config.sim.duration;
+  result.facts.tick_s = fidelity == Fidelity::Cycle ? receiver_tick(config) : config.receiver.tick;
   result.facts.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return result;

@@ -1,0 +1,82 @@
+#include "receiver/receiver_cycle_model.hpp"
+
+#include <algorithm>
+
+namespace aesim {
+namespace {
+
+std::uint64_t mask(int width) { return width >= 64 ? ~0ULL : (1ULL << width) - 1; }
+
+}  // namespace
+
+void ReceiverCycleModel::reset() {
+  s1_ = s2_ = acking_ = false;
+  divider_ = ts_ = 0;
+  events_ = collisions_ = overflows_ = 0;
+  fifo_.clear();
+}
+
+void ReceiverCycleModel::clock(const Inputs& in) {
+  // Values held before the edge.
+  const bool req_high = s1_ && s2_;
+  const bool req_low = !s1_ && !s2_;
+  const std::uint64_t ts_now = config_.ts_external ? (in.ts & mask(config_.ts_width)) : ts_;
+  const std::size_t count = fifo_.size();
+  const bool full = count >= config_.fifo_limit || count >= config_.capacity;
+  const bool pop = count > 0 && in.ready;
+  const std::uint32_t addr = in.addr & static_cast<std::uint32_t>(mask(config_.addr_width));
+
+  bool push = false;
+  if (!acking_) {
+    if (req_high) {
+      if (in.contention && config_.discard_collisions) {
+        ++collisions_;
+        acking_ = true;
+      } else if (full) {
+        if (!config_.hold_when_full) {
+          ++overflows_;
+          collisions_ += in.contention ? 1 : 0;
+          acking_ = true;
+        }
+      } else {
+        push = true;
+        ++events_;
+        collisions_ += in.contention ? 1 : 0;
+        acking_ = true;
+      }
+    }
+  } else if (req_low) {
+    acking_ = false;
+  }
+
+  if (pop) fifo_.pop_front();
+  if (push) fifo_.push_back({ts_now, addr, in.contention});
+
+  const unsigned prescale = std::max(1u, config_.prescale);
+  if (divider_ + 1 >= prescale) {
+    divider_ = 0;
+    ts_ = (ts_ + 1) & mask(config_.ts_width);
+  } else {
+    ++divider_;
+  }
+  s2_ = s1_;
+  s1_ = in.req;
+  events_ &= 0xFFFFFFFFULL;
+  collisions_ &= 0xFFFFFFFFULL;
+  overflows_ &= 0xFFFFFFFFULL;
+}
+
+ReceiverCycleModel::Outputs ReceiverCycleModel::outputs() const {
+  Outputs o;
+  o.ack = acking_;
+  o.valid = !fifo_.empty();
+  if (o.valid) o.beat = fifo_.front();
+  o.events = events_;
+  o.collisions = collisions_;
+  o.overflows = overflows_;
+  o.fifo_count = static_cast<unsigned>(fifo_.size());
+  o.idle = !acking_ && !s1_ && !s2_ && fifo_.empty();
+  return o;
+}
+
+}  // namespace aesim

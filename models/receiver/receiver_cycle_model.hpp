@@ -1,0 +1,59 @@
+#pragma once
+#include <cstdint>
+#include <deque>
+
+namespace aesim {
+
+// The receiver's registers, one clock edge at a time: the cycle-exact reference for
+// rtl/aer_receiver.v. Every decision at an edge uses the values held before it, as the RTL's
+// nonblocking assignments do; outputs() are the register outputs after the last edge.
+class ReceiverCycleModel {
+ public:
+  struct Config {
+    int addr_width = 16;
+    int ts_width = 32;
+    unsigned capacity = 64;  // DEPTH of the RTL build
+    bool hold_when_full = false;
+    unsigned prescale = 1;     // clock cycles per timestamp tick (0 acts as 1)
+    unsigned fifo_limit = 16;  // words that make the FIFO full (receiver.fifo_depth)
+    bool discard_collisions = true;
+    bool ts_external = false;
+  };
+  struct Inputs {
+    bool req = false;
+    std::uint32_t addr = 0;
+    bool contention = false;
+    bool ready = true;
+    std::uint64_t ts = 0;  // used when ts_external
+  };
+  struct Beat {
+    std::uint64_t ts = 0;
+    std::uint32_t addr = 0;
+    bool flags = false;
+    bool operator==(const Beat& o) const { return ts == o.ts && addr == o.addr && flags == o.flags; }
+  };
+  struct Outputs {
+    bool ack = false;
+    bool valid = false;
+    Beat beat;  // meaningful when valid
+    std::uint64_t events = 0, collisions = 0, overflows = 0;
+    unsigned fifo_count = 0;
+    bool idle = true;
+  };
+
+  explicit ReceiverCycleModel(const Config& config) : config_(config) {}
+
+  void reset();
+  void clock(const Inputs& in);
+  Outputs outputs() const;
+
+ private:
+  Config config_;
+  bool s1_ = false, s2_ = false;
+  bool acking_ = false;
+  std::uint64_t divider_ = 0, ts_ = 0;
+  std::uint64_t events_ = 0, collisions_ = 0, overflows_ = 0;
+  std::deque<Beat> fifo_;
+};
+
+}  // namespace aesim

@@ -1,0 +1,107 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <systemc>
+
+#include <fmt/format.h>
+
+#include "receiver/receiver_cycle_model.hpp"
+#include "receiver/receiver_module.hpp"
+#include "receiver/receiver_signals.hpp"
+
+namespace aesim {
+
+// A Verilated rtl/aer_receiver.v (class V) bound to a tile's receiver signals, with a co-simulation
+// scoreboard: the reference ReceiverCycleModel is clocked beside the RTL with the very inputs the
+// RTL sees at each rising edge, and at each falling edge every output of the RTL (Ack, the stream's
+// valid and beat, every counter, FIFO fill, idle) is compared with the model's.
+template <class V>
+class RtlReceiver : public ReceiverModule {
+ public:
+  RtlReceiver(const sc_core::sc_module_name& name, ReceiverSignals& s, const ReceiverCycleModel::Config& config)
+      : ReceiverModule(name), rtl_("rtl"), reference_(config), s_(s) {
+    rtl_.clk_i(s.clk);
+    rtl_.rst_ni(s.rst_n);
+    rtl_.req_i(s.req);
+    rtl_.addr_i(s.addr);
+    rtl_.contention_i(s.contention);
+    rtl_.ack_o(s.ack);
+    rtl_.prescale_i(s.prescale);
+    rtl_.fifo_limit_i(s.fifo_limit);
+    rtl_.discard_collisions_i(s.discard_collisions);
+    rtl_.ts_external_i(s.ts_external);
+    rtl_.ts_i(s.ts);
+    rtl_.evt_valid_o(s.evt_valid);
+    rtl_.evt_ready_i(s.evt_ready);
+    rtl_.evt_ts_o(s.evt_ts);
+    rtl_.evt_addr_o(s.evt_addr);
+    rtl_.evt_flags_o(s.evt_flags);
+    rtl_.events_o(s.events);
+    rtl_.collisions_o(s.collisions);
+    rtl_.overflows_o(s.overflows);
+    rtl_.fifo_count_o(s.fifo_count);
+    rtl_.idle_o(s.idle);
+    SC_METHOD(on_rise);
+    sensitive << s.clk.posedge_event();
+    dont_initialize();
+    SC_METHOD(on_fall);
+    sensitive << s.clk.negedge_event();
+    dont_initialize();
+    SC_METHOD(on_reset);
+    sensitive << s.rst_n;
+  }
+  SC_HAS_PROCESS(RtlReceiver);
+
+  std::uint64_t scoreboard_mismatches() const override { return mismatches_; }
+  std::uint64_t scoreboard_beats() const override { return beats_; }
+  const std::string& first_mismatch() const { return first_mismatch_; }
+  V& rtl() { return rtl_; }
+
+ private:
+  void on_rise() {
+    if (!s_.rst_n.read()) return;
+    if (s_.evt_valid.read() && s_.evt_ready.read()) ++beats_;
+    ReceiverCycleModel::Inputs in;
+    in.req = s_.req.read();
+    in.addr = s_.addr.read();
+    in.contention = s_.contention.read();
+    in.ready = s_.evt_ready.read();
+    in.ts = s_.ts.read();
+    reference_.clock(in);
+  }
+  void on_reset() {
+    if (!s_.rst_n.read()) reference_.reset();
+  }
+  void on_fall() {
+    const ReceiverCycleModel::Outputs m = reference_.outputs();
+    check("ack", s_.ack.read(), m.ack);
+    check("evt_valid", s_.evt_valid.read(), m.valid);
+    if (m.valid && s_.evt_valid.read()) {
+      check("evt_ts", s_.evt_ts.read(), m.beat.ts);
+      check("evt_addr", s_.evt_addr.read(), m.beat.addr);
+      check("evt_flags", s_.evt_flags.read(), m.beat.flags);
+    }
+    check("events", s_.events.read(), m.events);
+    check("collisions", s_.collisions.read(), m.collisions);
+    check("overflows", s_.overflows.read(), m.overflows);
+    check("fifo_count", s_.fifo_count.read(), m.fifo_count);
+    check("idle", s_.idle.read(), m.idle);
+  }
+  void check(const char* what, std::uint64_t rtl, std::uint64_t model) {
+    if (rtl == model) return;
+    if (mismatches_++ == 0) {
+      first_mismatch_ = fmt::format("{} at {}: rtl {} reference {}", what, sc_core::sc_time_stamp().to_string(), rtl, model);
+    }
+  }
+
+  V rtl_;
+  ReceiverCycleModel reference_;
+  ReceiverSignals& s_;
+  std::uint64_t mismatches_ = 0, beats_ = 0;
+  std::string first_mismatch_;
+};
+
+// The RTL receiver in the build's full-FIFO policy, as a factory for the imager.
+ReceiverFactory rtl_receiver_factory(FullPolicy policy);
+
+}  // namespace aesim
