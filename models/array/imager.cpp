@@ -70,6 +70,12 @@ Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, 
   }
 }
 
+void Imager::set_sink_ready(const std::function<bool(std::uint64_t)>& ready) {
+  for (auto& bus : buses_) {
+    if (auto* clocked = dynamic_cast<ClockedAlohaBus*>(bus.get())) clocked->set_sink_ready(ready);
+  }
+}
+
 void Imager::finish() {
   for (auto& bus : buses_) bus->finish();
 }

@@ -23,6 +23,7 @@ ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint3
       receiver_(receiver("receiver", s_, receiver_model_config(config))),
       sink_("sink", s_, tile, map, receiver_tick(config), kReceiverTsWidth, log),
       monitor_("monitor", fmt::format("tile{}", tile), map.bus_bits(), vcd),
+      stream_monitor_("stream_monitor", s_),
       log_(log),
       detect_(config.bus.contention_detect) {
   const ReceiverCycleModel::Config rc = receiver_model_config(config);

@@ -12,6 +12,7 @@
 #include "receiver/gated_clock.hpp"
 #include "receiver/receiver_module.hpp"
 #include "receiver/receiver_signals.hpp"
+#include "receiver/stream_monitor.hpp"
 
 namespace aesim {
 
@@ -40,10 +41,12 @@ class ClockedAlohaBus : public TileBus {
   void request(const AddressEvent& firing) override;
   double measured_tau() const override;
 
-  std::uint64_t protocol_violations() const { return monitor_.violations(); }
+  std::uint64_t protocol_violations() const { return monitor_.violations() + stream_monitor_.violations(); }
   std::uint64_t transactions() const { return transactions_; }
   std::uint64_t clock_edges() const { return clock_.edges(); }
   const ReceiverModule& receiver() const { return *receiver_; }
+  // Back-pressure on the receiver's output: whether the consumer is ready in a given cycle.
+  void set_sink_ready(std::function<bool(std::uint64_t)> ready) { sink_.set_ready_pattern(std::move(ready)); }
 
  private:
   struct Driver {
@@ -60,6 +63,7 @@ class ClockedAlohaBus : public TileBus {
   std::unique_ptr<ReceiverModule> receiver_;
   EventSink sink_;
   HandshakeMonitor monitor_;
+  StreamMonitor stream_monitor_;
   EventLog& log_;
   bool detect_;
   std::vector<Driver> drivers_;

@@ -52,6 +52,7 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
                                          ? rtl_receiver_factory(config.receiver.full_policy)
                                          : reference_receiver_factory();
     Imager imager("imager", config, fidelity, light, result.log, result.vcd.get(), receiver);
+    if (request.sink_ready) imager.set_sink_ready(request.sink_ready);
     // Every pixel stops scheduling itself past sim.duration and receivers stop their clocks
     // when idle, so the kernel starves exactly when the run (and any last handshake) is done.
     sc_core::sc_start();

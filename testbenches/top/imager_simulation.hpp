@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 #include <memory>
 
 #include "array/address_map.hpp"
@@ -15,6 +16,9 @@ struct SimulationRequest {
   bool keep_truth = false;       // a TruthRecord per fired event (--truth)
   bool waveforms = false;        // bus waveforms (--vcd): needs the cycle fidelity
   double vcd_from = 0, vcd_to = 0;  // s, the VCD window
+  // Whether the consumer of each receiver's event stream is ready in a given clock cycle
+  // (always, when empty): back-pressure for verification runs.
+  std::function<bool(std::uint64_t)> sink_ready;
 };
 
 struct SimulationResult {

@@ -5,6 +5,7 @@
 #include "config/sensor_config.hpp"
 #include "scene/image.hpp"
 #include "scene/scene.hpp"
+#include "top/imager_simulation.hpp"
 
 namespace aesim::testing {
 
@@ -47,6 +48,13 @@ inline SensorConfig exact_sensor(int rows, int cols, int tile) {
   c.bus.access = BusAccess::Ideal;
   c.sim.fidelity = Fidelity::Event;
   return c;
+}
+
+// A run that keeps the ground truth of every fired event.
+inline SimulationRequest with_truth() {
+  SimulationRequest r;
+  r.keep_truth = true;
+  return r;
 }
 
 }  // namespace aesim::testing
