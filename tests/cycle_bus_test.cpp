@@ -68,7 +68,7 @@ CycleRun two_firings(double delta, bool detect) {
     e.bus_address = map.bus_address({x, y});
     return e;
   };
-  ClockedAlohaBus bus("tile0", 0, map, c, out.log, nullptr, reference_receiver_factory());
+  ClockedAlohaBus bus("tile0", 0, map, c, out.log, nullptr, CycleOptions{});
   Stimulus stim("stim", {make(1e-6, 1, 2), make(1e-6 + delta, 4, 8)});
   stim.bus.bind(bus);
   sc_core::sc_start();

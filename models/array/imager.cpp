@@ -14,7 +14,7 @@ namespace {
 
 std::unique_ptr<TileBus> make_bus(const std::string& name, std::uint32_t tile, const SensorConfig& c,
                                   Fidelity fidelity, const AddressMap& map, EventLog& log, VcdRecorder* vcd,
-                                  const ReceiverFactory& receiver) {
+                                  const CycleOptions& cycle) {
   if (fidelity == Fidelity::Cycle) {
     if (c.bus.access != BusAccess::Aloha) {
       throw InputError(fmt::format("bus.access={} has no cycle-level model; the cycle fidelity models the "
@@ -31,7 +31,7 @@ std::unique_ptr<TileBus> make_bus(const std::string& name, std::uint32_t tile, c
     if (std::round(c.receiver.tick * c.receiver.clock) > kReceiverMaxPrescale) {
       throw InputError(fmt::format("receiver.tick: at most {} clock cycles per tick", kReceiverMaxPrescale));
     }
-    return std::make_unique<ClockedAlohaBus>(name.c_str(), tile, map, c, log, vcd, receiver);
+    return std::make_unique<ClockedAlohaBus>(name.c_str(), tile, map, c, log, vcd, cycle);
   }
   switch (c.bus.access) {
     case BusAccess::Ideal: return std::make_unique<IdealBus>(name.c_str(), log);
@@ -46,11 +46,11 @@ std::unique_ptr<TileBus> make_bus(const std::string& name, std::uint32_t tile, c
 }  // namespace
 
 Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
-               const Photocurrents& light, EventLog& log, VcdRecorder* vcd, const ReceiverFactory& receiver)
+               const Photocurrents& light, EventLog& log, VcdRecorder* vcd, const CycleOptions& cycle)
     : sc_module(name), config_(config), map_(config.array) {
   for (int t = 0; t < map_.tiles(); ++t) {
     buses_.push_back(make_bus(fmt::format("tile{}", t), static_cast<std::uint32_t>(t), config, fidelity, map_,
-                              log, vcd, receiver));
+                              log, vcd, cycle));
   }
   pixels_.reserve(light.pixels());
   for (int y = 0; y < map_.rows(); ++y) {
@@ -67,12 +67,6 @@ Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, 
       pixel->bus.bind(*buses_[identity.tile]);
       pixels_.push_back(std::move(pixel));
     }
-  }
-}
-
-void Imager::set_sink_ready(const std::function<bool(std::uint64_t)>& ready) {
-  for (auto& bus : buses_) {
-    if (auto* clocked = dynamic_cast<ClockedAlohaBus*>(bus.get())) clocked->set_sink_ready(ready);
   }
 }
 

@@ -18,10 +18,8 @@ namespace aesim {
 class Imager : public sc_core::sc_module {
  public:
   Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
-         const Photocurrents& light, EventLog& log, VcdRecorder* vcd, const ReceiverFactory& receiver);
+         const Photocurrents& light, EventLog& log, VcdRecorder* vcd, const CycleOptions& cycle = {});
 
-  // Back-pressure on every cycle-level receiver's output (tests of the FIFO path).
-  void set_sink_ready(const std::function<bool(std::uint64_t)>& ready);
   // After the run: lets every bus settle what it still holds.
   void finish();
   // Mean bus transaction time: measured by clocked buses, bus.t_event otherwise.

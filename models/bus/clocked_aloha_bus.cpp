@@ -17,16 +17,19 @@ sc_core::sc_time clock_period(const SensorConfig& config) {
 
 ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
                                  const SensorConfig& config, EventLog& log, VcdRecorder* vcd,
-                                 const ReceiverFactory& receiver)
+                                 const CycleOptions& options)
     : TileBus(name),
-      clock_("clock", s_, clock_period(config), receiver_prescale(config), kReceiverTsWidth),
-      receiver_(receiver("receiver", s_, receiver_model_config(config))),
+      clock_("clock", s_, clock_period(config), receiver_prescale(config), kReceiverTsWidth,
+             options.free_running_clock ? sc_core::sc_time(config.sim.duration, sc_core::SC_SEC)
+                                        : sc_core::SC_ZERO_TIME),
+      receiver_(options.receiver("receiver", s_, receiver_model_config(config, options))),
       sink_("sink", s_, tile, map, receiver_tick(config), kReceiverTsWidth, log),
       monitor_("monitor", fmt::format("tile{}", tile), map.bus_bits(), vcd),
       stream_monitor_("stream_monitor", s_),
       log_(log),
       detect_(config.bus.contention_detect) {
-  const ReceiverCycleModel::Config rc = receiver_model_config(config);
+  if (options.sink_ready) sink_.set_ready_pattern(options.sink_ready);
+  const ReceiverCycleModel::Config rc = receiver_model_config(config, options);
   s_.prescale.write(rc.prescale);
   s_.fifo_limit.write(rc.fifo_limit);
   s_.discard_collisions.write(rc.discard_collisions);

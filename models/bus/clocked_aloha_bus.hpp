@@ -35,7 +35,7 @@ namespace aesim {
 class ClockedAlohaBus : public TileBus {
  public:
   ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
-                  const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const ReceiverFactory& receiver);
+                  const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options);
   SC_HAS_PROCESS(ClockedAlohaBus);
 
   void request(const AddressEvent& firing) override;
@@ -45,8 +45,6 @@ class ClockedAlohaBus : public TileBus {
   std::uint64_t transactions() const { return transactions_; }
   std::uint64_t clock_edges() const { return clock_.edges(); }
   const ReceiverModule& receiver() const { return *receiver_; }
-  // Back-pressure on the receiver's output: whether the consumer is ready in a given cycle.
-  void set_sink_ready(std::function<bool(std::uint64_t)> ready) { sink_.set_ready_pattern(std::move(ready)); }
 
  private:
   struct Driver {

@@ -33,7 +33,7 @@ unsigned receiver_prescale(const SensorConfig& config) {
 
 double receiver_tick(const SensorConfig& config) { return receiver_prescale(config) / config.receiver.clock; }
 
-ReceiverCycleModel::Config receiver_model_config(const SensorConfig& config) {
+ReceiverCycleModel::Config receiver_model_config(const SensorConfig& config, const CycleOptions& options) {
   ReceiverCycleModel::Config c;
   c.addr_width = kReceiverAddrWidth;
   c.ts_width = kReceiverTsWidth;
@@ -42,7 +42,7 @@ ReceiverCycleModel::Config receiver_model_config(const SensorConfig& config) {
   c.prescale = receiver_prescale(config);
   c.fifo_limit = static_cast<unsigned>(config.receiver.fifo_depth);
   c.discard_collisions = config.bus.contention_detect;
-  c.ts_external = true;
+  c.ts_external = !options.free_running_clock;
   return c;
 }
 

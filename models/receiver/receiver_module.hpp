@@ -26,11 +26,22 @@ using ReceiverFactory = std::function<std::unique_ptr<ReceiverModule>(
 // The reference receiver (models/receiver/reference_receiver) as a factory.
 ReceiverFactory reference_receiver_factory();
 
+// How the cycle fidelity builds and runs each tile's receiver.
+struct CycleOptions {
+  ReceiverFactory receiver = reference_receiver_factory();
+  // Keep the receiver clock running for the whole run and let the receiver count its own
+  // timestamps, instead of stopping the clock while the bus is idle and feeding it the
+  // free-running count. Both give the same results (a test shows it); this one costs more.
+  bool free_running_clock = false;
+  // Whether the consumer of the event stream is ready in a given clock cycle (always if empty).
+  std::function<bool(std::uint64_t)> sink_ready;
+};
+
 // The receiver's settings from the sensor: clock cycles per timestamp tick (receiver.tick rounded
 // to a whole number of clock periods, at least one) and the tick that results.
 unsigned receiver_prescale(const SensorConfig& config);
 double receiver_tick(const SensorConfig& config);
-ReceiverCycleModel::Config receiver_model_config(const SensorConfig& config);
+ReceiverCycleModel::Config receiver_model_config(const SensorConfig& config, const CycleOptions& options);
 
 // Limits of the receiver as built (rtl/aer_receiver.v parameters in aesim's build).
 inline constexpr int kReceiverAddrWidth = 16;

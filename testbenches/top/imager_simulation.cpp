@@ -48,11 +48,11 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
   SimulationResult result{EventLog(map.tiles(), request.keep_truth), {}, nullptr};
   if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);
   {
-    const ReceiverFactory receiver = config.receiver.model == ReceiverModel::Rtl
-                                         ? rtl_receiver_factory(config.receiver.full_policy)
-                                         : reference_receiver_factory();
-    Imager imager("imager", config, fidelity, light, result.log, result.vcd.get(), receiver);
-    if (request.sink_ready) imager.set_sink_ready(request.sink_ready);
+    CycleOptions cycle;
+    if (config.receiver.model == ReceiverModel::Rtl) cycle.receiver = rtl_receiver_factory(config.receiver.full_policy);
+    cycle.free_running_clock = request.free_running_clock;
+    cycle.sink_ready = request.sink_ready;
+    Imager imager("imager", config, fidelity, light, result.log, result.vcd.get(), cycle);
     // Every pixel stops scheduling itself past sim.duration and receivers stop their clocks
     // when idle, so the kernel starves exactly when the run (and any last handshake) is done.
     sc_core::sc_start();

@@ -16,9 +16,10 @@ struct SimulationRequest {
   bool keep_truth = false;       // a TruthRecord per fired event (--truth)
   bool waveforms = false;        // bus waveforms (--vcd): needs the cycle fidelity
   double vcd_from = 0, vcd_to = 0;  // s, the VCD window
-  // Whether the consumer of each receiver's event stream is ready in a given clock cycle
-  // (always, when empty): back-pressure for verification runs.
+  // Cycle fidelity: back-pressure on every receiver's output, and a free-running receiver clock
+  // (see CycleOptions). The receiver itself follows receiver.model.
   std::function<bool(std::uint64_t)> sink_ready;
+  bool free_running_clock = false;
 };
 
 struct SimulationResult {
