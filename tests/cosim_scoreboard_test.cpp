@@ -1,7 +1,9 @@
 // Co-simulation: scene runs drive the Verilated receiver RTL through the cycle-level bus; at
 // every clock edge the scoreboard steps the reference model with the same inputs and compares
 // every output. The same runs with the reference receiver must give the same events.
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -35,7 +37,9 @@ TEST_P(Cosim, RtlMatchesTheReferenceEveryCycle) {
   c.receiver.full_policy = k.policy;
   c.receiver.fifo_depth = k.fifo_depth;
   c.sim.seed = k.seed;
-  c.sim.duration = k.duration;
+  // scripts/test --full lengthens every run (AESIM_COSIM_SCALE) to compare millions of beats.
+  const char* scale = std::getenv("AESIM_COSIM_SCALE");
+  c.sim.duration = k.duration * (scale ? std::max(1.0, std::atof(scale)) : 1.0);
   const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c);
   const Photocurrents light(scene, c.pixel);
   SimulationRequest request;
