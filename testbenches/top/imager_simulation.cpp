@@ -50,6 +50,7 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
   {
     CycleOptions cycle;
     if (config.receiver.model == ReceiverModel::Rtl) cycle.receiver = rtl_receiver_factory(config.receiver.full_policy);
+    if (request.receiver) cycle.receiver = request.receiver;
     cycle.free_running_clock = request.free_running_clock;
     cycle.sink_ready = request.sink_ready;
     Imager imager("imager", config, fidelity, light, result.log, result.vcd.get(), cycle);

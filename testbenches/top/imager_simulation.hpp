@@ -7,6 +7,7 @@
 #include "io/summary.hpp"
 #include "io/vcd_recorder.hpp"
 #include "receiver/event_log.hpp"
+#include "receiver/receiver_module.hpp"
 #include "scene/photocurrents.hpp"
 
 namespace aesim {
@@ -20,6 +21,8 @@ struct SimulationRequest {
   // (see CycleOptions). The receiver itself follows receiver.model.
   std::function<bool(std::uint64_t)> sink_ready;
   bool free_running_clock = false;
+  // A receiver to use instead of the one receiver.model names (verification of RTL variants).
+  ReceiverFactory receiver;
 };
 
 struct SimulationResult {
