@@ -177,6 +177,35 @@ TEST_F(CliTest, TruthHasEveryFiredEventAndVcdHoldsTheWindow) {
   EXPECT_GT(stamps, 20u);
 }
 
+TEST_F(CliTest, RtlReceiverInTheLoopTracesItsInternalsBesideTheBus) {
+  const Outcome o = aesim("run --set receiver.model=rtl --duration 500ms --vcd w.vcd --vcd-from 50us --vcd-to 300us "
+                          "--summary s.json --csv rtl.csv");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.out.find("fidelity cycle (chosen by auto)"), std::string::npos) << o.out;
+  const auto summary = nlohmann::json::parse(slurp(dir_ / "s.json"));
+  EXPECT_EQ(summary["scoreboard_mismatches"], 0);
+  EXPECT_EQ(summary["scoreboard_beats"], summary["events_delivered"]);
+  for (int t = 0; t < 4; ++t) {
+    const std::string rtl = slurp(dir_ / ("w.tile" + std::to_string(t) + ".rtl.vcd"));
+    EXPECT_NE(rtl.find("$var wire  1 "), std::string::npos) << t;
+    EXPECT_NE(rtl.find(" state_q "), std::string::npos) << t;  // an internal register
+    EXPECT_NE(rtl.find(" req_s2 "), std::string::npos) << t;   // the synchronizer
+  }
+  // The reference receiver gives the same events.
+  ASSERT_EQ(aesim("run --set receiver.model=reference --set sim.fidelity=cycle --duration 500ms --csv ref.csv").status, 0);
+  EXPECT_EQ(slurp(dir_ / "rtl.csv"), slurp(dir_ / "ref.csv"));
+  // Nothing temporary is left behind.
+  for (const auto& e : fs::directory_iterator(dir_)) EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos);
+}
+
+TEST_F(CliTest, ReceiverLimitsAreInputErrors) {
+  EXPECT_EQ(aesim("run --set sim.fidelity=cycle --set receiver.fifo_depth=100 --summary s.json").status, 2);
+  EXPECT_EQ(aesim("run --set receiver.model=verilog --summary s.json").status, 2);
+  EXPECT_EQ(aesim("run --set receiver.full_policy=spill --summary s.json").status, 2);
+  EXPECT_EQ(aesim("run --set receiver.model=rtl --set sim.fidelity=event --summary s.json").status, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "s.json"));
+}
+
 TEST_F(CliTest, ReconAndInfoRejectBadInput) {
   EXPECT_EQ(aesim("recon missing.aedat -o r.png").status, 2);
   EXPECT_EQ(aesim("info missing.aedat").status, 2);

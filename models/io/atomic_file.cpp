@@ -34,8 +34,15 @@ std::ostream& OutputFiles::open(const std::string& path) {
   return files_.back()->stream;
 }
 
+std::string OutputFiles::adopt(const std::string& path) {
+  open(path).flush();
+  files_.back()->stream.close();
+  return files_.back()->temp;
+}
+
 void OutputFiles::commit() {
   for (auto& f : files_) {
+    if (!f->stream.is_open()) continue;  // adopted: written and closed by its writer
     f->stream.flush();
     if (!f->stream) throw std::runtime_error(fmt::format("writing '{}' failed", f->target));
     f->stream.close();

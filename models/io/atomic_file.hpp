@@ -18,6 +18,8 @@ class OutputFiles {
 
   // Opens a temporary file for `path` (creating its folder); throws InputError if impossible.
   std::ostream& open(const std::string& path);
+  // A temporary name for `path` that someone else writes (e.g. a library), renamed with the rest.
+  std::string adopt(const std::string& path);
   // Flushes and renames every file into place.
   void commit();
 

@@ -93,10 +93,23 @@ int run(RunOptions opt) {
 
   const Scene scene = load_scene(scene_files, config);
   const Photocurrents light(scene, config.pixel);
-  const SimulationResult result = simulate(config, light, request);
   const AddressMap map(config.array);
-
   OutputFiles files;
+  std::vector<std::string> rtl_traces;
+  if (request.waveforms && fidelity == Fidelity::Cycle && config.receiver.model == ReceiverModel::Rtl) {
+    // Verilator writes these during the run; they are renamed into place with the rest.
+    const std::string stem = opt.vcd.size() > 4 && opt.vcd.substr(opt.vcd.size() - 4) == ".vcd"
+                                 ? opt.vcd.substr(0, opt.vcd.size() - 4)
+                                 : opt.vcd;
+    std::vector<std::string> temps;
+    for (int t = 0; t < map.tiles(); ++t) {
+      rtl_traces.push_back(fmt::format("{}.tile{}.rtl.vcd", stem, t));
+      temps.push_back(files.adopt(rtl_traces.back()));
+    }
+    request.rtl_trace_path = [temps](int tile) { return temps[static_cast<std::size_t>(tile)]; };
+  }
+  const SimulationResult result = simulate(config, light, request);
+
   const nlohmann::json summary = make_summary(config, result.log, result.facts);
   if (!opt.out.empty()) {
     write_aedat(files.open(opt.out), aedat_header(map, flatten(config.to_json())),
@@ -134,6 +147,7 @@ int run(RunOptions opt) {
   for (const std::string* path : {&opt.out, &opt.csv, &opt.recon, &opt.summary, &opt.truth, &opt.vcd}) {
     if (!path->empty()) written += (written.empty() ? "" : ", ") + *path;
   }
+  if (!rtl_traces.empty()) written += fmt::format(" (and RTL internals in {} .. tile{}.rtl.vcd)", rtl_traces.front(), rtl_traces.size() - 1);
   std::printf("  wrote %s\n", written.c_str());
   return 0;
 }

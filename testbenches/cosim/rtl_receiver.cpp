@@ -5,11 +5,27 @@
 
 namespace aesim {
 
-ReceiverFactory rtl_receiver_factory(FullPolicy policy) {
-  return [policy](const std::string& name, ReceiverSignals& s,
-                  const ReceiverCycleModel::Config& config) -> std::unique_ptr<ReceiverModule> {
-    if (policy == FullPolicy::Hold) return std::make_unique<RtlReceiver<Vaer_receiver_hold>>(name.c_str(), s, config);
-    return std::make_unique<RtlReceiver<Vaer_receiver_drop>>(name.c_str(), s, config);
+namespace {
+
+template <class V>
+std::unique_ptr<ReceiverModule> make(const std::string& name, ReceiverSignals& s,
+                                     const ReceiverCycleModel::Config& config, const RtlTrace* trace) {
+  auto rx = std::make_unique<RtlReceiver<V>>(name.c_str(), s, config);
+  if (trace) rx->trace(*trace);
+  return rx;
+}
+
+}  // namespace
+
+ReceiverFactory rtl_receiver_factory(FullPolicy policy, std::function<std::string(int)> trace_path,
+                                     sc_core::sc_time from, sc_core::sc_time to) {
+  return [=, tile = 0](const std::string& name, ReceiverSignals& s,
+                       const ReceiverCycleModel::Config& config) mutable -> std::unique_ptr<ReceiverModule> {
+    RtlTrace trace{trace_path ? trace_path(tile) : std::string(), from, to};
+    ++tile;
+    const RtlTrace* t = trace_path ? &trace : nullptr;
+    if (policy == FullPolicy::Hold) return make<Vaer_receiver_hold>(name, s, config, t);
+    return make<Vaer_receiver_drop>(name, s, config, t);
   };
 }
 

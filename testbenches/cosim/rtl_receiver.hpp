@@ -1,9 +1,14 @@
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
-#include <systemc>
 
 #include <fmt/format.h>
+// Verilator's SystemC runtime expects SystemC's names in the global namespace.
+#include <systemc.h>
+#include <verilated.h>
+#include <verilated_vcd_c.h>
 
 #include "receiver/receiver_cycle_model.hpp"
 #include "receiver/receiver_module.hpp"
@@ -15,6 +20,12 @@ namespace aesim {
 // scoreboard: the reference ReceiverCycleModel is clocked beside the RTL with the very inputs the
 // RTL sees at each rising edge, and at each falling edge every output of the RTL (Ack, the stream's
 // valid and beat, every counter, FIFO fill, idle) is compared with the model's.
+// Verilator tracing of the RTL's internal signals into `path` for the time window [from, to].
+struct RtlTrace {
+  std::string path;
+  sc_core::sc_time from, to;
+};
+
 template <class V>
 class RtlReceiver : public ReceiverModule {
  public:
@@ -52,6 +63,23 @@ class RtlReceiver : public ReceiverModule {
   }
   SC_HAS_PROCESS(RtlReceiver);
 
+  // Dumps every internal signal at each clock edge within the window (call before the run).
+  void trace(const RtlTrace& t) {
+    Verilated::traceEverOn(true);
+    trace_ = t;
+    tracing_ = true;
+    SC_METHOD(after_edge);
+    sensitive << s_.clk;
+    dont_initialize();
+    SC_METHOD(dump);
+    sensitive << settled_;
+    dont_initialize();
+  }
+
+  ~RtlReceiver() override {
+    if (vcd_) vcd_->close();
+  }
+
   std::uint64_t scoreboard_mismatches() const override { return mismatches_; }
   std::uint64_t scoreboard_beats() const override { return beats_; }
   const std::string& first_mismatch() const { return first_mismatch_; }
@@ -87,6 +115,18 @@ class RtlReceiver : public ReceiverModule {
     check("fifo_count", s_.fifo_count.read(), m.fifo_count);
     check("idle", s_.idle.read(), m.idle);
   }
+  void start_of_simulation() override {
+    if (!tracing_) return;
+    vcd_ = std::make_unique<VerilatedVcdC>();
+    rtl_.trace(vcd_.get(), 99);
+    vcd_->open(trace_.path.c_str());
+  }
+  // The RTL evaluates in the delta where the clock changes; dump one delta later.
+  void after_edge() { settled_.notify(sc_core::SC_ZERO_TIME); }
+  void dump() {
+    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    if (now >= trace_.from && now <= trace_.to) vcd_->dump(static_cast<std::uint64_t>(now.value()));
+  }
   void check(const char* what, std::uint64_t rtl, std::uint64_t model) {
     if (rtl == model) return;
     if (mismatches_++ == 0) {
@@ -99,9 +139,16 @@ class RtlReceiver : public ReceiverModule {
   ReceiverSignals& s_;
   std::uint64_t mismatches_ = 0, beats_ = 0;
   std::string first_mismatch_;
+  bool tracing_ = false;
+  RtlTrace trace_;
+  sc_core::sc_event settled_;
+  std::unique_ptr<VerilatedVcdC> vcd_;
 };
 
-// The RTL receiver in the build's full-FIFO policy, as a factory for the imager.
-ReceiverFactory rtl_receiver_factory(FullPolicy policy);
+// The RTL receiver in the build's full-FIFO policy, as a factory for the imager. With
+// trace_path, tile N's receiver is traced to trace_path(N) within [from, to].
+ReceiverFactory rtl_receiver_factory(FullPolicy policy, std::function<std::string(int)> trace_path = {},
+                                     sc_core::sc_time from = sc_core::SC_ZERO_TIME,
+                                     sc_core::sc_time to = sc_core::SC_ZERO_TIME);
 
 }  // namespace aesim

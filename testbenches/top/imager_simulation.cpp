@@ -15,10 +15,14 @@ namespace aesim {
 Fidelity resolve_fidelity(const SensorConfig& config, const SimulationRequest& request) {
   switch (config.sim.fidelity) {
     case Fidelity::Auto:
-      return request.waveforms ? Fidelity::Cycle : Fidelity::Event;
+      // Waveforms and a receiver model exist only at the cycle fidelity.
+      return request.waveforms || config.receiver.model == ReceiverModel::Rtl ? Fidelity::Cycle : Fidelity::Event;
     case Fidelity::Event:
       if (request.waveforms) {
         throw InputError("--vcd dumps the clocked bus wires, which exist at sim.fidelity=cycle (or auto), not event");
+      }
+      if (config.receiver.model == ReceiverModel::Rtl) {
+        throw InputError("receiver.model=rtl runs at sim.fidelity=cycle (or auto), not event");
       }
       return Fidelity::Event;
     case Fidelity::Cycle:
@@ -49,7 +53,11 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
   if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);
   {
     CycleOptions cycle;
-    if (config.receiver.model == ReceiverModel::Rtl) cycle.receiver = rtl_receiver_factory(config.receiver.full_policy);
+    if (config.receiver.model == ReceiverModel::Rtl) {
+      cycle.receiver = rtl_receiver_factory(config.receiver.full_policy, request.rtl_trace_path,
+                                            sc_core::sc_time(request.vcd_from, sc_core::SC_SEC),
+                                            sc_core::sc_time(request.vcd_to, sc_core::SC_SEC));
+    }
     if (request.receiver) cycle.receiver = request.receiver;
     cycle.free_running_clock = request.free_running_clock;
     cycle.sink_ready = request.sink_ready;
