@@ -1,6 +1,7 @@
 // Fired events per wall second: the event fidelity on the aloha preset with a letter and on a
-// QCIF (176x144) array, and the cycle fidelity (clocked bus and reference receiver) on the same
-// letter, so their ratio is measured side by side in one run.
+// QCIF (176x144) array; the cycle fidelity on the same letter with the reference receiver and
+// with the Verilated RTL; and the cost per receiver clock cycle of each receiver with the clock
+// never stopped. All side by side in one run, so the ratios hold on a noisy machine.
 #include <benchmark/benchmark.h>
 #include <systemc>
 
@@ -50,6 +51,48 @@ void BM_CycleLetterA(benchmark::State& state) {
   run(state, c, scene_for(c, "scenes/letters/A.pgm"));
 }
 
+void BM_CycleLetterA_Rtl(benchmark::State& state) {
+  SensorConfig c = load_sensor("aloha");
+  c.sim.duration = 10.0;
+  c.sim.fidelity = Fidelity::Cycle;
+  c.receiver.model = ReceiverModel::Rtl;
+  run(state, c, scene_for(c, "scenes/letters/A.pgm"));
+}
+
+// The RTL with its clock running throughout (no gating): what co-simulation costs per clock cycle.
+void BM_CycleFreeRunningClock_Rtl(benchmark::State& state) {
+  SensorConfig c = load_sensor("aloha");
+  c.sim.duration = 0.05;
+  c.sim.fidelity = Fidelity::Cycle;
+  c.receiver.model = ReceiverModel::Rtl;
+  const Scene scene = scene_for(c, "scenes/letters/A.pgm");
+  const Photocurrents light(scene, c.pixel);
+  SimulationRequest request;
+  request.free_running_clock = true;
+  double edges = 0;
+  for (auto _ : state) {
+    const SimulationResult r = simulate(c, light, request);
+    edges += static_cast<double>(r.facts.receiver_clock_edges);
+  }
+  state.counters["edges_per_s"] = benchmark::Counter(edges, benchmark::Counter::kIsRate);
+}
+
+void BM_CycleFreeRunningClock_Reference(benchmark::State& state) {
+  SensorConfig c = load_sensor("aloha");
+  c.sim.duration = 0.05;
+  c.sim.fidelity = Fidelity::Cycle;
+  const Scene scene = scene_for(c, "scenes/letters/A.pgm");
+  const Photocurrents light(scene, c.pixel);
+  SimulationRequest request;
+  request.free_running_clock = true;
+  double edges = 0;
+  for (auto _ : state) {
+    const SimulationResult r = simulate(c, light, request);
+    edges += static_cast<double>(r.facts.receiver_clock_edges);
+  }
+  state.counters["edges_per_s"] = benchmark::Counter(edges, benchmark::Counter::kIsRate);
+}
+
 void BM_EventQcifBrightUniform(benchmark::State& state) {
   SensorConfig c = load_sensor("aloha");
   c.array.rows = 144;
@@ -61,6 +104,9 @@ void BM_EventQcifBrightUniform(benchmark::State& state) {
 
 BENCHMARK(BM_EventLetterA)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_CycleLetterA)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_CycleLetterA_Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_CycleFreeRunningClock_Reference)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_CycleFreeRunningClock_Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_EventQcifBrightUniform)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace
