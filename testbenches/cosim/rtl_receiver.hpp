@@ -13,6 +13,7 @@
 #include "receiver/receiver_cycle_model.hpp"
 #include "receiver/receiver_module.hpp"
 #include "receiver/receiver_signals.hpp"
+#include "receiver/reference_receiver.hpp"
 
 namespace aesim {
 
@@ -89,13 +90,7 @@ class RtlReceiver : public ReceiverModule {
   void on_rise() {
     if (!s_.rst_n.read()) return;
     if (s_.evt_valid.read() && s_.evt_ready.read()) ++beats_;
-    ReceiverCycleModel::Inputs in;
-    in.req = s_.req.read();
-    in.addr = s_.addr.read();
-    in.contention = s_.contention.read();
-    in.ready = s_.evt_ready.read();
-    in.ts = s_.ts.read();
-    reference_.clock(in);
+    reference_.clock(sample_inputs(s_));
   }
   void on_reset() {
     if (!s_.rst_n.read()) reference_.reset();
