@@ -11,17 +11,20 @@ namespace {
 
 constexpr double kQ = 100e-15 * 1.0;  // c_int * dv_int
 
+// The pixels of these tests share one sensor: no shot noise, reset time as given.
+IntegrateFire::Sensor sensor(double t_reset) { return {t_reset, false}; }
+
 IntegrateFire make(double current, double t_reset, double fraction = 0.0) {
   SplitMix64 rng(1);
-  return IntegrateFire({kQ, t_reset, false}, 0.0, current, fraction, rng);
+  return IntegrateFire(sensor(t_reset), kQ, 0.0, current, fraction, rng);
 }
 
-std::vector<double> fire_until(IntegrateFire& p, double t_end) {
+std::vector<double> fire_until(IntegrateFire& p, double t_reset, double t_end) {
   SplitMix64 rng(1);
   std::vector<double> times;
   while (p.next_fire() <= t_end) {
     times.push_back(p.next_fire());
-    p.fire(rng);
+    p.fire(sensor(t_reset), rng);
   }
   return times;
 }
@@ -29,7 +32,7 @@ std::vector<double> fire_until(IntegrateFire& p, double t_end) {
 TEST(IntegrateFire, ConstantCurrentFiresAtKTimesDtPlusResets) {
   for (double t_reset : {0.0, 1e-3}) {
     IntegrateFire p = make(1e-12, t_reset);  // dt_int = 100 ms
-    const std::vector<double> times = fire_until(p, 10.0);
+    const std::vector<double> times = fire_until(p, t_reset, 10.0);
     const std::size_t expected = t_reset == 0 ? 100 : 99;  // 100*0.1 + 99*1e-3 > 10
     ASSERT_EQ(times.size(), expected);
     for (std::size_t i = 0; i < times.size(); ++i) {
@@ -43,15 +46,16 @@ TEST(IntegrateFire, CurrentChangeMidIntegrationCarriesChargeOver) {
   // 1 pA for 0.25 s fires at 0.1, 0.2 and holds half the swing at 0.25; at 0.5 pA the other
   // half takes 0.1 s, so the next firing is at 0.35, then every 0.2 s.
   IntegrateFire p = make(1e-12, 0.0);
+  const IntegrateFire::Sensor s = sensor(0.0);
   SplitMix64 rng(1);
   EXPECT_NEAR(p.next_fire(), 0.1, 1e-15);
-  p.fire(rng);
+  p.fire(s, rng);
   EXPECT_NEAR(p.next_fire(), 0.2, 1e-15);
-  p.fire(rng);
-  EXPECT_NEAR(p.charge_at(0.25), 0.5 * kQ, 1e-12 * kQ);
-  p.set_current(0.25, 0.5e-12);
+  p.fire(s, rng);
+  EXPECT_NEAR(p.charge_at(s, 0.25), 0.5 * kQ, 1e-12 * kQ);
+  p.set_current(s, 0.25, 0.5e-12);
   EXPECT_NEAR(p.next_fire(), 0.35, 1e-15);
-  p.fire(rng);
+  p.fire(s, rng);
   EXPECT_NEAR(p.next_fire(), 0.55, 1e-15);
 }
 
@@ -59,12 +63,13 @@ TEST(IntegrateFire, CurrentChangeDuringResetStartsFromZeroAfterReset) {
   // Fires at 0.1 and 0.21; in reset until 0.22. A change at 0.215 applies from 0.22 with no
   // charge: 0.5 pA needs 0.2 s, so the next firing is at 0.42.
   IntegrateFire p = make(1e-12, 0.01);
+  const IntegrateFire::Sensor s = sensor(0.01);
   SplitMix64 rng(1);
-  p.fire(rng);
+  p.fire(s, rng);
   EXPECT_NEAR(p.next_fire(), 0.21, 1e-15);
-  p.fire(rng);
-  EXPECT_EQ(p.charge_at(0.215), 0.0);
-  p.set_current(0.215, 0.5e-12);
+  p.fire(s, rng);
+  EXPECT_EQ(p.charge_at(s, 0.215), 0.0);
+  p.set_current(s, 0.215, 0.5e-12);
   EXPECT_NEAR(p.next_fire(), 0.42, 1e-15);
 }
 
@@ -75,9 +80,10 @@ TEST(IntegrateFire, InitialFractionShortensTheFirstIntegration) {
 
 TEST(IntegrateFire, ZeroCurrentNeverFiresAndResumesWhenLit) {
   IntegrateFire p = make(0.0, 1e-3, 0.5);
+  const IntegrateFire::Sensor s = sensor(1e-3);
   EXPECT_TRUE(std::isinf(p.next_fire()));
-  EXPECT_EQ(p.charge_at(1e9), 0.5 * kQ);
-  p.set_current(1e9, 1e-12);  // the held half swing fires 50 ms after the light comes on
+  EXPECT_EQ(p.charge_at(s, 1e9), 0.5 * kQ);
+  p.set_current(s, 1e9, 1e-12);  // the held half swing fires 50 ms after the light comes on
   EXPECT_NEAR(p.next_fire(), 1e9 + 0.05, 1e-6);
 }
 
@@ -88,7 +94,7 @@ TEST(IntegrateFire, TinyCurrentsGiveHugeFiniteTimesNotNaN) {
     EXPECT_FALSE(std::isnan(t)) << current;
     EXPECT_GT(t, 1e15) << current;
     SplitMix64 rng(1);
-    p.fire(rng);
+    p.fire(sensor(1e-6), rng);
     EXPECT_FALSE(std::isnan(p.next_fire())) << current;
   }
 }
@@ -100,13 +106,14 @@ TEST(IntegrateFire, ShotNoiseIntegrationTimesFollowTheGammaLaw) {
   const double current = 1e-15;
   const double scale = kElectronCharge / current;
   SplitMix64 rng(42);
-  IntegrateFire p({threshold, 0.0, true}, 0.0, current, 0.0, rng);
+  const IntegrateFire::Sensor noisy{0.0, true};
+  IntegrateFire p(noisy, threshold, 0.0, current, 0.0, rng);
   const int n = 20000;
   double previous = 0, sum = 0, sum2 = 0;
   for (int i = 0; i < n; ++i) {
     const double dt = p.next_fire() - previous;
     previous = p.next_fire();
-    p.fire(rng);
+    p.fire(noisy, rng);
     sum += dt;
     sum2 += dt * dt;
   }

@@ -6,23 +6,25 @@
 namespace aesim {
 namespace {
 
-double draw_target(const IntegrateFire::Params& p, SplitMix64& rng) {
-  if (!p.shot_noise) return p.threshold;
-  const double electrons = p.threshold / kElectronCharge;
-  std::gamma_distribution<double> gamma(electrons, 1.0);
+double draw_target(const IntegrateFire::Sensor& s, double threshold, SplitMix64& rng) {
+  if (!s.shot_noise) return threshold;
+  std::gamma_distribution<double> gamma(threshold / kElectronCharge, 1.0);
   return kElectronCharge * gamma(rng);
 }
 
+// Re-anchor before the cycle count could overflow (a pixel firing for 2^30 cycles).
+constexpr std::uint32_t kMaxCycles = 1u << 30;
+
 }  // namespace
 
-IntegrateFire::IntegrateFire(const Params& params, double t0, double current,
+IntegrateFire::IntegrateFire(const Sensor& sensor, double threshold, double t0, double current,
                              double initial_fraction, SplitMix64& rng)
-    : params_(params), target_(draw_target(params, rng)), current_(current), anchor_t_(t0) {
+    : threshold_(threshold), target_(draw_target(sensor, threshold, rng)), current_(current), anchor_t_(t0) {
   anchor_q_ = std::clamp(initial_fraction, 0.0, 1.0) * target_;
-  update_next_fire();
+  update_next_fire(sensor);
 }
 
-void IntegrateFire::update_next_fire() {
+void IntegrateFire::update_next_fire(const Sensor& sensor) {
   if (!(current_ > 0)) {
     next_fire_ = kNever;
     return;
@@ -30,49 +32,49 @@ void IntegrateFire::update_next_fire() {
   const double first = anchor_t_ + (target_ - anchor_q_) / current_;
   next_fire_ = cycles_ == 0
                    ? first
-                   : first + static_cast<double>(cycles_) * (target_ / current_ + params_.t_reset);
+                   : first + static_cast<double>(cycles_) * (target_ / current_ + sensor.t_reset);
 }
 
-double IntegrateFire::reset_end_of_last_cycle() const {
+double IntegrateFire::reset_end_of_last_cycle(const Sensor& sensor) const {
   // Only meaningful when cycles_ > 0: the previous firing's time plus the reset.
-  const double period = target_ / current_ + params_.t_reset;
-  return anchor_t_ + (target_ - anchor_q_) / current_ +
-         static_cast<double>(cycles_ - 1) * period + params_.t_reset;
+  const double period = target_ / current_ + sensor.t_reset;
+  return anchor_t_ + (target_ - anchor_q_) / current_ + static_cast<double>(cycles_ - 1) * period +
+         sensor.t_reset;
 }
 
-void IntegrateFire::fire(SplitMix64& rng) {
-  if (params_.shot_noise) {
+void IntegrateFire::fire(const Sensor& sensor, SplitMix64& rng) {
+  if (sensor.shot_noise || cycles_ >= kMaxCycles) {
     // Each integration has its own random target, so re-anchor after every firing.
-    anchor_t_ = next_fire_ + params_.t_reset;
+    anchor_t_ = next_fire_ + sensor.t_reset;
     anchor_q_ = 0;
     cycles_ = 0;
-    target_ = draw_target(params_, rng);
+    target_ = draw_target(sensor, threshold_, rng);
   } else {
     ++cycles_;
   }
-  update_next_fire();
+  update_next_fire(sensor);
 }
 
-double IntegrateFire::charge_at(double t) const {
+double IntegrateFire::charge_at(const Sensor& sensor, double t) const {
   double start = anchor_t_;
   double q0 = anchor_q_;
   if (cycles_ > 0) {
-    start = reset_end_of_last_cycle();
+    start = reset_end_of_last_cycle(sensor);
     q0 = 0;
   }
   if (t <= start || !(current_ > 0)) return q0;
   return std::min(target_, q0 + current_ * (t - start));
 }
 
-void IntegrateFire::set_current(double t, double current) {
-  const double q = charge_at(t);
-  const double resume = cycles_ > 0 ? reset_end_of_last_cycle() : anchor_t_;
+void IntegrateFire::set_current(const Sensor& sensor, double t, double current) {
+  const double q = charge_at(sensor, t);
+  const double resume = cycles_ > 0 ? reset_end_of_last_cycle(sensor) : anchor_t_;
   // In reset (t before the integration resumes) the new anchor is the end of the reset.
   anchor_t_ = std::max(t, resume);
   anchor_q_ = q;
   cycles_ = 0;
   current_ = current;
-  update_next_fire();
+  update_next_fire(sensor);
 }
 
 }  // namespace aesim

@@ -22,41 +22,44 @@ inline constexpr double kNever = std::numeric_limits<double>::infinity();
 //
 // With constant current the k-th firing after an anchor is computed in closed form from the
 // anchor, so firing times do not accumulate rounding error over long runs.
+//
+// What all pixels of a sensor share (reset time, shot noise) is passed in, not stored, so that a
+// pixel's state is 56 bytes: a megapixel array schedules in well under 100 bytes per pixel.
 class IntegrateFire {
  public:
-  struct Params {
-    double threshold = 0;   // C, this pixel's c_int * dv_int including mismatch
-    double t_reset = 0;     // s
+  struct Sensor {
+    double t_reset = 0;  // s
     bool shot_noise = false;
   };
 
   IntegrateFire() = default;
   // Starts at time t0 with current `current` and `initial_fraction` of the swing already
-  // collected (0 for pixel.initial=reset). `rng` is the pixel's shot-noise stream.
-  IntegrateFire(const Params& params, double t0, double current, double initial_fraction,
+  // collected (0 for pixel.initial=reset). `threshold` is this pixel's c_int * dv_int (with
+  // mismatch); `rng` its shot-noise stream.
+  IntegrateFire(const Sensor& sensor, double threshold, double t0, double current, double initial_fraction,
                 SplitMix64& rng);
 
   // Time of the next firing, or kNever when the current is zero.
   double next_fire() const { return next_fire_; }
   // Consumes the firing at next_fire(): the pixel enters reset and starts a new integration.
-  void fire(SplitMix64& rng);
+  void fire(const Sensor& sensor, SplitMix64& rng);
   // The current changes at time t (last firing <= t <= next_fire()); collected charge carries over.
-  void set_current(double t, double current);
+  void set_current(const Sensor& sensor, double t, double current);
   // Charge collected at time t (zero during reset); t within [last firing, next_fire()].
-  double charge_at(double t) const;
+  double charge_at(const Sensor& sensor, double t) const;
   double current() const { return current_; }
 
  private:
-  double reset_end_of_last_cycle() const;
-  void update_next_fire();
+  double reset_end_of_last_cycle(const Sensor& sensor) const;
+  void update_next_fire(const Sensor& sensor);
 
-  Params params_;
-  double target_ = 0;      // charge to collect in this integration
-  double current_ = 0;     // A
-  double anchor_t_ = 0;    // integration started (or resumed) at this time...
-  double anchor_q_ = 0;    // ...holding this charge
-  std::uint64_t cycles_ = 0;  // firings since the anchor (constant current, no shot noise)
+  double threshold_ = 0;  // C
+  double target_ = 0;     // charge to collect in this integration
+  double current_ = 0;    // A
+  double anchor_t_ = 0;   // integration started (or resumed) at this time...
+  double anchor_q_ = 0;   // ...holding this charge
   double next_fire_ = kNever;
+  std::uint32_t cycles_ = 0;  // firings since the anchor (constant current, no shot noise)
 };
 
 }  // namespace aesim

@@ -12,7 +12,8 @@ Pixel::Pixel(const sc_core::sc_module_name& name, const SensorConfig& config,
       identity_(identity),
       t_end_(config.sim.duration),
       rng_(shot_noise_stream(config, index)),
-      core_(pixel_params(config, index), 0.0, light.current(0, index), initial_fraction(config, index),
+      sensor_(pixel_sensor(config)),
+      core_(sensor_, pixel_threshold(config, index), 0.0, light.current(0, index), initial_fraction(config, index),
             rng_),
       next_boundary_(light.next_change(0, index)) {
   SC_METHOD(step);
@@ -25,9 +26,9 @@ void Pixel::step() {
     AddressEvent e = identity_;
     e.t = core_.next_fire();
     bus->request(e);
-    core_.fire(rng_);
+    core_.fire(sensor_, rng_);
   } else {
-    core_.set_current(light_.boundary_time(next_boundary_), light_.current(next_boundary_, index_));
+    core_.set_current(sensor_, light_.boundary_time(next_boundary_), light_.current(next_boundary_, index_));
     next_boundary_ = light_.next_change(next_boundary_, index_);
   }
   schedule();

@@ -28,6 +28,7 @@ class Pixel : public sc_core::sc_module {
   AddressEvent identity_;
   double t_end_;
   SplitMix64 rng_;
+  IntegrateFire::Sensor sensor_;
   IntegrateFire core_;
   std::uint64_t next_boundary_;
   bool started_ = false;

@@ -4,11 +4,12 @@
 
 namespace aesim {
 
-IntegrateFire::Params pixel_params(const SensorConfig& config, std::uint64_t pixel_index) {
-  IntegrateFire::Params p;
-  p.threshold = config.pixel.c_int * config.pixel.dv_int;
-  p.t_reset = config.pixel.t_reset;
-  p.shot_noise = config.pixel.shot_noise;
+IntegrateFire::Sensor pixel_sensor(const SensorConfig& config) {
+  return {config.pixel.t_reset, config.pixel.shot_noise};
+}
+
+double pixel_threshold(const SensorConfig& config, std::uint64_t pixel_index) {
+  double threshold = config.pixel.c_int * config.pixel.dv_int;
   if (config.pixel.mismatch > 0) {
     SplitMix64 rng = stream_for(config.sim.seed, Stream::Threshold, pixel_index);
     std::normal_distribution<double> normal(1.0, config.pixel.mismatch);
@@ -16,9 +17,9 @@ IntegrateFire::Params pixel_params(const SensorConfig& config, std::uint64_t pix
     // at realistic mismatch (it cuts beyond 19 sigma at 5 %) and keeps absurd ones physical.
     double factor = normal(rng);
     while (factor < 0.05) factor = normal(rng);
-    p.threshold *= factor;
+    threshold *= factor;
   }
-  return p;
+  return threshold;
 }
 
 double initial_fraction(const SensorConfig& config, std::uint64_t pixel_index) {
