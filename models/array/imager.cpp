@@ -1,9 +1,13 @@
 #include "array/imager.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include <fmt/format.h>
 
+#include "array/firing_schedule.hpp"
 #include "bus/aloha_bus.hpp"
 #include "bus/clocked_aloha_bus.hpp"
 #include "bus/ideal_bus.hpp"
@@ -52,6 +56,7 @@ Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, 
     buses_.push_back(make_bus(fmt::format("tile{}", t), static_cast<std::uint32_t>(t), config, fidelity, map_,
                               log, vcd, cycle));
   }
+  if (fidelity == Fidelity::Event) return;  // scheduled: see run_schedule()
   pixels_.reserve(light.pixels());
   for (int y = 0; y < map_.rows(); ++y) {
     for (int x = 0; x < map_.cols(); ++x) {
@@ -68,6 +73,25 @@ Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, 
       pixels_.push_back(std::move(pixel));
     }
   }
+}
+
+void Imager::run_schedule(const Photocurrents& light, int threads) {
+  const int tiles = map_.tiles();
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads = std::min(threads, tiles);
+  std::atomic<int> next_tile{0};
+  auto work = [&] {
+    for (int t = next_tile++; t < tiles; t = next_tile++) {
+      FiringSchedule schedule(config_, light, map_, static_cast<std::uint32_t>(t));
+      TileBus& bus = *buses_[static_cast<std::size_t>(t)];
+      AddressEvent firing;
+      while (schedule.next(firing)) bus.request(firing);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
 }
 
 void Imager::finish() {

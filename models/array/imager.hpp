@@ -14,12 +14,17 @@
 namespace aesim {
 
 // The pixel array split into tiles, each tile with its own bus. The bus model follows
-// bus.access and the fidelity; every pixel of a tile is bound to that tile's bus.
+// bus.access and the fidelity. At the pixel_processes and cycle fidelities every pixel is a
+// SystemC module bound to its tile's bus; at the event fidelity no pixel module exists and
+// run_schedule() feeds each bus from its tile's FiringSchedule.
 class Imager : public sc_core::sc_module {
  public:
   Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
          const Photocurrents& light, EventLog& log, VcdRecorder* vcd, const CycleOptions& cycle = {});
 
+  // The event fidelity: every tile's firings, in time order, straight into its bus, with no
+  // SystemC time (nothing else observes them); tiles on up to `threads` threads.
+  void run_schedule(const Photocurrents& light, int threads);
   // After the run: lets every bus settle what it still holds.
   void finish();
   // Mean bus transaction time: measured by clocked buses, bus.t_event otherwise.

@@ -66,7 +66,8 @@ const std::vector<std::pair<const char*, FullPolicy>> kFullPolicy = {{"drop", Fu
 const std::vector<std::pair<const char*, Fidelity>> kFidelity = {{"queue", Fidelity::Queue},
                                                                  {"event", Fidelity::Event},
                                                                  {"cycle", Fidelity::Cycle},
-                                                                 {"auto", Fidelity::Auto}};
+                                                                 {"auto", Fidelity::Auto},
+                                                                 {"pixel_processes", Fidelity::PixelProcesses}};
 
 const std::map<std::string, KeySpec>& registry() {
   static const std::map<std::string, KeySpec> table = [] {
@@ -136,6 +137,7 @@ const std::map<std::string, KeySpec>& registry() {
                      [](const SensorConfig& c) { return Json(c.sim.seed); }};
     enumerated("sim.fidelity", [](auto& c) -> auto& { return c.sim.fidelity; },
                kFidelity);
+    integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; });
     real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; });
     boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; });
     return t;
@@ -166,6 +168,7 @@ const char* to_string(Fidelity v) {
     case Fidelity::Event: return "event";
     case Fidelity::Cycle: return "cycle";
     case Fidelity::Auto: return "auto";
+    case Fidelity::PixelProcesses: return "pixel_processes";
   }
   return "?";
 }
@@ -203,8 +206,8 @@ void SensorConfig::validate() const {
   require(pixel.t_reset >= 0, "pixel.t_reset", "reset time must not be negative");
   require(pixel.mismatch >= 0 && pixel.mismatch <= 1, "pixel.mismatch",
           "relative standard deviation must be within [0, 1]");
-  require(array.rows >= 1, "array.rows", "must be at least 1");
-  require(array.cols >= 1, "array.cols", "must be at least 1");
+  require(array.rows >= 1 && array.rows <= 65535, "array.rows", "must be from 1 to 65535");
+  require(array.cols >= 1 && array.cols <= 65535, "array.cols", "must be from 1 to 65535");
   require(static_cast<long long>(array.rows) * array.cols <= (1LL << 26), "array.rows",
           "array larger than 64 Mpixel");
   require(array.tile_rows >= 1 && array.tile_rows <= array.rows, "array.tile_rows",
@@ -221,6 +224,8 @@ void SensorConfig::validate() const {
   // SystemC time is a 64-bit count of 1 ps steps; keep well inside it.
   require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
           "must be positive and at most 1e6 s (SystemC's 1 ps time base)");
+  require(sim.threads >= 0 && sim.threads <= 1024, "sim.threads", "must be from 0 (all cores) to 1024");
+  require(scene.frame_rate * sim.duration < 4e9, "scene.frame_rate", "more than 4e9 frames in sim.duration");
   require(scene.frame_rate > 0 && scene.frame_rate <= 1e9, "scene.frame_rate",
           "must be positive and at most 1 GHz");
 }

@@ -9,7 +9,9 @@ namespace aesim {
 
 enum class InitialState { Reset, Random };
 enum class BusAccess { Aloha, Arbitrated, Ideal };
-enum class Fidelity { Queue, Event, Cycle, Auto };
+// Event, Cycle and Queue are SPEC's rungs; PixelProcesses is the naive SystemC baseline (one
+// process per pixel, exact times, same results as Event).
+enum class Fidelity { Queue, Event, Cycle, Auto, PixelProcesses };
 enum class ReceiverModel { Reference, Rtl };
 enum class FullPolicy { Drop, Hold };
 
@@ -44,6 +46,7 @@ struct SensorConfig {
     double duration = 1.0;  // s
     std::uint64_t seed = 1;
     Fidelity fidelity = Fidelity::Auto;
+    int threads = 1;  // event fidelity: tiles simulated in parallel on this many threads (0: all cores)
   } sim;
   struct Scene {
     double frame_rate = 25.0;  // Hz, for frame folders without their own scene.toml

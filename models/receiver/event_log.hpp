@@ -34,31 +34,41 @@ struct LatencyStats {
   double mean = 0, p99 = 0, max = 0;  // s, fire to delivery, over delivered events
 };
 
-// The record of a run, filled in by the bus models (fates) and the receivers (output).
+// The record of a run, filled in by the bus models (fates) and the receivers (output). Each
+// tile's records are kept apart, so tiles may be simulated on separate threads (one thread per
+// tile at a time), and merged in time order by finish().
 class EventLog {
  public:
   EventLog(int tiles, bool keep_truth);
 
-  void fired(const AddressEvent& firing) { ++tiles_[firing.tile].fired; }
+  void fired(const AddressEvent& firing) { ++tiles_[firing.tile].counters.fired; }
   // Every fired event is resolved exactly once, when its fate is known.
   void resolve(const AddressEvent& firing, Fate fate, double t_deliver = 0);
   // The receiver's output: a delivered event, or a ghost (flags & kGhostEvent).
   void output(const AddressEvent& e);
-  // Orders outputs by (time, tile, address) and truth by (fire time, tile, address), so files do
-  // not depend on the order in which simultaneous processes ran.
+  // Merges the tiles: outputs by (time, tile, address), truth by (fire time, tile, address), so
+  // files do not depend on the order in which simultaneous processes or threads ran.
   void finish();
 
   const std::vector<AddressEvent>& events() const { return events_; }
   const std::vector<TruthRecord>& truth() const { return truth_; }
-  const std::vector<TileCounters>& tiles() const { return tiles_; }
+  std::vector<TileCounters> tiles() const;
   TileCounters totals() const;
   LatencyStats latency() const;
 
  private:
-  std::vector<TileCounters> tiles_;
+  struct Tile {
+    TileCounters counters;
+    std::vector<AddressEvent> events;
+    std::vector<TruthRecord> truth;
+    std::vector<double> latencies;  // waits longer than zero
+    std::uint64_t zero_latencies = 0;
+  };
+  std::vector<Tile> tiles_;
   std::vector<AddressEvent> events_;
   std::vector<TruthRecord> truth_;
   std::vector<double> latencies_;
+  std::uint64_t zero_latencies_ = 0;
   bool keep_truth_;
 };
 

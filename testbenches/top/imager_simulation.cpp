@@ -27,6 +27,11 @@ Fidelity resolve_fidelity(const SensorConfig& config, const SimulationRequest& r
       return Fidelity::Event;
     case Fidelity::Cycle:
       return Fidelity::Cycle;
+    case Fidelity::PixelProcesses:
+      if (request.waveforms || config.receiver.model == ReceiverModel::Rtl) {
+        throw InputError("sim.fidelity=pixel_processes has event-level buses: no wires for --vcd, no receiver model");
+      }
+      return Fidelity::PixelProcesses;
     case Fidelity::Queue:
       break;
   }
@@ -62,9 +67,13 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
     cycle.free_running_clock = request.free_running_clock;
     cycle.sink_ready = request.sink_ready;
     Imager imager("imager", config, fidelity, light, result.log, result.vcd.get(), cycle);
-    // Every pixel stops scheduling itself past sim.duration and receivers stop their clocks
-    // when idle, so the kernel starves exactly when the run (and any last handshake) is done.
-    sc_core::sc_start();
+    if (fidelity == Fidelity::Event) {
+      imager.run_schedule(light, config.sim.threads);
+    } else {
+      // Every pixel stops scheduling itself past sim.duration and receivers stop their clocks
+      // when idle, so the kernel starves exactly when the run (and any last handshake) is done.
+      sc_core::sc_start();
+    }
     imager.finish();
     result.facts.tau_s = imager.tau();
     result.facts.protocol_violations = imager.protocol_violations();

@@ -77,22 +77,48 @@ void BM_CycleFreeRunningClock(benchmark::State& state, ReceiverModel model) {
   state.counters["edges_per_s"] = benchmark::Counter(edges, benchmark::Counter::kIsRate);
 }
 
-void BM_EventQcifBrightUniform(benchmark::State& state) {
+// The issue 5 target: a bright 176x144 scene on one core, scheduled event rung against the
+// one-process-per-pixel baseline.
+void BM_QcifBrightUniform(benchmark::State& state, Fidelity fidelity, double duration) {
   SensorConfig c = load_sensor("aloha");
   c.array.rows = 144;
   c.array.cols = 176;
-  c.sim.duration = 2.0;
-  c.sim.fidelity = Fidelity::Event;
+  c.sim.duration = duration;
+  c.sim.fidelity = fidelity;
   run(state, c, scene_for(c, "scenes/uniform.pgm"));
 }
 
+// One lit pixel (1 MHz, 1 s: a million firings) in an N x N array of 32x32 tiles, the rest dark:
+// the cost must follow the events, not the pixels.
+void BM_OneLitPixel(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  SensorConfig c = load_sensor("aloha");
+  c.array.rows = c.array.cols = n;
+  c.pixel.i_dark = 0;
+  c.pixel.i_max = 100e-9;
+  c.sim.duration = 1.0;
+  c.sim.fidelity = Fidelity::Event;
+  Scene scene;
+  Image img;
+  img.width = img.height = n;
+  img.pixels.assign(static_cast<std::size_t>(n) * n, 0.0);
+  img.pixels[static_cast<std::size_t>(n / 2) * n + n / 2] = 1.0;
+  scene.frames.push_back(img);
+  scene.frame_period = 1.0;
+  run(state, c, scene);
+}
+
+BENCHMARK(BM_OneLitPixel)->Arg(32)->Arg(1024)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_EventLetterA)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_CycleLetterA)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_CycleLetterA_Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Reference, ReceiverModel::Reference)
     ->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Rtl, ReceiverModel::Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_EventQcifBrightUniform)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_QcifBrightUniform, event, Fidelity::Event, 20.0)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_QcifBrightUniform, pixel_processes, Fidelity::PixelProcesses, 2.0)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 }  // namespace
 }  // namespace aesim
