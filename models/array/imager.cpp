@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "array/firing_schedule.hpp"
+#include "array/schedule_driver.hpp"
 #include "bus/aloha_bus.hpp"
 #include "bus/clocked_aloha_bus.hpp"
 #include "bus/ideal_bus.hpp"
@@ -57,6 +58,13 @@ Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, 
                               log, vcd, cycle));
   }
   if (fidelity == Fidelity::Event) return;  // scheduled: see run_schedule()
+  if (fidelity == Fidelity::Cycle) {
+    // One process feeds the clocked buses from the tiles' schedules.
+    std::vector<TileBus*> buses;
+    for (auto& b : buses_) buses.push_back(b.get());
+    driver_ = std::make_unique<ScheduleDriver>("schedule", config, light, map_, std::move(buses));
+    return;
+  }
   pixels_.reserve(light.pixels());
   for (int y = 0; y < map_.rows(); ++y) {
     for (int x = 0; x < map_.cols(); ++x) {

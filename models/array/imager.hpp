@@ -14,9 +14,10 @@
 namespace aesim {
 
 // The pixel array split into tiles, each tile with its own bus. The bus model follows
-// bus.access and the fidelity. At the pixel_processes and cycle fidelities every pixel is a
-// SystemC module bound to its tile's bus; at the event fidelity no pixel module exists and
-// run_schedule() feeds each bus from its tile's FiringSchedule.
+// bus.access and the fidelity. At the pixel_processes fidelity every pixel is a SystemC module
+// bound to its tile's bus; at the cycle fidelity one ScheduleDriver process feeds the clocked
+// buses from the tiles' FiringSchedules; at the event fidelity no SystemC process runs at all and
+// run_schedule() feeds each bus from its tile's schedule.
 class Imager : public sc_core::sc_module {
  public:
   Imager(const sc_core::sc_module_name& name, const SensorConfig& config, Fidelity fidelity,
@@ -41,6 +42,7 @@ class Imager : public sc_core::sc_module {
   AddressMap map_;
   std::vector<std::unique_ptr<TileBus>> buses_;
   std::vector<std::unique_ptr<Pixel>> pixels_;
+  std::unique_ptr<sc_core::sc_module> driver_;
 };
 
 }  // namespace aesim

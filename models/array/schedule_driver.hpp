@@ -1,0 +1,32 @@
+#pragma once
+#include <memory>
+#include <systemc>
+#include <vector>
+
+#include "array/firing_schedule.hpp"
+#include "bus/tile_bus.hpp"
+
+namespace aesim {
+
+// Feeds clocked buses from the tiles' FiringSchedules with a single SystemC process: it advances
+// SystemC time only to the next firing of any tile, where the bus wires must see it. Replaces a
+// process per pixel at the cycle fidelity.
+class ScheduleDriver : public sc_core::sc_module {
+ public:
+  ScheduleDriver(const sc_core::sc_module_name& name, const SensorConfig& config, const Photocurrents& light,
+                 const AddressMap& map, std::vector<TileBus*> buses);
+  SC_HAS_PROCESS(ScheduleDriver);
+
+ private:
+  void run();
+
+  struct Head {
+    AddressEvent firing;
+    std::size_t tile;
+  };
+  std::vector<std::unique_ptr<FiringSchedule>> schedules_;
+  std::vector<TileBus*> buses_;
+  std::vector<Head> heads_;  // each tile's next firing, a binary min-heap on time
+};
+
+}  // namespace aesim
