@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "array/firing_schedule.hpp"
+#include "array/fixed_step_array.hpp"
+#include "array/queue_model.hpp"
 #include "array/schedule_driver.hpp"
 #include "bus/aloha_bus.hpp"
 #include "bus/clocked_aloha_bus.hpp"
@@ -57,7 +59,13 @@ Imager::Imager(const sc_core::sc_module_name& name, const SensorConfig& config, 
     buses_.push_back(make_bus(fmt::format("tile{}", t), static_cast<std::uint32_t>(t), config, fidelity, map_,
                               log, vcd, cycle));
   }
-  if (fidelity == Fidelity::Event) return;  // scheduled: see run_schedule()
+  if (fidelity == Fidelity::Event || fidelity == Fidelity::Queue) return;  // run_schedule(), run_queue()
+  if (fidelity == Fidelity::FixedStep) {
+    std::vector<TileBus*> buses;
+    for (auto& b : buses_) buses.push_back(b.get());
+    driver_ = std::make_unique<FixedStepArray>("fixed_step", config, light, map_, std::move(buses));
+    return;
+  }
   if (fidelity == Fidelity::Cycle) {
     // One process feeds the clocked buses from the tiles' schedules.
     std::vector<TileBus*> buses;
@@ -100,6 +108,15 @@ void Imager::run_schedule(const Photocurrents& light, int threads) {
   for (int i = 1; i < threads; ++i) pool.emplace_back(work);
   work();
   for (std::thread& th : pool) th.join();
+}
+
+void Imager::run_queue(const Photocurrents& light) {
+  for (const AddressEvent& e : queue_events(config_, light, map_, &empty_queue_frames_)) buses_[e.tile]->request(e);
+}
+
+std::uint64_t Imager::multi_fire_steps() const {
+  const auto* fixed = dynamic_cast<const FixedStepArray*>(driver_.get());
+  return fixed ? fixed->multi_fire_steps() : 0;
 }
 
 void Imager::finish() {

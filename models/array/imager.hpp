@@ -26,6 +26,12 @@ class Imager : public sc_core::sc_module {
   // The event fidelity: every tile's firings, in time order, straight into its bus, with no
   // SystemC time (nothing else observes them); tiles on up to `threads` threads.
   void run_schedule(const Photocurrents& light, int threads);
+  // The queue fidelity: the paper's event queue, in queue order, into the buses.
+  void run_queue(const Photocurrents& light);
+  // Steps where a fixed_step pixel crossed its threshold more than once (0 at other rungs).
+  std::uint64_t multi_fire_steps() const;
+  // Lit frames the queue model had to leave empty (0 at other rungs).
+  std::uint64_t empty_queue_frames() const { return empty_queue_frames_; }
   // After the run: lets every bus settle what it still holds.
   void finish();
   // Mean bus transaction time: measured by clocked buses, bus.t_event otherwise.
@@ -43,6 +49,7 @@ class Imager : public sc_core::sc_module {
   std::vector<std::unique_ptr<TileBus>> buses_;
   std::vector<std::unique_ptr<Pixel>> pixels_;
   std::unique_ptr<sc_core::sc_module> driver_;
+  std::uint64_t empty_queue_frames_ = 0;
 };
 
 }  // namespace aesim

@@ -67,7 +67,8 @@ const std::vector<std::pair<const char*, Fidelity>> kFidelity = {{"queue", Fidel
                                                                  {"event", Fidelity::Event},
                                                                  {"cycle", Fidelity::Cycle},
                                                                  {"auto", Fidelity::Auto},
-                                                                 {"pixel_processes", Fidelity::PixelProcesses}};
+                                                                 {"pixel_processes", Fidelity::PixelProcesses},
+                                                                 {"fixed_step", Fidelity::FixedStep}};
 
 const std::map<std::string, KeySpec>& registry() {
   static const std::map<std::string, KeySpec> table = [] {
@@ -138,6 +139,7 @@ const std::map<std::string, KeySpec>& registry() {
     enumerated("sim.fidelity", [](auto& c) -> auto& { return c.sim.fidelity; },
                kFidelity);
     integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; });
+    real("sim.step", "s", [](auto& c) -> auto& { return c.sim.step; });
     real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; });
     boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; });
     return t;
@@ -169,6 +171,7 @@ const char* to_string(Fidelity v) {
     case Fidelity::Cycle: return "cycle";
     case Fidelity::Auto: return "auto";
     case Fidelity::PixelProcesses: return "pixel_processes";
+    case Fidelity::FixedStep: return "fixed_step";
   }
   return "?";
 }
@@ -225,6 +228,7 @@ void SensorConfig::validate() const {
   require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
           "must be positive and at most 1e6 s (SystemC's 1 ps time base)");
   require(sim.threads >= 0 && sim.threads <= 1024, "sim.threads", "must be from 0 (all cores) to 1024");
+  require(sim.step >= 1e-12 && sim.step <= sim.duration, "sim.step", "must be from 1 ps to sim.duration");
   require(scene.frame_rate * sim.duration < 4e9, "scene.frame_rate", "more than 4e9 frames in sim.duration");
   require(scene.frame_rate > 0 && scene.frame_rate <= 1e9, "scene.frame_rate",
           "must be positive and at most 1 GHz");

@@ -9,9 +9,10 @@ namespace aesim {
 
 enum class InitialState { Reset, Random };
 enum class BusAccess { Aloha, Arbitrated, Ideal };
-// Event, Cycle and Queue are SPEC's rungs; PixelProcesses is the naive SystemC baseline (one
-// process per pixel, exact times, same results as Event).
-enum class Fidelity { Queue, Event, Cycle, Auto, PixelProcesses };
+// Event, Cycle and Queue are SPEC's rungs; PixelProcesses and FixedStep are the baselines a
+// SystemC engineer would write first (one process per pixel with exact times, the same results
+// as Event; every pixel integrated on a clock of period sim.step).
+enum class Fidelity { Queue, Event, Cycle, Auto, PixelProcesses, FixedStep };
 enum class ReceiverModel { Reference, Rtl };
 enum class FullPolicy { Drop, Hold };
 
@@ -47,6 +48,7 @@ struct SensorConfig {
     std::uint64_t seed = 1;
     Fidelity fidelity = Fidelity::Auto;
     int threads = 1;  // event fidelity: tiles simulated in parallel on this many threads (0: all cores)
+    double step = 1e-6;  // s, the clock of the fixed_step baseline
   } sim;
   struct Scene {
     double frame_rate = 25.0;  // Hz, for frame folders without their own scene.toml

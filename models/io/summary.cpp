@@ -34,6 +34,8 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
       {"receiver_tick_s", facts.tick_s},
       {"scoreboard_beats", facts.scoreboard_beats},
       {"scoreboard_mismatches", facts.scoreboard_mismatches},
+      {"fixed_step_multi_fire_steps", facts.multi_fire_steps},
+      {"queue_empty_lit_frames", facts.empty_queue_frames},
       {"tiles", tiles},
       {"sensor", config.to_json()},
   };

@@ -19,6 +19,8 @@ struct RunFacts {
   std::uint64_t scoreboard_mismatches = 0;  // RTL outputs that differed from the reference model
   std::uint64_t scoreboard_beats = 0;       // output beats the scoreboard compared
   double tick_s = 0;                        // the receiver's timestamp resolution
+  std::uint64_t multi_fire_steps = 0;       // fixed_step: steps coarser than a pixel's integration
+  std::uint64_t empty_queue_frames = 0;     // queue: lit frames too short for one iteration
 };
 
 // Summary JSON of SPEC section 5. offered_load G = fired rate per bus * tau and throughput

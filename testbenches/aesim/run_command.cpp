@@ -126,6 +126,18 @@ int run(RunOptions opt) {
   files.commit();
 
   const TileCounters total = result.log.totals();
+  if (result.facts.empty_queue_frames > 0) {
+    std::fprintf(stderr,
+                 "aesim: warning: %llu lit frames are too short for the queue model's brightest pixel to fire once "
+                 "(f_max * P_max * T_frame < 1/2): they produced no events\n",
+                 static_cast<unsigned long long>(result.facts.empty_queue_frames));
+  }
+  if (result.facts.multi_fire_steps > 0) {
+    std::fprintf(stderr,
+                 "aesim: warning: sim.step=%s is coarser than some pixels' integration time (%llu steps with "
+                 "several firings): their firing times are quantised to the step\n",
+                 format_si(config.sim.step, "s").c_str(), static_cast<unsigned long long>(result.facts.multi_fire_steps));
+  }
   std::printf("aesim run: sensor %s, %dx%d pixels in %d tiles of %dx%d, scene %s (%dx%d%s)\n",
               opt.sensor.c_str(), map.cols(), map.rows(), map.tiles(), config.array.tile_cols,
               config.array.tile_rows, opt.scene.c_str(), scene.source_width, scene.source_height,

@@ -28,15 +28,18 @@ Fidelity resolve_fidelity(const SensorConfig& config, const SimulationRequest& r
     case Fidelity::Cycle:
       return Fidelity::Cycle;
     case Fidelity::PixelProcesses:
-      if (request.waveforms || config.receiver.model == ReceiverModel::Rtl) {
-        throw InputError("sim.fidelity=pixel_processes has event-level buses: no wires for --vcd, no receiver model");
-      }
-      return Fidelity::PixelProcesses;
+    case Fidelity::FixedStep:
     case Fidelity::Queue:
       break;
   }
-  throw InputError(fmt::format("sim.fidelity={} is not modelled yet; use event, cycle or auto",
-                               to_string(config.sim.fidelity)));
+  if (request.waveforms || config.receiver.model == ReceiverModel::Rtl) {
+    throw InputError(fmt::format("sim.fidelity={} has event-level buses: no wires for --vcd, no receiver model",
+                                 to_string(config.sim.fidelity)));
+  }
+  if (config.sim.fidelity == Fidelity::FixedStep && config.pixel.shot_noise) {
+    throw InputError("pixel.shot_noise is not modelled at sim.fidelity=fixed_step");
+  }
+  return config.sim.fidelity;
 }
 
 void install_fresh_kernel() {
@@ -69,6 +72,8 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
     Imager imager("imager", config, fidelity, light, result.log, result.vcd.get(), cycle);
     if (fidelity == Fidelity::Event) {
       imager.run_schedule(light, config.sim.threads);
+    } else if (fidelity == Fidelity::Queue) {
+      imager.run_queue(light);
     } else {
       // Every pixel stops scheduling itself past sim.duration and receivers stop their clocks
       // when idle, so the kernel starves exactly when the run (and any last handshake) is done.
@@ -80,6 +85,8 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
     result.facts.receiver_clock_edges = imager.receiver_clock_edges();
     result.facts.scoreboard_mismatches = imager.scoreboard_mismatches();
     result.facts.scoreboard_beats = imager.scoreboard_beats();
+    result.facts.multi_fire_steps = imager.multi_fire_steps();
+    result.facts.empty_queue_frames = imager.empty_queue_frames();
   }
   result.log.finish();
   result.facts.fidelity = fidelity;

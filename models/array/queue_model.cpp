@@ -1,0 +1,61 @@
+#include "array/queue_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aesim {
+
+std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double full_scale_rate, double frame_time) {
+  std::vector<std::uint32_t> queue;
+  const double p_max = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+  if (!(p_max > 0)) return queue;  // a black frame enters nothing
+  const double iterations = std::round(full_scale_rate * p_max * frame_time);
+  if (!(iterations >= 1)) return queue;
+  // round(P_max / P_i) per pixel, 0 for pixels that never enter.
+  std::vector<std::uint64_t> divisor(values.size(), 0);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (values[i] > 0) divisor[i] = static_cast<std::uint64_t>(std::max(1.0, std::round(p_max / values[i])));
+  }
+  const auto n_max = static_cast<std::uint64_t>(iterations);
+  for (std::uint64_t n = 1; n <= n_max; ++n) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (divisor[i] != 0 && n % divisor[i] == 0) queue.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  return queue;
+}
+
+std::vector<AddressEvent> queue_events(const SensorConfig& config, const Photocurrents& light, const AddressMap& map,
+                                       std::uint64_t* empty_lit_frames) {
+  const double f_max = config.pixel.i_max / (config.pixel.c_int * config.pixel.dv_int);
+  const double duration = config.sim.duration;
+  const bool still = light.frames() == 1;
+  const double frame_time = still ? duration : light.boundary_time(1);
+  std::vector<AddressEvent> events;
+  std::vector<double> values(light.pixels());
+  for (std::uint64_t k = 0;; ++k) {
+    const double start = static_cast<double>(k) * frame_time;
+    if (start >= duration) break;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      values[i] = config.pixel.i_max > 0 ? (light.current(still ? 0 : k, i) - config.pixel.i_dark) / config.pixel.i_max : 0.0;
+    }
+    const double length = std::min(frame_time, duration - start);
+    const std::vector<std::uint32_t> queue = queue_order(values, f_max, length);
+    if (queue.empty() && empty_lit_frames && *std::max_element(values.begin(), values.end()) > 0) ++*empty_lit_frames;
+    const double spacing = length / static_cast<double>(std::max<std::size_t>(1, queue.size()));
+    for (std::size_t j = 0; j < queue.size(); ++j) {
+      const std::uint32_t x = queue[j] % static_cast<std::uint32_t>(map.cols());
+      const std::uint32_t y = queue[j] / static_cast<std::uint32_t>(map.cols());
+      AddressEvent e;
+      e.t = start + (static_cast<double>(j) + 0.5) * spacing;
+      e.x = x;
+      e.y = y;
+      e.tile = map.tile_of({x, y});
+      e.bus_address = map.bus_address({x, y});
+      events.push_back(e);
+    }
+  }
+  return events;
+}
+
+}  // namespace aesim
