@@ -8,5 +8,6 @@ void add_run_command(CLI::App& app, int& status);
 void add_recon_command(CLI::App& app, int& status);
 void add_info_command(CLI::App& app, int& status);
 void add_sweep_command(CLI::App& app, int& status);
+void add_compare_command(CLI::App& app, int& status);
 
 }  // namespace aesim
