@@ -207,6 +207,35 @@ TEST_F(CliTest, ReceiverLimitsAreInputErrors) {
   EXPECT_FALSE(fs::exists(dir_ / "s.json"));
 }
 
+TEST_F(CliTest, CompareMeasuresEveryRungAgainstTheEventRung) {
+  const Outcome o = aesim("compare --duration 200ms --steps 1ms -o ladder.csv");
+  ASSERT_EQ(o.status, 0) << o.err;
+  std::istringstream csv(slurp(dir_ / "ladder.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("scene,rung,step_s,wall_time_s,wall_per_sim_s,events_fired,count_error,rms_time_error_s", 0), 0u);
+  std::map<std::string, std::vector<std::string>> rows;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cells.push_back(c);
+    rows[cells[1]] = cells;
+  }
+  ASSERT_EQ(rows.size(), 6u);  // queue, event, pixel_processes, cycle, cycle_rtl, fixed_step
+  for (const char* exact : {"event", "pixel_processes", "cycle", "cycle_rtl"}) {
+    EXPECT_EQ(std::stod(rows[exact][6]), 0.0) << exact;  // count error
+    EXPECT_EQ(std::stod(rows[exact][7]), 0.0) << exact;  // firing-time error
+  }
+  EXPECT_GT(std::stod(rows["fixed_step"][7]), 1e-4);  // a 1 ms step is off by a good part of it
+  EXPECT_GT(std::stod(rows["queue"][6]), 0.0);
+
+  const Outcome coarse = aesim("run --set sim.fidelity=fixed_step --set sim.step=50ms --set pixel.t_reset=0 "
+                               "--set pixel.i_max=1nA --duration 1s --summary s.json");
+  ASSERT_EQ(coarse.status, 0) << coarse.err;
+  EXPECT_NE(coarse.err.find("coarser than some pixels' integration time"), std::string::npos) << coarse.err;
+}
+
 TEST_F(CliTest, ReconAndInfoRejectBadInput) {
   EXPECT_EQ(aesim("recon missing.aedat -o r.png").status, 2);
   EXPECT_EQ(aesim("info missing.aedat").status, 2);

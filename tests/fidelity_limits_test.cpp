@@ -59,6 +59,27 @@ TEST(Rungs, PixelProcessesAndTheScheduleGiveTheSameEvents) {
   ASSERT_EQ(a.log.events().size(), b.log.events().size());
 }
 
+TEST(Rungs, TilesOnThreadsGiveTheSameEventsAsOneThread) {
+  SensorConfig c = exact_sensor(64, 64, 16);
+  c.pixel.mismatch = 0.03;
+  c.pixel.initial = InitialState::Random;
+  c.bus.access = BusAccess::Aloha;
+  c.bus.t_event = 1e-4;
+  c.sim.duration = 2.0;
+  const Scene scene = make_scene({make_image(64, 64, [](int x, int y) { return ((x * 7 + y * 3) % 11) / 10.0; })});
+  c.sim.threads = 1;
+  const SimulationResult one = run(c, Fidelity::Event, scene);
+  c.sim.threads = 0;  // all cores: 16 tiles in any interleaving
+  const SimulationResult all = run(c, Fidelity::Event, scene);
+  ASSERT_GT(one.log.totals().collided, 0u);
+  ASSERT_EQ(one.log.events().size(), all.log.events().size());
+  for (std::size_t i = 0; i < one.log.events().size(); ++i) {
+    ASSERT_EQ(one.log.events()[i].t, all.log.events()[i].t) << i;
+    ASSERT_EQ(one.log.events()[i].bus_address, all.log.events()[i].bus_address) << i;
+    ASSERT_EQ(one.log.events()[i].tile, all.log.events()[i].tile) << i;
+  }
+}
+
 TEST(FixedStep, CoarserThanTheIntegrationTimeKeepsCountsAndSaysSo) {
   // 100 pA fires every 1 ms; a 10 ms step crosses ten thresholds per step. Counts must still be
   // right (10 per step), and the run must report the steps it quantised.
