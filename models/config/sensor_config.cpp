@@ -183,6 +183,14 @@ void SensorConfig::set(const std::string& key, const std::string& value) {
   it->second.set(*this, value);
 }
 
+void SensorConfig::apply_overrides(const std::vector<std::string>& assignments) {
+  for (const std::string& kv : assignments) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("--set '{}': expected section.key=value", kv));
+    set(kv.substr(0, eq), kv.substr(eq + 1));
+  }
+}
+
 nlohmann::json SensorConfig::to_json() const {
   Json out = Json::object();
   for (const auto& [key, spec] : registry()) {

@@ -57,6 +57,8 @@ struct SensorConfig {
 
   // Sets one key ("pixel.c_int") from text with SI units; throws InputError naming the key.
   void set(const std::string& key, const std::string& value);
+  // Applies command-line overrides "section.key=value" in order.
+  void apply_overrides(const std::vector<std::string>& assignments);
   // Every key with its value, as the summary and the AEDAT header echo them.
   nlohmann::json to_json() const;
   // Physical and structural consistency; throws InputError naming the offending key.

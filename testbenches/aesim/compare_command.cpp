@@ -78,11 +78,7 @@ int compare(CompareOptions opt) {
     const SceneFiles files = find_scene(scene_path);
     SensorConfig base = load_sensor(opt.sensor);
     apply_scene_settings(files, base);
-    for (const std::string& kv : opt.sets) {
-      const auto eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("--set '{}': expected section.key=value", kv));
-      base.set(kv.substr(0, eq), kv.substr(eq + 1));
-    }
+    base.apply_overrides(opt.sets);
     base.set("sim.duration", opt.duration);
     base.validate();
     const Scene scene = load_scene(files, base);

@@ -46,13 +46,7 @@ std::map<std::string, std::string> flatten(const nlohmann::json& sensor) {
 SensorConfig resolve_config(const RunOptions& opt, const SceneFiles& scene) {
   SensorConfig config = load_sensor(opt.sensor);
   apply_scene_settings(scene, config);
-  for (const std::string& kv : opt.sets) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw InputError(fmt::format("--set '{}': expected section.key=value", kv));
-    }
-    config.set(kv.substr(0, eq), kv.substr(eq + 1));
-  }
+  config.apply_overrides(opt.sets);
   if (!opt.duration.empty()) config.set("sim.duration", opt.duration);
   config.validate();
   return config;
