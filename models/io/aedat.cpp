@@ -25,6 +25,16 @@ std::uint32_t get_be32(const unsigned char* p) {
 
 }  // namespace
 
+std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor) {
+  std::map<std::string, std::string> flat;
+  for (const auto& [section, body] : sensor.items()) {
+    for (const auto& [key, value] : body.items()) {
+      flat[section + "." + key] = value.is_string() ? value.get<std::string>() : value.dump();
+    }
+  }
+  return flat;
+}
+
 std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor) {
   std::vector<std::string> h = {
       "#!AER-DAT2.0",

@@ -8,6 +8,8 @@
 #include "array/address_map.hpp"
 #include "bus/address_event.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace aesim {
 
 struct AedatRecord {
@@ -24,7 +26,9 @@ struct AedatFile {
   std::vector<AedatRecord> records;
 };
 
-// Header for events of `map` with `sensor` parameters (the flattened JSON of SensorConfig).
+// Every sensor parameter as "section.key" -> text, for the header.
+std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor);
+// Header for events of `map` with `sensor` parameters (from sensor_metadata).
 std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor);
 void write_aedat(std::ostream& out, const std::vector<std::string>& header,
                  const std::vector<AedatRecord>& records);

@@ -9,5 +9,6 @@ void add_recon_command(CLI::App& app, int& status);
 void add_info_command(CLI::App& app, int& status);
 void add_sweep_command(CLI::App& app, int& status);
 void add_compare_command(CLI::App& app, int& status);
+void add_emulate_command(CLI::App& app, int& status);
 
 }  // namespace aesim

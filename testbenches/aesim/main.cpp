@@ -20,6 +20,7 @@ int sc_main(int argc, char* argv[]) {
   aesim::add_info_command(app, status);
   aesim::add_sweep_command(app, status);
   aesim::add_compare_command(app, status);
+  aesim::add_emulate_command(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -32,17 +32,6 @@ struct RunOptions {
   std::string vcd_from = "0s", vcd_to;
 };
 
-// "pixel.c_int" -> "1e-13" for the AEDAT header, one line per key.
-std::map<std::string, std::string> flatten(const nlohmann::json& sensor) {
-  std::map<std::string, std::string> flat;
-  for (const auto& [section, body] : sensor.items()) {
-    for (const auto& [key, value] : body.items()) {
-      flat[section + "." + key] = value.is_string() ? value.get<std::string>() : value.dump();
-    }
-  }
-  return flat;
-}
-
 SensorConfig resolve_config(const RunOptions& opt, const SceneFiles& scene) {
   SensorConfig config = load_sensor(opt.sensor);
   apply_scene_settings(scene, config);
@@ -106,7 +95,7 @@ int run(RunOptions opt) {
 
   const nlohmann::json summary = make_summary(config, result.log, result.facts);
   if (!opt.out.empty()) {
-    write_aedat(files.open(opt.out), aedat_header(map, flatten(config.to_json())),
+    write_aedat(files.open(opt.out), aedat_header(map, sensor_metadata(config.to_json())),
                 aedat_records(result.log.events(), map, result.facts.tick_s));
   }
   if (!opt.csv.empty()) write_events_csv(files.open(opt.csv), result.log.events(), result.facts.tick_s);

@@ -1,0 +1,159 @@
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "aesim/commands.hpp"
+#include "array/address_map.hpp"
+#include "config/input_error.hpp"
+#include "config/sensor_config.hpp"
+#include "emulator/emulator.hpp"
+#include "emulator/y4m.hpp"
+#include "io/aedat.hpp"
+#include "io/atomic_file.hpp"
+#include "io/image_file.hpp"
+#include "recon/reconstruct.hpp"
+#include "scene/netpbm.hpp"
+#include "scene/scene.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+struct EmulateOptions {
+  std::string input, behaviour = "intensity", size, clip = "0,255", queue, out, recon;
+  double threshold = 0, f_max = 20, frame_rate = 0, chaos_in = 0, chaos_out = 0;
+  long long events = 0;
+  std::uint64_t seed = 1;
+};
+
+void check_probability(double p, const char* name) {
+  if (!(p >= 0 && p <= 1)) throw InputError(fmt::format("{}: a probability from 0 to 1 (got {})", name, p));
+}
+
+int emulate_command(EmulateOptions opt) {
+  EmulatorSettings s;
+  s.behaviour = parse_behaviour(opt.behaviour);
+  if (!(opt.threshold >= 0 && opt.threshold <= 255)) throw InputError("--threshold: a grey level from 0 to 255");
+  s.threshold = opt.threshold / 255.0;
+  int low = 0, high = 255;
+  if (std::sscanf(opt.clip.c_str(), "%d,%d", &low, &high) != 2 || low < 0 || high > 255 || low > high) {
+    throw InputError(fmt::format("--clip: expected LOW,HIGH grey levels with 0 <= LOW <= HIGH <= 255 (got '{}')", opt.clip));
+  }
+  s.clip_low = low / 255.0;
+  s.clip_high = high / 255.0;
+  if (!opt.size.empty() && (std::sscanf(opt.size.c_str(), "%dx%d", &s.width, &s.height) != 2 || s.width < 1 ||
+                            s.height < 1 || s.width > 4096 || s.height > 4096)) {
+    throw InputError(fmt::format("--size: expected WIDTHxHEIGHT up to 4096x4096 (got '{}')", opt.size));
+  }
+  if (!(opt.f_max > 0 && opt.f_max <= 1e6)) throw InputError("--f-max: events per frame at full scale, from >0 to 1e6");
+  check_probability(opt.chaos_in, "--chaos-in");
+  check_probability(opt.chaos_out, "--chaos-out");
+  if (opt.frame_rate < 0) throw InputError("--frame-rate: must be positive");
+  if (opt.events < 0) throw InputError("--events: must not be negative");
+  s.f_max = opt.f_max;
+  s.chaos_in = opt.chaos_in;
+  s.chaos_out = opt.chaos_out;
+  s.seed = opt.seed;
+
+  std::vector<Image> frames;
+  double rate = 25;
+  if (std::filesystem::path(opt.input).extension() == ".y4m") {
+    Y4mVideo video = read_y4m(opt.input);
+    frames = std::move(video.frames);
+    rate = video.frame_rate;
+  } else {
+    const SceneFiles files = find_scene(opt.input);
+    SensorConfig c;
+    apply_scene_settings(files, c);
+    rate = c.scene.frame_rate;
+    for (const std::string& f : files.frames) frames.push_back(read_image(f));
+    for (const Image& f : frames) {
+      if (f.width != frames.front().width || f.height != frames.front().height) {
+        throw InputError(fmt::format("'{}': frames differ in size", opt.input));
+      }
+    }
+  }
+  s.frame_rate = opt.frame_rate > 0 ? opt.frame_rate : rate;
+  if (s.width == 0) {
+    s.width = frames.front().width;
+    s.height = frames.front().height;
+  }
+  if (!opt.recon.empty()) check_image_path(opt.recon);
+  const bool no_outputs = opt.queue.empty() && opt.out.empty() && opt.recon.empty();
+  if (no_outputs) {
+    opt.queue = "out/queue.txt";
+    opt.out = "out/emulated.aedat";
+  }
+
+  const std::vector<EmulatedEvent> events = emulate(frames, s);
+
+  // The imager as one tile, so the AEDAT address is (y << xbits) | x and aesim can read it back.
+  SensorConfig sensor;
+  sensor.array.rows = sensor.array.tile_rows = s.height;
+  sensor.array.cols = sensor.array.tile_cols = s.width;
+  const AddressMap map(sensor.array);
+  std::vector<AddressEvent> stream;
+  for (const EmulatedEvent& e : events) {
+    AddressEvent a;
+    a.t = e.t;
+    a.x = e.x;
+    a.y = e.y;
+    a.bus_address = map.bus_address({e.x, e.y});
+    stream.push_back(a);
+  }
+  OutputFiles files;
+  if (!opt.queue.empty()) {
+    std::string text;
+    for (const EmulatedEvent& e : events) fmt::format_to(std::back_inserter(text), "{} {}\n", e.x, e.y);
+    files.open(opt.queue) << text;
+  }
+  if (!opt.out.empty()) {
+    std::vector<std::string> header = aedat_header(map, sensor_metadata(sensor.to_json()));
+    header.insert(header.begin() + 1, fmt::format("# aesim emulate: behaviour {}, f_max {} events/frame, {} frames at {} Hz",
+                                                  opt.behaviour, s.f_max, frames.size(), s.frame_rate));
+    write_aedat(files.open(opt.out), header, aedat_records(stream, map, 1e-6));
+  }
+  if (!opt.recon.empty()) {
+    const std::vector<AddressEvent> used =
+        opt.events > 0 ? first_events(stream, static_cast<std::size_t>(opt.events)) : stream;
+    write_image(files.open(opt.recon), opt.recon, reconstruct(used, s.width, s.height, ReconMode::Histogram));
+  }
+  files.commit();
+  fmt::print("aesim emulate: {} frames {}x{} -> {} events ({} behaviour, f_max {} per frame)\n", frames.size(),
+             s.width, s.height, events.size(), opt.behaviour, s.f_max);
+  std::string written;
+  for (const std::string* p : {&opt.queue, &opt.out, &opt.recon}) {
+    if (!p->empty()) written += (written.empty() ? "" : ", ") + *p;
+  }
+  fmt::print("  wrote {}\n", written);
+  return 0;
+}
+
+}  // namespace
+
+void add_emulate_command(CLI::App& app, int& status) {
+  auto opt = std::make_shared<EmulateOptions>();
+  CLI::App* cmd = app.add_subcommand("emulate", "Turn ordinary frames (PGM, numbered frames, Y4M video) into address events "
+                                                "as the source paper's emulator does (eq. 1 and eq. 3)");
+  cmd->add_option("INPUT", opt->input, "A .pgm/.pfm image, a folder of numbered frames, or a .y4m video")->required();
+  cmd->add_option("--behaviour", opt->behaviour, "intensity, motion, edge or centroid")->capture_default_str();
+  cmd->add_option("--threshold", opt->threshold, "Grey level (0-255) at or below which the behaviour's map is zero")
+      ->capture_default_str();
+  cmd->add_option("--clip", opt->clip, "LOW,HIGH: grey levels below LOW become 0, above HIGH become HIGH")
+      ->capture_default_str();
+  cmd->add_option("--size", opt->size, "Imager resolution WIDTHxHEIGHT (default: the input's)");
+  cmd->add_option("--f-max", opt->f_max, "Events per frame of a full-scale (255) pixel")->capture_default_str();
+  cmd->add_option("--frame-rate", opt->frame_rate, "Frames per second for the timestamps (default: the input's, else 25)");
+  cmd->add_option("--chaos-in", opt->chaos_in, "Probability that a random event enters after each event")->capture_default_str();
+  cmd->add_option("--chaos-out", opt->chaos_out, "Probability that an event leaves the queue")->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "Seed of the chaos draws")->capture_default_str();
+  cmd->add_option("--queue", opt->queue, "The event queue as text, one 'x y' per line in queue order");
+  cmd->add_option("--out", opt->out, "AEDAT 2.0 with synthetic timestamps");
+  cmd->add_option("--recon", opt->recon, "Histogram reconstruction (.png or .pgm)");
+  cmd->add_option("--events", opt->events, "Reconstruct from the first N events (default: all)");
+  cmd->callback([opt, &status] { status = emulate_command(*opt); });
+}
+
+}  // namespace aesim
