@@ -110,9 +110,54 @@ def natural(n, seed=7):
     return values
 
 
+def rect(x0, y0, x1, y1):
+    return lambda u, v: x0 <= u < x1 and y0 <= v < y1
+
+
+def disc(cx, cy, r):
+    return lambda u, v: math.hypot(u - cx, v - cy) < r
+
+
+def union(*shapes):
+    return lambda u, v: any(s(u, v) for s in shapes)
+
+
+def finger(x, top, width=3.0, bottom=17, tilt=0.0):
+    """A finger from `bottom` up to `top`, leaning by `tilt` pixels per pixel of height."""
+    def inside(u, v):
+        if not (top <= v < bottom + 1):
+            return False
+        centre = x + tilt * (bottom - v)
+        return abs(u - centre) < width / 2 or math.hypot(u - centre, v - top) < width / 2
+    return inside
+
+
+PALM = rect(9, 15, 23, 29)
+FIST = union(rect(9, 13, 23, 28), disc(16, 14, 6.5))
+HAND_SIGNS = {
+    "fist": FIST,
+    "palm": union(PALM, finger(10.5, 6), finger(14, 3), finger(17.5, 4), finger(21, 8), finger(6, 13, tilt=0.6, bottom=24)),
+    "point": union(FIST, finger(14, 2, bottom=13)),
+    "victory": union(FIST, finger(12.5, 3, bottom=13, tilt=-0.25), finger(19.5, 3, bottom=13, tilt=0.25)),
+    "thumbs_up": union(rect(10, 14, 24, 28), finger(12, 2, width=4, bottom=14)),
+    "rock": union(FIST, finger(11, 3, bottom=13), finger(21, 5, bottom=13)),
+}
+
+
+def binary(coverage):
+    return [255 if c >= 0.5 else 0 for c in coverage]
+
+
 def main():
     for name, shape in (("A", letter_a), ("C", letter_c), ("O", letter_o), ("Q", letter_q)):
-        write_pgm(os.path.join(ROOT, "letters", name + ".pgm"), 32, 32, to8(render(32, 32, shape)))
+        coverage = render(32, 32, shape)
+        write_pgm(os.path.join(ROOT, "letters", name + ".pgm"), 32, 32, to8(coverage))
+        # The recogniser's template: the letter's pixels at least half covered.
+        write_pgm(os.path.join(ROOT, "templates", "letters", name + ".pgm"), 32, 32, binary(coverage))
+    for name, shape in HAND_SIGNS.items():
+        coverage = render(32, 32, shape)
+        write_pgm(os.path.join(ROOT, "hand_signs", name + ".pgm"), 32, 32, to8(coverage))
+        write_pgm(os.path.join(ROOT, "templates", "hand_signs", name + ".pgm"), 32, 32, binary(coverage))
 
     n = 64
     write_pgm(os.path.join(ROOT, "uniform.pgm"), n, n, [255] * (n * n))

@@ -10,5 +10,7 @@ void add_info_command(CLI::App& app, int& status);
 void add_sweep_command(CLI::App& app, int& status);
 void add_compare_command(CLI::App& app, int& status);
 void add_emulate_command(CLI::App& app, int& status);
+void add_classify_command(CLI::App& app, int& status);
+void add_report_command(CLI::App& app, int& status);
 
 }  // namespace aesim

@@ -21,6 +21,8 @@ int sc_main(int argc, char* argv[]) {
   aesim::add_sweep_command(app, status);
   aesim::add_compare_command(app, status);
   aesim::add_emulate_command(app, status);
+  aesim::add_classify_command(app, status);
+  aesim::add_report_command(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,45 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace aesim {
+
+// A binary template (white = 1) and its rank r = b_max / b, b its number of white pixels.
+struct Template {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> white;
+  std::size_t white_count = 0;
+  double rank = 1;
+};
+
+// Every .pgm in a folder (pixels above half scale are white), in name order, all of one size,
+// ranked among themselves. Throws InputError.
+std::vector<Template> load_templates(const std::string& folder);
+
+struct ClassifierOptions {
+  double k = 1.0;                   // the winner leads the second by at least k * r_max
+  std::uint64_t max_events = 1000;  // restart when this many events gave no decision
+  double overflow = 65535;          // restart when a score exceeds this (a 16-bit accumulator)
+  std::uint64_t center_events = 0;  // shift the subject so the centroid of the first N events is centred
+  bool ranks = true;                // false: every template adds 1 (plain counting)
+};
+
+struct ClassifyResult {
+  int winner = -1;                  // index into the templates, or -1 for none
+  std::uint64_t events_used = 0;    // events read up to the decision (or all)
+  std::uint64_t restarts = 0;
+  std::vector<double> scores;       // at the decision (or the end)
+  std::uint64_t additions = 0, comparisons = 0;
+  double shift_x = 0, shift_y = 0;  // applied by centring
+};
+
+// The source paper's rank-weighted recogniser: each event at (x, y), in template coordinates,
+// adds r_i to every template i white there; after each event, if the best score leads the second
+// by at least k * r_max, the best template wins.
+ClassifyResult classify(const std::vector<Template>& templates, const std::vector<std::pair<double, double>>& events,
+                        const ClassifierOptions& options);
+
+}  // namespace aesim
