@@ -60,13 +60,17 @@ def letter_a(u, v):
             or (abs(v - 19) < STROKE * 0.8 and 9.5 < u < 22.5))
 
 
-def ring(u, v, cx=16, cy=16, r=10.5):
-    return abs(math.hypot(u - cx, v - cy) - r) < STROKE
+def ring(u, v, cx=16, cy=16, rx=10.5, ry=10.5):
+    # Distance to an ellipse, approximated by scaling to a circle: exact for a circle.
+    return abs(math.hypot((u - cx) * ry / rx, v - cy) - ry) < STROKE
 
 
+# As in a typeface, the round letters differ beyond their distinguishing strokes: C is narrower
+# than O, Q's bowl sits higher and flatter. Nested shapes (C inside O inside Q) would make the
+# rank-weighted recogniser's scores tie over a full pass.
 def letter_c(u, v):
-    angle = math.degrees(math.atan2(v - 16, u - 16))
-    return ring(u, v) and not (-40 < angle < 40)
+    angle = math.degrees(math.atan2(v - 16, u - 17))
+    return ring(u, v, cx=17, rx=9.0, ry=10.5) and not (-45 < angle < 45)
 
 
 def letter_o(u, v):
@@ -74,7 +78,7 @@ def letter_o(u, v):
 
 
 def letter_q(u, v):
-    return ring(u, v) or segment_distance(u, v, 19, 19, 27, 28) < STROKE
+    return ring(u, v, cy=15, rx=10.5, ry=9.0) or segment_distance(u, v, 19, 18, 27, 28) < STROKE
 
 
 def natural(n, seed=7):

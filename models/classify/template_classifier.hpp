@@ -20,7 +20,7 @@ struct Template {
 std::vector<Template> load_templates(const std::string& folder);
 
 struct ClassifierOptions {
-  double k = 1.0;                   // the winner leads the second by at least k * r_max
+  double k = 20.0;  // the winner leads the second by at least k * r_max (20: every clean letter right)
   std::uint64_t max_events = 1000;  // restart when this many events gave no decision
   double overflow = 65535;          // restart when a score exceeds this (a 16-bit accumulator)
   std::uint64_t center_events = 0;  // shift the subject so the centroid of the first N events is centred

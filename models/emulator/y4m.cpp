@@ -46,7 +46,7 @@ Y4mVideo read_y4m(const std::string& path) {
   const std::size_t luma = static_cast<std::size_t>(width * height);
   const std::size_t cw = static_cast<std::size_t>((width + 1) / 2), ch = static_cast<std::size_t>((height + 1) / 2);
   std::size_t chroma_bytes = 0;
-  if (chroma.rfind("420", 0) == 0) chroma_bytes = 2 * cw * ch;
+  if (chroma == "420" || chroma == "420jpeg" || chroma == "420paldv" || chroma == "420mpeg2") chroma_bytes = 2 * cw * ch;
   else if (chroma == "422") chroma_bytes = 2 * cw * static_cast<std::size_t>(height);
   else if (chroma == "444") chroma_bytes = 2 * luma;
   else if (chroma == "mono") chroma_bytes = 0;

@@ -1,0 +1,205 @@
+// The paper's emulator and recogniser: behaviours on synthetic inputs, chaos statistics, Y4M,
+// and the rank-weighted templates.
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "classify/template_classifier.hpp"
+#include "config/input_error.hpp"
+#include "emulator/behaviours.hpp"
+#include "emulator/emulator.hpp"
+#include "emulator/y4m.hpp"
+#include "support/scenes.hpp"
+#include "support/temp_dir_test.hpp"
+
+namespace aesim {
+namespace {
+
+using testing::make_image;
+
+Image square(int x0, int size = 6) {
+  return make_image(32, 16, [=](int x, int y) { return x >= x0 && x < x0 + size && y >= 5 && y < 5 + size ? 1.0 : 0.0; });
+}
+
+TEST(Behaviours, MovingSquareFiresOnlyOnItsLeadingAndTrailingEdges) {
+  // A 6-pixel square moves 2 pixels right: the motion image is two 2-column strips, the new
+  // leading columns (x = 16, 17) and the vacated trailing ones (x = 10, 11).
+  EmulatorSettings s;
+  s.behaviour = Behaviour::Motion;
+  s.threshold = 0.1;
+  const auto events = emulate({square(10), square(12)}, s);
+  ASSERT_FALSE(events.empty());
+  std::set<std::uint32_t> columns;
+  for (const EmulatedEvent& e : events) {
+    EXPECT_EQ(e.frame, 1u);  // the first frame has nothing to compare with
+    EXPECT_GE(e.y, 5u);
+    EXPECT_LT(e.y, 11u);
+    columns.insert(e.x);
+  }
+  EXPECT_EQ(columns, (std::set<std::uint32_t>{10, 11, 16, 17}));
+}
+
+TEST(Behaviours, CentroidOfAMovingDiscIsExact) {
+  // A disc moving from (10, 8) to (14, 8): the motion image is symmetric about (12, 8).
+  auto disc = [](double cx) {
+    return make_image(32, 16, [=](int x, int y) { return std::hypot(x - cx, y - 8) < 4.5 ? 1.0 : 0.0; });
+  };
+  const auto c = motion_centroid(disc(14), disc(10), 0.1);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_DOUBLE_EQ(c->first, 12.0);
+  EXPECT_DOUBLE_EQ(c->second, 8.0);
+  EmulatorSettings s;
+  s.behaviour = Behaviour::Centroid;
+  s.threshold = 0.1;
+  const auto events = emulate({disc(10), disc(14)}, s);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].x, 12u);
+  EXPECT_EQ(events[0].y, 8u);
+  EXPECT_FALSE(motion_centroid(disc(10), disc(10), 0.1).has_value());  // nothing moved
+}
+
+TEST(Behaviours, EdgeFiresOnlyAtTheStep) {
+  const Image step = make_image(16, 4, [](int x, int) { return x < 8 ? 0.0 : 1.0; });
+  const Image e = edge_map(step, 0.1);
+  for (int x = 0; x < 16; ++x) {
+    EXPECT_EQ(e.at(x, 2) > 0, x == 7 || x == 8) << x;
+  }
+  EXPECT_DOUBLE_EQ(e.at(7, 2), 1.0);  // a full step is full scale
+}
+
+TEST(Emulator, IntensityFollowsEquationsOneAndThree) {
+  // Grey levels 255, 102 (P_max/P = 2.5 -> 3) and 0, f_max 10: 10 iterations; the bright pixel
+  // enters all of them, the grey one iterations 3, 6, 9, the black one never.
+  EmulatorSettings s;
+  s.f_max = 10;
+  const Image frame = make_image(3, 1, [](int x, int) { return x == 0 ? 1.0 : x == 1 ? 102 / 255.0 : 0.0; });
+  const auto events = emulate({frame}, s);
+  std::vector<std::uint32_t> order;
+  for (const EmulatedEvent& e : events) order.push_back(e.x);
+  EXPECT_EQ(order, (std::vector<std::uint32_t>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  // Synthetic times spread evenly over the frame (25 Hz): event j of 13 at (j + 1/2) / 13 / 25.
+  EXPECT_NEAR(events[0].t, 0.5 / 13 / 25, 1e-15);
+  EXPECT_NEAR(events[12].t, 12.5 / 13 / 25, 1e-15);
+  EXPECT_TRUE(emulate({make_image(3, 1, [](int, int) { return 0.0; })}, s).empty());  // black frame
+}
+
+TEST(Emulator, ChaosProbabilitiesHoldStatistically) {
+  const Image bright = make_image(32, 32, [](int, int) { return 1.0; });
+  EmulatorSettings s;
+  s.f_max = 20;  // 20 x 1024 = 20,480 queue entries
+  const double n = 20480;
+  s.chaos_out = 0.3;
+  const double kept = static_cast<double>(emulate({bright}, s).size());
+  EXPECT_NEAR(kept / n, 0.7, 4 * std::sqrt(0.3 * 0.7 / n));
+  s.chaos_out = 0;
+  s.chaos_in = 0.2;
+  const double grown = static_cast<double>(emulate({bright}, s).size()) - n;
+  EXPECT_NEAR(grown / n, 0.2, 4 * std::sqrt(0.2 * 0.8 / n));
+  s.seed = 2;
+  EXPECT_NE(emulate({bright}, s).size(), n + grown);  // another seed, other draws
+}
+
+class Y4mTest : public testing::TempDirTest {};
+
+TEST_F(Y4mTest, LumaOfEveryFrameAndTheFrameRate) {
+  std::string v = "YUV4MPEG2 W4 H2 F30000:1001 Ip A1:1 C420jpeg\n";
+  for (int f = 0; f < 3; ++f) {
+    v += "FRAME\n";
+    for (int i = 0; i < 8; ++i) v += static_cast<char>(f * 100 + i);
+    v += std::string(2 * 2 * 1, '\x80');  // U and V, 2x1 each
+  }
+  const Y4mVideo video = read_y4m(write("v.y4m", v));
+  ASSERT_EQ(video.frames.size(), 3u);
+  EXPECT_NEAR(video.frame_rate, 29.97, 0.01);
+  EXPECT_EQ(video.frames[2].width, 4);
+  EXPECT_DOUBLE_EQ(video.frames[2].at(3, 1), 207 / 255.0);
+}
+
+TEST_F(Y4mTest, MalformedVideosAreInputErrors) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"not a YUV4MPEG2", "P5\n1 1\n255\n\x01"},
+      {"bad frame size", "YUV4MPEG2 W0 H2\nFRAME\n"},
+      {"truncated", "YUV4MPEG2 W4 H2 Cmono\nFRAME\nabc"},
+      {"missing FRAME", "YUV4MPEG2 W1 H1 Cmono\nFRAMX\nz"},
+      {"unsupported colour space", "YUV4MPEG2 W1 H1 C420p10\nFRAME\n"},
+      {"malformed header", "YUV4MPEG2 Wx H1\n"},
+      {"no frames", "YUV4MPEG2 W1 H1 Cmono\n"},
+  };
+  for (const auto& [needle, bytes] : cases) {
+    try {
+      read_y4m(write("bad.y4m", bytes));
+      FAIL() << needle;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+}
+
+Template make_template(const char* name, std::vector<std::uint8_t> white, double rank) {
+  Template t;
+  t.name = name;
+  t.width = static_cast<int>(white.size());
+  t.height = 1;
+  t.white = std::move(white);
+  t.white_count = static_cast<std::size_t>(std::count(t.white.begin(), t.white.end(), 1));
+  t.rank = rank;
+  return t;
+}
+
+TEST(Classifier, RanksFixTheCInsideOFalseHit) {
+  // A "C" that is part of an "O": plain counting scores both alike on every C event and can
+  // never pick C. Ranks (O has 4 pixels, C 2: r_C = 2, r_O = 1) let C pull ahead.
+  const std::vector<Template> t = {make_template("C", {1, 1, 0, 0}, 2.0), make_template("O", {1, 1, 1, 1}, 1.0)};
+  std::vector<std::pair<double, double>> c_events;
+  for (int i = 0; i < 50; ++i) c_events.emplace_back(i % 2, 0);
+  ClassifierOptions o;
+  o.k = 2;
+  o.ranks = false;
+  EXPECT_NE(classify(t, c_events, o).winner, 0);
+  o.ranks = true;
+  const ClassifyResult r = classify(t, c_events, o);
+  EXPECT_EQ(r.winner, 0);
+  // r_max = 2, K = 2: C leads by 1 per event, so it wins at the 4th event.
+  EXPECT_EQ(r.events_used, 4u);
+  EXPECT_EQ(r.additions, 8u);
+  // The price: O's own events score O and C alike over each pass (ranks make every template's
+  // total over its own pixels equal), so O, which contains C, is never decided; it is at least
+  // never mistaken for C.
+  std::vector<std::pair<double, double>> o_events;
+  for (int i = 0; i < 50; ++i) o_events.emplace_back(i % 4, 0);
+  EXPECT_EQ(classify(t, o_events, o).winner, -1);
+}
+
+TEST(Classifier, RestartsOnOverflowAndOnTheEventBound) {
+  const std::vector<Template> t = {make_template("a", {1, 1}, 1.0), make_template("b", {1, 1}, 1.0)};
+  std::vector<std::pair<double, double>> events(100, {0.0, 0.0});  // identical templates: never decided
+  ClassifierOptions o;
+  o.max_events = 10;
+  const ClassifyResult r = classify(t, events, o);
+  EXPECT_EQ(r.winner, -1);
+  EXPECT_EQ(r.restarts, 10u);
+  o.max_events = 1000;
+  o.overflow = 25;
+  EXPECT_EQ(classify(t, events, o).restarts, 3u);  // scores pass 25 at events 26, 52, 78
+}
+
+TEST(Classifier, CleanLetterTemplatesAreAlwaysRecognised) {
+  const std::vector<Template> t = load_templates(std::string(AESIM_SOURCE_DIR) + "/scenes/templates/letters");
+  ASSERT_EQ(t.size(), 4u);
+  EmulatorSettings s;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    Image img;
+    img.width = t[i].width;
+    img.height = t[i].height;
+    for (std::uint8_t w : t[i].white) img.pixels.push_back(w);
+    std::vector<std::pair<double, double>> events;
+    for (const EmulatedEvent& e : emulate({img}, s)) events.emplace_back(e.x, e.y);
+    const ClassifyResult r = classify(t, events, ClassifierOptions{});
+    EXPECT_EQ(r.winner, static_cast<int>(i)) << t[i].name;
+  }
+}
+
+}  // namespace
+}  // namespace aesim
