@@ -236,6 +236,52 @@ TEST_F(CliTest, CompareMeasuresEveryRungAgainstTheEventRung) {
   EXPECT_NE(coarse.err.find("coarser than some pixels' integration time"), std::string::npos) << coarse.err;
 }
 
+TEST_F(CliTest, EmulateThenClassifyRecognisesTheLetter) {
+  const Outcome e = aesim("emulate " + kScenes + "/letters/O.pgm --queue q.txt --out o.aedat --recon r.pgm --events 500");
+  ASSERT_EQ(e.status, 0) << e.err;
+  const std::string queue = slurp(dir_ / "q.txt");
+  ASSERT_GT(std::count(queue.begin(), queue.end(), '\n'), 500);
+  EXPECT_NE(queue.find(' '), std::string::npos);
+  const Outcome c = aesim("classify o.aedat --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const auto j = nlohmann::json::parse(c.out);
+  EXPECT_EQ(j["winner"], "O");
+  EXPECT_GT(j["additions"].get<double>(), 0);
+  EXPECT_TRUE(j["scores"].contains("Q"));
+  const Outcome human = aesim("classify o.aedat --templates " + kScenes + "/templates/letters --clock 20MHz");
+  EXPECT_NE(human.out.find("winner: O"), std::string::npos) << human.out;
+  EXPECT_NE(human.out.find("cycles per template per event"), std::string::npos);
+  const Outcome report = aesim("report bandwidth --width 128 --height 96 --bits 8 --events 400");
+  ASSERT_EQ(report.status, 0);
+  EXPECT_NE(report.out.find("98304 bits"), std::string::npos) << report.out;
+  EXPECT_NE(report.out.find("5600 bits"), std::string::npos) << report.out;
+}
+
+TEST_F(CliTest, EmulateClassifyAndReportRejectBadInput) {
+  const std::string bad_pgm = write("bad.pgm", "P5\n4 4\n255\nxx");
+  const std::string bad_y4m = write("bad.y4m", "YUV4MPEG2 W4 H4 Cmono\nFRAME\nab");
+  const std::pair<std::string, std::string> cases[] = {
+      {"emulate " + bad_pgm + " --out e.aedat", "truncated"},
+      {"emulate " + bad_y4m + " --out e.aedat", "truncated"},
+      {"emulate " + kScenes + "/letters/A.pgm --behaviour sparkle --out e.aedat", "--behaviour"},
+      {"emulate " + kScenes + "/letters/A.pgm --chaos-in 1.5 --out e.aedat", "--chaos-in"},
+      {"emulate " + kScenes + "/letters/A.pgm --clip 200,100 --out e.aedat", "--clip"},
+      {"emulate " + kScenes + "/letters/A.pgm --size 0x3 --out e.aedat", "--size"},
+      {"emulate " + kScenes + "/letters/A.pgm --threshold 300 --out e.aedat", "--threshold"},
+      {"classify missing.aedat", "not found"},
+      {"classify " + bad_pgm + " --templates " + kScenes + "/templates/letters", "unsupported format"},
+      {"classify x.aedat --templates /no/such/folder", "template folder"},
+      {"report bandwidth --bits 0", "--bits"},
+  };
+  for (const auto& [args, needle] : cases) {
+    const Outcome o = aesim(args);
+    EXPECT_EQ(o.status, 2) << args << ": " << o.err;
+    EXPECT_NE(o.err.find(needle), std::string::npos) << args << ": " << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << args << ": " << o.err;
+    EXPECT_FALSE(fs::exists(dir_ / "e.aedat")) << args;
+  }
+}
+
 TEST_F(CliTest, ReconAndInfoRejectBadInput) {
   EXPECT_EQ(aesim("recon missing.aedat -o r.png").status, 2);
   EXPECT_EQ(aesim("info missing.aedat").status, 2);
