@@ -11,6 +11,7 @@
 #include "array/address_map.hpp"
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
+#include "sizing/power_model.hpp"
 #include "units/si_units.hpp"
 
 namespace aesim {
@@ -140,6 +141,18 @@ const std::map<std::string, KeySpec>& registry() {
                kFidelity);
     integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; });
     real("sim.step", "s", [](auto& c) -> auto& { return c.sim.step; });
+    real("power.vdd", "V", [](auto& c) -> auto& { return c.power.vdd; });
+    real("power.e_pixel_event", "J", [](auto& c) -> auto& { return c.power.e_pixel_event; });
+    real("power.c_bus_line", "F", [](auto& c) -> auto& { return c.power.c_bus_line; });
+    real("power.e_receiver_event", "J", [](auto& c) -> auto& { return c.power.e_receiver_event; });
+    real("power.p_static_pixel", "W", [](auto& c) -> auto& { return c.power.p_static_pixel; });
+    real("light.lux", "lx", [](auto& c) -> auto& { return c.light.lux; });
+    real("light.responsivity", "A/W", [](auto& c) -> auto& { return c.light.responsivity; });
+    real("light.efficacy", "lm/W", [](auto& c) -> auto& { return c.light.efficacy; });
+    real("light.pixel_area", "m2", [](auto& c) -> auto& { return c.light.pixel_area; });
+    real("light.fill_factor", "", [](auto& c) -> auto& { return c.light.fill_factor; });
+    real("analysis.window", "s", [](auto& c) -> auto& { return c.analysis.window; });
+    integer("analysis.min_events", [](auto& c) -> auto& { return c.analysis.min_events; });
     real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; });
     boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; });
     return t;
@@ -236,6 +249,15 @@ void SensorConfig::validate() const {
   require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
           "must be positive and at most 1e6 s (SystemC's 1 ps time base)");
   require(sim.threads >= 0 && sim.threads <= 1024, "sim.threads", "must be from 0 (all cores) to 1024");
+  require(power.vdd > 0, "power.vdd", "must be positive");
+  require(power.e_pixel_event >= 0 && power.c_bus_line >= 0 && power.e_receiver_event >= 0 && power.p_static_pixel >= 0,
+          "power.e_pixel_event", "energies, capacitance and static power must not be negative");
+  require(light.lux >= 0, "light.lux", "must not be negative");
+  require(light.responsivity > 0 && light.efficacy > 0 && light.pixel_area > 0, "light.responsivity",
+          "responsivity, efficacy and pixel area must be positive");
+  require(light.fill_factor > 0 && light.fill_factor <= 1, "light.fill_factor", "must be within (0, 1]");
+  require(analysis.window > 0, "analysis.window", "must be positive");
+  require(analysis.min_events >= 1, "analysis.min_events", "must be at least 1");
   require(sim.step >= 1e-12 && sim.step <= sim.duration, "sim.step", "must be from 1 ps to sim.duration");
   require(scene.frame_rate * sim.duration < 4e9, "scene.frame_rate", "more than 4e9 frames in sim.duration");
   require(scene.frame_rate > 0 && scene.frame_rate <= 1e9, "scene.frame_rate",
@@ -271,6 +293,15 @@ void apply_toml_file(SensorConfig& config, const std::string& path, const std::s
     if (!body.is_table()) throw InputError(fmt::format("'{}': '{}' is not a [section]", path, name));
     for (const auto& [key, value] : body.as_table()) apply(name + "." + key, value);
   }
+}
+
+SensorConfig SensorConfig::resolved() const {
+  SensorConfig c = *this;
+  if (light.lux > 0) {
+    c.pixel.i_max = photocurrent_from_lux(light.lux, light.responsivity, light.efficacy, light.pixel_area,
+                                          light.fill_factor);
+  }
+  return c;
 }
 
 std::string sensors_dir() { return data_dir() + "/models/sensors"; }

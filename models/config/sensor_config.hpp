@@ -50,6 +50,21 @@ struct SensorConfig {
     int threads = 1;  // event fidelity: tiles simulated in parallel on this many threads (0: all cores)
     double step = 1e-6;  // s, the clock of the fixed_step baseline
   } sim;
+  struct Power {
+    double vdd = 3.3, e_pixel_event = 1e-12, c_bus_line = 0.5e-12, e_receiver_event = 10e-12,
+           p_static_pixel = 5.5e-9;  // see models/sizing/power_model.hpp
+  } power;
+  struct Light {
+    double lux = 0;               // > 0: pixel.i_max is the photocurrent of full-scale light at this illuminance
+    double responsivity = 0.3;    // A/W of the photodiode
+    double efficacy = 683;        // lm/W: 555 nm light (photopic peak)
+    double pixel_area = 900e-12;  // m^2: a 30 um pixel
+    double fill_factor = 0.3;
+  } light;
+  struct Analysis {
+    double window = 1.0;   // s: readout window for dynamic range and reconstruction PSNR
+    int min_events = 2;    // a pixel "covered" fires at least this often within the window
+  } analysis;
   struct Scene {
     double frame_rate = 25.0;  // Hz, for frame folders without their own scene.toml
     bool loop = false;         // after the last frame: repeat the sequence, or hold the last frame
@@ -63,6 +78,8 @@ struct SensorConfig {
   nlohmann::json to_json() const;
   // Physical and structural consistency; throws InputError naming the offending key.
   void validate() const;
+  // The parameters a run uses: with light.lux set, pixel.i_max derived from the illuminance.
+  SensorConfig resolved() const;
 
   static const std::vector<std::string>& keys();
 };

@@ -1,18 +1,69 @@
 #include "io/summary.hpp"
 
-namespace aesim {
+#include <algorithm>
 
-nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, const RunFacts& facts) {
+#include "compare/fidelity_errors.hpp"
+#include "recon/reconstruct.hpp"
+#include "sizing/power_model.hpp"
+
+namespace aesim {
+namespace {
+
+// Pixel rates, coverage within the readout window and power (models/sizing/power_model.hpp).
+void add_sizing(nlohmann::json& s, const SensorConfig& config, const EventLog& log, const RunFacts& facts) {
+  const auto& fired = log.fired_per_pixel();
+  const auto& window = log.window_per_pixel();
+  if (fired.empty()) return;
+  const double t = facts.sim_time_s;
+  const auto [lo, hi] = std::minmax_element(fired.begin(), fired.end());
+  double sum = 0;
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < fired.size(); ++i) {
+    sum += fired[i];
+    covered += window[i] >= static_cast<std::uint32_t>(config.analysis.min_events) ? 1 : 0;
+  }
+  s["pixel_rate_min_hz"] = *lo / t;
+  s["pixel_rate_mean_hz"] = sum / static_cast<double>(fired.size()) / t;
+  s["pixel_rate_max_hz"] = *hi / t;
+  s["dynamic_range_covered"] = static_cast<double>(covered) / static_cast<double>(fired.size());
+
+  const TileCounters total = log.totals();
+  PowerParams p;
+  p.vdd = config.power.vdd;
+  p.e_pixel_event = config.power.e_pixel_event;
+  p.c_bus_line = config.power.c_bus_line;
+  p.e_receiver_event = config.power.e_receiver_event;
+  p.p_static_pixel = config.power.p_static_pixel;
+  PowerInputs in;
+  in.c_int = config.pixel.c_int;
+  in.dv_int = config.pixel.dv_int;
+  in.firings = total.fired;
+  in.transactions = total.fired - total.pending;  // every fired event drives its bus once
+  in.address_ones = log.address_ones();
+  in.pixels = fired.size();
+  in.duration = t;
+  const PowerResult r = power(p, in);
+  s["energy_per_event_j"] = r.energy_per_event;
+  s["power_w"] = r.total_power;
+  s["power_static_w"] = r.static_power;
+  s["power_per_tile_w"] = r.total_power / static_cast<double>(log.tiles().size());
+}
+
+}  // namespace
+
+nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, const RunFacts& facts, const Image* scene) {
   const TileCounters total = log.totals();
   const double buses = static_cast<double>(log.tiles().size());
   const double per_bus_rate = 1.0 / (buses * facts.sim_time_s);
   nlohmann::json tiles = nlohmann::json::array();
   for (const TileCounters& t : log.tiles()) {
     tiles.push_back({{"fired", t.fired}, {"delivered", t.delivered}, {"collided", t.collided},
-                     {"ghost", t.ghost}, {"dropped", t.dropped}, {"pending", t.pending}});
+                     {"ghost", t.ghost}, {"dropped", t.dropped}, {"pending", t.pending},
+                     {"offered_load", static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s},
+                     {"collision_fraction", t.fired ? static_cast<double>(t.collided) / t.fired : 0.0}});
   }
   const LatencyStats latency = log.latency();
-  return {
+  nlohmann::json summary = {
       {"events_fired", total.fired},
       {"events_delivered", total.delivered},
       {"events_collided", total.collided},
@@ -39,6 +90,20 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
       {"tiles", tiles},
       {"sensor", config.to_json()},
   };
+  add_sizing(summary, config, log, facts);
+  if (scene) {
+    std::vector<AddressEvent> early;
+    for (const AddressEvent& e : log.events()) {
+      if (e.t <= config.analysis.window && !(e.flags & kGhostEvent)) early.push_back(e);
+    }
+    Image truth = *scene;
+    const double peak = *std::max_element(truth.pixels.begin(), truth.pixels.end());
+    if (peak > 0) {
+      for (double& v : truth.pixels) v /= peak;
+    }
+    summary["psnr_db"] = psnr_db(reconstruct(early, scene->width, scene->height, ReconMode::Histogram), truth);
+  }
+  return summary;
 }
 
 }  // namespace aesim

@@ -128,6 +128,12 @@ std::vector<TileCounters> EventLog::tiles() const {
   return out;
 }
 
+std::uint64_t EventLog::address_ones() const {
+  std::uint64_t n = 0;
+  for (const Tile& t : tiles_) n += t.address_ones;
+  return n;
+}
+
 TileCounters EventLog::totals() const {
   TileCounters sum;
   for (const Tile& tile : tiles_) {

@@ -41,7 +41,28 @@ class EventLog {
  public:
   EventLog(int tiles, bool keep_truth);
 
-  void fired(const AddressEvent& firing) { ++tiles_[firing.tile].counters.fired; }
+  // Counts firings per pixel (y * cols + x) in all and within [0, window]: the sizing metrics.
+  // Tiles on separate threads touch separate pixels.
+  void count_pixels(std::size_t pixels, std::uint32_t cols, double window) {
+    fired_per_pixel_.assign(pixels, 0);
+    window_per_pixel_.assign(pixels, 0);
+    cols_ = cols;
+    window_ = window;
+  }
+  void fired(const AddressEvent& firing) {
+    Tile& tile = tiles_[firing.tile];
+    ++tile.counters.fired;
+    tile.address_ones += static_cast<std::uint64_t>(__builtin_popcount(firing.bus_address));
+    if (!fired_per_pixel_.empty()) {
+      const std::size_t i = std::size_t(firing.y) * cols_ + firing.x;
+      ++fired_per_pixel_[i];
+      if (firing.t <= window_) ++window_per_pixel_[i];
+    }
+  }
+  const std::vector<std::uint32_t>& fired_per_pixel() const { return fired_per_pixel_; }
+  const std::vector<std::uint32_t>& window_per_pixel() const { return window_per_pixel_; }
+  // 1 bits of the addresses of every fired event: what the bus lines carried.
+  std::uint64_t address_ones() const;
   // Every fired event is resolved exactly once, when its fate is known.
   void resolve(const AddressEvent& firing, Fate fate, double t_deliver = 0);
   // The receiver's output: a delivered event, or a ghost (flags & kGhostEvent).
@@ -63,6 +84,7 @@ class EventLog {
     std::vector<TruthRecord> truth;
     std::vector<double> latencies;  // waits longer than zero
     std::uint64_t zero_latencies = 0;
+    std::uint64_t address_ones = 0;
   };
   std::vector<Tile> tiles_;
   std::vector<AddressEvent> events_;
@@ -70,6 +92,9 @@ class EventLog {
   std::vector<double> latencies_;
   std::uint64_t zero_latencies_ = 0;
   bool keep_truth_;
+  std::vector<std::uint32_t> fired_per_pixel_, window_per_pixel_;
+  std::uint32_t cols_ = 0;
+  double window_ = 0;
 };
 
 }  // namespace aesim

@@ -83,4 +83,18 @@ Scene load_scene(const SceneFiles& files, const SensorConfig& config) {
   return scene;
 }
 
+Image mean_frame(const Scene& scene, double duration) {
+  Image mean = scene.frames.front();
+  if (scene.frames.size() == 1) return mean;
+  std::fill(mean.pixels.begin(), mean.pixels.end(), 0.0);
+  for (std::uint64_t k = 0;; ++k) {
+    const double start = static_cast<double>(k) * scene.frame_period;
+    if (start >= duration) break;
+    const double weight = std::min(scene.frame_period, duration - start) / duration;
+    const std::size_t f = scene.loop ? k % scene.frames.size() : std::min<std::size_t>(k, scene.frames.size() - 1);
+    for (std::size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += weight * scene.frames[f].pixels[i];
+  }
+  return mean;
+}
+
 }  // namespace aesim

@@ -29,4 +29,7 @@ struct Scene {
 
 Scene load_scene(const SceneFiles& files, const SensorConfig& config);
 
+// The light each pixel saw, averaged over [0, duration], as a fraction of full scale.
+Image mean_frame(const Scene& scene, double duration);
+
 }  // namespace aesim

@@ -11,6 +11,7 @@
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
 #include "config/sensor_config.hpp"
+#include "random/splitmix64.hpp"
 #include "scene/netpbm.hpp"
 #include "scene/scene.hpp"
 #include "units/si_units.hpp"
@@ -128,8 +129,17 @@ SweepSpec load_sweep_spec(const std::string& path) {
       for (const auto& [k, v] : value.as_table()) fixed.emplace_back(k, scalar_text(v, where + "." + k));
     } else if (key == "group") {
       groups = &value;
+    } else if (key == "constraints") {
+      if (!value.is_table()) throw InputError(where + ": must be a table of column = \"<= value\"");
+      for (const auto& [column, bound] : value.as_table()) {
+        try {
+          spec.constraints.push_back(parse_constraint(column, scalar_text(bound, where + "." + column)));
+        } catch (const InputError& e) {
+          throw InputError(fmt::format("sweep spec '{}': {}", path, e.what()));
+        }
+      }
     } else {
-      throw InputError(fmt::format("{}: unknown top-level key (use sensor, duration, jobs, chart, [set], [[group]])", where));
+      throw InputError(fmt::format("{}: unknown top-level key (use sensor, duration, jobs, chart, [set], [constraints], [[group]])", where));
     }
   }
   if (groups == nullptr || !groups->is_array() || groups->as_array().empty()) {
@@ -146,11 +156,20 @@ SweepSpec load_sweep_spec(const std::string& path) {
     if (!group.is_table()) throw InputError(fmt::format("sweep spec '{}': group {} is not a table", path, group_index));
     std::string name = fmt::format("{}", group_index);
     std::vector<std::string> scenes = {"scenes/letters/A.pgm"};
+    long long samples = 0;
+    std::uint64_t sample_seed = 1;
     std::vector<std::pair<std::string, std::vector<std::string>>> axes;
     for (const auto& [key, value] : group.as_table()) {
       const std::string where = fmt::format("sweep spec '{}': group {}: {}", path, group_index, key);
       if (key == "name") name = scalar_text(value, where);
       else if (key == "scene") scenes = expand_values(value, where);
+      else if (key == "samples" || key == "seed") {
+        if (!value.is_integer() || value.as_integer() < (key == "samples" ? 1 : 0) || value.as_integer() > 100000) {
+          throw InputError(fmt::format("{}: a whole number{}", where, key == "samples" ? " from 1 to 100000" : ""));
+        }
+        if (key == "samples") samples = value.as_integer();
+        else sample_seed = static_cast<std::uint64_t>(value.as_integer());
+      }
       else {
         const auto& known = SensorConfig::keys();
         if (std::find(known.begin(), known.end(), key) == known.end()) {
@@ -165,11 +184,26 @@ SweepSpec load_sweep_spec(const std::string& path) {
         spec.swept_keys.push_back(axis.first);
       }
     }
-    // Cartesian product, last axis fastest, scenes outermost.
+    // Cartesian product, last axis fastest, scenes outermost; or seeded draws from it.
     std::size_t count = scenes.size();
-    for (const auto& axis : axes) count *= axis.second.size();
+    for (const auto& axis : axes) count *= samples > 0 ? 1 : axis.second.size();
+    if (samples > 0) count *= static_cast<std::size_t>(samples);
     if (spec.points.size() + count > kMaxPoints) {
       throw InputError(fmt::format("sweep spec '{}': more than {} design points", path, kMaxPoints));
+    }
+    if (samples > 0) {
+      SplitMix64 rng(sample_seed);
+      for (const std::string& scene : scenes) {
+        for (long long k = 0; k < samples; ++k) {
+          SweepPoint p{name, scene, fixed};
+          for (const auto& axis : axes) {
+            const auto pick = static_cast<std::size_t>(uniform01(rng) * static_cast<double>(axis.second.size()));
+            p.sets.emplace_back(axis.first, axis.second[std::min(pick, axis.second.size() - 1)]);
+          }
+          spec.points.push_back(std::move(p));
+        }
+      }
+      continue;
     }
     for (const std::string& scene : scenes) {
       std::vector<std::size_t> index(axes.size(), 0);

@@ -43,21 +43,6 @@ struct Row {
   bool pareto = false;
 };
 
-// The light each pixel saw, averaged over the run, as a fraction of full scale.
-Image mean_scene(const Scene& scene, double duration) {
-  Image mean = scene.frames.front();
-  if (scene.frames.size() == 1) return mean;
-  std::fill(mean.pixels.begin(), mean.pixels.end(), 0.0);
-  for (std::uint64_t k = 0;; ++k) {
-    const double start = static_cast<double>(k) * scene.frame_period;
-    if (start >= duration) break;
-    const double weight = std::min(scene.frame_period, duration - start) / duration;
-    const std::size_t f = scene.loop ? k % scene.frames.size() : std::min<std::size_t>(k, scene.frames.size() - 1);
-    for (std::size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += weight * scene.frames[f].pixels[i];
-  }
-  return mean;
-}
-
 std::string display(const std::string& path) {
   const std::string root = data_dir() + "/";
   return path.rfind(root, 0) == 0 ? path.substr(root.size()) : path;
@@ -81,9 +66,10 @@ int compare(CompareOptions opt) {
     base.apply_overrides(opt.sets);
     base.set("sim.duration", opt.duration);
     base.validate();
+    base = base.resolved();
     const Scene scene = load_scene(files, base);
     const Photocurrents light(scene, base.pixel);
-    const Image mean = mean_scene(scene, base.sim.duration);
+    const Image mean = mean_frame(scene, base.sim.duration);
 
     SensorConfig ref_config = base;
     ref_config.sim.fidelity = Fidelity::Event;

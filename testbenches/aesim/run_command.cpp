@@ -38,7 +38,7 @@ SensorConfig resolve_config(const RunOptions& opt, const SceneFiles& scene) {
   config.apply_overrides(opt.sets);
   if (!opt.duration.empty()) config.set("sim.duration", opt.duration);
   config.validate();
-  return config;
+  return config.resolved();
 }
 
 int run(RunOptions opt) {
@@ -93,7 +93,8 @@ int run(RunOptions opt) {
   }
   const SimulationResult result = simulate(config, light, request);
 
-  const nlohmann::json summary = make_summary(config, result.log, result.facts);
+  const Image mean = mean_frame(scene, config.sim.duration);
+  const nlohmann::json summary = make_summary(config, result.log, result.facts, &mean);
   if (!opt.out.empty()) {
     write_aedat(files.open(opt.out), aedat_header(map, sensor_metadata(config.to_json())),
                 aedat_records(result.log.events(), map, result.facts.tick_s));

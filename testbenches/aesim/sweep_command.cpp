@@ -21,6 +21,7 @@
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
 #include "io/atomic_file.hpp"
+#include "sizing/sizing_report.hpp"
 #include "sweep/sweep_spec.hpp"
 
 extern char** environ;
@@ -40,7 +41,8 @@ const char* const kSummaryColumns[] = {
     "events_fired", "events_delivered", "events_collided", "events_ghost", "events_dropped",
     "offered_load", "throughput", "tau_s", "sim_time_s", "wall_time_s", "fidelity",
     "events_pending", "collision_fraction", "latency_mean_s", "latency_p99_s", "latency_max_s",
-    "protocol_violations"};
+    "protocol_violations", "pixel_rate_min_hz", "pixel_rate_mean_hz", "pixel_rate_max_hz", "dynamic_range_covered",
+    "psnr_db", "energy_per_event_j", "power_w", "power_per_tile_w"};
 
 // RFC 4180: a field holding a comma, quote or newline is quoted, quotes doubled.
 std::string csv_field(const std::string& text) {
@@ -148,7 +150,28 @@ int sweep(SweepOptions opt) {
   csv << "group,scene";
   for (const std::string& k : spec.swept_keys) csv << ',' << k;
   for (const char* c : kSummaryColumns) csv << ',' << c;
-  csv << ",theory_throughput,theory_collision_fraction\n";
+  csv << ",theory_throughput,theory_collision_fraction" << (spec.constraints.empty() ? "" : ",feasible") << "\n";
+  // A design is the swept values without the operating conditions (the scene and light.* keys):
+  // it must work on every scene in every light, so it is judged on its worst case across them.
+  std::vector<DesignPoint> per_point;
+  for (std::size_t i = 0; i < spec.points.size(); ++i) {
+    const nlohmann::json s = runner.summary(i);
+    DesignPoint d;
+    for (const auto& [k, v] : spec.points[i].sets) {
+      const bool condition = k.rfind("light.", 0) == 0;
+      if (!condition && std::find(spec.swept_keys.begin(), spec.swept_keys.end(), k) != spec.swept_keys.end()) {
+        d.label += (d.label.empty() ? "" : " ") + k + "=" + v;
+      }
+    }
+    for (const char* c : kSummaryColumns) {
+      if (s.contains(c) && s[c].is_number()) d.values[c] = s[c].get<double>();
+    }
+    per_point.push_back(std::move(d));
+  }
+  const std::vector<DesignPoint> design = worst_case_by_label(per_point);
+  const SizingAnalysis analysis = analyse_sizing(design, spec.constraints);
+  std::map<std::string, bool> design_feasible;
+  for (std::size_t i = 0; i < design.size(); ++i) design_feasible[design[i].label] = analysis.feasible[i];
   for (std::size_t i = 0; i < spec.points.size(); ++i) {
     const nlohmann::json s = runner.summary(i);
     csv << csv_field(spec.points[i].group) << ',' << csv_field(display_path(spec.points[i].scene));
@@ -158,10 +181,18 @@ int sweep(SweepOptions opt) {
     }
     for (const char* c : kSummaryColumns) csv << ',' << cell(s[c]);
     const double g = s["offered_load"];
-    csv << ',' << fmt::format("{:.17g}", g * std::exp(-2 * g)) << ',' << fmt::format("{:.17g}", 1 - std::exp(-2 * g))
-        << '\n';
+    csv << ',' << fmt::format("{:.17g}", g * std::exp(-2 * g)) << ',' << fmt::format("{:.17g}", 1 - std::exp(-2 * g));
+    if (!spec.constraints.empty()) csv << ',' << (design_feasible[per_point[i].label] ? 1 : 0);
+    csv << '\n';
   }
+  const std::string report_path =
+      (fs::path(opt.output).parent_path() / (fs::path(opt.output).stem().string() + ".report.md")).string();
+  if (!spec.constraints.empty()) files.open(report_path) << sizing_report(design, spec.constraints, analysis);
   files.commit();
+  if (!spec.constraints.empty()) {
+    fmt::print("aesim sweep: {} of {} designs feasible in every condition; report {}\n",
+               std::count(analysis.feasible.begin(), analysis.feasible.end(), true), design.size(), report_path);
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   fmt::print("aesim sweep: {} points on {} jobs in {:.1f} s -> {}\n", spec.points.size(), jobs, wall, opt.output);
 

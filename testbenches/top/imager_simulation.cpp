@@ -58,6 +58,8 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
   install_fresh_kernel();
   const AddressMap map(config.array);
   SimulationResult result{EventLog(map.tiles(), request.keep_truth), {}, nullptr};
+  result.log.count_pixels(static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols()),
+                          static_cast<std::uint32_t>(map.cols()), config.analysis.window);
   if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);
   {
     CycleOptions cycle;
