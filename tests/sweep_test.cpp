@@ -127,5 +127,56 @@ scene = "scenes/uniform.pgm"
   EXPECT_LT(std::stod(one[1][col("offered_load")]), std::stod(one[3][col("offered_load")]));
 }
 
+TEST_F(SweepTest, ASweepKilledMidwayResumesToTheSameCsv) {
+  // Eight points of ~0.2 s each (a fine fixed step), one job at a time; kill -9 after two have
+  // finished, run again: the rest are done and the CSV equals an uninterrupted run's.
+  const std::string s = spec(R"(
+sensor = "aloha"
+duration = "200ms"
+[set]
+"array.rows" = 32
+"array.cols" = 32
+"sim.fidelity" = "fixed_step"
+"sim.step" = "1us"
+[[group]]
+name = "slow"
+"pixel.c_int" = ["50fF", "60fF", "70fF", "80fF", "90fF", "100fF", "110fF", "120fF"]
+)");
+  ASSERT_EQ(aesim("sweep " + s + " -o whole.csv --jobs 1"), 0);
+  const std::string cmd = "cd '" + dir_.string() + "' && ('" AESIM_BINARY "' sweep " + s +
+                          " -o cut.csv --jobs 1 >/dev/null 2>&1 & pid=$!; "
+                          "while [ ! -f cut.csv.partial ] || [ $(wc -l < cut.csv.partial) -lt 3 ]; do sleep 0.02; done; "
+                          "kill -9 $pid; wait $pid 2>/dev/null; true)";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  ASSERT_FALSE(fs::exists(dir_ / "cut.csv"));  // nothing half-written
+  ASSERT_TRUE(fs::exists(dir_ / "cut.csv.partial"));
+  std::string err;
+  ASSERT_EQ(aesim("sweep " + s + " -o cut.csv --jobs 2", &err), 0) << err;
+  EXPECT_NE(err.find("resuming:"), std::string::npos) << err;
+  EXPECT_EQ(err.find("resuming: 0 of"), std::string::npos) << err;
+  EXPECT_EQ(err.find("resuming: 1 of"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "cut.csv.partial"));
+  const auto whole = read_csv(dir_ / "whole.csv");
+  const auto cut = read_csv(dir_ / "cut.csv");
+  ASSERT_EQ(whole.size(), 9u);
+  ASSERT_EQ(cut.size(), whole.size());
+  const auto wall = std::find(whole[0].begin(), whole[0].end(), "wall_time_s") - whole[0].begin();
+  for (std::size_t r = 0; r < whole.size(); ++r) {
+    for (std::size_t c = 0; c < whole[r].size(); ++c) {
+      if (static_cast<long>(c) != wall) {
+        EXPECT_EQ(whole[r][c], cut[r][c]) << r << "," << c;
+      }
+    }
+  }
+}
+
+TEST_F(SweepTest, AJournalOfAnotherSweepIsNotResumed) {
+  const std::string a = spec("[[group]]\n\"pixel.c_int\" = [\"50fF\"]\n");
+  write("x.csv.partial", "aesim-sweep 0000000000000000\n");
+  std::string err;
+  EXPECT_EQ(aesim("sweep " + a + " -o x.csv --no-chart", &err), 2);
+  EXPECT_NE(err.find("different sweep"), std::string::npos) << err;
+}
+
 }  // namespace
 }  // namespace aesim

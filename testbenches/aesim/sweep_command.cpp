@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "aesim/commands.hpp"
+#include "config/input_error.hpp"
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
 #include "io/atomic_file.hpp"
@@ -59,18 +60,66 @@ std::string display_path(const std::string& p) {
   return p.rfind(root, 0) == 0 ? p.substr(root.size()) : p;
 }
 
-// Runs `aesim run` for each point as a child process, `jobs` at a time.
+// The identity of a sweep's points, so that a journal is only resumed by the same sweep.
+std::string sweep_identity(const SweepSpec& spec) {
+  std::string all = spec.sensor + "|" + spec.duration;
+  for (const SweepPoint& p : spec.points) {
+    all += "|" + p.scene;
+    for (const auto& [k, v] : p.sets) all += "," + k + "=" + v;
+  }
+  return fmt::format("{:016x}", std::hash<std::string>{}(all));
+}
+
+// Runs `aesim run` for each point as a child process, `jobs` at a time. Every finished point's
+// summary is appended to the journal as one line, in one write, so an interrupted sweep loses at
+// most the points in flight, and a torn last line (a kill mid-write) is recognised and ignored.
 class PointRunner {
  public:
-  PointRunner(const SweepSpec& spec, fs::path work) : spec_(spec), work_(std::move(work)) {}
+  PointRunner(const SweepSpec& spec, fs::path work, std::string journal)
+      : spec_(spec), work_(std::move(work)), journal_path_(std::move(journal)), summaries_(spec.points.size()) {}
+
+  // Reads what an earlier, interrupted run of the same sweep finished. Returns how many.
+  std::size_t resume() {
+    std::ifstream in(journal_path_);
+    if (!in) return 0;
+    std::string line;
+    std::size_t found = 0;
+    if (!std::getline(in, line) || line != "aesim-sweep " + sweep_identity(spec_)) {
+      throw InputError(fmt::format("'{}' holds partial results of a different sweep; delete it to start afresh",
+                                   journal_path_));
+    }
+    while (std::getline(in, line)) {
+      if (in.eof()) break;  // no newline: torn by an interruption
+      const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+      if (j.is_discarded() || !j.contains("index")) break;
+      const std::size_t i = j["index"].get<std::size_t>();
+      if (i < summaries_.size() && summaries_[i].is_null()) {
+        summaries_[i] = j["summary"];
+        ++found;
+      }
+    }
+    return found;
+  }
 
   void run_all(int jobs) {
+    const int fd = ::open(journal_path_.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    if (fd < 0) throw InputError(fmt::format("cannot write '{}'", journal_path_));
+    struct Closer {
+      int fd;
+      ~Closer() { ::close(fd); }
+    } closer{fd};
+    if (::lseek(fd, 0, SEEK_END) == 0) append(fd, "aesim-sweep " + sweep_identity(spec_) + "\n");
+    std::vector<std::size_t> todo;
+    for (std::size_t i = 0; i < summaries_.size(); ++i) {
+      if (summaries_[i].is_null()) todo.push_back(i);
+    }
     std::map<pid_t, std::size_t> running;
     std::size_t next = 0, done = 0;
-    const bool tty = isatty(STDERR_FILENO);
-    while (done < spec_.points.size()) {
-      while (next < spec_.points.size() && static_cast<int>(running.size()) < jobs) {
-        running[start(next)] = next;
+    const auto started = std::chrono::steady_clock::now();
+    const std::size_t resumed = summaries_.size() - todo.size();
+    while (done < todo.size()) {
+      while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
+        running[start(todo[next])] = todo[next];
         ++next;
       }
       int status = 0;
@@ -88,15 +137,14 @@ class PointRunner {
         const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
         throw std::runtime_error(fmt::format("point {} failed: {}", index + 1, text.substr(0, text.find('\n'))));
       }
-      if (tty) std::fprintf(stderr, "\raesim sweep: %zu/%zu points", done, spec_.points.size());
+      std::ifstream in(work_ / fmt::format("point_{}.json", index));
+      summaries_[index] = nlohmann::json::parse(in);
+      append(fd, nlohmann::json{{"index", index}, {"summary", summaries_[index]}}.dump() + "\n");
+      progress(resumed, done, todo.size(), started);
     }
-    if (tty) std::fprintf(stderr, "\n");
   }
 
-  nlohmann::json summary(std::size_t index) const {
-    std::ifstream in(work_ / fmt::format("point_{}.json", index));
-    return nlohmann::json::parse(in);
-  }
+  const nlohmann::json& summary(std::size_t index) const { return summaries_[index]; }
 
  private:
   pid_t start(std::size_t index) {
@@ -120,8 +168,33 @@ class PointRunner {
     return pid;
   }
 
+  static void append(int fd, const std::string& line) {
+    if (::write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size())) {
+      throw std::runtime_error("appending to the sweep journal failed");
+    }
+  }
+
+  // A progress bar with an ETA on a terminal; a line every tenth of the sweep otherwise.
+  void progress(std::size_t resumed, std::size_t done, std::size_t todo,
+                std::chrono::steady_clock::time_point started) const {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double eta = elapsed / static_cast<double>(done) * static_cast<double>(todo - done);
+    const std::size_t total = resumed + todo, finished = resumed + done;
+    if (isatty(STDERR_FILENO)) {
+      const int width = 30, filled = static_cast<int>(width * finished / total);
+      std::fprintf(stderr, "\raesim sweep: [%s%s] %zu/%zu points, %.0f s, ETA %.0f s ",
+                   std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                   std::string(static_cast<std::size_t>(width - filled), '.').c_str(), finished, total, elapsed, eta);
+      if (done == todo) std::fprintf(stderr, "\n");
+    } else if (done == todo || (done * 10 / todo) != ((done - 1) * 10 / todo)) {
+      std::fprintf(stderr, "aesim sweep: %zu/%zu points, %.1f s, ETA %.1f s\n", finished, total, elapsed, eta);
+    }
+  }
+
   const SweepSpec& spec_;
   fs::path work_;
+  std::string journal_path_;
+  std::vector<nlohmann::json> summaries_;
 };
 
 int sweep(SweepOptions opt) {
@@ -144,7 +217,13 @@ int sweep(SweepOptions opt) {
     }
   } cleanup{work};
 
-  PointRunner runner(spec, work);
+  // The journal of finished points: an interrupted sweep resumes from it.
+  const std::string journal = opt.output + ".partial";
+  PointRunner runner(spec, work, journal);
+  if (const std::size_t resumed = runner.resume()) {
+    std::fprintf(stderr, "aesim sweep: resuming: %zu of %zu points already done (%s)\n", resumed, spec.points.size(),
+                 journal.c_str());
+  }
   runner.run_all(jobs);
 
   csv << "group,scene";
@@ -155,7 +234,7 @@ int sweep(SweepOptions opt) {
   // it must work on every scene in every light, so it is judged on its worst case across them.
   std::vector<DesignPoint> per_point;
   for (std::size_t i = 0; i < spec.points.size(); ++i) {
-    const nlohmann::json s = runner.summary(i);
+    const nlohmann::json& s = runner.summary(i);
     DesignPoint d;
     for (const auto& [k, v] : spec.points[i].sets) {
       const bool condition = k.rfind("light.", 0) == 0;
@@ -173,7 +252,7 @@ int sweep(SweepOptions opt) {
   std::map<std::string, bool> design_feasible;
   for (std::size_t i = 0; i < design.size(); ++i) design_feasible[design[i].label] = analysis.feasible[i];
   for (std::size_t i = 0; i < spec.points.size(); ++i) {
-    const nlohmann::json s = runner.summary(i);
+    const nlohmann::json& s = runner.summary(i);
     csv << csv_field(spec.points[i].group) << ',' << csv_field(display_path(spec.points[i].scene));
     for (const std::string& k : spec.swept_keys) {
       const auto dot = k.find('.');
@@ -189,6 +268,8 @@ int sweep(SweepOptions opt) {
       (fs::path(opt.output).parent_path() / (fs::path(opt.output).stem().string() + ".report.md")).string();
   if (!spec.constraints.empty()) files.open(report_path) << sizing_report(design, spec.constraints, analysis);
   files.commit();
+  std::error_code ignored;
+  fs::remove(journal, ignored);  // complete: the CSV holds it all
   if (!spec.constraints.empty()) {
     fmt::print("aesim sweep: {} of {} designs feasible in every condition; report {}\n",
                std::count(analysis.feasible.begin(), analysis.feasible.end(), true), design.size(), report_path);
