@@ -170,6 +170,42 @@ name = "slow"
   }
 }
 
+TEST_F(SweepTest, UnderMpirunTheRanksShareTheSweepAndRankZeroWritesTheSameCsv) {
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun (openmpi-bin)";
+  const std::string s = spec(R"(
+sensor = "aloha"
+duration = "500ms"
+[set]
+"bus.access" = "aloha"
+[[group]]
+name = "load"
+scene = ["scenes/letters/A.pgm", "scenes/natural.pgm"]
+"bus.t_event" = { from = "10us", to = "1ms", points = 4, scale = "log" }
+)");
+  ASSERT_EQ(aesim("sweep " + s + " -o local.csv --no-chart"), 0);
+  // Root in a container: OpenMPI wants explicit consent. Two ranks on this machine.
+  const std::string cmd = "cd '" + dir_.string() +
+                          "' && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 mpirun -np 2 "
+                          "--oversubscribe '" AESIM_BINARY "' sweep " + s + " -o mpi.csv --no-chart --jobs 1 "
+                          ">mpi.log 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << testing::slurp(dir_ / "mpi.log");
+  const auto local = read_csv(dir_ / "local.csv");
+  const auto mpi = read_csv(dir_ / "mpi.csv");
+  ASSERT_EQ(local.size(), 9u);
+  ASSERT_EQ(mpi.size(), local.size());
+  const auto wall = std::find(local[0].begin(), local[0].end(), "wall_time_s") - local[0].begin();
+  for (std::size_t r = 0; r < local.size(); ++r) {
+    for (std::size_t c = 0; c < local[r].size(); ++c) {
+      if (static_cast<long>(c) != wall) {
+        EXPECT_EQ(local[r][c], mpi[r][c]) << r << "," << c;
+      }
+    }
+  }
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(e.path().filename().string().rfind(".mpi.points", 0), std::string::npos) << "work folder left";
+  }
+}
+
 TEST_F(SweepTest, AJournalOfAnotherSweepIsNotResumed) {
   const std::string a = spec("[[group]]\n\"pixel.c_int\" = [\"50fF\"]\n");
   write("x.csv.partial", "aesim-sweep 0000000000000000\n");

@@ -63,6 +63,11 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
                      {"collision_fraction", t.fired ? static_cast<double>(t.collided) / t.fired : 0.0}});
   }
   const LatencyStats latency = log.latency();
+  double worst_load = 0, worst_loss = 0;
+  for (const TileCounters& t : log.tiles()) {
+    worst_load = std::max(worst_load, static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s);
+    worst_loss = std::max(worst_loss, t.fired ? static_cast<double>(t.collided) / t.fired : 0.0);
+  }
   nlohmann::json summary = {
       {"events_fired", total.fired},
       {"events_delivered", total.delivered},
@@ -73,6 +78,8 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
       {"offered_load", static_cast<double>(total.fired) * per_bus_rate * facts.tau_s},
       {"throughput", static_cast<double>(total.delivered - total.ghost) * per_bus_rate * facts.tau_s},
       {"collision_fraction", total.fired ? static_cast<double>(total.collided) / total.fired : 0.0},
+      {"offered_load_max_tile", worst_load},
+      {"collision_fraction_max_tile", worst_loss},
       {"latency_mean_s", latency.mean},
       {"latency_p99_s", latency.p99},
       {"latency_max_s", latency.max},

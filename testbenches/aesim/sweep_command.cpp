@@ -22,6 +22,10 @@
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
 #include "io/atomic_file.hpp"
+#ifdef AESIM_HAVE_MPI
+#include <mpi.h>
+#endif
+
 #include "sizing/sizing_report.hpp"
 #include "sweep/sweep_spec.hpp"
 
@@ -43,7 +47,8 @@ const char* const kSummaryColumns[] = {
     "offered_load", "throughput", "tau_s", "sim_time_s", "wall_time_s", "fidelity",
     "events_pending", "collision_fraction", "latency_mean_s", "latency_p99_s", "latency_max_s",
     "protocol_violations", "pixel_rate_min_hz", "pixel_rate_mean_hz", "pixel_rate_max_hz", "dynamic_range_covered",
-    "psnr_db", "energy_per_event_j", "power_w", "power_per_tile_w"};
+    "psnr_db", "energy_per_event_j", "power_w", "power_per_tile_w", "offered_load_max_tile",
+    "collision_fraction_max_tile"};
 
 // RFC 4180: a field holding a comma, quote or newline is quoted, quotes doubled.
 std::string csv_field(const std::string& text) {
@@ -70,13 +75,25 @@ std::string sweep_identity(const SweepSpec& spec) {
   return fmt::format("{:016x}", std::hash<std::string>{}(all));
 }
 
+// This process's share of a sweep: under mpirun, point i belongs to rank i mod size.
+struct Share {
+  int rank = 0, size = 1;
+  bool mine(std::size_t i) const { return static_cast<int>(i % static_cast<std::size_t>(size)) == rank; }
+};
+
 // Runs `aesim run` for each point as a child process, `jobs` at a time. Every finished point's
 // summary is appended to the journal as one line, in one write, so an interrupted sweep loses at
 // most the points in flight, and a torn last line (a kill mid-write) is recognised and ignored.
 class PointRunner {
  public:
-  PointRunner(const SweepSpec& spec, fs::path work, std::string journal)
-      : spec_(spec), work_(std::move(work)), journal_path_(std::move(journal)), summaries_(spec.points.size()) {}
+  PointRunner(const SweepSpec& spec, fs::path work, std::string journal, Share share = {})
+      : spec_(spec),
+        work_(std::move(work)),
+        journal_path_(std::move(journal)),
+        share_(share),
+        summaries_(spec.points.size()) {}
+
+  void set_summary(std::size_t index, nlohmann::json s) { summaries_[index] = std::move(s); }
 
   // Reads what an earlier, interrupted run of the same sweep finished. Returns how many.
   std::size_t resume() {
@@ -111,12 +128,13 @@ class PointRunner {
     if (::lseek(fd, 0, SEEK_END) == 0) append(fd, "aesim-sweep " + sweep_identity(spec_) + "\n");
     std::vector<std::size_t> todo;
     for (std::size_t i = 0; i < summaries_.size(); ++i) {
-      if (summaries_[i].is_null()) todo.push_back(i);
+      if (summaries_[i].is_null() && share_.mine(i)) todo.push_back(i);
     }
     std::map<pid_t, std::size_t> running;
     std::size_t next = 0, done = 0;
     const auto started = std::chrono::steady_clock::now();
-    const std::size_t resumed = summaries_.size() - todo.size();
+    std::size_t resumed = 0;
+    for (std::size_t i = 0; i < summaries_.size(); ++i) resumed += share_.mine(i) && !summaries_[i].is_null() ? 1 : 0;
     while (done < todo.size()) {
       while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
         running[start(todo[next])] = todo[next];
@@ -194,10 +212,65 @@ class PointRunner {
   const SweepSpec& spec_;
   fs::path work_;
   std::string journal_path_;
+  Share share_;
   std::vector<nlohmann::json> summaries_;
 };
 
+#ifdef AESIM_HAVE_MPI
+// Rank 0 receives every other rank's summaries (index, then the JSON text) for the one CSV.
+void gather_summaries(PointRunner& runner, const SweepSpec& spec, const Share& share) {
+  if (share.rank != 0) {
+    for (std::size_t i = 0; i < spec.points.size(); ++i) {
+      if (!share.mine(i)) continue;
+      const std::string text = runner.summary(i).dump();
+      const unsigned long index = i;
+      MPI_Send(&index, 1, MPI_UNSIGNED_LONG, 0, 0, MPI_COMM_WORLD);
+      MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, 1, MPI_COMM_WORLD);
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < spec.points.size(); ++i) {
+    if (share.mine(i)) continue;
+    unsigned long index = 0;
+    MPI_Status status;
+    MPI_Recv(&index, 1, MPI_UNSIGNED_LONG, MPI_ANY_SOURCE, 0, MPI_COMM_WORLD, &status);
+    int length = 0;
+    MPI_Probe(status.MPI_SOURCE, 1, MPI_COMM_WORLD, &status);
+    MPI_Get_count(&status, MPI_CHAR, &length);
+    std::string text(static_cast<std::size_t>(length), '\0');
+    MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    runner.set_summary(index, nlohmann::json::parse(text));
+  }
+}
+#endif
+
+// Whether mpirun started this process (OpenMPI, MPICH and PMIx launchers set these).
+bool launched_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"}) {
+    if (std::getenv(v)) return true;
+  }
+  return false;
+}
+
 int sweep(SweepOptions opt) {
+  Share share;
+  if (launched_by_mpirun()) {
+#ifdef AESIM_HAVE_MPI
+    MPI_Init(nullptr, nullptr);
+    MPI_Comm_rank(MPI_COMM_WORLD, &share.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &share.size);
+#else
+    throw InputError("aesim sweep runs under mpirun only when built with MPI (install libopenmpi-dev)");
+#endif
+  }
+  struct Finalize {
+    bool active;
+    ~Finalize() {
+#ifdef AESIM_HAVE_MPI
+      if (active) MPI_Finalize();
+#endif
+    }
+  } finalize{share.size > 1 || launched_by_mpirun()};
   const SweepSpec spec = load_sweep_spec(opt.spec);
   if (opt.output.empty()) opt.output = "out/" + fs::path(opt.spec).stem().string() + ".csv";
   if (fs::path(opt.output).extension() != ".csv") throw InputError(fmt::format("-o '{}': use a .csv file name", opt.output));
@@ -206,8 +279,11 @@ int sweep(SweepOptions opt) {
 
   const auto wall_start = std::chrono::steady_clock::now();
   OutputFiles files;
-  std::ostream& csv = files.open(opt.output);  // also creates the output folder
-  const fs::path work = fs::path(opt.output).parent_path() / fmt::format(".{}.points.{}", fs::path(opt.output).stem().string(), getpid());
+  // Under MPI only rank 0 writes; the other ranks work in their own folders beside it.
+  std::ostream* csv_stream = share.rank == 0 ? &files.open(opt.output) : nullptr;
+  fs::create_directories(fs::path(opt.output).parent_path().empty() ? fs::path(".") : fs::path(opt.output).parent_path());
+  const fs::path work = fs::path(opt.output).parent_path() /
+                        fmt::format(".{}.points.{}.{}", fs::path(opt.output).stem().string(), getpid(), share.rank);
   fs::create_directories(work);
   struct Cleanup {
     fs::path dir;
@@ -218,13 +294,20 @@ int sweep(SweepOptions opt) {
   } cleanup{work};
 
   // The journal of finished points: an interrupted sweep resumes from it.
-  const std::string journal = opt.output + ".partial";
-  PointRunner runner(spec, work, journal);
-  if (const std::size_t resumed = runner.resume()) {
+  const std::string journal = share.size > 1 ? (work / "journal").string() : opt.output + ".partial";
+  PointRunner runner(spec, work, journal, share);
+  if (const std::size_t resumed = share.size > 1 ? 0 : runner.resume()) {
     std::fprintf(stderr, "aesim sweep: resuming: %zu of %zu points already done (%s)\n", resumed, spec.points.size(),
                  journal.c_str());
   }
   runner.run_all(jobs);
+#ifdef AESIM_HAVE_MPI
+  if (share.size > 1) {
+    gather_summaries(runner, spec, share);
+    if (share.rank != 0) return 0;
+  }
+#endif
+  std::ostream& csv = *csv_stream;
 
   csv << "group,scene";
   for (const std::string& k : spec.swept_keys) csv << ',' << k;
