@@ -86,6 +86,23 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   return rows;
 }
 
+// Two sweep CSVs hold the same results: every cell equal but wall_time_s, which is measured.
+void expect_same_results(const std::vector<std::vector<std::string>>& a,
+                         const std::vector<std::vector<std::string>>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  const auto wall = static_cast<std::size_t>(std::find(a[0].begin(), a[0].end(), "wall_time_s") - a[0].begin());
+  ASSERT_LT(wall, a[0].size());
+  for (std::size_t r = 0; r < a.size(); ++r) {
+    ASSERT_EQ(a[r].size(), b[r].size()) << "row " << r;
+    for (std::size_t c = 0; c < a[r].size(); ++c) {
+      if (c != wall) {
+        EXPECT_EQ(a[r][c], b[r][c]) << "row " << r << ", " << a[0][c];
+      }
+    }
+  }
+}
+
 TEST_F(SweepTest, SmallSweepWritesOneRowPerPointWithTheoryAndMatchesAcrossJobCounts) {
   const std::string s = spec(R"(
 sensor = "aloha"
@@ -116,13 +133,8 @@ scene = "scenes/uniform.pgm"
     const double g = std::stod(one[r][col("offered_load")]);
     EXPECT_NEAR(std::stod(one[r][col("theory_throughput")]), g * std::exp(-2 * g), 1e-12);
     EXPECT_NEAR(std::stod(one[r][col("theory_collision_fraction")]), 1 - std::exp(-2 * g), 1e-12);
-    // Same results whatever the number of parallel jobs (wall time aside).
-    for (std::size_t c = 0; c < h.size(); ++c) {
-      if (c != col("wall_time_s")) {
-        EXPECT_EQ(one[r][c], two[r][c]) << h[c];
-      }
-    }
   }
+  expect_same_results(one, two);  // whatever the number of parallel jobs
   // tau grows along the rows, and so does the offered load.
   EXPECT_LT(std::stod(one[1][col("offered_load")]), std::stod(one[3][col("offered_load")]));
 }
@@ -159,15 +171,7 @@ name = "slow"
   const auto whole = read_csv(dir_ / "whole.csv");
   const auto cut = read_csv(dir_ / "cut.csv");
   ASSERT_EQ(whole.size(), 9u);
-  ASSERT_EQ(cut.size(), whole.size());
-  const auto wall = std::find(whole[0].begin(), whole[0].end(), "wall_time_s") - whole[0].begin();
-  for (std::size_t r = 0; r < whole.size(); ++r) {
-    for (std::size_t c = 0; c < whole[r].size(); ++c) {
-      if (static_cast<long>(c) != wall) {
-        EXPECT_EQ(whole[r][c], cut[r][c]) << r << "," << c;
-      }
-    }
-  }
+  expect_same_results(whole, cut);
 }
 
 TEST_F(SweepTest, UnderMpirunTheRanksShareTheSweepAndRankZeroWritesTheSameCsv) {
@@ -192,15 +196,7 @@ scene = ["scenes/letters/A.pgm", "scenes/natural.pgm"]
   const auto local = read_csv(dir_ / "local.csv");
   const auto mpi = read_csv(dir_ / "mpi.csv");
   ASSERT_EQ(local.size(), 9u);
-  ASSERT_EQ(mpi.size(), local.size());
-  const auto wall = std::find(local[0].begin(), local[0].end(), "wall_time_s") - local[0].begin();
-  for (std::size_t r = 0; r < local.size(); ++r) {
-    for (std::size_t c = 0; c < local[r].size(); ++c) {
-      if (static_cast<long>(c) != wall) {
-        EXPECT_EQ(local[r][c], mpi[r][c]) << r << "," << c;
-      }
-    }
-  }
+  expect_same_results(local, mpi);
   for (const auto& e : fs::directory_iterator(dir_)) {
     EXPECT_EQ(e.path().filename().string().rfind(".mpi.points", 0), std::string::npos) << "work folder left";
   }

@@ -135,36 +135,17 @@ double Imager::tau() const {
   return measured > 0 ? sum / measured : config_.bus.t_event;
 }
 
-std::uint64_t Imager::protocol_violations() const {
-  std::uint64_t n = 0;
+Imager::CycleStats Imager::cycle_stats() const {
+  CycleStats s;
   for (const auto& bus : buses_) {
-    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->protocol_violations();
+    const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get());
+    if (!clocked) continue;
+    s.protocol_violations += clocked->protocol_violations();
+    s.clock_edges += clocked->clock_edges();
+    s.scoreboard_beats += clocked->receiver().scoreboard_beats();
+    s.scoreboard_mismatches += clocked->receiver().scoreboard_mismatches();
   }
-  return n;
-}
-
-std::uint64_t Imager::scoreboard_mismatches() const {
-  std::uint64_t n = 0;
-  for (const auto& bus : buses_) {
-    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->receiver().scoreboard_mismatches();
-  }
-  return n;
-}
-
-std::uint64_t Imager::scoreboard_beats() const {
-  std::uint64_t n = 0;
-  for (const auto& bus : buses_) {
-    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->receiver().scoreboard_beats();
-  }
-  return n;
-}
-
-std::uint64_t Imager::receiver_clock_edges() const {
-  std::uint64_t n = 0;
-  for (const auto& bus : buses_) {
-    if (const auto* clocked = dynamic_cast<const ClockedAlohaBus*>(bus.get())) n += clocked->clock_edges();
-  }
-  return n;
+  return s;
 }
 
 }  // namespace aesim

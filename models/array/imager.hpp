@@ -36,12 +36,13 @@ class Imager : public sc_core::sc_module {
   void finish();
   // Mean bus transaction time: measured by clocked buses, bus.t_event otherwise.
   double tau() const;
-  // Handshake rule breaks seen by the clocked buses' monitors (always 0 at the event fidelity).
-  std::uint64_t protocol_violations() const;
-  std::uint64_t receiver_clock_edges() const;
-  // Co-simulation scoreboard totals over the tiles (RTL receivers only).
-  std::uint64_t scoreboard_mismatches() const;
-  std::uint64_t scoreboard_beats() const;
+  // Totals over the clocked buses (all zero below the cycle fidelity): handshake and stream rule
+  // breaks seen by the monitors, receiver clock edges simulated, and the co-simulation
+  // scoreboard's compared beats and mismatches (RTL receivers only).
+  struct CycleStats {
+    std::uint64_t protocol_violations = 0, clock_edges = 0, scoreboard_beats = 0, scoreboard_mismatches = 0;
+  };
+  CycleStats cycle_stats() const;
 
  private:
   const SensorConfig& config_;

@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sizing/power_model.hpp"
+
 namespace aesim {
 
 enum class InitialState { Reset, Random };
@@ -50,10 +52,7 @@ struct SensorConfig {
     int threads = 1;  // event fidelity: tiles simulated in parallel on this many threads (0: all cores)
     double step = 1e-6;  // s, the clock of the fixed_step baseline
   } sim;
-  struct Power {
-    double vdd = 3.3, e_pixel_event = 1e-12, c_bus_line = 0.5e-12, e_receiver_event = 10e-12,
-           p_static_pixel = 5.5e-9;  // see models/sizing/power_model.hpp
-  } power;
+  PowerParams power;  // models/sizing/power_model.hpp
   struct Light {
     double lux = 0;               // > 0: pixel.i_max is the photocurrent of full-scale light at this illuminance
     double responsivity = 0.3;    // A/W of the photodiode

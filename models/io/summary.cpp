@@ -28,12 +28,6 @@ void add_sizing(nlohmann::json& s, const SensorConfig& config, const EventLog& l
   s["dynamic_range_covered"] = static_cast<double>(covered) / static_cast<double>(fired.size());
 
   const TileCounters total = log.totals();
-  PowerParams p;
-  p.vdd = config.power.vdd;
-  p.e_pixel_event = config.power.e_pixel_event;
-  p.c_bus_line = config.power.c_bus_line;
-  p.e_receiver_event = config.power.e_receiver_event;
-  p.p_static_pixel = config.power.p_static_pixel;
   PowerInputs in;
   in.c_int = config.pixel.c_int;
   in.dv_int = config.pixel.dv_int;
@@ -42,7 +36,7 @@ void add_sizing(nlohmann::json& s, const SensorConfig& config, const EventLog& l
   in.address_ones = log.address_ones();
   in.pixels = fired.size();
   in.duration = t;
-  const PowerResult r = power(p, in);
+  const PowerResult r = power(config.power, in);
   s["energy_per_event_j"] = r.energy_per_event;
   s["power_w"] = r.total_power;
   s["power_static_w"] = r.static_power;

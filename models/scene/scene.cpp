@@ -65,19 +65,26 @@ void apply_scene_settings(const SceneFiles& files, SensorConfig& config) {
   apply_toml_file(config, files.settings, "scene");
 }
 
+std::vector<Image> read_frames(const SceneFiles& files) {
+  std::vector<Image> frames;
+  for (const std::string& path : files.frames) {
+    Image img = read_image(path);
+    if (!frames.empty() && (img.width != frames.front().width || img.height != frames.front().height)) {
+      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", path, img.width,
+                                   img.height, frames.front().width, frames.front().height));
+    }
+    frames.push_back(std::move(img));
+  }
+  return frames;
+}
+
 Scene load_scene(const SceneFiles& files, const SensorConfig& config) {
   Scene scene;
   scene.frame_period = 1.0 / config.scene.frame_rate;
   scene.loop = config.scene.loop;
-  for (const std::string& path : files.frames) {
-    Image img = read_image(path);
-    if (scene.frames.empty()) {
-      scene.source_width = img.width;
-      scene.source_height = img.height;
-    } else if (img.width != scene.source_width || img.height != scene.source_height) {
-      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", path, img.width,
-                                   img.height, scene.source_width, scene.source_height));
-    }
+  for (const Image& img : read_frames(files)) {
+    scene.source_width = img.width;
+    scene.source_height = img.height;
     scene.frames.push_back(resample_area(img, config.array.cols, config.array.rows));
   }
   return scene;

@@ -27,6 +27,9 @@ struct Scene {
   int source_width = 0, source_height = 0;
 };
 
+// The frames as stored (values of full scale), all of one size; throws InputError otherwise.
+std::vector<Image> read_frames(const SceneFiles& files);
+
 Scene load_scene(const SceneFiles& files, const SensorConfig& config);
 
 // The light each pixel saw, averaged over [0, duration], as a fraction of full scale.

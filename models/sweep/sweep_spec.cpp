@@ -12,7 +12,6 @@
 #include "config/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "random/splitmix64.hpp"
-#include "scene/netpbm.hpp"
 #include "scene/scene.hpp"
 #include "units/si_units.hpp"
 
@@ -223,7 +222,7 @@ SweepSpec load_sweep_spec(const std::string& path) {
   for (const SweepPoint& p : spec.points) {
     if (std::find(checked.begin(), checked.end(), p.scene) != checked.end()) continue;
     try {
-      for (const std::string& frame : find_scene(p.scene).frames) read_image(frame);
+      read_frames(find_scene(p.scene));
     } catch (const InputError& e) {
       throw InputError(fmt::format("sweep spec '{}': group {}: {}", path, p.group, e.what()));
     }

@@ -14,7 +14,6 @@
 #include "io/atomic_file.hpp"
 #include "io/image_file.hpp"
 #include "recon/reconstruct.hpp"
-#include "scene/netpbm.hpp"
 #include "scene/scene.hpp"
 #include "units/si_units.hpp"
 
@@ -68,12 +67,7 @@ int emulate_command(EmulateOptions opt) {
     SensorConfig c;
     apply_scene_settings(files, c);
     rate = c.scene.frame_rate;
-    for (const std::string& f : files.frames) frames.push_back(read_image(f));
-    for (const Image& f : frames) {
-      if (f.width != frames.front().width || f.height != frames.front().height) {
-        throw InputError(fmt::format("'{}': frames differ in size", opt.input));
-      }
-    }
+    frames = read_frames(files);
   }
   s.frame_rate = opt.frame_rate > 0 ? opt.frame_rate : rate;
   if (s.width == 0) {

@@ -83,10 +83,11 @@ SimulationResult simulate(const SensorConfig& config, const Photocurrents& light
     }
     imager.finish();
     result.facts.tau_s = imager.tau();
-    result.facts.protocol_violations = imager.protocol_violations();
-    result.facts.receiver_clock_edges = imager.receiver_clock_edges();
-    result.facts.scoreboard_mismatches = imager.scoreboard_mismatches();
-    result.facts.scoreboard_beats = imager.scoreboard_beats();
+    const Imager::CycleStats cycle_stats = imager.cycle_stats();
+    result.facts.protocol_violations = cycle_stats.protocol_violations;
+    result.facts.receiver_clock_edges = cycle_stats.clock_edges;
+    result.facts.scoreboard_mismatches = cycle_stats.scoreboard_mismatches;
+    result.facts.scoreboard_beats = cycle_stats.scoreboard_beats;
     result.facts.multi_fire_steps = imager.multi_fire_steps();
     result.facts.empty_queue_frames = imager.empty_queue_frames();
   }
