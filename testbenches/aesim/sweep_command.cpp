@@ -378,7 +378,9 @@ int sweep(SweepOptions opt) {
 
 void add_sweep_command(CLI::App& app, int& status) {
   auto opt = std::make_shared<SweepOptions>();
-  CLI::App* cmd = app.add_subcommand("sweep", "Run a sweep of design points (a TOML spec) in parallel and write one CSV");
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Run a sweep of design points (a TOML spec) in parallel processes, or across hosts under mpirun, and "
+               "write one CSV (and a sizing report when the spec has [constraints]); an interrupted sweep resumes");
   cmd->add_option("SPEC", opt->spec, "Sweep spec, e.g. scripts/sweeps/collisions.toml")->required();
   cmd->add_option("-o,--output", opt->output, "CSV file (default out/SPEC_NAME.csv)");
   cmd->add_option("-j,--jobs", opt->jobs, "Parallel processes (default: the spec's jobs; 0 = all cores)");
