@@ -1,13 +1,14 @@
 # Latency (mean, p99, max, in units of tau) and throughput against offered load on an arbitrated
 # bus, from an `aesim sweep` CSV of scripts/sweeps/arbitrated.toml.
+csv = ARG1; png = ARG2; svg = ARG3  # paths arrive as arguments, never as code
 set datafile separator ","
 set datafile columnheaders
 set logscale xy
 set grid
 set key top left font ",10"
 do for [format in "png svg"] {
-  if (format eq "png") { set terminal pngcairo size 1400,620 font ",11"; set output stem.".png" }
-  if (format eq "svg") { set terminal svg size 1400,620 dynamic font ",11"; set output stem.".svg" }
+  if (format eq "png") { set terminal pngcairo size 1400,620 font ",11"; set output png }
+  if (format eq "svg") { set terminal svg size 1400,620 dynamic font ",11"; set output svg }
   set multiplot layout 1,2 title "Arbitrated bus of the aloha sensor: nothing lost, everything waits (each point a 2 s run)"
   set xlabel "offered load G per bus (fired events x tau)"
   set ylabel "latency / tau"

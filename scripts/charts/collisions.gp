@@ -1,5 +1,6 @@
 # Throughput S and collision fraction against offered load G, from an `aesim sweep` CSV of
-# scripts/sweeps/collisions.toml. Called by aesim sweep with csv='...' and stem='...'.
+# scripts/sweeps/collisions.toml. Called as `gnuplot -c SCRIPT CSV PNG SVG` (by aesim sweep).
+csv = ARG1; png = ARG2; svg = ARG3  # paths arrive as arguments, never as code
 set datafile separator ","
 set datafile columnheaders
 set logscale x
@@ -13,8 +14,8 @@ pt(i) = i == 1 ? 7 : i == 2 ? 5 : i == 3 ? 6 : i == 4 ? 4 : i == 5 ? 9 : 11
 g_of(i) = strcol("group") eq name(i) ? column("offered_load") : NaN
 
 do for [format in "png svg"] {
-  if (format eq "png") { set terminal pngcairo size 1400,620 font ",11"; set output stem.".png" }
-  if (format eq "svg") { set terminal svg size 1400,620 dynamic font ",11"; set output stem.".svg" }
+  if (format eq "png") { set terminal pngcairo size 1400,620 font ",11"; set output png }
+  if (format eq "svg") { set terminal svg size 1400,620 dynamic font ",11"; set output svg }
   set multiplot layout 1,2 title "ALOHA bus of the aloha sensor: simulation against theory (each point a 2 s run)"
   set xlabel "offered load G per bus (fired events x tau)"
   set ylabel "throughput S (delivered events x tau)"

@@ -1,4 +1,5 @@
 # Wall time per simulated second against error for every rung, from `aesim compare` CSV
+csv = ARG1; png = ARG2; svg = ARG3  # paths arrive as arguments, never as code
 max(a, b) = a > b ? a : b
 # (scripts/fidelity_ladder). Exact rungs (error 0) are drawn on the floor of each axis.
 set datafile separator ","
@@ -13,8 +14,8 @@ short(i) = i == 1 ? "letter A" : i == 2 ? "HDR window" : "moving disc"
 is(i) = strcol("scene") eq scene(i)
 label(i) = strcol("rung") . (column("step_s") > 0 ? sprintf(" %gus", column("step_s") * 1e6) : "")
 do for [format in "png svg"] {
-  if (format eq "png") { set terminal pngcairo size 1500,680 font ",10"; set output stem.".png" }
-  if (format eq "svg") { set terminal svg size 1500,680 dynamic font ",10"; set output stem.".svg" }
+  if (format eq "png") { set terminal pngcairo size 1500,680 font ",10"; set output png }
+  if (format eq "svg") { set terminal svg size 1500,680 dynamic font ",10"; set output svg }
   set multiplot layout 1,2 title "aesim fidelity ladder: cost against accuracy (aloha sensor, 0.5 s runs; lines: Pareto fronts)"
   set xlabel "wall time per simulated second (s)"
   set ylabel "RMS firing-time error against the event rung (s)"

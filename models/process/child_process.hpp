@@ -1,0 +1,34 @@
+#pragma once
+#include <sys/types.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace aesim {
+
+// Where a child's standard output and error go: inherited when empty, else this file (truncated).
+struct ChildOutput {
+  std::string stdout_path, stderr_path;
+};
+
+// Starts a program with an argument vector: no shell ever sees any of the strings, so paths and
+// values from users reach the tool as data. `program` is looked up on PATH unless it has a '/'.
+// Throws ToolMissing if it cannot be found, std::runtime_error if it cannot start.
+pid_t spawn_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output = {});
+
+// Waits for a child; returns its exit status, or 128 + the signal that ended it.
+int wait_child(pid_t pid);
+
+// spawn_child then wait_child.
+int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output = {});
+
+// Whether `program` names an executable on PATH (or, with a '/', an executable file).
+bool program_available(const std::string& program);
+
+class ToolMissing : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace aesim
