@@ -1,32 +1,52 @@
 #pragma once
-#include <fstream>
+#include <ostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace aesim {
 
-// A set of output files written to temporary names beside their targets and renamed into place
-// only by commit(), so a run that fails part-way leaves no half-written output. Files not
-// committed are removed when the set is destroyed.
+// An output a command was asked for: the option that named it (for messages) and its path.
+struct OutputPath {
+  std::string option, path;
+};
+
+// Checks, before any work starts, that every named output can be written: its folder exists or
+// can be created and is writable, it is not a folder, it is not one of the inputs, and no two
+// outputs are the same file. Empty paths are skipped. Throws InputError naming the option.
+void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
+
+// A set of output files written to temporary names beside their targets (see temp_files.hpp)
+// and renamed into place only by commit(), all or none: a run that fails part-way, or is
+// interrupted, leaves no half-written output and no temporaries. Files not committed are
+// removed when the set is destroyed.
 class OutputFiles {
  public:
-  OutputFiles() = default;
+  OutputFiles();
   OutputFiles(const OutputFiles&) = delete;
   OutputFiles& operator=(const OutputFiles&) = delete;
   ~OutputFiles();
 
   // Opens a temporary file for `path` (creating its folder); throws InputError if impossible.
   std::ostream& open(const std::string& path);
-  // A temporary name for `path` that someone else writes (e.g. a library), renamed with the rest.
+  // A temporary name for `path` that someone else writes (e.g. a library or a tool), renamed
+  // with the rest. The file exists (empty) when this returns.
   std::string adopt(const std::string& path);
-  // Flushes and renames every file into place.
+  // The temporary file standing for `target` (opened or adopted here) until the commit.
+  std::string temp_path(const std::string& target) const;
+  // Flushes every open file, so that a tool can read a temporary before the commit; throws
+  // OutputError with the system's reason (e.g. no space left on device) if writing failed.
+  void flush();
+  // Flushes and renames every file into place; if a rename fails, the targets are restored.
   void commit();
 
  private:
+  class FileBuffer;
   struct Pending {
     std::string target, temp;
-    std::ofstream stream;
+    std::unique_ptr<FileBuffer> buffer;
+    std::unique_ptr<std::ostream> stream;
+    ~Pending();
   };
   std::vector<std::unique_ptr<Pending>> files_;
 };

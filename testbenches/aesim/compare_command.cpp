@@ -26,6 +26,7 @@ struct CompareOptions {
   std::vector<std::string> sets;
   std::vector<std::string> steps = {"1us", "10us", "100us", "1ms"};
   std::string output = "out/fidelity_ladder.csv";
+  std::string max_events;
 };
 
 struct Rung {
@@ -58,6 +59,13 @@ int compare(CompareOptions opt) {
   for (const std::string& s : opt.steps) {
     rungs.push_back({"fixed_step", Fidelity::FixedStep, ReceiverModel::Reference, parse_si(s, "s", "--steps")});
   }
+  std::vector<std::string> inputs = {opt.sensor};
+  for (const std::string& scene_path : opt.scenes) {
+    const SceneFiles files = find_scene(scene_path);
+    inputs.insert(inputs.end(), files.frames.begin(), files.frames.end());
+    inputs.push_back(files.settings);
+  }
+  check_output_paths({{"-o", opt.output}}, inputs);
   std::vector<Row> rows;
   for (const std::string& scene_path : opt.scenes) {
     const SceneFiles files = find_scene(scene_path);
@@ -65,6 +73,7 @@ int compare(CompareOptions opt) {
     apply_scene_settings(files, base);
     base.apply_overrides(opt.sets);
     base.set("sim.duration", opt.duration);
+    if (!opt.max_events.empty()) base.set("sim.max_events", opt.max_events);
     base.validate();
     base = base.resolved();
     const Scene scene = load_scene(files, base);
@@ -135,6 +144,7 @@ void add_compare_command(CLI::App& app, int& status) {
   cmd->add_option("--set", opt->sets, "Override a parameter for every rung: section.key=value");
   cmd->add_option("--steps", opt->steps, "Steps of the fixed_step baseline")->delimiter(',')->capture_default_str();
   cmd->add_option("-o,--output", opt->output, "CSV file")->capture_default_str();
+  cmd->add_option("--max-events", opt->max_events, "The most work one run may ask for (default 1e8 fired events)");
   cmd->callback([opt, &status] { status = compare(*opt); });
 }
 

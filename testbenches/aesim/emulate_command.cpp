@@ -7,6 +7,7 @@
 #include "aesim/commands.hpp"
 #include "array/address_map.hpp"
 #include "config/input_error.hpp"
+#include "config/limits.hpp"
 #include "config/sensor_config.hpp"
 #include "emulator/emulator.hpp"
 #include "emulator/y4m.hpp"
@@ -22,7 +23,7 @@ namespace {
 
 struct EmulateOptions {
   std::string input, behaviour = "intensity", size, clip = "0,255", queue, out, recon;
-  double threshold = 0, f_max = 20, frame_rate = 0, chaos_in = 0, chaos_out = 0;
+  double threshold = 0, f_max = 20, frame_rate = 0, chaos_in = 0, chaos_out = 0, max_events = 1e8;
   long long events = 0;
   std::uint64_t seed = 1;
 };
@@ -49,14 +50,19 @@ int emulate_command(EmulateOptions opt) {
   if (!(opt.f_max > 0 && opt.f_max <= 1e6)) throw InputError("--f-max: events per frame at full scale, from >0 to 1e6");
   check_probability(opt.chaos_in, "--chaos-in");
   check_probability(opt.chaos_out, "--chaos-out");
-  if (opt.frame_rate < 0) throw InputError("--frame-rate: must be positive");
+  if (!(opt.frame_rate >= 0 && opt.frame_rate <= kMaxFrameRate)) {
+    throw InputError(fmt::format("--frame-rate: must be positive, finite and at most {:g} Hz", kMaxFrameRate));
+  }
+  if (!(opt.max_events >= 1 && opt.max_events <= 1e15)) throw InputError("--max-events: must be from 1 to 1e15");
   if (opt.events < 0) throw InputError("--events: must not be negative");
   s.f_max = opt.f_max;
   s.chaos_in = opt.chaos_in;
   s.chaos_out = opt.chaos_out;
   s.seed = opt.seed;
+  s.max_events = opt.max_events;
 
   std::vector<Image> frames;
+  std::vector<std::string> inputs = {opt.input};
   double rate = 25;
   if (std::filesystem::path(opt.input).extension() == ".y4m") {
     Y4mVideo video = read_y4m(opt.input);
@@ -64,6 +70,7 @@ int emulate_command(EmulateOptions opt) {
     rate = video.frame_rate;
   } else {
     const SceneFiles files = find_scene(opt.input);
+    inputs.insert(inputs.end(), files.frames.begin(), files.frames.end());
     SensorConfig c;
     apply_scene_settings(files, c);
     rate = c.scene.frame_rate;
@@ -80,6 +87,7 @@ int emulate_command(EmulateOptions opt) {
     opt.queue = "out/queue.txt";
     opt.out = "out/emulated.aedat";
   }
+  check_output_paths({{"--queue", opt.queue}, {"--out", opt.out}, {"--recon", opt.recon}}, inputs);
 
   const std::vector<EmulatedEvent> events = emulate(frames, s);
 
@@ -147,6 +155,8 @@ void add_emulate_command(CLI::App& app, int& status) {
   cmd->add_option("--out", opt->out, "AEDAT 2.0 with synthetic timestamps");
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction (.png or .pgm)");
   cmd->add_option("--events", opt->events, "Reconstruct from the first N events (default: all)");
+  cmd->add_option("--max-events", opt->max_events, "The most events (and a hundred times as many pixel visits) the "
+                  "emulation may ask for")->capture_default_str();
   cmd->callback([opt, &status] { status = emulate_command(*opt); });
 }
 

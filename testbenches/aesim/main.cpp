@@ -10,8 +10,10 @@
 
 #include "aesim/commands.hpp"
 #include "config/input_error.hpp"
+#include "io/temp_files.hpp"
 
 int sc_main(int argc, char* argv[]) {
+  aesim::install_signal_cleanup();
   CLI::App app{"aesim: cycle-level simulator of address-event (ALOHA) image sensors", "aesim"};
   app.require_subcommand(1);
   int status = 0;
@@ -35,6 +37,15 @@ int sc_main(int argc, char* argv[]) {
   } catch (const aesim::InputError& e) {
     std::fprintf(stderr, "aesim: %s\n", e.what());
     return 2;
+  } catch (const aesim::OutputError& e) {
+    std::fprintf(stderr, "aesim: %s\n", e.what());
+    return 1;
+  } catch (const aesim::Interrupted& e) {
+    std::fprintf(stderr, "aesim: interrupted (signal %d); no output written\n", e.signal);
+    return 128 + e.signal;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "aesim: out of memory (a limit the checks before the run did not foresee)\n");
+    return 1;
   } catch (const sc_core::sc_report& e) {
     std::string what = e.what();
     for (char& c : what) c = c == '\n' ? ' ' : c;

@@ -24,6 +24,7 @@ int recon(const ReconOptions& opt) {
   if (opt.count == 0 || opt.count < -1) throw InputError("--events: must be a positive count");
   const double window = opt.window.empty() ? 0 : parse_si(opt.window, "s", "--window");
   if (!opt.window.empty() && window <= 0) throw InputError("--window: must be positive");
+  check_output_paths({{"-o", opt.output}}, {opt.events});
 
   const EventRecording rec = load_events(opt.events);
   std::vector<AddressEvent> chosen = rec.events;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -30,6 +31,7 @@ struct RunOptions {
   std::vector<std::string> sets;
   std::string out, csv, recon, vcd, summary, truth;
   std::string vcd_from = "0s", vcd_to;
+  std::string max_events;
 };
 
 SensorConfig resolve_config(const RunOptions& opt, const SceneFiles& scene) {
@@ -37,6 +39,7 @@ SensorConfig resolve_config(const RunOptions& opt, const SceneFiles& scene) {
   apply_scene_settings(scene, config);
   config.apply_overrides(opt.sets);
   if (!opt.duration.empty()) config.set("sim.duration", opt.duration);
+  if (!opt.max_events.empty()) config.set("sim.max_events", opt.max_events);
   config.validate();
   return config.resolved();
 }
@@ -58,9 +61,10 @@ int run(RunOptions opt) {
   if (request.waveforms) {
     request.vcd_from = parse_si(opt.vcd_from, "s", "--vcd-from");
     request.vcd_to = opt.vcd_to.empty() ? config.sim.duration : parse_si(opt.vcd_to, "s", "--vcd-to");
-    if (request.vcd_from < 0 || request.vcd_to <= request.vcd_from) {
-      throw InputError("--vcd-from/--vcd-to: need 0 <= from < to");
+    if (!(request.vcd_from >= 0 && request.vcd_from < config.sim.duration && request.vcd_to > request.vcd_from)) {
+      throw InputError("--vcd-from/--vcd-to: need 0 <= from < to and from < sim.duration");
     }
+    request.vcd_to = std::min(request.vcd_to, config.sim.duration);
   }
   const Fidelity fidelity = resolve_fidelity(config, request);
   if (!opt.recon.empty()) {
@@ -74,21 +78,30 @@ int run(RunOptions opt) {
     throw InputError("sim.duration: AEDAT 2.0 timestamps are int32 microseconds, so --out allows at most 2147 s");
   }
 
-  const Scene scene = load_scene(scene_files, config);
-  const Photocurrents light(scene, config.pixel);
   const AddressMap map(config.array);
-  OutputFiles files;
   std::vector<std::string> rtl_traces;
   if (request.waveforms && fidelity == Fidelity::Cycle && config.receiver.model == ReceiverModel::Rtl) {
-    // Verilator writes these during the run; they are renamed into place with the rest.
     const std::string stem = opt.vcd.size() > 4 && opt.vcd.substr(opt.vcd.size() - 4) == ".vcd"
                                  ? opt.vcd.substr(0, opt.vcd.size() - 4)
                                  : opt.vcd;
+    for (int t = 0; t < map.tiles(); ++t) rtl_traces.push_back(fmt::format("{}.tile{}.rtl.vcd", stem, t));
+  }
+  // Every output is checked before the run, so that a bad path costs no simulation and leaves nothing.
+  std::vector<OutputPath> outputs = {{"--out", opt.out},     {"--csv", opt.csv},     {"--recon", opt.recon},
+                                     {"--summary", opt.summary}, {"--truth", opt.truth}, {"--vcd", opt.vcd}};
+  for (const std::string& trace : rtl_traces) outputs.push_back({"--vcd (RTL trace)", trace});
+  std::vector<std::string> inputs = scene_files.frames;
+  inputs.push_back(scene_files.settings);
+  inputs.push_back(opt.sensor);
+  check_output_paths(outputs, inputs);
+
+  const Scene scene = load_scene(scene_files, config);
+  const Photocurrents light(scene, config.pixel);
+  OutputFiles files;
+  if (!rtl_traces.empty()) {
+    // Verilator writes these during the run; they are renamed into place with the rest.
     std::vector<std::string> temps;
-    for (int t = 0; t < map.tiles(); ++t) {
-      rtl_traces.push_back(fmt::format("{}.tile{}.rtl.vcd", stem, t));
-      temps.push_back(files.adopt(rtl_traces.back()));
-    }
+    for (const std::string& trace : rtl_traces) temps.push_back(files.adopt(trace));
     request.rtl_trace_path = [temps](int tile) { return temps[static_cast<std::size_t>(tile)]; };
   }
   const SimulationResult result = simulate(config, light, request);
@@ -169,6 +182,8 @@ void add_run_command(CLI::App& app, int& status) {
   cmd->add_option("--vcd-to", opt->vcd_to, "End of the VCD window (default: end of the run)");
   cmd->add_option("--truth", opt->truth, "Ground truth CSV: every fired event, its fate, delivery time and latency");
   cmd->add_option("--summary", opt->summary, "Summary JSON");
+  cmd->add_option("--max-events", opt->max_events,
+                  "The most work the run may ask for, in fired events (default 1e8; same as --set sim.max_events=)");
   cmd->callback([opt, &status] { status = run(*opt); });
 }
 

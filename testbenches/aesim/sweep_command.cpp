@@ -1,5 +1,4 @@
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,18 +17,17 @@
 #include <nlohmann/json.hpp>
 
 #include "aesim/commands.hpp"
-#include "config/input_error.hpp"
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/temp_files.hpp"
+#include "process/child_process.hpp"
 #ifdef AESIM_HAVE_MPI
 #include <mpi.h>
 #endif
 
 #include "sizing/sizing_report.hpp"
 #include "sweep/sweep_spec.hpp"
-
-extern char** environ;
 
 namespace aesim {
 namespace fs = std::filesystem;
@@ -142,7 +140,19 @@ class PointRunner {
       }
       int status = 0;
       const pid_t pid = waitpid(-1, &status, 0);
-      if (pid < 0) throw std::runtime_error("waitpid failed");
+      if (const int sig = interrupt_requested()) {
+        // Finished points are in the journal; the ones in flight are stopped and rerun on resume.
+        if (pid > 0) running.erase(pid);
+        for (const auto& [child, unused] : running) kill(child, SIGTERM);
+        for (const auto& [child, unused] : running) waitpid(child, nullptr, 0);
+        std::fprintf(stderr, "aesim sweep: stopped; the finished points are kept in %s: the same command resumes\n",
+                     journal_path_.c_str());
+        throw Interrupted(sig);
+      }
+      if (pid < 0) {
+        if (errno == EINTR) continue;
+        throw std::runtime_error(fmt::format("waitpid: {}", std::strerror(errno)));
+      }
       const auto it = running.find(pid);
       if (it == running.end()) continue;
       const std::size_t index = it->second;
@@ -167,23 +177,12 @@ class PointRunner {
  private:
   pid_t start(std::size_t index) {
     const SweepPoint& p = spec_.points[index];
-    std::vector<std::string> args = {"aesim", "run", "--sensor", spec_.sensor, "--scene", p.scene};
+    std::vector<std::string> args = {"run", "--sensor", spec_.sensor, "--scene", p.scene};
     if (!spec_.duration.empty()) args.insert(args.end(), {"--duration", spec_.duration});
     for (const auto& [k, v] : p.sets) args.insert(args.end(), {"--set", k + "=" + v});
     args.insert(args.end(), {"--summary", (work_ / fmt::format("point_{}.json", index)).string()});
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const std::string log = (work_ / fmt::format("point_{}.log", index)).string();
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = 0;
-    const int rc = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) throw std::runtime_error(fmt::format("cannot start a sweep point: {}", std::strerror(rc)));
-    return pid;
+    return spawn_child("/proc/self/exe", args,
+                       {"/dev/null", (work_ / fmt::format("point_{}.log", index)).string()});
   }
 
   static void append(int fd, const std::string& line) {
@@ -252,6 +251,22 @@ bool launched_by_mpirun() {
   return false;
 }
 
+// Draws the spec's chart from the CSV's temporary file into temporaries of STEM.png and STEM.svg,
+// committed with the CSV. gnuplot gets the paths as arguments (`gnuplot -c SCRIPT CSV PNG SVG`,
+// read as ARG1..ARG3), never inside a command or an expression. Returns false if gnuplot is absent.
+bool draw_chart(OutputFiles& files, const std::string& script, const std::string& csv, const std::string& stem) {
+  if (!program_available("gnuplot")) {
+    std::fprintf(stderr, "aesim sweep: gnuplot not found; chart skipped (apt-get install gnuplot-nox)\n");
+    return false;
+  }
+  files.flush();
+  const std::string png = files.adopt(stem + ".png"), svg = files.adopt(stem + ".svg");
+  if (run_child("gnuplot", {"-c", script, files.temp_path(csv), png, svg}) != 0) {
+    throw OutputError(fmt::format("gnuplot failed on the chart script '{}' (its message above); nothing written", script));
+  }
+  return true;
+}
+
 int sweep(SweepOptions opt) {
   Share share;
   if (launched_by_mpirun()) {
@@ -276,14 +291,27 @@ int sweep(SweepOptions opt) {
   if (fs::path(opt.output).extension() != ".csv") throw InputError(fmt::format("-o '{}': use a .csv file name", opt.output));
   int jobs = opt.jobs >= 0 ? opt.jobs : spec.jobs;
   if (jobs == 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const fs::path folder = fs::path(opt.output).parent_path();
+  const std::string stem = (folder / fs::path(opt.output).stem()).string();
+  const std::string report_path = stem + ".report.md";
+  const bool chart = !spec.chart.empty() && !opt.no_chart;
+  std::vector<std::string> inputs = {opt.spec, spec.sensor, spec.chart};
+  for (const SweepPoint& p : spec.points) inputs.push_back(p.scene);
+  check_output_paths({{"-o", opt.output},
+                      {"the sweep report", spec.constraints.empty() ? "" : report_path},
+                      {"the chart", chart ? stem + ".png" : ""},
+                      {"the chart", chart ? stem + ".svg" : ""},
+                      {"the resume journal", opt.output + ".partial"}},
+                     inputs);
 
+  const Cooperative stop_politely;  // a signal stops the points and keeps the journal for a resume
   const auto wall_start = std::chrono::steady_clock::now();
   OutputFiles files;
   // Under MPI only rank 0 writes; the other ranks work in their own folders beside it.
   std::ostream* csv_stream = share.rank == 0 ? &files.open(opt.output) : nullptr;
-  fs::create_directories(fs::path(opt.output).parent_path().empty() ? fs::path(".") : fs::path(opt.output).parent_path());
-  const fs::path work = fs::path(opt.output).parent_path() /
-                        fmt::format(".{}.points.{}.{}", fs::path(opt.output).stem().string(), getpid(), share.rank);
+  fs::create_directories(folder.empty() ? fs::path(".") : folder);
+  remove_stale_temps(folder.string());
+  const fs::path work = temp_name_for(opt.output, fmt::format(".points{}", share.rank));
   fs::create_directories(work);
   struct Cleanup {
     fs::path dir;
@@ -347,9 +375,8 @@ int sweep(SweepOptions opt) {
     if (!spec.constraints.empty()) csv << ',' << (design_feasible[per_point[i].label] ? 1 : 0);
     csv << '\n';
   }
-  const std::string report_path =
-      (fs::path(opt.output).parent_path() / (fs::path(opt.output).stem().string() + ".report.md")).string();
   if (!spec.constraints.empty()) files.open(report_path) << sizing_report(design, spec.constraints, analysis);
+  const bool drawn = chart && draw_chart(files, spec.chart, opt.output, stem);
   files.commit();
   std::error_code ignored;
   fs::remove(journal, ignored);  // complete: the CSV holds it all
@@ -360,17 +387,7 @@ int sweep(SweepOptions opt) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   fmt::print("aesim sweep: {} points on {} jobs in {:.1f} s -> {}\n", spec.points.size(), jobs, wall, opt.output);
 
-  if (!spec.chart.empty() && !opt.no_chart) {
-    const std::string stem = (fs::path(opt.output).parent_path() / fs::path(opt.output).stem()).string();
-    const std::string cmd = fmt::format("gnuplot -e \"csv='{}'; stem='{}'\" '{}'", opt.output, stem, spec.chart);
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-      std::fprintf(stderr, "aesim sweep: gnuplot not found; chart skipped (apt-get install gnuplot-nox)\n");
-    } else if (std::system(cmd.c_str()) != 0) {
-      throw std::runtime_error("gnuplot failed on " + spec.chart);
-    } else {
-      fmt::print("  chart {}.png, {}.svg\n", stem, stem);
-    }
-  }
+  if (drawn) fmt::print("  chart {}.png, {}.svg\n", stem, stem);
   return 0;
 }
 
