@@ -26,7 +26,17 @@ namespace aesim {
 std::vector<AddressEvent> queue_events(const SensorConfig& config, const Photocurrents& light, const AddressMap& map,
                                        std::uint64_t* empty_lit_frames = nullptr);
 
+// The work queues may take over a run: entries (events) and pixel visits (iterations x pixels),
+// counted before each frame's queue is built; exceeding either is an InputError naming `limit`.
+struct QueueBudget {
+  double max_entries = 1e8, max_visits = 1e10;
+  const char* limit = "sim.max_events";
+  double entries = 0, visits = 0;
+};
+
 // One frame's queue as pixel indices (y * width + x) in queue order: eq. 3 on normalised values.
-std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double full_scale_rate, double frame_time);
+// With a budget, the frame's work is charged to it first.
+std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double full_scale_rate, double frame_time,
+                                       QueueBudget* budget = nullptr);
 
 }  // namespace aesim

@@ -6,11 +6,11 @@
 #include <map>
 
 #include <fmt/format.h>
-#include <toml.hpp>
 
 #include "array/address_map.hpp"
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
+#include "config/toml_file.hpp"
 #include "sizing/power_model.hpp"
 #include "units/si_units.hpp"
 
@@ -141,6 +141,7 @@ const std::map<std::string, KeySpec>& registry() {
                kFidelity);
     integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; });
     real("sim.step", "s", [](auto& c) -> auto& { return c.sim.step; });
+    real("sim.max_events", "", [](auto& c) -> auto& { return c.sim.max_events; });
     real("power.vdd", "V", [](auto& c) -> auto& { return c.power.vdd; });
     real("power.e_pixel_event", "J", [](auto& c) -> auto& { return c.power.e_pixel_event; });
     real("power.c_bus_line", "F", [](auto& c) -> auto& { return c.power.c_bus_line; });
@@ -232,22 +233,31 @@ void SensorConfig::validate() const {
           "relative standard deviation must be within [0, 1]");
   require(array.rows >= 1 && array.rows <= 65535, "array.rows", "must be from 1 to 65535");
   require(array.cols >= 1 && array.cols <= 65535, "array.cols", "must be from 1 to 65535");
-  require(static_cast<long long>(array.rows) * array.cols <= (1LL << 26), "array.rows",
-          "array larger than 64 Mpixel");
+  require(static_cast<long long>(array.rows) * array.cols <= kMaxArrayPixels, "array.rows",
+          fmt::format("array of {} pixels, more than the {} (4096 x 4096) aesim models", 
+                      static_cast<long long>(array.rows) * array.cols, kMaxArrayPixels));
   require(array.tile_rows >= 1 && array.tile_rows <= array.rows, "array.tile_rows",
           "must be between 1 and array.rows");
   require(array.tile_cols >= 1 && array.tile_cols <= array.cols, "array.tile_cols",
           "must be between 1 and array.cols");
   const AddressMap map(array);
+  require(map.tiles() <= kMaxTiles, "array.tile_rows",
+          fmt::format("{} tiles, more than the {} aesim models (each has its own bus and receiver)", map.tiles(),
+                      kMaxTiles));
   require(map.bus_bits() + address_bits_for(map.tiles()) <= 31,
           "array.tile_rows", "tile address and tile number do not fit a 31-bit AEDAT address");
   require(bus.t_event > 0, "bus.t_event", "must be positive");
-  require(receiver.clock > 0, "receiver.clock", "must be positive");
-  require(receiver.tick > 0, "receiver.tick", "must be positive");
+  // A clock period and a tick are whole numbers of SystemC's 1 ps step, and a run's stamps must
+  // fit 64 bits: the ranges keep every conversion to integers exact.
+  require(receiver.clock >= 1 && receiver.clock <= 1e12, "receiver.clock", "must be from 1 Hz to 1 THz");
+  require(receiver.tick >= 1e-12 && receiver.tick <= 1, "receiver.tick", "must be from 1 ps to 1 s");
+  require(bus.t_event <= 1, "bus.t_event", "must be at most 1 s");
+  require(pixel.t_reset <= 1e3, "pixel.t_reset", "must be at most 1000 s");
   require(receiver.fifo_depth >= 1, "receiver.fifo_depth", "must be at least 1");
   // SystemC time is a 64-bit count of 1 ps steps; keep well inside it.
   require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
           "must be positive and at most 1e6 s (SystemC's 1 ps time base)");
+  require(sim.max_events >= 1 && sim.max_events <= 1e15, "sim.max_events", "must be from 1 to 1e15");
   require(sim.threads >= 0 && sim.threads <= 1024, "sim.threads", "must be from 0 (all cores) to 1024");
   require(power.vdd > 0, "power.vdd", "must be positive");
   require(power.e_pixel_event >= 0 && power.c_bus_line >= 0 && power.e_receiver_event >= 0 && power.p_static_pixel >= 0,
@@ -265,13 +275,7 @@ void SensorConfig::validate() const {
 }
 
 void apply_toml_file(SensorConfig& config, const std::string& path, const std::string& section) {
-  toml::value doc;
-  try {
-    doc = toml::parse(path);
-  } catch (const std::exception& e) {
-    const std::string msg = e.what();
-    throw InputError(fmt::format("'{}': malformed TOML: {}", path, msg.substr(0, msg.find('\n'))));
-  }
+  const toml::value doc = parse_toml_file(path, fmt::format("'{}'", path));
   auto apply = [&](const std::string& key, const toml::value& value) {
     std::string text;
     if (value.is_string()) text = value.as_string().str;

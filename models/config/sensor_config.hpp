@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/limits.hpp"
 #include "sizing/power_model.hpp"
 
 namespace aesim {
@@ -51,6 +52,9 @@ struct SensorConfig {
     Fidelity fidelity = Fidelity::Auto;
     int threads = 1;  // event fidelity: tiles simulated in parallel on this many threads (0: all cores)
     double step = 1e-6;  // s, the clock of the fixed_step baseline
+    // The most work a run may ask for, in fired events (or frame wake-ups or fixed steps of a
+    // pixel): estimated before the run starts, refused beyond this (see run_budget.hpp).
+    double max_events = 1e8;
   } sim;
   PowerParams power;  // models/sizing/power_model.hpp
   struct Light {

@@ -2,6 +2,10 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "config/input_error.hpp"
+
 #include "array/queue_model.hpp"
 #include "random/splitmix64.hpp"
 #include "scene/resample.hpp"
@@ -11,6 +15,7 @@ namespace aesim {
 std::vector<EmulatedEvent> emulate(const std::vector<Image>& frames, const EmulatorSettings& s) {
   std::vector<EmulatedEvent> events;
   SplitMix64 rng = stream_for(s.seed, Stream::InitialCharge, 0xE0);
+  QueueBudget budget{s.max_events, s.max_events * 100, "--max-events"};
   const Image* previous = nullptr;
   Image prepared_previous;
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -19,10 +24,10 @@ std::vector<EmulatedEvent> emulate(const std::vector<Image>& frames, const Emula
     const Image frame = clip_levels(resample_area(frames[k], w, h), s.clip_low, s.clip_high);
     std::vector<std::uint32_t> queue;
     switch (s.behaviour) {
-      case Behaviour::Intensity: queue = queue_order(intensity_map(frame, s.threshold).pixels, s.f_max, 1.0); break;
-      case Behaviour::Edge: queue = queue_order(edge_map(frame, s.threshold).pixels, s.f_max, 1.0); break;
+      case Behaviour::Intensity: queue = queue_order(intensity_map(frame, s.threshold).pixels, s.f_max, 1.0, &budget); break;
+      case Behaviour::Edge: queue = queue_order(edge_map(frame, s.threshold).pixels, s.f_max, 1.0, &budget); break;
       case Behaviour::Motion:
-        if (previous) queue = queue_order(motion_map(frame, *previous, s.threshold).pixels, s.f_max, 1.0);
+        if (previous) queue = queue_order(motion_map(frame, *previous, s.threshold).pixels, s.f_max, 1.0, &budget);
         break;
       case Behaviour::Centroid:
         if (previous) {
@@ -32,6 +37,12 @@ std::vector<EmulatedEvent> emulate(const std::vector<Image>& frames, const Emula
           }
         }
         break;
+    }
+    // Random entries can at most double the queue: charge them before they exist.
+    budget.entries += s.chaos_in > 0 ? static_cast<double>(queue.size()) : 0.0;
+    if (!(budget.entries <= budget.max_entries)) {
+      throw InputError(fmt::format("--chaos-in: the frames would hold up to {:.3g} events (limit {:.3g}, --max-events)",
+                                   budget.entries, budget.max_entries));
     }
     std::vector<std::uint32_t> kept;
     for (std::uint32_t i : queue) {

@@ -32,6 +32,7 @@ struct EmulatorSettings {
   double frame_rate = 25;    // Hz, for the synthetic timestamps
   double chaos_in = 0, chaos_out = 0;
   std::uint64_t seed = 1;
+  double max_events = 1e8;   // the work limit (--max-events), charged frame by frame before the work
 };
 
 struct EmulatedEvent {

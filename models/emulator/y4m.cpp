@@ -7,12 +7,21 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "config/input_error.hpp"
+#include "config/limits.hpp"
 
 namespace aesim {
 
 Y4mVideo read_y4m(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("video '{}' not found", path));
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxInputFileBytes) {
+    throw InputError(fmt::format("video '{}': {} bytes, more than the {} MiB aesim reads", path, size,
+                                 kMaxInputFileBytes >> 20));
+  }
   std::ifstream in(path, std::ios::binary);
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   auto fail = [&](const std::string& why) { throw InputError(fmt::format("video '{}': {}", path, why)); };
@@ -33,14 +42,16 @@ Y4mVideo read_y4m(const std::string& path) {
         const auto colon = value.find(':');
         const double num = std::stod(value.substr(0, colon));
         const double den = colon == std::string::npos ? 1.0 : std::stod(value.substr(colon + 1));
-        if (!(num > 0 && den > 0)) fail("frame rate must be positive");
         video.frame_rate = num / den;
+        if (!(num > 0 && den > 0 && std::isfinite(video.frame_rate) && video.frame_rate <= kMaxFrameRate)) {
+          fail(fmt::format("frame rate F{} must be positive, finite and at most {:g} Hz", value, kMaxFrameRate));
+        }
       }
     } catch (const std::logic_error&) {
       fail(fmt::format("malformed header tag '{}'", tag));
     }
   }
-  if (width <= 0 || height <= 0 || width > 65535 || height > 65535 || width * height > (1LL << 26)) {
+  if (width <= 0 || height <= 0 || width > 65535 || height > 65535 || width * height > kMaxArrayPixels) {
     fail(fmt::format("bad frame size {}x{}", width, height));
   }
   const std::size_t luma = static_cast<std::size_t>(width * height);

@@ -96,6 +96,10 @@ AedatFile read_aedat(const std::string& path) {
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     file.records[i].address = get_be32(p + 8 * i);
     file.records[i].timestamp_us = static_cast<std::int32_t>(get_be32(p + 8 * i + 4));
+    if (file.records[i].timestamp_us < 0) {
+      throw InputError(fmt::format("event file '{}': event {} has a negative timestamp ({} us)", path, i,
+                                   file.records[i].timestamp_us));
+    }
     if (i > 0 && file.records[i].timestamp_us < file.records[i - 1].timestamp_us) {
       throw InputError(fmt::format("event file '{}': timestamps decrease at event {}", path, i));
     }
@@ -111,7 +115,12 @@ std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, 
     const double t_us = static_cast<double>(timestamp_ticks(e.t, tick)) * (tick / 1e-6);
     AedatRecord r;
     r.address = (e.tile << map.bus_bits()) | e.bus_address;
-    r.timestamp_us = static_cast<std::int32_t>(timestamp_ticks(t_us * 1e-6, 1e-6));
+    const std::uint64_t stamp = timestamp_ticks(t_us * 1e-6, 1e-6);
+    if (stamp > 0x7FFFFFFFu) {
+      throw InputError(fmt::format("AEDAT 2.0 stamps are int32 microseconds: an event at {:.6g} s does not fit "
+                                   "(at most 2147 s)", e.t));
+    }
+    r.timestamp_us = static_cast<std::int32_t>(stamp);
     out.push_back(r);
   }
   return out;

@@ -62,6 +62,11 @@ EventRecording from_csv(const std::string& path) {
     rec.height = std::max(rec.height, static_cast<int>(e.y) + 1);
     rec.tiles = std::max(rec.tiles, static_cast<int>(e.tile) + 1);
   }
+  if (static_cast<long long>(rec.width) * rec.height > kMaxArrayPixels) {
+    throw InputError(fmt::format("event file '{}': coordinates up to ({}, {}) span {}x{} pixels, more than the {} "
+                                 "aesim images", path, rec.width - 1, rec.height - 1, rec.width, rec.height,
+                                 kMaxArrayPixels));
+  }
   return rec;
 }
 

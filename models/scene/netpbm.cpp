@@ -10,16 +10,22 @@
 #include <fmt/format.h>
 
 #include "config/input_error.hpp"
+#include "config/limits.hpp"
 
 namespace aesim {
 namespace {
 
 constexpr long long kMaxSide = 1 << 16;
-constexpr long long kMaxPixels = 1LL << 26;
 
 std::string slurp(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw InputError(fmt::format("scene file '{}' not found", path));
+  }
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxInputFileBytes) {
+    throw InputError(fmt::format("scene file '{}': {} bytes, more than the {} MiB aesim reads", path, size,
+                                 kMaxInputFileBytes >> 20));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("scene file '{}' cannot be opened", path));
@@ -48,6 +54,8 @@ class HeaderReader {
     if (v < lo || v > hi) fail(fmt::format("{} {} out of range [{}, {}]", what, v, lo, hi));
     return v;
   }
+
+  std::size_t remaining() const { return data_.size() - std::min(pos_, data_.size()); }
 
   // The single whitespace byte that ends a binary header.
   std::size_t data_start() {
@@ -88,8 +96,8 @@ std::string read_preamble(HeaderReader& header, const std::string& data, const c
   header.token();
   img.width = static_cast<int>(header.integer("width", 1, kMaxSide));
   img.height = static_cast<int>(header.integer("height", 1, kMaxSide));
-  if (static_cast<long long>(img.width) * img.height > kMaxPixels) {
-    header.fail(fmt::format("{}x{} exceeds 64 Mpixel", img.width, img.height));
+  if (static_cast<long long>(img.width) * img.height > kMaxArrayPixels) {
+    header.fail(fmt::format("{}x{} is more than the {} pixels aesim reads", img.width, img.height, kMaxArrayPixels));
   }
   return magic;
 }
@@ -103,8 +111,12 @@ Image read_pgm(const std::string& path) {
   const std::string magic = read_preamble(header, data, "P2", "P5", "PGM", img);
   const long long maxval = header.integer("maxval", 1, 65535);
   const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
-  img.pixels.resize(count);
   const double scale = 1.0 / static_cast<double>(maxval);
+  // Every ASCII sample takes a digit and a separator: a header cannot promise more than the file holds.
+  if (magic == "P2" && header.remaining() + 1 < 2 * count) {
+    header.fail(fmt::format("truncated pixel data (room for at most {} of {} values)", (header.remaining() + 1) / 2,
+                            count));
+  }
 
   if (magic == "P5") {
     const std::size_t start = header.data_start();
@@ -113,6 +125,7 @@ Image read_pgm(const std::string& path) {
       header.fail(fmt::format("truncated pixel data ({} of {} bytes)", data.size() - std::min(data.size(), start),
                               count * bytes_per));
     }
+    img.pixels.resize(count);
     const auto* p = reinterpret_cast<const unsigned char*>(data.data() + start);
     for (std::size_t i = 0; i < count; ++i) {
       const unsigned v = bytes_per == 2 ? (unsigned(p[2 * i]) << 8) | p[2 * i + 1] : p[i];
@@ -120,6 +133,7 @@ Image read_pgm(const std::string& path) {
       img.pixels[i] = static_cast<double>(v) * scale;
     }
   } else {
+    img.pixels.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
       img.pixels[i] = static_cast<double>(header.integer("pixel value", 0, maxval)) * scale;
     }
@@ -163,12 +177,16 @@ Image read_pfm(const std::string& path) {
     const int y = img.height - 1 - row;
     for (int x = 0; x < img.width; ++x) {
       const std::size_t base = (static_cast<std::size_t>(row) * img.width + x) * channels;
+      for (int c = 0; c < channels; ++c) {
+        const double v = sample(base + static_cast<std::size_t>(c));
+        if (!std::isfinite(v) || v < 0) {
+          header.fail(fmt::format("pixel ({}, {}){} is {} (values must be finite and >= 0)", x, y,
+                                  channels == 1 ? "" : fmt::format(" channel {}", c), v));
+        }
+      }
       const double v = channels == 1 ? double(sample(base))
                                      : 0.2126 * sample(base) + 0.7152 * sample(base + 1) +
                                            0.0722 * sample(base + 2);
-      if (!std::isfinite(v) || v < 0) {
-        header.fail(fmt::format("pixel ({}, {}) is {} (values must be finite and >= 0)", x, y, v));
-      }
       img.pixels[static_cast<std::size_t>(y) * img.width + x] = v;
     }
   }

@@ -18,6 +18,8 @@ class Photocurrents {
 
   std::size_t pixels() const { return pixels_; }
   std::size_t frames() const { return currents_.size() / pixels_; }
+  double frame_period() const { return period_; }
+  bool loops() const { return loop_; }
   double boundary_time(std::uint64_t boundary) const { return static_cast<double>(boundary) * period_; }
   // Which frame is shown after `boundary`: sequences loop or hold their last frame.
   std::size_t frame_at(std::uint64_t boundary) const;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -90,15 +92,40 @@ Scene load_scene(const SceneFiles& files, const SensorConfig& config) {
   return scene;
 }
 
+std::vector<double> frame_exposures(std::size_t frames, double period, bool loop, double duration) {
+  std::vector<double> shown(frames, 0.0);
+  if (frames == 1) {
+    shown[0] = duration;
+    return shown;
+  }
+  // Frame k starts at k * period; `started` counts the k with k * period < duration.
+  double estimate = std::ceil(duration / period);
+  while (estimate > 0 && (estimate - 1) * period >= duration) estimate -= 1;
+  while (estimate * period < duration) estimate += 1;
+  const auto started = static_cast<std::uint64_t>(estimate);
+  const std::uint64_t full = started - 1;  // every started frame but the last lasts a whole period
+  const std::uint64_t n = frames;
+  auto index = [&](std::uint64_t k) { return loop ? k % n : std::min<std::uint64_t>(k, n - 1); };
+  if (loop) {
+    for (std::uint64_t f = 0; f < n; ++f) {
+      shown[f] = static_cast<double>(full / n + (f < full % n ? 1 : 0)) * period;
+    }
+  } else {
+    for (std::uint64_t f = 0; f + 1 < n && f < full; ++f) shown[f] = period;
+    if (full > n - 1) shown[n - 1] = static_cast<double>(full - (n - 1)) * period;
+  }
+  shown[index(full)] += duration - static_cast<double>(full) * period;
+  return shown;
+}
+
 Image mean_frame(const Scene& scene, double duration) {
   Image mean = scene.frames.front();
   if (scene.frames.size() == 1) return mean;
   std::fill(mean.pixels.begin(), mean.pixels.end(), 0.0);
-  for (std::uint64_t k = 0;; ++k) {
-    const double start = static_cast<double>(k) * scene.frame_period;
-    if (start >= duration) break;
-    const double weight = std::min(scene.frame_period, duration - start) / duration;
-    const std::size_t f = scene.loop ? k % scene.frames.size() : std::min<std::size_t>(k, scene.frames.size() - 1);
+  const std::vector<double> shown = frame_exposures(scene.frames.size(), scene.frame_period, scene.loop, duration);
+  for (std::size_t f = 0; f < shown.size(); ++f) {
+    const double weight = shown[f] / duration;
+    if (weight == 0) continue;
     for (std::size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += weight * scene.frames[f].pixels[i];
   }
   return mean;

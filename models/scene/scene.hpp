@@ -32,6 +32,10 @@ std::vector<Image> read_frames(const SceneFiles& files);
 
 Scene load_scene(const SceneFiles& files, const SensorConfig& config);
 
+// How long each of `frames` frames is shown within [0, duration] when a new frame starts every
+// `period` (sequences loop or hold their last frame). O(frames), however many boundaries pass.
+std::vector<double> frame_exposures(std::size_t frames, double period, bool loop, double duration);
+
 // The light each pixel saw, averaged over [0, duration], as a fraction of full scale.
 Image mean_frame(const Scene& scene, double duration);
 

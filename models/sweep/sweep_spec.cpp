@@ -6,10 +6,10 @@
 #include <map>
 
 #include <fmt/format.h>
-#include <toml.hpp>
 
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
+#include "config/toml_file.hpp"
 #include "config/sensor_config.hpp"
 #include "random/splitmix64.hpp"
 #include "scene/scene.hpp"
@@ -101,13 +101,7 @@ std::string resolve_path(const std::string& p, const fs::path& spec_dir) {
 
 SweepSpec load_sweep_spec(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(fmt::format("sweep spec '{}' not found", path));
-  Value doc;
-  try {
-    doc = toml::parse<toml::discard_comments, std::map, std::vector>(path);
-  } catch (const std::exception& e) {
-    const std::string msg = e.what();
-    throw InputError(fmt::format("sweep spec '{}': malformed TOML: {}", path, msg.substr(0, msg.find('\n'))));
-  }
+  const Value doc = parse_toml_file<toml::discard_comments, std::map, std::vector>(path, fmt::format("sweep spec '{}'", path));
   const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
   SweepSpec spec;
   spec.path = path;
@@ -117,7 +111,10 @@ SweepSpec load_sweep_spec(const std::string& path) {
     const std::string where = fmt::format("sweep spec '{}': {}", path, key);
     if (key == "sensor") spec.sensor = scalar_text(value, where);
     else if (key == "duration") spec.duration = scalar_text(value, where);
-    else if (key == "chart") spec.chart = resolve_path(scalar_text(value, where), dir);
+    else if (key == "chart") {
+      spec.chart = resolve_path(scalar_text(value, where), dir);
+      if (!fs::is_regular_file(spec.chart)) throw InputError(fmt::format("{}: chart script '{}' not found", where, spec.chart));
+    }
     else if (key == "jobs") {
       if (!value.is_integer() || value.as_integer() < 0 || value.as_integer() > 1024) {
         throw InputError(where + ": must be a whole number from 0 (all cores) to 1024");
@@ -184,10 +181,14 @@ SweepSpec load_sweep_spec(const std::string& path) {
       }
     }
     // Cartesian product, last axis fastest, scenes outermost; or seeded draws from it.
+    // Counted against the limit factor by factor, so that no product can wrap around.
     std::size_t count = scenes.size();
-    for (const auto& axis : axes) count *= samples > 0 ? 1 : axis.second.size();
-    if (samples > 0) count *= static_cast<std::size_t>(samples);
-    if (spec.points.size() + count > kMaxPoints) {
+    auto grow = [&](std::size_t factor) {
+      count = factor != 0 && count > kMaxPoints / factor ? kMaxPoints + 1 : count * factor;
+    };
+    for (const auto& axis : axes) grow(samples > 0 ? 1 : axis.second.size());
+    if (samples > 0) grow(static_cast<std::size_t>(samples));
+    if (count > kMaxPoints - spec.points.size()) {
       throw InputError(fmt::format("sweep spec '{}': more than {} design points", path, kMaxPoints));
     }
     if (samples > 0) {

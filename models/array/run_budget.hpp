@@ -1,0 +1,30 @@
+#pragma once
+#include "config/sensor_config.hpp"
+#include "scene/photocurrents.hpp"
+
+namespace aesim {
+
+// The work a run asks for, estimated from the scene and the parameters before anything is
+// allocated for it, so that an absurd value (a huge current with no reset time, a frame rate in
+// the GHz, a step of a picosecond) is refused at once instead of filling the memory or never
+// ending.
+struct WorkEstimate {
+  double events = 0;         // expected firings: sum over pixels and frames of shown time x rate
+  double frame_wakeups = 0;  // pixels woken because their light changes at a frame boundary
+  double scan_steps = 0;     // pixel visits of the rungs that scan every pixel: fixed_step (pixels x
+                             // steps) and queue (pixels x eq. 3 iterations of every frame)
+  double process_pixels = 0; // pixels that get a SystemC process each (pixel_processes)
+};
+
+// Rates are eq. 2 with the reset time: I / (c_int dv_int + I t_reset), the mean over mismatch
+// and shot noise. `fidelity` is the rung the run resolved to.
+WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& light, Fidelity fidelity);
+
+// Throws InputError naming the figure, the key that drives it and sim.max_events (the limit,
+// --max-events on the command line) when the estimate exceeds it.
+void check_work(const SensorConfig& config, const Photocurrents& light, Fidelity fidelity);
+
+// The most pixels the pixel_processes baseline elaborates (~2.5 KB of SystemC state each).
+constexpr double kMaxProcessPixels = 1 << 20;
+
+}  // namespace aesim

@@ -1,0 +1,13 @@
+#pragma once
+#include <cstdint>
+
+namespace aesim {
+
+// What aesim handles at most, stated once; the README's Reliability section lists them. Each is
+// checked before memory is taken for it, so a tiny file cannot ask for a huge allocation.
+constexpr long long kMaxArrayPixels = 1LL << 24;   // pixels in an array or an image: 4096 x 4096
+constexpr int kMaxTiles = 1 << 16;                 // tiles (each has its own bus and receiver)
+constexpr std::uintmax_t kMaxInputFileBytes = 1ULL << 28;  // 256 MiB: a scene image or frame
+constexpr double kMaxFrameRate = 1e9;              // Hz, of any scene or video
+
+}  // namespace aesim
