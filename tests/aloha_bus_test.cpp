@@ -4,6 +4,7 @@
 #include "array/address_map.hpp"
 #include "bus/aloha_bus.hpp"
 #include "top/imager_simulation.hpp"
+#include "top/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {
@@ -12,8 +13,8 @@ constexpr double kTau = 0.5;  // s: exactly representable, so "exactly tau apart
 
 class EventBusTest : public ::testing::Test {
  protected:
+  const ScopedKernel kernel_;  // first, so every bus is gone before its SystemC context
   void SetUp() override {
-    install_fresh_kernel();
     array_.rows = array_.cols = 32;
     array_.tile_rows = array_.tile_cols = 32;
   }

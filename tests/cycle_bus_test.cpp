@@ -13,6 +13,7 @@
 #include "scene/photocurrents.hpp"
 #include "support/scenes.hpp"
 #include "top/imager_simulation.hpp"
+#include "top/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {
@@ -54,7 +55,7 @@ struct CycleRun {
 
 // Two pixels of a 32x32 tile: (1, 2) fires at 1 us (exactly on a clock edge), (4, 8) `delta` later.
 CycleRun two_firings(double delta, bool detect) {
-  install_fresh_kernel();
+  const ScopedKernel kernel;
   SensorConfig c = testing::exact_sensor(32, 32, 32);
   c.bus.access = BusAccess::Aloha;
   c.bus.contention_detect = detect;
@@ -133,7 +134,7 @@ TEST(CycleBus, FiringAfterAckFallsStartsItsOwnTransaction) {
 
 TEST(HandshakeMonitor, CountsBrokenRules) {
   // A driver that raises Ack with no Req, and drops Req before any Ack: both must be caught.
-  install_fresh_kernel();
+  const ScopedKernel kernel;
   sc_core::sc_signal<bool> req, ack, contention;
   sc_core::sc_signal<std::uint32_t> addr;
   HandshakeMonitor monitor("monitor", "tile0", 10, nullptr);

@@ -26,6 +26,7 @@ using Vaer_receiver_ts8 = Vaer_receiver_cov_ts8;
 #include "cosim/rtl_receiver.hpp"
 #include "receiver/stream_monitor.hpp"
 #include "top/imager_simulation.hpp"
+#include "top/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {
@@ -99,11 +100,19 @@ ReceiverCycleModel::Config config(bool hold = false, int ts_width = 32) {
   return c;
 }
 
+// A finished bench with the SystemC context it ran in (destroyed after the bench).
 template <class V>
-std::unique_ptr<Bench<V>> run(const ReceiverCycleModel::Config& c, typename Bench<V>::Script script,
-                              std::uint64_t cycles) {
-  install_fresh_kernel();
-  auto bench = std::make_unique<Bench<V>>(c, std::move(script), cycles);
+struct BenchRun {
+  std::unique_ptr<ScopedKernel> kernel = std::make_unique<ScopedKernel>();
+  std::unique_ptr<Bench<V>> bench;
+  Bench<V>* operator->() const { return bench.get(); }
+};
+
+template <class V>
+BenchRun<V> run(const ReceiverCycleModel::Config& c, typename Bench<V>::Script script, std::uint64_t cycles) {
+  BenchRun<V> out;
+  out.bench = std::make_unique<Bench<V>>(c, std::move(script), cycles);
+  Bench<V>* bench = out.bench.get();
   sc_core::sc_start();
   EXPECT_EQ(bench->rx.scoreboard_mismatches(), 0u) << bench->rx.first_mismatch();
   EXPECT_EQ(bench->monitor.violations(), 0u);
@@ -116,7 +125,7 @@ std::unique_ptr<Bench<V>> run(const ReceiverCycleModel::Config& c, typename Benc
   cov->write((std::string(dir ? dir : ".") + "/coverage_" + std::to_string(runs++) + ".dat").c_str());
   cov->clear();
 #endif
-  return bench;
+  return out;
 }
 
 // Req (with an address) high from cycle `from` to `to` (set at falling edges, inclusive).

@@ -7,7 +7,9 @@
 #include <fmt/format.h>
 
 #include "array/imager.hpp"
+#include "array/run_budget.hpp"
 #include "cosim/rtl_receiver.hpp"
+#include "top/systemc_kernel.hpp"
 #include "config/input_error.hpp"
 
 namespace aesim {
@@ -42,26 +44,18 @@ Fidelity resolve_fidelity(const SensorConfig& config, const SimulationRequest& r
   return config.sim.fidelity;
 }
 
-void install_fresh_kernel() {
-  // SystemC allows one elaboration per simulation context. The old context is deliberately not
-  // deleted: SystemC 2.3.4 still touches it from static teardown (valgrind shows invalid reads),
-  // and once its modules are gone it holds only a few KB.
-  sc_core::sc_curr_simcontext = new sc_core::sc_simcontext;
-  sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
-  sc_core::sc_report_handler::set_actions(sc_core::SC_ID_NO_SC_START_ACTIVITY_, sc_core::SC_DO_NOTHING);
-}
-
 SimulationResult simulate(const SensorConfig& config, const Photocurrents& light, const SimulationRequest& request) {
   const Fidelity fidelity = resolve_fidelity(config, request);
+  check_work(config, light, fidelity);
   const auto wall_start = std::chrono::steady_clock::now();
 
-  install_fresh_kernel();
   const AddressMap map(config.array);
   SimulationResult result{EventLog(map.tiles(), request.keep_truth), {}, nullptr};
   result.log.count_pixels(static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols()),
                           static_cast<std::uint32_t>(map.cols()), config.analysis.window);
   if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);
   {
+    const ScopedKernel kernel;  // first in the block, so the imager is gone before its context
     CycleOptions cycle;
     if (config.receiver.model == ReceiverModel::Rtl) {
       cycle.receiver = rtl_receiver_factory(config.receiver.full_policy, request.rtl_trace_path,

@@ -38,10 +38,7 @@ struct SimulationResult {
 // this build does not model or one that cannot produce the request.
 Fidelity resolve_fidelity(const SensorConfig& config, const SimulationRequest& request);
 
-// Installs a new, empty SystemC kernel, so that one process can elaborate and run many designs.
-void install_fresh_kernel();
-
-// Elaborates the imager in a fresh SystemC kernel, simulates sim.duration and returns what the
+// Elaborates the imager in a fresh SystemC kernel (a ScopedKernel), simulates sim.duration and returns what the
 // receivers got, time-ordered. Each call is independent, so one process may run many.
 SimulationResult simulate(const SensorConfig& config, const Photocurrents& light,
                           const SimulationRequest& request = {});

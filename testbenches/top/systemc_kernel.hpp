@@ -1,0 +1,26 @@
+#pragma once
+#include <systemc>
+
+namespace aesim {
+
+// The one place that touches SystemC's global simulation context.
+//
+// SystemC allows one elaboration and one sc_start run per context, so a process that runs many
+// designs (a test, `aesim compare`, a sweep point run in-process) gives each its own context: a
+// ScopedKernel installs a fresh one and, when it goes out of scope, deletes it and puts the
+// previous one back. Every module of the design must be destroyed before the ScopedKernel (declare
+// it first). The context that was current before the first ScopedKernel (SystemC's own, made on
+// first use) is never deleted here: SystemC's static teardown at exit still reads it.
+class ScopedKernel {
+ public:
+  ScopedKernel();
+  ~ScopedKernel();
+  ScopedKernel(const ScopedKernel&) = delete;
+  ScopedKernel& operator=(const ScopedKernel&) = delete;
+
+ private:
+  sc_core::sc_simcontext* previous_;
+  sc_core::sc_simcontext* mine_;
+};
+
+}  // namespace aesim
