@@ -70,7 +70,7 @@ TEST_F(SceneFilesTest, MalformedFilesAreInputErrorsNamingTheDefect) {
       {"pixel value 101", "P2\n1 1\n100\n101\n"},
       {"malformed width", "P2\nx 1\n255\n0\n"},
       {"truncated header", "P5\n4"},
-      {"exceeds 64 Mpixel", "P5\n65536 65536\n255\n"},
+      {"more than the 16777216 pixels", "P5\n65536 65536\n255\n"},
       {"", ""},
   };
   for (const auto& [needle, bytes] : cases) {

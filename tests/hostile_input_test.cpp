@@ -1,0 +1,361 @@
+// The outside audit's bad-input matrix, through the real program: every case ends with exit
+// status 2 (or the documented outcome), one line on stderr that names the problem, nothing left
+// behind in the folder, and no hang (each case runs under `timeout`; outside the sanitizer build
+// also under a 4 GB address-space limit, so a runaway allocation fails the case).
+#include <signal.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/temp_dir_test.hpp"
+
+namespace aesim {
+namespace {
+namespace fs = std::filesystem;
+
+using testing::Outcome;
+using testing::slurp;
+
+const std::string kScenes = std::string(AESIM_SOURCE_DIR) + "/scenes";
+
+std::string be32(std::uint32_t v) {
+  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+}
+
+class HostileInputTest : public testing::TempDirTest {
+ protected:
+  // Runs aesim under a time limit (and a memory limit where the build allows one).
+  Outcome bounded(const std::string& args, int seconds = 60) {
+#ifdef __SANITIZE_ADDRESS__
+    const std::string limit;  // ASan reserves terabytes of address space up front
+#else
+    const std::string limit = "ulimit -v 4000000 && ";
+#endif
+    return aesim_with_prefix(limit + "timeout " + std::to_string(seconds) + " ", args);
+  }
+
+  Outcome aesim_with_prefix(const std::string& prefix, const std::string& args) {
+    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + "'" AESIM_BINARY "' " + args +
+                            " >stdout.txt 2>stderr.txt";
+    Outcome o;
+    const int raw = std::system(cmd.c_str());
+    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    o.out = slurp(dir_ / "stdout.txt");
+    o.err = slurp(dir_ / "stderr.txt");
+    fs::remove(dir_ / "stdout.txt");
+    fs::remove(dir_ / "stderr.txt");
+    return o;
+  }
+
+  std::set<std::string> listing() const {
+    std::set<std::string> names;
+    for (const auto& e : fs::recursive_directory_iterator(dir_)) names.insert(fs::relative(e.path(), dir_).string());
+    return names;
+  }
+
+  // Exit 2, one line naming `needle`, and the folder exactly as before.
+  void expect_refused(const std::string& args, const std::string& needle) {
+    const std::set<std::string> before = listing();
+    const Outcome o = bounded(args);
+    EXPECT_EQ(o.status, 2) << args << "\n" << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << args << "\n" << o.err;
+    EXPECT_NE(o.err.find(needle), std::string::npos) << args << "\n" << o.err;
+    EXPECT_EQ(o.err.find("internal error"), std::string::npos) << o.err;
+    EXPECT_EQ(listing(), before) << args;
+  }
+
+  void copy_scene(const std::string& from, const std::string& to) { fs::copy_file(kScenes + "/" + from, dir_ / to); }
+
+  // Starts aesim in the folder with its stderr in err.txt; returns its pid (to signal it).
+  pid_t start(std::vector<std::string> args) {
+    args.insert(args.begin(), AESIM_BINARY);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const std::string err = (dir_ / "err.txt").string();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      if (::chdir(dir_.c_str()) != 0 || !std::freopen("/dev/null", "w", stdout) ||
+          !std::freopen(err.c_str(), "w", stderr)) {
+        ::_exit(127);
+      }
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    return pid;
+  }
+
+  template <class Condition>
+  bool wait_for(Condition done) {
+    for (int i = 0; i < 2400; ++i) {  // 60 s
+      if (done()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    }
+    return false;
+  }
+
+  std::size_t count_temporaries() const {
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) n += e.path().filename().string().find(".aesim-tmp.") != std::string::npos;
+    return n;
+  }
+};
+
+TEST_F(HostileInputTest, NoSpecValueOrPathReachesAShell) {
+  copy_scene("uniform.pgm", "u.pgm");
+  fs::copy_file(std::string(AESIM_SOURCE_DIR) + "/scripts/charts/collisions.gp", dir_ / "c.gp");
+  // A chart value that closes a quote in a shell command: now it only names a file that is not there.
+  write("inject.toml",
+        "sensor = \"aloha\"\nduration = \"50ms\"\nchart = \"c.gp' ; touch PWNED ; echo '\"\n"
+        "[[group]]\nscene = \"u.pgm\"\n\"bus.t_event\" = [\"100ns\", \"1us\"]\n");
+  expect_refused("sweep inject.toml -o r.csv", "chart script");
+  EXPECT_FALSE(fs::exists(dir_ / "PWNED"));
+
+  // An output path with shell syntax is a file name like any other, and the chart is drawn from it.
+  write("plain.toml",
+        "sensor = \"aloha\"\nduration = \"50ms\"\nchart = \"c.gp\"\n"
+        "[[group]]\nscene = \"u.pgm\"\n\"bus.t_event\" = [\"100ns\", \"1us\"]\n");
+  const Outcome o = bounded("sweep plain.toml -o 'x$(touch PWNED).csv'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_FALSE(fs::exists(dir_ / "PWNED"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "x$(touch PWNED).csv"));
+  if (o.err.find("gnuplot not found") == std::string::npos) {
+    EXPECT_GT(fs::file_size(dir_ / "x$(touch PWNED).png"), 1000u);
+    EXPECT_GT(fs::file_size(dir_ / "x$(touch PWNED).svg"), 1000u);
+  }
+}
+
+TEST_F(HostileInputTest, InvalidUtf8InAnyTomlIsRefusedBeforeTheParser) {
+  // toml11 3.7.1 reads past its buffer on these 3 bytes (a literal string with byte 0xFF).
+  const std::string poison = "'\xff'";
+  write("sensor.toml", "[pixel]\nc_int = " + poison + "\n");
+  expect_refused("run --sensor sensor.toml --summary s.json", "line 2: invalid UTF-8 byte 0xFF");
+  write("spec.toml", "sensor = \"aloha\"\nduration = " + poison + "\n");
+  expect_refused("sweep spec.toml -o r.csv", "line 2: invalid UTF-8 byte 0xFF");
+  fs::create_directory(dir_ / "frames");
+  copy_scene("uniform.pgm", "frames/0.pgm");
+  copy_scene("checkerboard.pgm", "frames/1.pgm");
+  write("frames/scene.toml", "frame_rate = " + poison + "\n");
+  expect_refused("run --scene frames --summary s.json", "scene.toml': line 1: invalid UTF-8 byte 0xFF");
+  // Overlong forms, surrogates and control characters are refused too; real UTF-8 passes the guard.
+  write("overlong.toml", "[pixel]\n# \xc0\xaf\nc_int = \"100fF\"\n");
+  expect_refused("run --sensor overlong.toml --summary s.json", "line 2: invalid UTF-8 byte 0xC0");
+  write("surrogate.toml", "[pixel]\n# \xed\xa0\x80\n");
+  expect_refused("run --sensor surrogate.toml --summary s.json", "invalid UTF-8 byte 0xED");
+  write("control.toml", "[pixel]\nc_int = \"100\x01" "fF\"\n");
+  expect_refused("run --sensor control.toml --summary s.json", "line 2: control character 0x01");
+  write("good.toml", "# Kapazit\xc3\xa4t \xe2\x80\x94 \xf0\x9f\x93\xb7\n[pixel]\nc_int = \"50fF\"\n");
+  const Outcome ok = bounded("run --sensor good.toml --duration 50ms --summary s.json");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+}
+
+TEST_F(HostileInputTest, ASweepTooLargeToExpandIsRefusedBeforeExpanding) {
+  std::string spec = "sensor = \"aloha\"\n[[group]]\n";
+  for (const char* key : {"bus.t_event", "pixel.c_int", "pixel.dv_int", "pixel.i_max", "pixel.t_reset"}) {
+    spec += std::string("\"") + key + "\" = { from = 1, to = 2, points = 8192 }\n";
+  }
+  write("huge.toml", spec);
+  expect_refused("sweep huge.toml -o r.csv", "more than 100000 design points");
+}
+
+TEST_F(HostileInputTest, OutputsAreCheckedBeforeTheRunAndCommittedAllOrNone) {
+  fs::create_directory(dir_ / "folder");
+  expect_refused("run --duration 50ms --out o.aedat --csv folder", "--csv 'folder': is a folder");
+  expect_refused("run --duration 50ms --out X --csv X", "--out and --csv both name 'X'");
+  expect_refused("run --duration 50ms --out ./X --summary X", "both name");
+  write("file.txt", "x");
+  expect_refused("run --duration 50ms --summary file.txt/s.json", "is not a folder");
+  copy_scene("uniform.pgm", "s.pgm");
+  const std::string scene = slurp(dir_ / "s.pgm");
+  expect_refused("run --scene s.pgm --duration 50ms --recon s.pgm", "would overwrite the input 's.pgm'");
+  EXPECT_EQ(slurp(dir_ / "s.pgm"), scene);
+  write("spec.csv", "sensor = \"aloha\"\n[[group]]\nscene = \"s.pgm\"\n");
+  expect_refused("sweep spec.csv -o spec.csv", "would overwrite the input 'spec.csv'");
+  const std::string events = "t_us,x,y,tile,flags\n1,1,1,0,0\n";
+  write("e.csv", events);
+  fs::create_symlink("e.csv", dir_ / "e.pgm");  // the same file under an image's name
+  expect_refused("recon e.csv -o e.pgm", "would overwrite the input");
+  EXPECT_EQ(slurp(dir_ / "e.csv"), events);
+  if (::geteuid() != 0) {
+    fs::create_directory(dir_ / "readonly");
+    fs::permissions(dir_ / "readonly", fs::perms::owner_read | fs::perms::owner_exec);
+    expect_refused("run --duration 50ms --summary readonly/s.json", "cannot write in 'readonly'");
+  }
+}
+
+TEST_F(HostileInputTest, LeftoversOfAKilledRunAreRemovedByTheNextAndLiveOnesAreKept) {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  std::string h = host;
+  for (char& c : h) c = c == '.' ? '_' : c;
+  // A pid that cannot be alive (above pid_max), and this test's own pid (alive).
+  const std::string dead = ".summary.json.aesim-tmp." + h + ".999999999";
+  const std::string alive = ".summary.json.aesim-tmp." + h + "." + std::to_string(::getpid());
+  const std::string other_host = ".summary.json.aesim-tmp.otherhost.999999999";
+  write(dead, "half");
+  write(alive, "busy");
+  write(other_host, "theirs");
+  fs::create_directory(dir_ / (".r.csv.points0.aesim-tmp." + h + ".999999999"));
+  const Outcome o = bounded("run --duration 50ms --summary summary.json");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_FALSE(fs::exists(dir_ / dead));
+  EXPECT_FALSE(fs::exists(dir_ / (".r.csv.points0.aesim-tmp." + h + ".999999999")));
+  EXPECT_TRUE(fs::exists(dir_ / alive));
+  EXPECT_TRUE(fs::exists(dir_ / other_host));
+}
+
+TEST_F(HostileInputTest, ASignalWhileOutputsAreOpenLeavesNoTemporaries) {
+  // With the RTL in the loop and --vcd, Verilator writes its traces to temporaries during the run:
+  // a SIGTERM then must remove them. The run is long enough to be caught in the middle.
+  const pid_t pid = start({"run", "--duration", "200s", "--set", "receiver.model=rtl", "--vcd", "w.vcd", "--vcd-to",
+                           "1ms", "--summary", "s.json"});
+  ASSERT_TRUE(wait_for([&] { return count_temporaries() > 0; })) << "no temporary appeared";
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  EXPECT_EQ(listing(), (std::set<std::string>{"err.txt"}));
+}
+
+TEST_F(HostileInputTest, AnInterruptedSweepKeepsOnlyItsJournalAndTheResumeLeavesNothing) {
+  copy_scene("uniform.pgm", "u.pgm");
+  write("slow.toml",
+        "sensor = \"aloha\"\nduration = \"10s\"\njobs = 1\n[[group]]\nscene = \"u.pgm\"\n"
+        "\"sim.fidelity\" = \"cycle\"\n\"bus.t_event\" = [\"100ns\", \"200ns\", \"300ns\", \"400ns\"]\n");
+  const pid_t pid = start({"sweep", "slow.toml", "-o", "r.csv"});
+  // Interrupt once the journal holds its header and one finished point.
+  ASSERT_TRUE(wait_for([&] {
+    const std::string j = slurp(dir_ / "r.csv.partial");
+    return std::count(j.begin(), j.end(), '\n') >= 2;
+  }));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGINT) << status;
+  const std::string err = slurp(dir_ / "err.txt");
+  fs::remove(dir_ / "err.txt");
+  EXPECT_NE(err.find("interrupted"), std::string::npos) << err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"slow.toml", "u.pgm", "r.csv.partial"})) << err;
+  const Outcome o = bounded("sweep slow.toml -o r.csv");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.err.find("resuming"), std::string::npos) << o.err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"slow.toml", "u.pgm", "r.csv"}));
+}
+
+TEST_F(HostileInputTest, WorkBeyondTheLimitIsEstimatedAndRefusedBeforeTheRun) {
+  const std::string one_pixel =
+      "--set array.rows=1 --set array.cols=1 --set array.tile_rows=1 --set array.tile_cols=1 --summary s.json";
+  expect_refused("run --set pixel.i_max=1e300 --set pixel.t_reset=0 " + one_pixel, "sim.max_events");
+  expect_refused("run --set light.lux=1e300 --set pixel.t_reset=0 " + one_pixel, "pixel.i_max");
+  expect_refused("run --set pixel.c_int=1e-300 --set pixel.t_reset=0 " + one_pixel, "fire");
+  expect_refused("run --set pixel.i_max=1uA --summary s.json", "about 2.17e+09 events");
+  // A PFM whose one value is 1e6 of full scale.
+  std::string pfm = "Pf\n1 1\n-1.0\n";
+  const float big = 1e6f;
+  pfm.append(reinterpret_cast<const char*>(&big), 4);
+  write("bright.pfm", pfm);
+  expect_refused("run --scene bright.pfm --summary s.json", "sim.max_events");
+  // Two frames alternating at 1 GHz for a second.
+  fs::create_directory(dir_ / "fast");
+  copy_scene("uniform.pgm", "fast/0.pgm");
+  copy_scene("checkerboard.pgm", "fast/1.pgm");
+  write("fast/scene.toml", "frame_rate = \"1GHz\"\nloop = true\n");
+  expect_refused("run --scene fast --summary s.json", "scene.frame_rate: the run would wake pixels");
+  expect_refused("run --set sim.fidelity=fixed_step --set sim.step=1ps --summary s.json", "sim.step");
+  // The queue rung scans every pixel in each of eq. 3's iterations: one lit pixel among a million at
+  // 1e5 events/s fires little but costs 1e11 pixel visits.
+  std::string one_lit = "P5\n1024 1024\n255\n";
+  one_lit.append(1024 * 1024, '\0');
+  one_lit[one_lit.size() - 1] = '\xff';
+  write("one_lit.pgm", one_lit);
+  expect_refused("run --scene one_lit.pgm --set array.rows=1024 --set array.cols=1024 --set sim.fidelity=queue "
+                 "--set pixel.i_max=10nA --summary s.json",
+                 "sim.fidelity: the queue rung would visit pixels");
+  expect_refused("emulate " + kScenes + "/letters/A.pgm --size 4096x4096 --f-max 1e6", "--max-events");
+  // The limit is the user's to raise, and it is what decides: a run refused at 10 events runs at 1e8.
+  expect_refused("run --duration 50ms --max-events 10 --summary s.json", "limit 10");
+  const Outcome o = bounded("run --duration 50ms --summary s.json");
+  EXPECT_EQ(o.status, 0) << o.err;
+}
+
+TEST_F(HostileInputTest, ConversionsToIntegersAreRangeChecked) {
+  expect_refused("run --set receiver.tick=1e-30 --summary s.json", "receiver.tick");
+  expect_refused("run --set receiver.tick=1e30 --summary s.json", "receiver.tick");
+  expect_refused("run --set receiver.clock=1e-30 --set sim.fidelity=cycle --summary s.json", "receiver.clock");
+  expect_refused("run --set receiver.clock=1e30 --set sim.fidelity=cycle --summary s.json", "receiver.clock");
+  expect_refused("run --set bus.t_event=1e30 --summary s.json", "bus.t_event");
+  expect_refused("run --vcd w.vcd --vcd-from 1e30s", "--vcd-from");
+}
+
+TEST_F(HostileInputTest, TinyFilesCannotAskForHugeAllocations) {
+  write("far.csv", "t_us,x,y,tile,flags\n1,65535,65535,0,0\n");
+  expect_refused("recon far.csv -o r.pgm", "more than the 16777216");
+  // An AEDAT header claiming a 65535 x 1024 array, with one event.
+  write("big.aedat",
+        "#!AER-DAT2.0\r\n# aesim.sensor.array.rows: 1024\r\n# aesim.sensor.array.cols: 65535\r\n"
+        "# aesim.sensor.array.tile_rows: 1024\r\n# aesim.sensor.array.tile_cols: 65535\r\n" +
+            be32(0) + be32(1));
+  expect_refused("recon big.aedat -o r.pgm", "more than the 16777216");
+  expect_refused("run --set array.rows=8192 --set array.cols=8192 --set array.tile_rows=1 --set array.tile_cols=1",
+                 "array.rows");
+  expect_refused("run --set array.rows=4096 --set array.cols=4096 --set array.tile_rows=1 --set array.tile_cols=1",
+                 "more than the 65536");
+  write("huge.pgm", "P5\n65536 1024\n255\nxx");
+  expect_refused("run --scene huge.pgm --summary s.json", "more than the 16777216");
+  write("tall.pgm", "P5\n4096 4096\n255\nxx");
+  expect_refused("run --scene tall.pgm --summary s.json", "truncated pixel data");
+  write("ascii.pgm", "P2\n4096 4096\n255\n1 2 3\n");
+  expect_refused("run --scene ascii.pgm --summary s.json", "truncated pixel data");
+}
+
+TEST_F(HostileInputTest, AbsurdRatesStampsAndChannelsAreRefused) {
+  const std::string frame(4 * 4 * 3 / 2, '\x80');
+  write("inf.y4m", "YUV4MPEG2 W4 H4 Finf:1 C420jpeg\nFRAME\n" + frame);
+  expect_refused("emulate inf.y4m", "frame rate");
+  write("huge.y4m", "YUV4MPEG2 W4 H4 F1e300:1e-300 C420jpeg\nFRAME\n" + frame);
+  expect_refused("emulate huge.y4m", "frame rate");
+  expect_refused("emulate " + kScenes + "/letters/A.pgm --frame-rate inf", "--frame-rate");
+  write("negative.aedat", "#!AER-DAT2.0\r\n# aesim.sensor.array.rows: 4\r\n# aesim.sensor.array.cols: 4\r\n"
+                          "# aesim.sensor.array.tile_rows: 4\r\n# aesim.sensor.array.tile_cols: 4\r\n" +
+                              be32(0) + be32(0xFFFFFFF0u));
+  expect_refused("info negative.aedat", "negative timestamp");
+  std::string pfm = "PF\n1 1\n-1.0\n";
+  for (float v : {0.5f, -0.25f, 0.5f}) pfm.append(reinterpret_cast<const char*>(&v), 4);
+  write("colour.pfm", pfm);
+  expect_refused("run --scene colour.pfm --summary s.json", "channel 1 is -0.25");
+}
+
+TEST_F(HostileInputTest, AFullDiskIsReportedWithItsReasonAndLeavesNothing) {
+  fs::create_directory(dir_ / "small");
+  if (::mount("tmpfs", (dir_ / "small").c_str(), "tmpfs", 0, "size=64k") != 0) {
+    GTEST_SKIP() << "cannot mount a small tmpfs here (" << std::strerror(errno) << "): needs root";
+  }
+  const Outcome o = bounded("run --duration 2s --csv small/e.csv --summary small/s.json");
+  const std::set<std::string> left = [&] {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_ / "small")) names.insert(e.path().filename().string());
+    return names;
+  }();
+  ::umount((dir_ / "small").c_str());
+  EXPECT_EQ(o.status, 1) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  EXPECT_NE(o.err.find("No space left on device"), std::string::npos) << o.err;
+  EXPECT_TRUE(left.empty()) << *left.begin();
+}
+
+}  // namespace
+}  // namespace aesim
