@@ -275,7 +275,12 @@ void SensorConfig::validate() const {
 }
 
 void apply_toml_file(SensorConfig& config, const std::string& path, const std::string& section) {
-  const toml::value doc = parse_toml_file(path, fmt::format("'{}'", path));
+  apply_toml_text(config, checked_toml_text(path, fmt::format("'{}'", path)), path, section);
+}
+
+void apply_toml_text(SensorConfig& config, const std::string& text, const std::string& path,
+                     const std::string& section) {
+  const toml::value doc = parse_toml_text(text, fmt::format("'{}'", path));
   auto apply = [&](const std::string& key, const toml::value& value) {
     std::string text;
     if (value.is_string()) text = value.as_string().str;

@@ -92,6 +92,9 @@ SensorConfig load_sensor(const std::string& name_or_file);
 // Sets keys from a TOML file: "[section] key = value" tables, or, when `section` is given, plain
 // "key = value" lines within that section. Values are strings with units, numbers or booleans.
 void apply_toml_file(SensorConfig& config, const std::string& path, const std::string& section);
+// The same from the file's text; `path` names it in messages.
+void apply_toml_text(SensorConfig& config, const std::string& text, const std::string& path,
+                     const std::string& section);
 // The folder where named presets live.
 std::string sensors_dir();
 

@@ -37,6 +37,14 @@ std::string checked_toml_text(const std::string& path, const std::string& label)
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read", label));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  check_toml_text(text, label);
+  return text;
+}
+
+void check_toml_text(const std::string& text, const std::string& label) {
+  if (text.size() > kMaxTomlBytes) {
+    throw InputError(fmt::format("{}: {} bytes, more than the 1 MiB a TOML file may have", label, text.size()));
+  }
   std::size_t line = 1;
   for (std::size_t i = 0; i < text.size();) {
     const auto c = static_cast<unsigned char>(text[i]);
@@ -49,7 +57,6 @@ std::string checked_toml_text(const std::string& path, const std::string& label)
     if (n == 0) throw InputError(fmt::format("{}: line {}: invalid UTF-8 byte 0x{:02X}", label, line, c));
     i += n;
   }
-  return text;
 }
 
 }  // namespace aesim

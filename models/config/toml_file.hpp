@@ -15,19 +15,28 @@ namespace aesim {
 // `label` names the file in messages, e.g. "sweep spec 'x.toml'". Throws InputError naming the
 // line and the byte.
 std::string checked_toml_text(const std::string& path, const std::string& label);
+// The same check on text already in memory.
+void check_toml_text(const std::string& text, const std::string& label);
 
-// Parses a checked TOML file (toml11's parse with its template arguments); malformed TOML is an
+// Parses checked TOML text (toml11's parse with its template arguments); malformed TOML is an
 // InputError with toml11's first message line.
 template <typename Comment = toml::discard_comments, template <typename...> class Table = std::unordered_map,
           template <typename...> class Array = std::vector>
-toml::basic_value<Comment, Table, Array> parse_toml_file(const std::string& path, const std::string& label) {
-  std::istringstream in(checked_toml_text(path, label));
+toml::basic_value<Comment, Table, Array> parse_toml_text(const std::string& text, const std::string& label) {
+  check_toml_text(text, label);
+  std::istringstream in(text);
   try {
-    return toml::parse<Comment, Table, Array>(in, path);
+    return toml::parse<Comment, Table, Array>(in, label);
   } catch (const std::exception& e) {
     const std::string msg = e.what();
     throw InputError(label + ": malformed TOML: " + msg.substr(0, msg.find('\n')));
   }
+}
+
+template <typename Comment = toml::discard_comments, template <typename...> class Table = std::unordered_map,
+          template <typename...> class Array = std::vector>
+toml::basic_value<Comment, Table, Array> parse_toml_file(const std::string& path, const std::string& label) {
+  return parse_toml_text<Comment, Table, Array>(checked_toml_text(path, label), label);
 }
 
 }  // namespace aesim

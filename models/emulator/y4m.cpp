@@ -1,13 +1,12 @@
 #include "emulator/y4m.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 
 #include <fmt/format.h>
-
-#include <cmath>
 
 #include "config/input_error.hpp"
 #include "config/limits.hpp"
@@ -23,7 +22,10 @@ Y4mVideo read_y4m(const std::string& path) {
                                  kMaxInputFileBytes >> 20));
   }
   std::ifstream in(path, std::ios::binary);
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return decode_y4m(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
+}
+
+Y4mVideo decode_y4m(const std::string& data, const std::string& path) {
   auto fail = [&](const std::string& why) { throw InputError(fmt::format("video '{}': {}", path, why)); };
   const std::size_t eol = data.find('\n');
   if (data.rfind("YUV4MPEG2 ", 0) != 0 || eol == std::string::npos) fail("not a YUV4MPEG2 (Y4M) file");

@@ -15,5 +15,6 @@ struct Y4mVideo {
 
 // Reads 4:2:0 (any siting), 4:2:2, 4:4:4 and mono; throws InputError naming the defect.
 Y4mVideo read_y4m(const std::string& path);
+Y4mVideo decode_y4m(const std::string& data, const std::string& path);
 
 }  // namespace aesim

@@ -65,7 +65,10 @@ void write_aedat(std::ostream& out, const std::vector<std::string>& header,
 AedatFile read_aedat(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("event file '{}' not found", path));
   std::ifstream in(path, std::ios::binary);
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return decode_aedat(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
+}
+
+AedatFile decode_aedat(const std::string& data, const std::string& path) {
   if (data.rfind("#!AER-DAT2.0", 0) != 0) {
     throw InputError(fmt::format("event file '{}': not AEDAT 2.0 (first line must be #!AER-DAT2.0)", path));
   }

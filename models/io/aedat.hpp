@@ -33,6 +33,7 @@ std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std:
 void write_aedat(std::ostream& out, const std::vector<std::string>& header,
                  const std::vector<AedatRecord>& records);
 AedatFile read_aedat(const std::string& path);
+AedatFile decode_aedat(const std::string& data, const std::string& path);
 
 // The AEDAT records of delivered events (timestamps in whole microseconds of receiver ticks).
 std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, const AddressMap& map,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -14,8 +15,7 @@
 namespace aesim {
 namespace {
 
-EventRecording from_aedat(const std::string& path) {
-  const AedatFile file = read_aedat(path);
+EventRecording from_aedat(const AedatFile& file, const std::string& path) {
   SensorConfig sensor;
   for (const char* key : {"array.rows", "array.cols", "array.tile_rows", "array.tile_cols"}) {
     const auto it = file.metadata.find(std::string("sensor.") + key);
@@ -54,9 +54,9 @@ EventRecording from_aedat(const std::string& path) {
   return rec;
 }
 
-EventRecording from_csv(const std::string& path) {
+EventRecording from_csv(std::vector<AddressEvent> events, const std::string& path) {
   EventRecording rec;
-  rec.events = read_events_csv(path);
+  rec.events = std::move(events);
   for (const AddressEvent& e : rec.events) {
     rec.width = std::max(rec.width, static_cast<int>(e.x) + 1);
     rec.height = std::max(rec.height, static_cast<int>(e.y) + 1);
@@ -74,9 +74,15 @@ EventRecording from_csv(const std::string& path) {
 
 EventRecording load_events(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".csv") return from_csv(path);
-  if (ext == ".aedat" || ext == ".dat") return from_aedat(path);
+  if (ext == ".csv") return from_csv(read_events_csv(path), path);
+  if (ext == ".aedat" || ext == ".dat") return from_aedat(read_aedat(path), path);
   throw InputError(fmt::format("event file '{}': unsupported format (use .aedat or .csv)", path));
+}
+
+EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format) {
+  if (format == EventFormat::Aedat2) return from_aedat(decode_aedat(data, label), label);
+  std::istringstream in(data);
+  return from_csv(parse_events_csv(in, label), label);
 }
 
 }  // namespace aesim

@@ -15,4 +15,8 @@ struct EventRecording {
 
 EventRecording load_events(const std::string& path);
 
+// The same from a file's bytes; `label` names it in messages.
+enum class EventFormat { Aedat2, Csv };
+EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format);
+
 }  // namespace aesim

@@ -31,6 +31,10 @@ void write_events_csv(std::ostream& out, const std::vector<AddressEvent>& events
 std::vector<AddressEvent> read_events_csv(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("event file '{}' not found", path));
   std::ifstream in(path);
+  return parse_events_csv(in, path);
+}
+
+std::vector<AddressEvent> parse_events_csv(std::istream& in, const std::string& path) {
   std::string line;
   if (!std::getline(in, line) || (line != "t_us,x,y,tile,flags" && line != "t_us,x,y,tile,flags\r")) {
     throw InputError(fmt::format("event file '{}': first line must be t_us,x,y,tile,flags", path));

@@ -13,5 +13,6 @@ void write_events_csv(std::ostream& out, const std::vector<AddressEvent>& events
 
 // Reads such a file back; t is in seconds. Throws InputError on any malformed line.
 std::vector<AddressEvent> read_events_csv(const std::string& path);
+std::vector<AddressEvent> parse_events_csv(std::istream& in, const std::string& path);
 
 }  // namespace aesim

@@ -104,8 +104,10 @@ std::string read_preamble(HeaderReader& header, const std::string& data, const c
 
 }  // namespace
 
-Image read_pgm(const std::string& path) {
-  const std::string data = slurp(path);
+Image read_pgm(const std::string& path) { return decode_pgm(slurp(path), path); }
+Image read_pfm(const std::string& path) { return decode_pfm(slurp(path), path); }
+
+Image decode_pgm(const std::string& data, const std::string& path) {
   HeaderReader header(data, path);
   Image img;
   const std::string magic = read_preamble(header, data, "P2", "P5", "PGM", img);
@@ -141,8 +143,7 @@ Image read_pgm(const std::string& path) {
   return img;
 }
 
-Image read_pfm(const std::string& path) {
-  const std::string data = slurp(path);
+Image decode_pfm(const std::string& data, const std::string& path) {
   HeaderReader header(data, path);
   Image img;
   const std::string magic = read_preamble(header, data, "Pf", "PF", "PFM", img);

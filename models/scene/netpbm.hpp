@@ -9,6 +9,9 @@ namespace aesim {
 // Rec. 709 luminance; values as is). Throws InputError naming the file and the defect.
 Image read_pgm(const std::string& path);
 Image read_pfm(const std::string& path);
+// The same from the file's bytes; `path` names it in messages.
+Image decode_pgm(const std::string& data, const std::string& path);
+Image decode_pfm(const std::string& data, const std::string& path);
 // Chooses by extension: .pgm or .pfm.
 Image read_image(const std::string& path);
 

@@ -1,0 +1,93 @@
+#include "fuzz/fuzz_targets.hpp"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config/input_error.hpp"
+#include "config/sensor_config.hpp"
+#include "emulator/y4m.hpp"
+#include "io/event_file.hpp"
+#include "scene/netpbm.hpp"
+#include "sweep/sweep_spec.hpp"
+
+namespace aesim::fuzz {
+namespace {
+
+std::string bytes(const std::uint8_t* data, std::size_t size) { return {reinterpret_cast<const char*>(data), size}; }
+
+// Runs `parse`; an InputError is the expected answer to bad bytes, so it is swallowed.
+template <class F>
+int expect_result_or_input_error(F parse) {
+  try {
+    parse();
+  } catch (const InputError&) {
+  }
+  return 0;
+}
+
+}  // namespace
+
+int netpbm(const std::uint8_t* data, std::size_t size) {
+  const std::string in = bytes(data, size);
+  expect_result_or_input_error([&] { decode_pgm(in, "fuzz.pgm"); });
+  return expect_result_or_input_error([&] { decode_pfm(in, "fuzz.pfm"); });
+}
+
+int y4m(const std::uint8_t* data, std::size_t size) {
+  return expect_result_or_input_error([&] { decode_y4m(bytes(data, size), "fuzz.y4m"); });
+}
+
+int aedat(const std::uint8_t* data, std::size_t size) {
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat", EventFormat::Aedat2); });
+}
+
+int events_csv(const std::uint8_t* data, std::size_t size) {
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.csv", EventFormat::Csv); });
+}
+
+int set_values(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::string> lines;
+  std::istringstream in(bytes(data, size));
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return expect_result_or_input_error([&] {
+    SensorConfig config;
+    config.apply_overrides(lines);
+    config.validate();
+    config.resolved().to_json();
+  });
+}
+
+int sensor_toml(const std::uint8_t* data, std::size_t size) {
+  // The first byte chooses the form: a sensor preset ([section] tables) or a folder's scene.toml.
+  const std::string section = size > 0 && (data[0] & 1) ? "scene" : "";
+  const std::string text = size > 0 ? bytes(data + 1, size - 1) : std::string();
+  return expect_result_or_input_error([&] {
+    SensorConfig config;
+    apply_toml_text(config, text, "fuzz.toml", section);
+    config.validate();
+  });
+}
+
+int sweep_spec(const std::uint8_t* data, std::size_t size) {
+  // The spec is read from a file (it names scenes and charts relative to itself).
+  struct Folder {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("aesim_fuzz_sweep_" + std::to_string(::getpid()));
+    Folder() { std::filesystem::create_directories(path); }
+    ~Folder() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Folder dir;
+  const std::string path = (dir.path / "spec.toml").string();
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes(data, size);
+  return expect_result_or_input_error([&] { load_sweep_spec(path); });
+}
+
+}  // namespace aesim::fuzz

@@ -1,0 +1,28 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+// Every parser of user input as a fuzz target: the bytes go in, and the only acceptable outcomes
+// are a result or an InputError. Anything else (a crash, a sanitizer report, another exception,
+// a hang) is a defect. tests/fuzz/libfuzzer_entry.cpp makes each a libFuzzer binary;
+// tests/fuzz_replay_test.cpp replays every corpus and regression input in the ordinary suite.
+namespace aesim::fuzz {
+
+int netpbm(const std::uint8_t* data, std::size_t size);        // PGM and PFM scenes
+int y4m(const std::uint8_t* data, std::size_t size);           // Y4M video for aesim emulate
+int aedat(const std::uint8_t* data, std::size_t size);         // AEDAT 2.0 event files
+int events_csv(const std::uint8_t* data, std::size_t size);    // event CSV files
+int set_values(const std::uint8_t* data, std::size_t size);    // --set key=value lines with units
+int sensor_toml(const std::uint8_t* data, std::size_t size);   // sensor presets and scene.toml
+int sweep_spec(const std::uint8_t* data, std::size_t size);    // sweep specs
+
+struct Target {
+  const char* name;
+  int (*run)(const std::uint8_t*, std::size_t);
+};
+inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
+                                      {"aedat", aedat},           {"events_csv", events_csv},
+                                      {"set_values", set_values}, {"sensor_toml", sensor_toml},
+                                      {"sweep_spec", sweep_spec}};
+
+}  // namespace aesim::fuzz
