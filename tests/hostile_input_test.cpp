@@ -45,20 +45,7 @@ class HostileInputTest : public testing::TempDirTest {
 #else
     const std::string limit = "ulimit -v 4000000 && ";
 #endif
-    return aesim_with_prefix(limit + "timeout " + std::to_string(seconds) + " ", args);
-  }
-
-  Outcome aesim_with_prefix(const std::string& prefix, const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + "'" AESIM_BINARY "' " + args +
-                            " >stdout.txt 2>stderr.txt";
-    Outcome o;
-    const int raw = std::system(cmd.c_str());
-    o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    o.out = slurp(dir_ / "stdout.txt");
-    o.err = slurp(dir_ / "stderr.txt");
-    fs::remove(dir_ / "stdout.txt");
-    fs::remove(dir_ / "stderr.txt");
-    return o;
+    return aesim(args, limit + "timeout " + std::to_string(seconds) + " ");
   }
 
   std::set<std::string> listing() const {
@@ -286,6 +273,13 @@ TEST_F(HostileInputTest, WorkBeyondTheLimitIsEstimatedAndRefusedBeforeTheRun) {
                  "--set pixel.i_max=10nA --summary s.json",
                  "sim.fidelity: the queue rung would visit pixels");
   expect_refused("emulate " + kScenes + "/letters/A.pgm --size 4096x4096 --f-max 1e6", "--max-events");
+  // A sweep point asking for too much is the sweep's bad input too (the spec's other points may have run).
+  write("bright.toml", "sensor = \"aloha\"\nduration = \"2s\"\n[[group]]\n\"pixel.i_max\" = [\"1uA\"]\n");
+  const Outcome sweep = bounded("sweep bright.toml -o r.csv");
+  EXPECT_EQ(sweep.status, 2) << sweep.err;
+  EXPECT_NE(sweep.err.find("point 1 failed: aesim: pixel.i_max: the run would fire"), std::string::npos) << sweep.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "r.csv.partial"));  // nothing finished, nothing to resume
   // The limit is the user's to raise, and it is what decides: a run refused at 10 events runs at 1e8.
   expect_refused("run --duration 50ms --max-events 10 --summary s.json", "limit 10");
   const Outcome o = bounded("run --duration 50ms --summary s.json");

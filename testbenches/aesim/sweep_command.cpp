@@ -2,6 +2,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -163,7 +164,10 @@ class PointRunner {
         for (std::size_t i = running.size(); i > 0; --i) waitpid(-1, nullptr, 0);
         std::ifstream log(work_ / fmt::format("point_{}.log", index));
         const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
-        throw std::runtime_error(fmt::format("point {} failed: {}", index + 1, text.substr(0, text.find('\n'))));
+        const std::string why = fmt::format("point {} failed: {}", index + 1, text.substr(0, text.find('\n')));
+        // A point refused as bad input (e.g. work past sim.max_events) makes the sweep's input bad too.
+        if (WIFEXITED(status) && WEXITSTATUS(status) == 2) throw InputError(why);
+        throw std::runtime_error(why);
       }
       std::ifstream in(work_ / fmt::format("point_{}.json", index));
       summaries_[index] = nlohmann::json::parse(in);
@@ -173,6 +177,9 @@ class PointRunner {
   }
 
   const nlohmann::json& summary(std::size_t index) const { return summaries_[index]; }
+  std::size_t finished() const {
+    return static_cast<std::size_t>(std::count_if(summaries_.begin(), summaries_.end(), [](const auto& s) { return !s.is_null(); }));
+  }
 
  private:
   pid_t start(std::size_t index) {
@@ -262,7 +269,7 @@ bool draw_chart(OutputFiles& files, const std::string& script, const std::string
   files.flush();
   const std::string png = files.adopt(stem + ".png"), svg = files.adopt(stem + ".svg");
   if (run_child("gnuplot", {"-c", script, files.temp_path(csv), png, svg}) != 0) {
-    throw OutputError(fmt::format("gnuplot failed on the chart script '{}' (its message above); nothing written", script));
+    throw OutputError(fmt::format("gnuplot failed on the chart script '{}' (its message above); no output written", script));
   }
   return true;
 }
@@ -328,7 +335,14 @@ int sweep(SweepOptions opt) {
     std::fprintf(stderr, "aesim sweep: resuming: %zu of %zu points already done (%s)\n", resumed, spec.points.size(),
                  journal.c_str());
   }
-  runner.run_all(jobs);
+  try {
+    runner.run_all(jobs);
+  } catch (...) {
+    // A journal without a finished point resumes nothing: leave no file behind.
+    std::error_code ignored;
+    if (runner.finished() == 0) fs::remove(journal, ignored);
+    throw;
+  }
 #ifdef AESIM_HAVE_MPI
   if (share.size > 1) {
     gather_summaries(runner, spec, share);

@@ -43,9 +43,11 @@ class TempDirTest : public ::testing::Test {
   }
 
 #ifdef AESIM_BINARY
-  // Runs `aesim ARGS` in the folder and captures its exit status, stdout and stderr.
-  Outcome aesim(const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" AESIM_BINARY "' " + args + " >stdout.txt 2>stderr.txt";
+  // Runs `aesim ARGS` in the folder and captures its exit status, stdout and stderr. `prefix`
+  // goes before the program (e.g. "timeout 60 ").
+  Outcome aesim(const std::string& args, const std::string& prefix = "") {
+    const std::string cmd =
+        "cd '" + dir_.string() + "' && " + prefix + "'" AESIM_BINARY "' " + args + " >stdout.txt 2>stderr.txt";
     Outcome o;
     const int raw = std::system(cmd.c_str());
     o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
