@@ -10,7 +10,9 @@ namespace aesim {
 // ScopedKernel installs a fresh one and, when it goes out of scope, deletes it and puts the
 // previous one back. Every module of the design must be destroyed before the ScopedKernel (declare
 // it first). The context that was current before the first ScopedKernel (SystemC's own, made on
-// first use) is never deleted here: SystemC's static teardown at exit still reads it.
+// first use) is never deleted here: SystemC's static teardown at exit still reads it. Measured with
+// valgrind on `aesim compare` (every rung, pixel_processes included): 265 KB in 354 blocks are
+// still reachable at exit, SystemC's allocator pools and that context; nothing is lost.
 class ScopedKernel {
  public:
   ScopedKernel();
