@@ -145,6 +145,21 @@ TEST_F(HostileInputTest, InvalidUtf8InAnyTomlIsRefusedBeforeTheParser) {
   expect_refused("run --sensor surrogate.toml --summary s.json", "invalid UTF-8 byte 0xED");
   write("control.toml", "[pixel]\nc_int = \"100\x01" "fF\"\n");
   expect_refused("run --sensor control.toml --summary s.json", "line 2: control character 0x01");
+  // toml11 recurses once per nesting level: deep nesting is refused before it overflows the stack
+  // (found by the sensor_toml fuzzer), and brackets in comments and strings do not count.
+  write("deep.toml", "[pixel]\nx = " + std::string(5000, '[') + "\n");
+  expect_refused("run --sensor deep.toml --summary s.json", "line 2: arrays or tables nested deeper than 32");
+  write("brackets.toml", "# " + std::string(100, '[') + "\n[pixel]\nc_int = \"100fF\" # " + std::string(100, '{') +
+                             "\ndv_int = '''1V" + std::string(100, '[') + "'''\n");
+  const Outcome brackets = bounded("run --sensor brackets.toml --duration 50ms --summary s.json");
+  EXPECT_NE(brackets.err.find("dv_int"), std::string::npos) << brackets.err;  // parsed: the value itself is bad
+  // toml11 doubles a signed place value per binary digit: more than 62 digits overflow, leading
+  // zeros included (found by the sensor_toml fuzzer); 62 are read.
+  write("binary.toml", "[array]\nrows = 0b" + std::string(70, '0') + "1\n");
+  expect_refused("run --sensor binary.toml --summary s.json", "line 2: binary integer of 71 digits (at most 62)");
+  write("binary_ok.toml", "[array]\nrows = 0b" + std::string(55, '0') + "1000000\n");
+  const Outcome binary = bounded("run --sensor binary_ok.toml --set array.tile_rows=16 --duration 50ms --summary s.json");
+  EXPECT_EQ(binary.status, 0) << binary.err;
   write("good.toml", "# Kapazit\xc3\xa4t \xe2\x80\x94 \xf0\x9f\x93\xb7\n[pixel]\nc_int = \"50fF\"\n");
   const Outcome ok = bounded("run --sensor good.toml --duration 50ms --summary s.json");
   EXPECT_EQ(ok.status, 0) << ok.err;
@@ -349,6 +364,19 @@ TEST_F(HostileInputTest, AFullDiskIsReportedWithItsReasonAndLeavesNothing) {
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
   EXPECT_NE(o.err.find("No space left on device"), std::string::npos) << o.err;
   EXPECT_TRUE(left.empty()) << *left.begin();
+}
+
+TEST_F(HostileInputTest, PathsTheSystemCannotLookUpAreInputErrors) {
+  // A name component longer than the system allows (found by the sweep_spec fuzzer): the lookup
+  // fails, and that is the user's input, not an internal error.
+  const std::string too_long(300, 'x');
+  expect_refused("run --scene " + too_long + ".pgm --summary s.json", "File name too long");
+  expect_refused("run --sensor " + too_long + ".toml --summary s.json", "File name too long");
+  write("spec.toml", "sensor = \"aloha\"\n[[group]]\nscene = \"" + too_long + ".pgm\"\n");
+  expect_refused("sweep spec.toml -o r.csv", "File name too long");
+  write("file.pgm", "P2\n1 1\n255\n0\n");
+  expect_refused("run --scene file.pgm/inside.pgm --summary s.json", "not found");  // ENOTDIR is "not found"
+  expect_refused("classify " + kScenes + "/letters/A.pgm --templates " + too_long, "File name too long");
 }
 
 }  // namespace

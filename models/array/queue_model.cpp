@@ -49,7 +49,7 @@ std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double
 
 std::vector<AddressEvent> queue_events(const SensorConfig& config, const Photocurrents& light, const AddressMap& map,
                                        std::uint64_t* empty_lit_frames) {
-  const double f_max = config.pixel.i_max / (config.pixel.c_int * config.pixel.dv_int);
+  const double f_max = config.pixel.i_max / config.pixel.threshold_charge();
   const double duration = config.sim.duration;
   const bool still = light.frames() == 1;
   const double frame_time = still ? duration : light.boundary_time(1);

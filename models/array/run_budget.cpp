@@ -15,7 +15,7 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& ligh
   WorkEstimate w;
   const std::size_t frames = light.frames(), pixels = light.pixels();
   const double duration = config.sim.duration;
-  const double q = config.pixel.c_int * config.pixel.dv_int;
+  const double q = config.pixel.threshold_charge();
   const std::vector<double> shown =
       frame_exposures(frames, frames > 1 ? light.frame_period() : duration, light.loops(), duration);
   for (std::size_t f = 0; f < frames; ++f) {

@@ -7,17 +7,21 @@
 #include <fmt/format.h>
 
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "scene/netpbm.hpp"
 
 namespace aesim {
 
 std::vector<Template> load_templates(const std::string& folder) {
   namespace fs = std::filesystem;
-  if (!fs::is_directory(folder)) throw InputError(fmt::format("template folder '{}' not found", folder));
+  if (!is_input_folder(folder, "template folder")) throw InputError(fmt::format("template folder '{}' not found", folder));
   std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(folder)) {
-    if (e.is_regular_file() && e.path().extension() == ".pgm") files.push_back(e.path());
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    std::error_code kind;
+    if (it->is_regular_file(kind) && it->path().extension() == ".pgm") files.push_back(it->path());
   }
+  if (ec) throw InputError(fmt::format("template folder '{}': {}", folder, ec.message()));
   std::sort(files.begin(), files.end());
   if (files.size() < 2) throw InputError(fmt::format("template folder '{}' needs at least two .pgm templates", folder));
   std::vector<Template> out;

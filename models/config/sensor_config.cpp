@@ -10,6 +10,7 @@
 #include "array/address_map.hpp"
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "config/toml_file.hpp"
 #include "sizing/power_model.hpp"
 #include "units/si_units.hpp"
@@ -320,7 +321,7 @@ SensorConfig load_sensor(const std::string& name_or_file) {
   const bool is_path = name_or_file.find('/') != std::string::npos ||
                        fs::path(name_or_file).extension() == ".toml";
   const std::string path = is_path ? name_or_file : sensors_dir() + "/" + name_or_file + ".toml";
-  if (!fs::is_regular_file(path)) {
+  if (!is_input_file(path, "sensor file")) {
     throw InputError(is_path ? fmt::format("sensor file '{}' not found", path)
                              : fmt::format("unknown sensor '{}' (no {})", name_or_file, path));
   }

@@ -30,6 +30,8 @@ struct SensorConfig {
     double mismatch = 0.0;    // relative std of the per-pixel threshold charge
     bool shot_noise = false;  // Gamma-distributed integration times
     InitialState initial = InitialState::Reset;
+    // The charge a pixel collects between firings (eq. 2's c_int * dv_int), before mismatch.
+    double threshold_charge() const { return c_int * dv_int; }
   } pixel;
   struct Array {
     int rows = 64, cols = 64, tile_rows = 32, tile_cols = 32;

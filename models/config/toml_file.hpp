@@ -11,7 +11,9 @@ namespace aesim {
 // The text of a TOML file, checked before toml11 sees it. Debian's toml11 3.7.1 reads past its
 // buffer on a literal string holding an invalid UTF-8 byte (its upstream issue 199), so every
 // byte sequence must be valid UTF-8 (RFC 3629: no overlong forms, no surrogates) and free of the
-// control characters TOML forbids (all but tab, LF and CR). Files over 1 MiB are refused too.
+// control characters TOML forbids (all but tab, LF and CR). Files over 1 MiB are refused too, and
+// two shapes that crash toml11 (found by the fuzzer): arrays and inline tables nested more than 32
+// deep, and binary integers of more than 62 digits.
 // `label` names the file in messages, e.g. "sweep spec 'x.toml'". Throws InputError naming the
 // line and the byte.
 std::string checked_toml_text(const std::string& path, const std::string& label);

@@ -9,12 +9,13 @@
 #include <fmt/format.h>
 
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "config/limits.hpp"
 
 namespace aesim {
 
 Y4mVideo read_y4m(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("video '{}' not found", path));
+  if (!is_input_file(path, "video")) throw InputError(fmt::format("video '{}' not found", path));
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size > kMaxInputFileBytes) {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "io/timestamps.hpp"
 
 namespace aesim {
@@ -63,7 +64,7 @@ void write_aedat(std::ostream& out, const std::vector<std::string>& header,
 }
 
 AedatFile read_aedat(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("event file '{}' not found", path));
+  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
   std::ifstream in(path, std::ios::binary);
   return decode_aedat(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
 }

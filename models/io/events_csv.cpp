@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "io/timestamps.hpp"
 
 namespace aesim {
@@ -29,7 +30,7 @@ void write_events_csv(std::ostream& out, const std::vector<AddressEvent>& events
 }
 
 std::vector<AddressEvent> read_events_csv(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("event file '{}' not found", path));
+  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
   std::ifstream in(path);
   return parse_events_csv(in, path);
 }

@@ -9,7 +9,7 @@ IntegrateFire::Sensor pixel_sensor(const SensorConfig& config) {
 }
 
 double pixel_threshold(const SensorConfig& config, std::uint64_t pixel_index) {
-  double threshold = config.pixel.c_int * config.pixel.dv_int;
+  double threshold = config.pixel.threshold_charge();
   if (config.pixel.mismatch > 0) {
     SplitMix64 rng = stream_for(config.sim.seed, Stream::Threshold, pixel_index);
     std::normal_distribution<double> normal(1.0, config.pixel.mismatch);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "config/limits.hpp"
 
 namespace aesim {
@@ -18,7 +19,7 @@ namespace {
 constexpr long long kMaxSide = 1 << 16;
 
 std::string slurp(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) {
+  if (!is_input_file(path, "scene file")) {
     throw InputError(fmt::format("scene file '{}' not found", path));
   }
   std::error_code ec;

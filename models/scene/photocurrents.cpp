@@ -10,11 +10,7 @@ Photocurrents::Photocurrents(const Scene& scene, const SensorConfig::Pixel& pixe
   }
 }
 
-std::size_t Photocurrents::frame_at(std::uint64_t boundary) const {
-  const std::size_t n = frames();
-  if (loop_) return static_cast<std::size_t>(boundary % n);
-  return boundary < n ? static_cast<std::size_t>(boundary) : n - 1;
-}
+std::size_t Photocurrents::frame_at(std::uint64_t boundary) const { return frame_index(boundary, frames(), loop_); }
 
 std::uint64_t Photocurrents::next_change(std::uint64_t boundary, std::size_t pixel) const {
   const std::size_t n = frames();

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "scene/netpbm.hpp"
 #include "scene/resample.hpp"
 
@@ -31,17 +32,23 @@ long long frame_number(const std::string& stem) {
 SceneFiles find_scene(const std::string& file_or_dir) {
   SceneFiles files;
   files.source = file_or_dir;
-  if (fs::is_regular_file(file_or_dir)) {
+  if (is_input_file(file_or_dir, "scene")) {
     files.frames.push_back(file_or_dir);
     return files;
   }
-  if (!fs::is_directory(file_or_dir)) {
+  if (!is_input_folder(file_or_dir, "scene")) {
     throw InputError(fmt::format("scene '{}' not found", file_or_dir));
   }
   std::vector<std::pair<long long, std::string>> numbered;
-  for (const auto& entry : fs::directory_iterator(file_or_dir)) {
+  std::error_code ec;
+  fs::directory_iterator it(file_or_dir, ec);
+  if (ec) throw InputError(fmt::format("scene folder '{}': {}", file_or_dir, ec.message()));
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    if (ec) throw InputError(fmt::format("scene folder '{}': {}", file_or_dir, ec.message()));
+    const fs::directory_entry& entry = *it;
     const fs::path& p = entry.path();
-    if (!entry.is_regular_file()) continue;
+    std::error_code kind;
+    if (!entry.is_regular_file(kind)) continue;
     if (p.filename() == "scene.toml") files.settings = p.string();
     if (p.extension() != ".pgm" && p.extension() != ".pfm") continue;
     const long long n = frame_number(p.stem().string());
@@ -105,7 +112,6 @@ std::vector<double> frame_exposures(std::size_t frames, double period, bool loop
   const auto started = static_cast<std::uint64_t>(estimate);
   const std::uint64_t full = started - 1;  // every started frame but the last lasts a whole period
   const std::uint64_t n = frames;
-  auto index = [&](std::uint64_t k) { return loop ? k % n : std::min<std::uint64_t>(k, n - 1); };
   if (loop) {
     for (std::uint64_t f = 0; f < n; ++f) {
       shown[f] = static_cast<double>(full / n + (f < full % n ? 1 : 0)) * period;
@@ -114,7 +120,7 @@ std::vector<double> frame_exposures(std::size_t frames, double period, bool loop
     for (std::uint64_t f = 0; f + 1 < n && f < full; ++f) shown[f] = period;
     if (full > n - 1) shown[n - 1] = static_cast<double>(full - (n - 1)) * period;
   }
-  shown[index(full)] += duration - static_cast<double>(full) * period;
+  shown[frame_index(full, frames, loop)] += duration - static_cast<double>(full) * period;
   return shown;
 }
 

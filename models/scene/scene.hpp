@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,13 @@ struct Scene {
 std::vector<Image> read_frames(const SceneFiles& files);
 
 Scene load_scene(const SceneFiles& files, const SensorConfig& config);
+
+// The frame shown from boundary k on (frame k starts at k * period): sequences loop, or hold
+// their last frame.
+inline std::size_t frame_index(std::uint64_t boundary, std::size_t frames, bool loop) {
+  if (loop) return static_cast<std::size_t>(boundary % frames);
+  return boundary < frames ? static_cast<std::size_t>(boundary) : frames - 1;
+}
 
 // How long each of `frames` frames is shown within [0, duration] when a new frame starts every
 // `period` (sequences loop or hold their last frame). O(frames), however many boundaries pass.

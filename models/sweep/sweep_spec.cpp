@@ -9,6 +9,7 @@
 
 #include "config/data_dir.hpp"
 #include "config/input_error.hpp"
+#include "config/input_path.hpp"
 #include "config/toml_file.hpp"
 #include "config/sensor_config.hpp"
 #include "random/splitmix64.hpp"
@@ -93,14 +94,18 @@ std::vector<std::string> expand_values(const Value& v, const std::string& where)
 
 std::string resolve_path(const std::string& p, const fs::path& spec_dir) {
   if (fs::path(p).is_absolute()) return p;
-  if (fs::exists(spec_dir / p)) return fs::weakly_canonical(spec_dir / p).string();
+  std::error_code ec;
+  if (is_input_file((spec_dir / p).string(), "sweep spec path") || is_input_folder((spec_dir / p).string(), "sweep spec path")) {
+    const fs::path canonical = fs::weakly_canonical(spec_dir / p, ec);
+    if (!ec) return canonical.string();
+  }
   return (fs::path(data_dir()) / p).string();
 }
 
 }  // namespace
 
 SweepSpec load_sweep_spec(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw InputError(fmt::format("sweep spec '{}' not found", path));
+  if (!is_input_file(path, "sweep spec")) throw InputError(fmt::format("sweep spec '{}' not found", path));
   const Value doc = parse_toml_file<toml::discard_comments, std::map, std::vector>(path, fmt::format("sweep spec '{}'", path));
   const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
   SweepSpec spec;
@@ -113,7 +118,7 @@ SweepSpec load_sweep_spec(const std::string& path) {
     else if (key == "duration") spec.duration = scalar_text(value, where);
     else if (key == "chart") {
       spec.chart = resolve_path(scalar_text(value, where), dir);
-      if (!fs::is_regular_file(spec.chart)) throw InputError(fmt::format("{}: chart script '{}' not found", where, spec.chart));
+      if (!is_input_file(spec.chart, "chart script")) throw InputError(fmt::format("{}: chart script '{}' not found", where, spec.chart));
     }
     else if (key == "jobs") {
       if (!value.is_integer() || value.as_integer() < 0 || value.as_integer() > 1024) {

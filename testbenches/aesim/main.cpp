@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <string>
 #include <exception>
+#include <filesystem>
 #include <systemc>
 
 #include <CLI/CLI.hpp>
@@ -35,6 +36,11 @@ int sc_main(int argc, char* argv[]) {
     std::fprintf(stderr, "aesim: %s\n", e.what());
     return 2;
   } catch (const aesim::InputError& e) {
+    std::fprintf(stderr, "aesim: %s\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Every path aesim looks up came from the user (or derives from one); the readers ask without
+    // exceptions, so this is a safety net that still gives one line and the input's status.
     std::fprintf(stderr, "aesim: %s\n", e.what());
     return 2;
   } catch (const aesim::OutputError& e) {

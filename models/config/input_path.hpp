@@ -1,0 +1,13 @@
+#pragma once
+#include <string>
+
+namespace aesim {
+
+// What a path from a user names, asked without exceptions from std::filesystem: a name the system
+// cannot look up at all (a component too long, a file used as a folder, no permission) is an
+// InputError naming `what`, the path and the system's reason; a name that does not exist is
+// simply neither a file nor a folder.
+bool is_input_file(const std::string& path, const std::string& what);
+bool is_input_folder(const std::string& path, const std::string& what);
+
+}  // namespace aesim
