@@ -6,7 +6,6 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <set>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -64,8 +63,8 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const std::vecto
   }
 }
 
-// An unbuffered-by-the-library file writer over a descriptor that keeps the reason of its first
-// failure (std::ofstream loses errno): a full disk is reported as "No space left on device".
+// A file writer over a descriptor, with its own 64 KiB buffer, that keeps the reason of its first
+// failed write (std::ofstream loses errno): a full disk is reported as "No space left on device".
 class OutputFiles::FileBuffer : public std::streambuf {
  public:
   explicit FileBuffer(int fd) : fd_(fd) { setp(buffer_, buffer_ + sizeof buffer_); }
