@@ -6,12 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "array/address_map.hpp"
-#include "config/input_error.hpp"
-#include "io/aedat.hpp"
-#include "io/event_file.hpp"
+#include "errors/input_error.hpp"
+#include "event_files/aedat.hpp"
+#include "event_files/event_file.hpp"
 #include "scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -3,8 +3,8 @@
 
 #include "array/address_map.hpp"
 #include "bus/aloha_bus.hpp"
-#include "top/imager_simulation.hpp"
-#include "top/systemc_kernel.hpp"
+#include "run/imager_simulation.hpp"
+#include "kernel/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {

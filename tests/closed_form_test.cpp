@@ -8,7 +8,7 @@
 
 #include "scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

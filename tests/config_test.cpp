@@ -1,7 +1,7 @@
 // SI values, presets, --set overrides and validation (SPEC section 3).
 #include <gtest/gtest.h>
 
-#include "config/input_error.hpp"
+#include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "units/si_units.hpp"
 

@@ -8,11 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include "io/summary.hpp"
+#include "summary/summary.hpp"
 #include "scene/netpbm.hpp"
 #include "scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

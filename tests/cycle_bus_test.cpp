@@ -11,9 +11,10 @@
 #include "bus/clocked_aloha_bus.hpp"
 #include "bus/handshake_monitor.hpp"
 #include "scene/photocurrents.hpp"
+#include "summary/summary.hpp"
 #include "support/scenes.hpp"
-#include "top/imager_simulation.hpp"
-#include "top/systemc_kernel.hpp"
+#include "run/imager_simulation.hpp"
+#include "kernel/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "classify/template_classifier.hpp"
-#include "config/input_error.hpp"
+#include "errors/input_error.hpp"
 #include "emulator/behaviours.hpp"
 #include "emulator/emulator.hpp"
 #include "emulator/y4m.hpp"

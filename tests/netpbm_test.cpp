@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "config/input_error.hpp"
+#include "errors/input_error.hpp"
 #include "scene/netpbm.hpp"
 #include "scene/resample.hpp"
 #include "scene/scene.hpp"

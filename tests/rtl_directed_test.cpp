@@ -25,8 +25,8 @@ using Vaer_receiver_ts8 = Vaer_receiver_cov_ts8;
 #endif
 #include "cosim/rtl_receiver.hpp"
 #include "receiver/stream_monitor.hpp"
-#include "top/imager_simulation.hpp"
-#include "top/systemc_kernel.hpp"
+#include "run/imager_simulation.hpp"
+#include "kernel/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {

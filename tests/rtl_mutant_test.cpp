@@ -10,7 +10,7 @@
 #include "Vmutant_no_sync.h"
 #include "cosim/rtl_receiver.hpp"
 #include "scene/photocurrents.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

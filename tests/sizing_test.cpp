@@ -5,15 +5,15 @@
 
 #include <gtest/gtest.h>
 
-#include "config/input_error.hpp"
-#include "io/summary.hpp"
+#include "errors/input_error.hpp"
+#include "summary/summary.hpp"
 #include "scene/photocurrents.hpp"
-#include "sizing/power_model.hpp"
+#include "power/power_model.hpp"
 #include "sizing/sizing_report.hpp"
 #include "support/scenes.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "spec/sweep_spec.hpp"
 #include "support/temp_dir_test.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "config/input_error.hpp"
+#include "errors/input_error.hpp"
 #include "support/temp_dir_test.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "spec/sweep_spec.hpp"
 
 namespace aesim {
 namespace {

@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "aesim/commands.hpp"
+#include "commands.hpp"
 #include "classify/template_classifier.hpp"
-#include "config/data_dir.hpp"
-#include "config/input_error.hpp"
-#include "io/event_file.hpp"
+#include "files/data_dir.hpp"
+#include "errors/input_error.hpp"
+#include "event_files/event_file.hpp"
 #include "units/si_units.hpp"
 
 namespace aesim {

@@ -5,15 +5,15 @@
 
 #include <fmt/format.h>
 
-#include "aesim/commands.hpp"
+#include "commands.hpp"
 #include "compare/fidelity_errors.hpp"
-#include "config/data_dir.hpp"
-#include "config/input_error.hpp"
+#include "files/data_dir.hpp"
+#include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
-#include "io/atomic_file.hpp"
+#include "output/atomic_file.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 #include "units/si_units.hpp"
 
 namespace aesim {

@@ -4,16 +4,16 @@
 
 #include <fmt/format.h>
 
-#include "aesim/commands.hpp"
+#include "commands.hpp"
 #include "array/address_map.hpp"
-#include "config/input_error.hpp"
-#include "config/limits.hpp"
+#include "errors/input_error.hpp"
+#include "limits/limits.hpp"
 #include "config/sensor_config.hpp"
 #include "emulator/emulator.hpp"
 #include "emulator/y4m.hpp"
-#include "io/aedat.hpp"
-#include "io/atomic_file.hpp"
-#include "io/image_file.hpp"
+#include "event_files/aedat.hpp"
+#include "output/atomic_file.hpp"
+#include "images/image_file.hpp"
 #include "recon/reconstruct.hpp"
 #include "scene/scene.hpp"
 #include "units/si_units.hpp"

@@ -3,8 +3,8 @@
 
 #include <fmt/format.h>
 
-#include "aesim/commands.hpp"
-#include "io/event_file.hpp"
+#include "commands.hpp"
+#include "event_files/event_file.hpp"
 #include "units/si_units.hpp"
 
 namespace aesim {

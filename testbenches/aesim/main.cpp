@@ -9,9 +9,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "aesim/commands.hpp"
-#include "config/input_error.hpp"
-#include "io/temp_files.hpp"
+#include "commands.hpp"
+#include "errors/input_error.hpp"
+#include "output/temp_files.hpp"
 
 int sc_main(int argc, char* argv[]) {
   aesim::install_signal_cleanup();

@@ -1,10 +1,10 @@
 #include <fmt/format.h>
 
-#include "aesim/commands.hpp"
-#include "config/input_error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/event_file.hpp"
-#include "io/image_file.hpp"
+#include "commands.hpp"
+#include "errors/input_error.hpp"
+#include "output/atomic_file.hpp"
+#include "event_files/event_file.hpp"
+#include "images/image_file.hpp"
 #include "recon/reconstruct.hpp"
 #include "units/si_units.hpp"
 

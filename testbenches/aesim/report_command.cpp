@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include "aesim/commands.hpp"
+#include "commands.hpp"
 #include "array/address_map.hpp"
-#include "config/input_error.hpp"
+#include "errors/input_error.hpp"
 
 namespace aesim {
 namespace {

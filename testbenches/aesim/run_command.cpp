@@ -6,19 +6,20 @@
 
 #include <fmt/format.h>
 
-#include "aesim/commands.hpp"
-#include "config/data_dir.hpp"
-#include "config/input_error.hpp"
+#include "commands.hpp"
+#include "files/data_dir.hpp"
+#include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
-#include "io/aedat.hpp"
-#include "io/atomic_file.hpp"
-#include "io/events_csv.hpp"
-#include "io/image_file.hpp"
-#include "io/truth_csv.hpp"
+#include "event_files/aedat.hpp"
+#include "output/atomic_file.hpp"
+#include "event_files/events_csv.hpp"
+#include "images/image_file.hpp"
+#include "event_files/truth_csv.hpp"
 #include "recon/reconstruct.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
+#include "summary/summary.hpp"
 #include "units/si_units.hpp"
 
 namespace aesim {

@@ -17,18 +17,18 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "aesim/commands.hpp"
-#include "config/data_dir.hpp"
-#include "config/input_error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/temp_files.hpp"
+#include "commands.hpp"
+#include "files/data_dir.hpp"
+#include "errors/input_error.hpp"
+#include "output/atomic_file.hpp"
+#include "output/temp_files.hpp"
 #include "process/child_process.hpp"
 #ifdef AESIM_HAVE_MPI
 #include <mpi.h>
 #endif
 
 #include "sizing/sizing_report.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "spec/sweep_spec.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 #include "config/sensor_config.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "config/input_error.hpp"
+#include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "emulator/y4m.hpp"
-#include "io/event_file.hpp"
+#include "event_files/event_file.hpp"
 #include "scene/netpbm.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "spec/sweep_spec.hpp"
 
 namespace aesim::fuzz {
 namespace {

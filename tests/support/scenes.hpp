@@ -5,7 +5,7 @@
 #include "config/sensor_config.hpp"
 #include "scene/image.hpp"
 #include "scene/scene.hpp"
-#include "top/imager_simulation.hpp"
+#include "run/imager_simulation.hpp"
 
 namespace aesim::testing {
 

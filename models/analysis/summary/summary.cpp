@@ -1,0 +1,110 @@
+#include "summary/summary.hpp"
+
+#include <algorithm>
+
+#include "compare/fidelity_errors.hpp"
+#include "recon/reconstruct.hpp"
+#include "power/power_model.hpp"
+
+namespace aesim {
+namespace {
+
+// Pixel rates, coverage within the readout window and power (models/physics/power/power_model.hpp).
+void add_sizing(nlohmann::json& s, const SensorConfig& config, const EventLog& log, const RunFacts& facts) {
+  const auto& fired = log.fired_per_pixel();
+  const auto& window = log.window_per_pixel();
+  if (fired.empty()) return;
+  const double t = facts.sim_time_s;
+  const auto [lo, hi] = std::minmax_element(fired.begin(), fired.end());
+  double sum = 0;
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < fired.size(); ++i) {
+    sum += fired[i];
+    covered += window[i] >= static_cast<std::uint32_t>(config.analysis.min_events) ? 1 : 0;
+  }
+  s["pixel_rate_min_hz"] = *lo / t;
+  s["pixel_rate_mean_hz"] = sum / static_cast<double>(fired.size()) / t;
+  s["pixel_rate_max_hz"] = *hi / t;
+  s["dynamic_range_covered"] = static_cast<double>(covered) / static_cast<double>(fired.size());
+
+  const TileCounters total = log.totals();
+  PowerInputs in;
+  in.c_int = config.pixel.c_int;
+  in.dv_int = config.pixel.dv_int;
+  in.firings = total.fired;
+  in.transactions = total.fired - total.pending;  // every fired event drives its bus once
+  in.address_ones = log.address_ones();
+  in.pixels = fired.size();
+  in.duration = t;
+  const PowerResult r = power(config.power, in);
+  s["energy_per_event_j"] = r.energy_per_event;
+  s["power_w"] = r.total_power;
+  s["power_static_w"] = r.static_power;
+  s["power_per_tile_w"] = r.total_power / static_cast<double>(log.tiles().size());
+}
+
+}  // namespace
+
+nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, const RunFacts& facts, const Image* scene) {
+  const TileCounters total = log.totals();
+  const double buses = static_cast<double>(log.tiles().size());
+  const double per_bus_rate = 1.0 / (buses * facts.sim_time_s);
+  nlohmann::json tiles = nlohmann::json::array();
+  for (const TileCounters& t : log.tiles()) {
+    tiles.push_back({{"fired", t.fired}, {"delivered", t.delivered}, {"collided", t.collided},
+                     {"ghost", t.ghost}, {"dropped", t.dropped}, {"pending", t.pending},
+                     {"offered_load", static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s},
+                     {"collision_fraction", t.fired ? static_cast<double>(t.collided) / t.fired : 0.0}});
+  }
+  const LatencyStats latency = log.latency();
+  double worst_load = 0, worst_loss = 0;
+  for (const TileCounters& t : log.tiles()) {
+    worst_load = std::max(worst_load, static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s);
+    worst_loss = std::max(worst_loss, t.fired ? static_cast<double>(t.collided) / t.fired : 0.0);
+  }
+  nlohmann::json summary = {
+      {"events_fired", total.fired},
+      {"events_delivered", total.delivered},
+      {"events_collided", total.collided},
+      {"events_ghost", total.ghost},
+      {"events_dropped", total.dropped},
+      {"events_pending", total.pending},
+      {"offered_load", static_cast<double>(total.fired) * per_bus_rate * facts.tau_s},
+      {"throughput", static_cast<double>(total.delivered - total.ghost) * per_bus_rate * facts.tau_s},
+      {"collision_fraction", total.fired ? static_cast<double>(total.collided) / total.fired : 0.0},
+      {"offered_load_max_tile", worst_load},
+      {"collision_fraction_max_tile", worst_loss},
+      {"latency_mean_s", latency.mean},
+      {"latency_p99_s", latency.p99},
+      {"latency_max_s", latency.max},
+      {"tau_s", facts.tau_s},
+      {"sim_time_s", facts.sim_time_s},
+      {"wall_time_s", facts.wall_time_s},
+      {"fidelity", to_string(facts.fidelity)},
+      {"protocol_violations", facts.protocol_violations},
+      {"receiver_clock_edges", facts.receiver_clock_edges},
+      {"receiver_tick_s", facts.tick_s},
+      {"scoreboard_beats", facts.scoreboard_beats},
+      {"scoreboard_mismatches", facts.scoreboard_mismatches},
+      {"fixed_step_multi_fire_steps", facts.multi_fire_steps},
+      {"queue_empty_lit_frames", facts.empty_queue_frames},
+      {"tiles", tiles},
+      {"sensor", config.to_json()},
+  };
+  add_sizing(summary, config, log, facts);
+  if (scene) {
+    std::vector<AddressEvent> early;
+    for (const AddressEvent& e : log.events()) {
+      if (e.t <= config.analysis.window && !(e.flags & kGhostEvent)) early.push_back(e);
+    }
+    Image truth = *scene;
+    const double peak = *std::max_element(truth.pixels.begin(), truth.pixels.end());
+    if (peak > 0) {
+      for (double& v : truth.pixels) v /= peak;
+    }
+    summary["psnr_db"] = psnr_db(reconstruct(early, scene->width, scene->height, ReconMode::Histogram), truth);
+  }
+  return summary;
+}
+
+}  // namespace aesim

@@ -1,0 +1,133 @@
+#include "event_files/aedat.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <ostream>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/input_path.hpp"
+#include "events/timestamps.hpp"
+
+namespace aesim {
+namespace {
+
+void put_be32(std::ostream& out, std::uint32_t v) {
+  const char bytes[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                         static_cast<char>(v)};
+  out.write(bytes, 4);
+}
+
+std::uint32_t get_be32(const unsigned char* p) {
+  return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
+}
+
+}  // namespace
+
+std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor) {
+  std::map<std::string, std::string> flat;
+  for (const auto& [section, body] : sensor.items()) {
+    for (const auto& [key, value] : body.items()) {
+      flat[section + "." + key] = value.is_string() ? value.get<std::string>() : value.dump();
+    }
+  }
+  return flat;
+}
+
+std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor) {
+  std::vector<std::string> h = {
+      "#!AER-DAT2.0",
+      "# This is a raw AE data file created by aesim, the address-event imager simulator",
+      "# Data format is int32 address, int32 timestamp (8 bytes total), repeated for each event",
+      "# Timestamps tick is 1 us",
+      fmt::format("# Address layout: address = (tile << {}) | (y_local << {}) | x_local; "
+                  "tile = tile_row * {} + tile_col, numbered row-major from the top-left",
+                  map.bus_bits(), map.xbits(), map.tiles_per_row()),
+      fmt::format("# aesim.layout.bus_bits: {}", map.bus_bits()),
+      fmt::format("# aesim.layout.xbits: {}", map.xbits()),
+      fmt::format("# aesim.layout.ybits: {}", map.ybits()),
+      fmt::format("# aesim.layout.tiles: {}", map.tiles()),
+  };
+  for (const auto& [key, value] : sensor) h.push_back(fmt::format("# aesim.sensor.{}: {}", key, value));
+  return h;
+}
+
+void write_aedat(std::ostream& out, const std::vector<std::string>& header,
+                 const std::vector<AedatRecord>& records) {
+  for (const std::string& line : header) out << line << "\r\n";
+  for (const AedatRecord& r : records) {
+    put_be32(out, r.address);
+    put_be32(out, static_cast<std::uint32_t>(r.timestamp_us));
+  }
+}
+
+AedatFile read_aedat(const std::string& path) {
+  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
+  std::ifstream in(path, std::ios::binary);
+  return decode_aedat(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
+}
+
+AedatFile decode_aedat(const std::string& data, const std::string& path) {
+  if (data.rfind("#!AER-DAT2.0", 0) != 0) {
+    throw InputError(fmt::format("event file '{}': not AEDAT 2.0 (first line must be #!AER-DAT2.0)", path));
+  }
+  AedatFile file;
+  std::size_t pos = 0;
+  while (pos < data.size() && data[pos] == '#') {
+    const std::size_t eol = data.find('\n', pos);
+    if (eol == std::string::npos) throw InputError(fmt::format("event file '{}': unterminated header line", path));
+    std::string line = data.substr(pos, eol - pos);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string prefix = "# aesim.";
+    if (line.rfind(prefix, 0) == 0) {
+      const std::size_t colon = line.find(": ");
+      if (colon != std::string::npos) {
+        file.metadata[line.substr(prefix.size(), colon - prefix.size())] = line.substr(colon + 2);
+      }
+    }
+    file.header.push_back(std::move(line));
+    pos = eol + 1;
+  }
+  const std::size_t bytes = data.size() - pos;
+  if (bytes % 8 != 0) {
+    throw InputError(fmt::format("event file '{}': truncated ({} bytes after the header is not a whole number of "
+                                 "8-byte events)", path, bytes));
+  }
+  const auto* p = reinterpret_cast<const unsigned char*>(data.data() + pos);
+  file.records.resize(bytes / 8);
+  for (std::size_t i = 0; i < file.records.size(); ++i) {
+    file.records[i].address = get_be32(p + 8 * i);
+    file.records[i].timestamp_us = static_cast<std::int32_t>(get_be32(p + 8 * i + 4));
+    if (file.records[i].timestamp_us < 0) {
+      throw InputError(fmt::format("event file '{}': event {} has a negative timestamp ({} us)", path, i,
+                                   file.records[i].timestamp_us));
+    }
+    if (i > 0 && file.records[i].timestamp_us < file.records[i - 1].timestamp_us) {
+      throw InputError(fmt::format("event file '{}': timestamps decrease at event {}", path, i));
+    }
+  }
+  return file;
+}
+
+std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, const AddressMap& map,
+                                       double tick) {
+  std::vector<AedatRecord> out;
+  out.reserve(events.size());
+  for (const AddressEvent& e : events) {
+    const double t_us = static_cast<double>(timestamp_ticks(e.t, tick)) * (tick / 1e-6);
+    AedatRecord r;
+    r.address = (e.tile << map.bus_bits()) | e.bus_address;
+    const std::uint64_t stamp = timestamp_ticks(t_us * 1e-6, 1e-6);
+    if (stamp > 0x7FFFFFFFu) {
+      throw InputError(fmt::format("AEDAT 2.0 stamps are int32 microseconds: an event at {:.6g} s does not fit "
+                                   "(at most 2147 s)", e.t));
+    }
+    r.timestamp_us = static_cast<std::int32_t>(stamp);
+    out.push_back(r);
+  }
+  return out;
+}
+
+}  // namespace aesim

@@ -1,0 +1,42 @@
+#pragma once
+#include <cstdint>
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "array/address_map.hpp"
+#include "events/address_event.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace aesim {
+
+struct AedatRecord {
+  std::uint32_t address = 0;
+  std::int32_t timestamp_us = 0;
+};
+
+// An AEDAT 2.0 (jAER) file: '#' header lines ending in CRLF, then big-endian int32 address and
+// int32 timestamp (us) per event. aesim's own header lines "# aesim.KEY: VALUE" carry the address
+// layout and every sensor parameter; `metadata` holds them by KEY.
+struct AedatFile {
+  std::vector<std::string> header;  // without the CRLF
+  std::map<std::string, std::string> metadata;
+  std::vector<AedatRecord> records;
+};
+
+// Every sensor parameter as "section.key" -> text, for the header.
+std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor);
+// Header for events of `map` with `sensor` parameters (from sensor_metadata).
+std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor);
+void write_aedat(std::ostream& out, const std::vector<std::string>& header,
+                 const std::vector<AedatRecord>& records);
+AedatFile read_aedat(const std::string& path);
+AedatFile decode_aedat(const std::string& data, const std::string& path);
+
+// The AEDAT records of delivered events (timestamps in whole microseconds of receiver ticks).
+std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, const AddressMap& map,
+                                       double tick);
+
+}  // namespace aesim

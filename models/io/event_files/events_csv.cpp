@@ -1,0 +1,71 @@
+#include "event_files/events_csv.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/input_path.hpp"
+#include "events/timestamps.hpp"
+
+namespace aesim {
+
+void write_events_csv(std::ostream& out, const std::vector<AddressEvent>& events, double tick) {
+  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(tick / 1e-6) - 1e-9)));
+  std::string buffer = "t_us,x,y,tile,flags\n";
+  for (const AddressEvent& e : events) {
+    const double t_us = static_cast<double>(timestamp_ticks(e.t, tick)) * (tick / 1e-6);
+    fmt::format_to(std::back_inserter(buffer), "{:.{}f},{},{},{},{}\n", t_us, decimals, e.x, e.y, e.tile,
+                   static_cast<unsigned>(e.flags));
+    if (buffer.size() > (1u << 20)) {
+      out << buffer;
+      buffer.clear();
+    }
+  }
+  out << buffer;
+}
+
+std::vector<AddressEvent> read_events_csv(const std::string& path) {
+  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
+  std::ifstream in(path);
+  return parse_events_csv(in, path);
+}
+
+std::vector<AddressEvent> parse_events_csv(std::istream& in, const std::string& path) {
+  std::string line;
+  if (!std::getline(in, line) || (line != "t_us,x,y,tile,flags" && line != "t_us,x,y,tile,flags\r")) {
+    throw InputError(fmt::format("event file '{}': first line must be t_us,x,y,tile,flags", path));
+  }
+  std::vector<AddressEvent> events;
+  std::size_t number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line == "\r") continue;
+    std::istringstream fields(line);
+    AddressEvent e;
+    double t_us = 0;
+    long long x = -1, y = -1, tile = -1, flags = -1;
+    char c1 = 0, c2 = 0, c3 = 0, c4 = 0;
+    if (!(fields >> t_us >> c1 >> x >> c2 >> y >> c3 >> tile >> c4 >> flags) || c1 != ',' || c2 != ',' ||
+        c3 != ',' || c4 != ',' || !std::isfinite(t_us) || t_us < 0 || x < 0 || y < 0 || tile < 0 ||
+        flags < 0 || flags > 1 || x > 0xFFFF || y > 0xFFFF || tile > 0xFFFFFF) {
+      throw InputError(fmt::format("event file '{}': malformed line {}", path, number));
+    }
+    e.t = t_us * 1e-6;
+    e.x = static_cast<std::uint32_t>(x);
+    e.y = static_cast<std::uint32_t>(y);
+    e.tile = static_cast<std::uint32_t>(tile);
+    e.flags = static_cast<std::uint8_t>(flags);
+    if (!events.empty() && e.t < events.back().t) {
+      throw InputError(fmt::format("event file '{}': timestamps decrease at line {}", path, number));
+    }
+    events.push_back(e);
+  }
+  return events;
+}
+
+}  // namespace aesim

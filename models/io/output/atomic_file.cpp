@@ -1,0 +1,212 @@
+#include "output/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "output/temp_files.hpp"
+
+namespace aesim {
+namespace fs = std::filesystem;
+namespace {
+
+fs::path folder_of(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? fs::path(".") : parent;
+}
+
+// The same file, whether or not it exists yet (links and relative spellings resolved).
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
+}
+
+}  // namespace
+
+void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const OutputPath& o = outputs[i];
+    if (o.path.empty()) continue;
+    std::error_code ec;
+    if (fs::is_directory(o.path, ec)) throw InputError(fmt::format("{} '{}': is a folder, not a file", o.option, o.path));
+    // The nearest folder that exists must be a writable folder (the rest is created later).
+    fs::path folder = folder_of(o.path);
+    while (!fs::exists(folder, ec) && folder.has_parent_path() && folder.parent_path() != folder) {
+      folder = folder.parent_path();
+    }
+    if (!fs::exists(folder, ec)) folder = ".";
+    if (!fs::is_directory(folder, ec)) {
+      throw InputError(fmt::format("{} '{}': '{}' is not a folder", o.option, o.path, folder.string()));
+    }
+    if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+      throw InputError(fmt::format("{} '{}': cannot write in '{}': {}", o.option, o.path, folder.string(),
+                                   std::strerror(errno)));
+    }
+    for (const std::string& in : inputs) {
+      if (!in.empty() && same_file(o.path, in)) {
+        throw InputError(fmt::format("{} '{}' would overwrite the input '{}'", o.option, o.path, in));
+      }
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (!outputs[j].path.empty() && same_file(o.path, outputs[j].path)) {
+        throw InputError(fmt::format("{} and {} both name '{}'", outputs[j].option, o.option, o.path));
+      }
+    }
+  }
+}
+
+// A file writer over a descriptor, with its own 64 KiB buffer, that keeps the reason of its first
+// failed write (std::ofstream loses errno): a full disk is reported as "No space left on device".
+class OutputFiles::FileBuffer : public std::streambuf {
+ public:
+  explicit FileBuffer(int fd) : fd_(fd) { setp(buffer_, buffer_ + sizeof buffer_); }
+  ~FileBuffer() override { close(); }
+
+  bool close() {
+    if (fd_ < 0) return error_ == 0;
+    sync();
+    if (::close(fd_) != 0 && error_ == 0) error_ = errno;
+    fd_ = -1;
+    return error_ == 0;
+  }
+  bool is_open() const { return fd_ >= 0; }
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (!drain()) return traits_type::eof();
+    if (ch != traits_type::eof()) {
+      *pptr() = traits_type::to_char_type(ch);
+      pbump(1);
+    }
+    return traits_type::not_eof(ch);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    const char* p = pbase();
+    while (p < pptr() && error_ == 0) {
+      const ssize_t n = ::write(fd_, p, static_cast<std::size_t>(pptr() - p));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) error_ = n < 0 ? errno : EIO;
+      else p += n;
+    }
+    setp(buffer_, buffer_ + sizeof buffer_);
+    return error_ == 0;
+  }
+
+  int fd_;
+  int error_ = 0;
+  char buffer_[1 << 16];
+};
+
+OutputFiles::OutputFiles() = default;
+OutputFiles::Pending::~Pending() = default;
+
+OutputFiles::~OutputFiles() {
+  for (auto& f : files_) {
+    if (f->temp.empty()) continue;
+    if (f->buffer) f->buffer->close();
+    std::error_code ignored;
+    fs::remove(f->temp, ignored);
+    unregister_temp(f->temp);
+  }
+}
+
+std::ostream& OutputFiles::open(const std::string& path) {
+  auto f = std::make_unique<Pending>();
+  f->target = path;
+  f->temp = temp_name_for(path);
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (ec) throw InputError(fmt::format("cannot create folder '{}': {}", parent.string(), ec.message()));
+  remove_stale_temps(folder_of(path).string());
+  register_temp(f->temp);
+  const int fd = ::open(f->temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    unregister_temp(f->temp);
+    throw InputError(fmt::format("cannot write '{}': {}", path, std::strerror(err)));
+  }
+  f->buffer = std::make_unique<FileBuffer>(fd);
+  f->stream = std::make_unique<std::ostream>(f->buffer.get());
+  files_.push_back(std::move(f));
+  return *files_.back()->stream;
+}
+
+std::string OutputFiles::adopt(const std::string& path) {
+  open(path);
+  files_.back()->buffer->close();
+  return files_.back()->temp;
+}
+
+std::string OutputFiles::temp_path(const std::string& target) const {
+  for (const auto& f : files_) {
+    if (f->target == target) return f->temp;
+  }
+  throw std::logic_error("no output file " + target);
+}
+
+void OutputFiles::flush() {
+  for (auto& f : files_) {
+    if (!f->buffer->is_open()) continue;  // adopted: written and closed by its writer
+    f->stream->flush();
+    if (f->buffer->error() != 0 || !*f->stream) {
+      throw OutputError(fmt::format("writing '{}' failed: {}", f->target,
+                                    f->buffer->error() != 0 ? std::strerror(f->buffer->error()) : "a writer failed"));
+    }
+  }
+}
+
+void OutputFiles::commit() {
+  flush();
+  for (auto& f : files_) {
+    if (!f->buffer->close()) {
+      throw OutputError(fmt::format("writing '{}' failed: {}", f->target, std::strerror(f->buffer->error())));
+    }
+  }
+  // Keep what the targets held, so that a failed rename can put every one of them back.
+  std::vector<std::string> backups(files_.size());
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    std::error_code ec;
+    if (!fs::is_regular_file(files_[i]->target, ec)) continue;
+    backups[i] = temp_name_for(files_[i]->target, ".old");
+    fs::remove(backups[i], ec);
+    if (::link(files_[i]->target.c_str(), backups[i].c_str()) != 0) backups[i].clear();
+  }
+  auto drop_backups = [&] {
+    for (const std::string& b : backups) {
+      std::error_code ignored;
+      if (!b.empty()) fs::remove(b, ignored);
+    }
+  };
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    std::error_code ec;
+    fs::rename(files_[i]->temp, files_[i]->target, ec);
+    if (!ec) continue;
+    for (std::size_t j = 0; j < i; ++j) {
+      std::error_code ignored;
+      if (!backups[j].empty()) fs::rename(backups[j], files_[j]->target, ignored);
+      else fs::remove(files_[j]->target, ignored);
+    }
+    drop_backups();
+    throw OutputError(fmt::format("cannot rename into '{}': {}", files_[i]->target, ec.message()));
+  }
+  drop_backups();
+  for (auto& f : files_) {
+    unregister_temp(f->temp);
+    f->temp.clear();
+  }
+}
+
+}  // namespace aesim

@@ -1,0 +1,84 @@
+#include "array/queue_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+
+namespace aesim {
+
+std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double full_scale_rate, double frame_time,
+                                       QueueBudget* budget) {
+  QueueBudget default_budget;
+  QueueBudget& b = budget != nullptr ? *budget : default_budget;
+  std::vector<std::uint32_t> queue;
+  const double p_max = values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+  if (!(p_max > 0)) return queue;  // a black frame enters nothing
+  const double iterations = std::round(full_scale_rate * p_max * frame_time);
+  if (!(iterations >= 1)) return queue;
+  b.visits += iterations * static_cast<double>(values.size());
+  if (!(b.visits <= b.max_visits)) {
+    throw InputError(fmt::format("the event queues would visit pixels {:.3g} times (limit {:.3g}, a hundred per {}); "
+                                 "lower the rate or raise {}", b.visits, b.max_visits, b.limit, b.limit));
+  }
+  // round(P_max / P_i) per pixel, 0 for pixels that never enter.
+  std::vector<std::uint64_t> divisor(values.size(), 0);
+  double entries = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (values[i] > 0) {
+      divisor[i] = static_cast<std::uint64_t>(std::max(1.0, std::min(std::round(p_max / values[i]), 1e18)));
+      entries += std::floor(iterations / static_cast<double>(divisor[i]));
+    }
+  }
+  b.entries += entries;
+  if (!(b.entries <= b.max_entries)) {
+    throw InputError(fmt::format("the event queues would hold {:.3g} events (limit {:.3g}, {}); lower the rate or raise "
+                                 "{}", b.entries, b.max_entries, b.limit, b.limit));
+  }
+  queue.reserve(static_cast<std::size_t>(entries));
+  const auto n_max = static_cast<std::uint64_t>(iterations);
+  for (std::uint64_t n = 1; n <= n_max; ++n) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (divisor[i] != 0 && n % divisor[i] == 0) queue.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  return queue;
+}
+
+std::vector<AddressEvent> queue_events(const SensorConfig& config, const Photocurrents& light, const AddressMap& map,
+                                       std::uint64_t* empty_lit_frames) {
+  const double f_max = config.pixel.i_max / config.pixel.threshold_charge();
+  const double duration = config.sim.duration;
+  const bool still = light.frames() == 1;
+  const double frame_time = still ? duration : light.boundary_time(1);
+  std::vector<AddressEvent> events;
+  std::vector<double> values(light.pixels());
+  QueueBudget budget{config.sim.max_events, config.sim.max_events * 100};
+  for (std::uint64_t k = 0;; ++k) {
+    const double start = static_cast<double>(k) * frame_time;
+    if (start >= duration) break;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      values[i] = config.pixel.i_max > 0 ? (light.current(still ? 0 : k, i) - config.pixel.i_dark) / config.pixel.i_max : 0.0;
+    }
+    const double length = std::min(frame_time, duration - start);
+    const std::vector<std::uint32_t> queue = queue_order(values, f_max, length, &budget);
+    if (queue.empty() && empty_lit_frames && *std::max_element(values.begin(), values.end()) > 0) ++*empty_lit_frames;
+    const double spacing = length / static_cast<double>(std::max<std::size_t>(1, queue.size()));
+    for (std::size_t j = 0; j < queue.size(); ++j) {
+      const std::uint32_t x = queue[j] % static_cast<std::uint32_t>(map.cols());
+      const std::uint32_t y = queue[j] / static_cast<std::uint32_t>(map.cols());
+      AddressEvent e;
+      e.t = start + (static_cast<double>(j) + 0.5) * spacing;
+      e.x = x;
+      e.y = y;
+      e.tile = map.tile_of({x, y});
+      e.bus_address = map.bus_address({x, y});
+      events.push_back(e);
+    }
+  }
+  return events;
+}
+
+}  // namespace aesim

@@ -1,0 +1,42 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "array/address_map.hpp"
+#include "events/address_event.hpp"
+#include "config/sensor_config.hpp"
+#include "scene/photocurrents.hpp"
+
+namespace aesim {
+
+// sim.fidelity=queue: the source paper's event-queue model, no pixel physics and no timing.
+// Per frame (a still scene is one frame lasting sim.duration; a sequence, its frames), with P_i
+// the scene value of pixel i, recovered from its photocurrent as (I - i_dark) / i_max, and P_max
+// the frame's largest:
+//   eq. 1: pixel i fires f_i = f_max * P_i times per second at full scale f_max = i_max/(c_int*dv_int);
+//   eq. 3: the frame is N = round(f_max * P_max * T_frame) iterations n = 1..N; pixel i enters the
+//          queue at iteration n when n mod round(P_max / P_i) == 0, pixels in raster order within an
+//          iteration; P_i = 0 never enters.
+// The queue's events get synthetic times spread evenly over the frame (event j of M at
+// frame_start + (j + 1/2) T_frame / M), so buses see them in queue order. Dark current, reset
+// time, mismatch and shot noise do not exist in this model.
+// Frames with light whose brightest pixel should fire less than half a time within the frame
+// round to zero iterations: the model then emits nothing for them. They are counted in
+// `empty_lit_frames` (when given) so that the run can say so instead of failing silently.
+std::vector<AddressEvent> queue_events(const SensorConfig& config, const Photocurrents& light, const AddressMap& map,
+                                       std::uint64_t* empty_lit_frames = nullptr);
+
+// The work queues may take over a run: entries (events) and pixel visits (iterations x pixels),
+// counted before each frame's queue is built; exceeding either is an InputError naming `limit`.
+struct QueueBudget {
+  double max_entries = 1e8, max_visits = 1e10;
+  const char* limit = "sim.max_events";
+  double entries = 0, visits = 0;
+};
+
+// One frame's queue as pixel indices (y * width + x) in queue order: eq. 3 on normalised values.
+// With a budget, the frame's work is charged to it first.
+std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double full_scale_rate, double frame_time,
+                                       QueueBudget* budget = nullptr);
+
+}  // namespace aesim

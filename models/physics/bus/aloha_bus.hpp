@@ -1,0 +1,52 @@
+#pragma once
+#include <vector>
+
+#include "array/address_map.hpp"
+#include "bus/tile_bus.hpp"
+#include "events/event_log.hpp"
+
+namespace aesim {
+
+// bus.access=aloha at the event fidelity: textbook pure ALOHA. An event holds the bus for tau
+// from its firing time t and is delivered (at t) iff no other event on this bus starts in
+// (t - tau, t + tau). Events closer than tau chain into a cluster that is lost whole. With
+// contention detection the receiver discards the cluster; without it, the receiver latches the
+// bitwise OR of the cluster's addresses once, at the cluster's first start: one ghost event.
+class AlohaBus : public TileBus {
+ public:
+  AlohaBus(const sc_core::sc_module_name& name, EventLog& log, const AddressMap& map, double tau,
+           bool contention_detect)
+      : TileBus(name), log_(log), map_(map), tau_(tau), detect_(contention_detect) {}
+
+  void request(const AddressEvent& firing) override;
+  void finish() override { close_cluster(); }
+
+ private:
+  void close_cluster();
+
+  EventLog& log_;
+  const AddressMap& map_;
+  double tau_;
+  bool detect_;
+  std::vector<AddressEvent> cluster_;
+  double latest_start_ = 0;
+};
+
+// bus.access=arbitrated: events take the bus one after the other in fire order, each for tau;
+// none is lost, each waits its turn. Delivery time is when its turn starts. Events whose turn
+// would start after the end of the run are counted as pending, not delivered.
+class ArbitratedBus : public TileBus {
+ public:
+  ArbitratedBus(const sc_core::sc_module_name& name, EventLog& log, double tau, double t_end)
+      : TileBus(name), log_(log), tau_(tau), t_end_(t_end) {}
+
+  void request(const AddressEvent& firing) override;
+
+ private:
+  EventLog& log_;
+  double tau_;
+  double t_end_;
+  double free_at_ = 0;
+};
+
+}  // namespace aesim

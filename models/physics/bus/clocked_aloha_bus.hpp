@@ -1,0 +1,77 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <systemc>
+#include <vector>
+
+#include "array/address_map.hpp"
+#include "bus/handshake_monitor.hpp"
+#include "bus/tile_bus.hpp"
+#include "events/event_log.hpp"
+#include "receiver/event_sink.hpp"
+#include "receiver/gated_clock.hpp"
+#include "receiver/receiver_module.hpp"
+#include "receiver/receiver_signals.hpp"
+#include "receiver/stream_monitor.hpp"
+
+namespace aesim {
+
+// bus.access=aloha at the cycle fidelity: one tile's real wires, its clocked receiver (reference
+// model or RTL), the receiver's clock and the consumer of its event stream.
+//
+// Wires: `addr` (wired-OR of every pixel driving), `req` (wired-OR of their requests),
+// `contention` (high while two or more pixels drive: the contention detector), and `ack` from the
+// receiver back to every pixel.
+//
+// A pixel that fires drives its address and Req at once and holds them until it sees Ack rise,
+// then releases (4-phase handshake, pixel-side delays taken as zero). A firing that falls exactly
+// on a receiver clock edge drives 1 ps later, so every receiver sees it at the next edge. There
+// is no arbiter, so pixels firing before the receiver latches all drive together: the receiver
+// latches the OR of their addresses with `contention` high, and every one of them is lost
+// (Fate::Collided with contention detection, Fate::Ghost without). A pixel that fires while Ack is
+// already high sees Ack at once and withdraws before the synchronizer can register it: it is
+// absorbed and lost (Fate::Collided). An event the receiver latches but cannot store (FIFO full,
+// drop policy) is Fate::Dropped. The transaction time tau (Req rise to Ack fall) is measured.
+class ClockedAlohaBus : public TileBus {
+ public:
+  ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
+                  const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options);
+  SC_HAS_PROCESS(ClockedAlohaBus);
+
+  void request(const AddressEvent& firing) override;
+  double measured_tau() const override;
+
+  std::uint64_t protocol_violations() const { return monitor_.violations() + stream_monitor_.violations(); }
+  std::uint64_t transactions() const { return transactions_; }
+  std::uint64_t clock_edges() const { return clock_.edges(); }
+  const ReceiverModule& receiver() const { return *receiver_; }
+
+ private:
+  struct Driver {
+    AddressEvent firing;
+    sc_core::sc_time since;
+  };
+  void apply_deferred();
+  void join(const AddressEvent& firing);
+  void on_ack();
+  void drive();
+
+  ReceiverSignals s_;
+  GatedClock clock_;
+  std::unique_ptr<ReceiverModule> receiver_;
+  EventSink sink_;
+  HandshakeMonitor monitor_;
+  StreamMonitor stream_monitor_;
+  EventLog& log_;
+  bool detect_;
+  std::vector<Driver> drivers_;
+  std::vector<AddressEvent> deferred_;
+  sc_core::sc_event deferred_event_;
+  sc_core::sc_time transaction_start_;
+  bool in_transaction_ = false;
+  std::uint32_t overflows_seen_ = 0;
+  double busy_time_ = 0;
+  std::uint64_t transactions_ = 0;
+};
+
+}  // namespace aesim

@@ -1,0 +1,333 @@
+#include "config/sensor_config.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "array/address_map.hpp"
+#include "files/data_dir.hpp"
+#include "errors/input_error.hpp"
+#include "files/input_path.hpp"
+#include "files/toml_file.hpp"
+#include "power/power_model.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+struct KeySpec {
+  std::function<void(SensorConfig&, const std::string&)> set;
+  std::function<nlohmann::json(const SensorConfig&)> get;
+};
+
+using Json = nlohmann::json;
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+bool parse_bool(const std::string& text, const std::string& key) {
+  const std::string t = lower(text);
+  if (t == "true" || t == "1" || t == "yes" || t == "on") return true;
+  if (t == "false" || t == "0" || t == "no" || t == "off") return false;
+  throw InputError(fmt::format("{}: expected true or false (got '{}')", key, text));
+}
+
+long long parse_integer(const std::string& text, const std::string& key) {
+  const double v = parse_si(text, "", key);
+  if (v != std::floor(v) || std::fabs(v) > 9.0e15) {
+    throw InputError(fmt::format("{}: expected a whole number (got '{}')", key, text));
+  }
+  return static_cast<long long>(v);
+}
+
+template <typename Enum>
+Enum parse_enum(const std::string& text, const std::string& key,
+                const std::vector<std::pair<const char*, Enum>>& names) {
+  const std::string t = lower(text);
+  std::string allowed;
+  for (const auto& [name, value] : names) {
+    if (t == name) return value;
+    allowed += allowed.empty() ? name : std::string("|") + name;
+  }
+  throw InputError(fmt::format("{}: expected one of {} (got '{}')", key, allowed, text));
+}
+
+const std::vector<std::pair<const char*, InitialState>> kInitial = {
+    {"reset", InitialState::Reset}, {"random", InitialState::Random}};
+const std::vector<std::pair<const char*, BusAccess>> kAccess = {
+    {"aloha", BusAccess::Aloha}, {"arbitrated", BusAccess::Arbitrated}, {"ideal", BusAccess::Ideal}};
+const std::vector<std::pair<const char*, ReceiverModel>> kReceiverModel = {{"reference", ReceiverModel::Reference},
+                                                                          {"rtl", ReceiverModel::Rtl}};
+const std::vector<std::pair<const char*, FullPolicy>> kFullPolicy = {{"drop", FullPolicy::Drop},
+                                                                    {"hold", FullPolicy::Hold}};
+const std::vector<std::pair<const char*, Fidelity>> kFidelity = {{"queue", Fidelity::Queue},
+                                                                 {"event", Fidelity::Event},
+                                                                 {"cycle", Fidelity::Cycle},
+                                                                 {"auto", Fidelity::Auto},
+                                                                 {"pixel_processes", Fidelity::PixelProcesses},
+                                                                 {"fixed_step", Fidelity::FixedStep}};
+
+const std::map<std::string, KeySpec>& registry() {
+  static const std::map<std::string, KeySpec> table = [] {
+    std::map<std::string, KeySpec> t;
+    auto real = [&t](const std::string& key, const char* unit, auto field) {
+      t[key] = {[key, unit, field](SensorConfig& c, const std::string& v) {
+                  field(c) = parse_si(v, unit, key);
+                },
+                [field](const SensorConfig& c) {
+                  return Json(field(c));
+                }};
+    };
+    auto integer = [&t](const std::string& key, auto field) {
+      t[key] = {[key, field](SensorConfig& c, const std::string& v) {
+                  const long long n = parse_integer(v, key);
+                  if (n < 0 || n > (1LL << 30)) {
+                    throw InputError(fmt::format("{}: {} is out of range", key, v));
+                  }
+                  field(c) = static_cast<int>(n);
+                },
+                [field](const SensorConfig& c) {
+                  return Json(field(c));
+                }};
+    };
+    auto boolean = [&t](const std::string& key, auto field) {
+      t[key] = {[key, field](SensorConfig& c, const std::string& v) { field(c) = parse_bool(v, key); },
+                [field](const SensorConfig& c) {
+                  return Json(field(c));
+                }};
+    };
+    auto enumerated = [&t](const std::string& key, auto field, const auto& names) {
+      t[key] = {[key, field, &names](SensorConfig& c, const std::string& v) {
+                  field(c) = parse_enum(v, key, names);
+                },
+                [field](const SensorConfig& c) {
+                  return Json(to_string(field(c)));
+                }};
+    };
+    real("pixel.c_int", "F", [](auto& c) -> auto& { return c.pixel.c_int; });
+    real("pixel.dv_int", "V", [](auto& c) -> auto& { return c.pixel.dv_int; });
+    real("pixel.i_max", "A", [](auto& c) -> auto& { return c.pixel.i_max; });
+    real("pixel.i_dark", "A", [](auto& c) -> auto& { return c.pixel.i_dark; });
+    real("pixel.t_reset", "s", [](auto& c) -> auto& { return c.pixel.t_reset; });
+    real("pixel.mismatch", "", [](auto& c) -> auto& { return c.pixel.mismatch; });
+    boolean("pixel.shot_noise", [](auto& c) -> auto& { return c.pixel.shot_noise; });
+    enumerated("pixel.initial", [](auto& c) -> auto& { return c.pixel.initial; },
+               kInitial);
+    integer("array.rows", [](auto& c) -> auto& { return c.array.rows; });
+    integer("array.cols", [](auto& c) -> auto& { return c.array.cols; });
+    integer("array.tile_rows", [](auto& c) -> auto& { return c.array.tile_rows; });
+    integer("array.tile_cols", [](auto& c) -> auto& { return c.array.tile_cols; });
+    enumerated("bus.access", [](auto& c) -> auto& { return c.bus.access; }, kAccess);
+    real("bus.t_event", "s", [](auto& c) -> auto& { return c.bus.t_event; });
+    boolean("bus.contention_detect",
+            [](auto& c) -> auto& { return c.bus.contention_detect; });
+    real("receiver.clock", "Hz", [](auto& c) -> auto& { return c.receiver.clock; });
+    real("receiver.tick", "s", [](auto& c) -> auto& { return c.receiver.tick; });
+    integer("receiver.fifo_depth", [](auto& c) -> auto& { return c.receiver.fifo_depth; });
+    enumerated("receiver.model", [](auto& c) -> auto& { return c.receiver.model; }, kReceiverModel);
+    enumerated("receiver.full_policy", [](auto& c) -> auto& { return c.receiver.full_policy; }, kFullPolicy);
+    real("sim.duration", "s", [](auto& c) -> auto& { return c.sim.duration; });
+    t["sim.seed"] = {[](SensorConfig& c, const std::string& v) {
+                       const long long n = parse_integer(v, "sim.seed");
+                       if (n < 0) throw InputError("sim.seed: must not be negative (got '" + v + "')");
+                       c.sim.seed = static_cast<std::uint64_t>(n);
+                     },
+                     [](const SensorConfig& c) { return Json(c.sim.seed); }};
+    enumerated("sim.fidelity", [](auto& c) -> auto& { return c.sim.fidelity; },
+               kFidelity);
+    integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; });
+    real("sim.step", "s", [](auto& c) -> auto& { return c.sim.step; });
+    real("sim.max_events", "", [](auto& c) -> auto& { return c.sim.max_events; });
+    real("power.vdd", "V", [](auto& c) -> auto& { return c.power.vdd; });
+    real("power.e_pixel_event", "J", [](auto& c) -> auto& { return c.power.e_pixel_event; });
+    real("power.c_bus_line", "F", [](auto& c) -> auto& { return c.power.c_bus_line; });
+    real("power.e_receiver_event", "J", [](auto& c) -> auto& { return c.power.e_receiver_event; });
+    real("power.p_static_pixel", "W", [](auto& c) -> auto& { return c.power.p_static_pixel; });
+    real("light.lux", "lx", [](auto& c) -> auto& { return c.light.lux; });
+    real("light.responsivity", "A/W", [](auto& c) -> auto& { return c.light.responsivity; });
+    real("light.efficacy", "lm/W", [](auto& c) -> auto& { return c.light.efficacy; });
+    real("light.pixel_area", "m2", [](auto& c) -> auto& { return c.light.pixel_area; });
+    real("light.fill_factor", "", [](auto& c) -> auto& { return c.light.fill_factor; });
+    real("analysis.window", "s", [](auto& c) -> auto& { return c.analysis.window; });
+    integer("analysis.min_events", [](auto& c) -> auto& { return c.analysis.min_events; });
+    real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; });
+    boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; });
+    return t;
+  }();
+  return table;
+}
+
+void require(bool ok, const char* key, const std::string& why) {
+  if (!ok) throw InputError(fmt::format("{}: {}", key, why));
+}
+
+}  // namespace
+
+const char* to_string(InitialState v) { return v == InitialState::Reset ? "reset" : "random"; }
+const char* to_string(BusAccess v) {
+  switch (v) {
+    case BusAccess::Aloha: return "aloha";
+    case BusAccess::Arbitrated: return "arbitrated";
+    case BusAccess::Ideal: return "ideal";
+  }
+  return "?";
+}
+const char* to_string(ReceiverModel v) { return v == ReceiverModel::Reference ? "reference" : "rtl"; }
+const char* to_string(FullPolicy v) { return v == FullPolicy::Drop ? "drop" : "hold"; }
+const char* to_string(Fidelity v) {
+  switch (v) {
+    case Fidelity::Queue: return "queue";
+    case Fidelity::Event: return "event";
+    case Fidelity::Cycle: return "cycle";
+    case Fidelity::Auto: return "auto";
+    case Fidelity::PixelProcesses: return "pixel_processes";
+    case Fidelity::FixedStep: return "fixed_step";
+  }
+  return "?";
+}
+
+void SensorConfig::set(const std::string& key, const std::string& value) {
+  const auto& table = registry();
+  const auto it = table.find(key);
+  if (it == table.end()) throw InputError(fmt::format("unknown key '{}'", key));
+  it->second.set(*this, value);
+}
+
+void SensorConfig::apply_overrides(const std::vector<std::string>& assignments) {
+  for (const std::string& kv : assignments) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("--set '{}': expected section.key=value", kv));
+    set(kv.substr(0, eq), kv.substr(eq + 1));
+  }
+}
+
+nlohmann::json SensorConfig::to_json() const {
+  Json out = Json::object();
+  for (const auto& [key, spec] : registry()) {
+    const auto dot = key.find('.');
+    out[key.substr(0, dot)][key.substr(dot + 1)] = spec.get(*this);
+  }
+  return out;
+}
+
+const std::vector<std::string>& SensorConfig::keys() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const auto& entry : registry()) v.push_back(entry.first);
+    return v;
+  }();
+  return names;
+}
+
+void SensorConfig::validate() const {
+  require(pixel.c_int > 0, "pixel.c_int", "capacitance must be positive");
+  require(pixel.dv_int > 0, "pixel.dv_int", "swing must be positive");
+  require(pixel.i_max >= 0, "pixel.i_max", "photocurrent must not be negative");
+  require(pixel.i_dark >= 0, "pixel.i_dark", "dark current must not be negative");
+  require(pixel.t_reset >= 0, "pixel.t_reset", "reset time must not be negative");
+  require(pixel.mismatch >= 0 && pixel.mismatch <= 1, "pixel.mismatch",
+          "relative standard deviation must be within [0, 1]");
+  require(array.rows >= 1 && array.rows <= 65535, "array.rows", "must be from 1 to 65535");
+  require(array.cols >= 1 && array.cols <= 65535, "array.cols", "must be from 1 to 65535");
+  require(static_cast<long long>(array.rows) * array.cols <= kMaxArrayPixels, "array.rows",
+          fmt::format("array of {} pixels, more than the {} (4096 x 4096) aesim models", 
+                      static_cast<long long>(array.rows) * array.cols, kMaxArrayPixels));
+  require(array.tile_rows >= 1 && array.tile_rows <= array.rows, "array.tile_rows",
+          "must be between 1 and array.rows");
+  require(array.tile_cols >= 1 && array.tile_cols <= array.cols, "array.tile_cols",
+          "must be between 1 and array.cols");
+  const AddressMap map(array);
+  require(map.tiles() <= kMaxTiles, "array.tile_rows",
+          fmt::format("{} tiles, more than the {} aesim models (each has its own bus and receiver)", map.tiles(),
+                      kMaxTiles));
+  require(map.bus_bits() + address_bits_for(map.tiles()) <= 31,
+          "array.tile_rows", "tile address and tile number do not fit a 31-bit AEDAT address");
+  require(bus.t_event > 0, "bus.t_event", "must be positive");
+  // A clock period and a tick are whole numbers of SystemC's 1 ps step, and a run's stamps must
+  // fit 64 bits: the ranges keep every conversion to integers exact.
+  require(receiver.clock >= 1 && receiver.clock <= 1e12, "receiver.clock", "must be from 1 Hz to 1 THz");
+  require(receiver.tick >= 1e-12 && receiver.tick <= 1, "receiver.tick", "must be from 1 ps to 1 s");
+  require(bus.t_event <= 1, "bus.t_event", "must be at most 1 s");
+  require(pixel.t_reset <= 1e3, "pixel.t_reset", "must be at most 1000 s");
+  require(receiver.fifo_depth >= 1, "receiver.fifo_depth", "must be at least 1");
+  // SystemC time is a 64-bit count of 1 ps steps; keep well inside it.
+  require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
+          "must be positive and at most 1e6 s (SystemC's 1 ps time base)");
+  require(sim.max_events >= 1 && sim.max_events <= 1e15, "sim.max_events", "must be from 1 to 1e15");
+  require(sim.threads >= 0 && sim.threads <= 1024, "sim.threads", "must be from 0 (all cores) to 1024");
+  require(power.vdd > 0, "power.vdd", "must be positive");
+  require(power.e_pixel_event >= 0 && power.c_bus_line >= 0 && power.e_receiver_event >= 0 && power.p_static_pixel >= 0,
+          "power.e_pixel_event", "energies, capacitance and static power must not be negative");
+  require(light.lux >= 0, "light.lux", "must not be negative");
+  require(light.responsivity > 0 && light.efficacy > 0 && light.pixel_area > 0, "light.responsivity",
+          "responsivity, efficacy and pixel area must be positive");
+  require(light.fill_factor > 0 && light.fill_factor <= 1, "light.fill_factor", "must be within (0, 1]");
+  require(analysis.window > 0, "analysis.window", "must be positive");
+  require(analysis.min_events >= 1, "analysis.min_events", "must be at least 1");
+  require(sim.step >= 1e-12 && sim.step <= sim.duration, "sim.step", "must be from 1 ps to sim.duration");
+  require(scene.frame_rate * sim.duration < 4e9, "scene.frame_rate", "more than 4e9 frames in sim.duration");
+  require(scene.frame_rate > 0 && scene.frame_rate <= 1e9, "scene.frame_rate",
+          "must be positive and at most 1 GHz");
+}
+
+void apply_toml_file(SensorConfig& config, const std::string& path, const std::string& section) {
+  apply_toml_text(config, checked_toml_text(path, fmt::format("'{}'", path)), path, section);
+}
+
+void apply_toml_text(SensorConfig& config, const std::string& text, const std::string& path,
+                     const std::string& section) {
+  const toml::value doc = parse_toml_text(text, fmt::format("'{}'", path));
+  auto apply = [&](const std::string& key, const toml::value& value) {
+    std::string text;
+    if (value.is_string()) text = value.as_string().str;
+    else if (value.is_integer()) text = std::to_string(value.as_integer());
+    else if (value.is_floating()) text = fmt::format("{:.17g}", value.as_floating());
+    else if (value.is_boolean()) text = value.as_boolean() ? "true" : "false";
+    else throw InputError(fmt::format("'{}': {}: unsupported value type", path, key));
+    try {
+      config.set(key, text);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("'{}': {}", path, e.what()));
+    }
+  };
+  for (const auto& [name, body] : doc.as_table()) {
+    if (!section.empty()) {
+      apply(section + "." + name, body);
+      continue;
+    }
+    if (!body.is_table()) throw InputError(fmt::format("'{}': '{}' is not a [section]", path, name));
+    for (const auto& [key, value] : body.as_table()) apply(name + "." + key, value);
+  }
+}
+
+SensorConfig SensorConfig::resolved() const {
+  SensorConfig c = *this;
+  if (light.lux > 0) {
+    c.pixel.i_max = photocurrent_from_lux(light.lux, light.responsivity, light.efficacy, light.pixel_area,
+                                          light.fill_factor);
+  }
+  return c;
+}
+
+std::string sensors_dir() { return data_dir() + "/models/sensors"; }
+
+SensorConfig load_sensor(const std::string& name_or_file) {
+  namespace fs = std::filesystem;
+  const bool is_path = name_or_file.find('/') != std::string::npos ||
+                       fs::path(name_or_file).extension() == ".toml";
+  const std::string path = is_path ? name_or_file : sensors_dir() + "/" + name_or_file + ".toml";
+  if (!is_input_file(path, "sensor file")) {
+    throw InputError(is_path ? fmt::format("sensor file '{}' not found", path)
+                             : fmt::format("unknown sensor '{}' (no {})", name_or_file, path));
+  }
+  SensorConfig config;
+  apply_toml_file(config, path, "");
+  return config;
+}
+
+}  // namespace aesim

@@ -1,0 +1,205 @@
+#include "scene/netpbm.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/input_path.hpp"
+#include "limits/limits.hpp"
+
+namespace aesim {
+namespace {
+
+constexpr long long kMaxSide = 1 << 16;
+
+std::string slurp(const std::string& path) {
+  if (!is_input_file(path, "scene file")) {
+    throw InputError(fmt::format("scene file '{}' not found", path));
+  }
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxInputFileBytes) {
+    throw InputError(fmt::format("scene file '{}': {} bytes, more than the {} MiB aesim reads", path, size,
+                                 kMaxInputFileBytes >> 20));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("scene file '{}' cannot be opened", path));
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Reads the whitespace- and comment-separated tokens of a Netpbm header.
+class HeaderReader {
+ public:
+  HeaderReader(const std::string& data, const std::string& path) : data_(data), path_(path) {}
+
+  std::string token() {
+    skip_space_and_comments();
+    const std::size_t start = pos_;
+    while (pos_ < data_.size() && !std::isspace(static_cast<unsigned char>(data_[pos_]))) ++pos_;
+    if (start == pos_) fail("truncated header");
+    return data_.substr(start, pos_ - start);
+  }
+
+  long long integer(const char* what, long long lo, long long hi) {
+    const std::string t = token();
+    if (t.size() > 12 || t.find_first_not_of("0123456789") != std::string::npos) {
+      fail(fmt::format("malformed {} '{}'", what, t));
+    }
+    const long long v = std::stoll(t);
+    if (v < lo || v > hi) fail(fmt::format("{} {} out of range [{}, {}]", what, v, lo, hi));
+    return v;
+  }
+
+  std::size_t remaining() const { return data_.size() - std::min(pos_, data_.size()); }
+
+  // The single whitespace byte that ends a binary header.
+  std::size_t data_start() {
+    if (pos_ >= data_.size() || !std::isspace(static_cast<unsigned char>(data_[pos_]))) {
+      fail("missing whitespace before pixel data");
+    }
+    return pos_ + 1;
+  }
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InputError(fmt::format("scene file '{}': {}", path_, why));
+  }
+
+ private:
+  void skip_space_and_comments() {
+    while (pos_ < data_.size()) {
+      const char c = data_[pos_];
+      if (c == '#') {
+        while (pos_ < data_.size() && data_[pos_] != '\n') ++pos_;
+      } else if (std::isspace(static_cast<unsigned char>(c))) {
+        ++pos_;
+      } else {
+        break;
+      }
+    }
+  }
+
+  const std::string& data_;
+  const std::string& path_;
+  std::size_t pos_ = 0;
+};
+
+// Checks the magic number and reads width and height into `img`; returns the magic.
+std::string read_preamble(HeaderReader& header, const std::string& data, const char* a, const char* b,
+                          const char* kind, Image& img) {
+  const std::string magic = data.size() >= 2 ? data.substr(0, 2) : std::string();
+  if (magic != a && magic != b) header.fail(fmt::format("not a {} (expected {} or {})", kind, a, b));
+  header.token();
+  img.width = static_cast<int>(header.integer("width", 1, kMaxSide));
+  img.height = static_cast<int>(header.integer("height", 1, kMaxSide));
+  if (static_cast<long long>(img.width) * img.height > kMaxArrayPixels) {
+    header.fail(fmt::format("{}x{} is more than the {} pixels aesim reads", img.width, img.height, kMaxArrayPixels));
+  }
+  return magic;
+}
+
+}  // namespace
+
+Image read_pgm(const std::string& path) { return decode_pgm(slurp(path), path); }
+Image read_pfm(const std::string& path) { return decode_pfm(slurp(path), path); }
+
+Image decode_pgm(const std::string& data, const std::string& path) {
+  HeaderReader header(data, path);
+  Image img;
+  const std::string magic = read_preamble(header, data, "P2", "P5", "PGM", img);
+  const long long maxval = header.integer("maxval", 1, 65535);
+  const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
+  const double scale = 1.0 / static_cast<double>(maxval);
+  // Every ASCII sample takes a digit and a separator: a header cannot promise more than the file holds.
+  if (magic == "P2" && header.remaining() + 1 < 2 * count) {
+    header.fail(fmt::format("truncated pixel data (room for at most {} of {} values)", (header.remaining() + 1) / 2,
+                            count));
+  }
+
+  if (magic == "P5") {
+    const std::size_t start = header.data_start();
+    const std::size_t bytes_per = maxval > 255 ? 2 : 1;
+    if (data.size() < start + count * bytes_per) {
+      header.fail(fmt::format("truncated pixel data ({} of {} bytes)", data.size() - std::min(data.size(), start),
+                              count * bytes_per));
+    }
+    img.pixels.resize(count);
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data() + start);
+    for (std::size_t i = 0; i < count; ++i) {
+      const unsigned v = bytes_per == 2 ? (unsigned(p[2 * i]) << 8) | p[2 * i + 1] : p[i];
+      if (v > maxval) header.fail(fmt::format("pixel {} value {} exceeds maxval {}", i, v, maxval));
+      img.pixels[i] = static_cast<double>(v) * scale;
+    }
+  } else {
+    img.pixels.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      img.pixels[i] = static_cast<double>(header.integer("pixel value", 0, maxval)) * scale;
+    }
+  }
+  return img;
+}
+
+Image decode_pfm(const std::string& data, const std::string& path) {
+  HeaderReader header(data, path);
+  Image img;
+  const std::string magic = read_preamble(header, data, "Pf", "PF", "PFM", img);
+  const std::string scale_text = header.token();
+  char* end = nullptr;
+  const double scale = std::strtod(scale_text.c_str(), &end);
+  if (*end != '\0' || scale == 0 || !std::isfinite(scale)) {
+    header.fail(fmt::format("malformed scale '{}'", scale_text));
+  }
+  const bool little_endian = scale < 0;
+  const int channels = magic == "PF" ? 3 : 1;
+  const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
+  const std::size_t start = header.data_start();
+  if (data.size() < start + count * channels * 4) {
+    header.fail(fmt::format("truncated pixel data ({} of {} bytes)", data.size() - std::min(data.size(), start),
+                            count * channels * 4));
+  }
+  img.pixels.resize(count);
+  auto sample = [&](std::size_t index) {
+    unsigned char b[4];
+    std::memcpy(b, data.data() + start + 4 * index, 4);
+    if (!little_endian) {
+      std::swap(b[0], b[3]);
+      std::swap(b[1], b[2]);
+    }
+    float v;
+    std::memcpy(&v, b, 4);  // assumes a little-endian host, as every target of aesim is
+    return v;
+  };
+  // PFM stores rows bottom to top.
+  for (int row = 0; row < img.height; ++row) {
+    const int y = img.height - 1 - row;
+    for (int x = 0; x < img.width; ++x) {
+      const std::size_t base = (static_cast<std::size_t>(row) * img.width + x) * channels;
+      for (int c = 0; c < channels; ++c) {
+        const double v = sample(base + static_cast<std::size_t>(c));
+        if (!std::isfinite(v) || v < 0) {
+          header.fail(fmt::format("pixel ({}, {}){} is {} (values must be finite and >= 0)", x, y,
+                                  channels == 1 ? "" : fmt::format(" channel {}", c), v));
+        }
+      }
+      const double v = channels == 1 ? double(sample(base))
+                                     : 0.2126 * sample(base) + 0.7152 * sample(base + 1) +
+                                           0.0722 * sample(base + 2);
+      img.pixels[static_cast<std::size_t>(y) * img.width + x] = v;
+    }
+  }
+  return img;
+}
+
+Image read_image(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".pgm") return read_pgm(path);
+  if (ext == ".pfm") return read_pfm(path);
+  throw InputError(fmt::format("scene file '{}': unsupported format (use .pgm or .pfm)", path));
+}
+
+}  // namespace aesim

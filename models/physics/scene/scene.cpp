@@ -1,0 +1,140 @@
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/input_path.hpp"
+#include "scene/netpbm.hpp"
+#include "scene/resample.hpp"
+
+namespace aesim {
+namespace fs = std::filesystem;
+namespace {
+
+// The last run of digits in a file name orders the frames ("frame_9" before "frame_10").
+long long frame_number(const std::string& stem) {
+  auto end = stem.find_last_of("0123456789");
+  if (end == std::string::npos) return -1;
+  auto begin = end;
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(stem[begin - 1]))) --begin;
+  const std::string digits = stem.substr(begin, std::min<std::size_t>(end - begin + 1, 15));
+  return std::stoll(digits);
+}
+
+}  // namespace
+
+SceneFiles find_scene(const std::string& file_or_dir) {
+  SceneFiles files;
+  files.source = file_or_dir;
+  if (is_input_file(file_or_dir, "scene")) {
+    files.frames.push_back(file_or_dir);
+    return files;
+  }
+  if (!is_input_folder(file_or_dir, "scene")) {
+    throw InputError(fmt::format("scene '{}' not found", file_or_dir));
+  }
+  std::vector<std::pair<long long, std::string>> numbered;
+  std::error_code ec;
+  fs::directory_iterator it(file_or_dir, ec);
+  if (ec) throw InputError(fmt::format("scene folder '{}': {}", file_or_dir, ec.message()));
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    if (ec) throw InputError(fmt::format("scene folder '{}': {}", file_or_dir, ec.message()));
+    const fs::directory_entry& entry = *it;
+    const fs::path& p = entry.path();
+    std::error_code kind;
+    if (!entry.is_regular_file(kind)) continue;
+    if (p.filename() == "scene.toml") files.settings = p.string();
+    if (p.extension() != ".pgm" && p.extension() != ".pfm") continue;
+    const long long n = frame_number(p.stem().string());
+    if (n < 0) throw InputError(fmt::format("scene folder '{}': frame '{}' has no number", file_or_dir, p.filename().string()));
+    numbered.emplace_back(n, p.string());
+  }
+  if (numbered.empty()) {
+    throw InputError(fmt::format("scene folder '{}' has no numbered .pgm or .pfm frames", file_or_dir));
+  }
+  std::sort(numbered.begin(), numbered.end());
+  for (std::size_t i = 1; i < numbered.size(); ++i) {
+    if (numbered[i].first == numbered[i - 1].first) {
+      throw InputError(fmt::format("scene folder '{}': frames '{}' and '{}' share number {}", file_or_dir,
+                                   numbered[i - 1].second, numbered[i].second, numbered[i].first));
+    }
+  }
+  for (auto& entry : numbered) files.frames.push_back(std::move(entry.second));
+  return files;
+}
+
+void apply_scene_settings(const SceneFiles& files, SensorConfig& config) {
+  if (files.settings.empty()) return;
+  apply_toml_file(config, files.settings, "scene");
+}
+
+std::vector<Image> read_frames(const SceneFiles& files) {
+  std::vector<Image> frames;
+  for (const std::string& path : files.frames) {
+    Image img = read_image(path);
+    if (!frames.empty() && (img.width != frames.front().width || img.height != frames.front().height)) {
+      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", path, img.width,
+                                   img.height, frames.front().width, frames.front().height));
+    }
+    frames.push_back(std::move(img));
+  }
+  return frames;
+}
+
+Scene load_scene(const SceneFiles& files, const SensorConfig& config) {
+  Scene scene;
+  scene.frame_period = 1.0 / config.scene.frame_rate;
+  scene.loop = config.scene.loop;
+  for (const Image& img : read_frames(files)) {
+    scene.source_width = img.width;
+    scene.source_height = img.height;
+    scene.frames.push_back(resample_area(img, config.array.cols, config.array.rows));
+  }
+  return scene;
+}
+
+std::vector<double> frame_exposures(std::size_t frames, double period, bool loop, double duration) {
+  std::vector<double> shown(frames, 0.0);
+  if (frames == 1) {
+    shown[0] = duration;
+    return shown;
+  }
+  // Frame k starts at k * period; `started` counts the k with k * period < duration.
+  double estimate = std::ceil(duration / period);
+  while (estimate > 0 && (estimate - 1) * period >= duration) estimate -= 1;
+  while (estimate * period < duration) estimate += 1;
+  const auto started = static_cast<std::uint64_t>(estimate);
+  const std::uint64_t full = started - 1;  // every started frame but the last lasts a whole period
+  const std::uint64_t n = frames;
+  if (loop) {
+    for (std::uint64_t f = 0; f < n; ++f) {
+      shown[f] = static_cast<double>(full / n + (f < full % n ? 1 : 0)) * period;
+    }
+  } else {
+    for (std::uint64_t f = 0; f + 1 < n && f < full; ++f) shown[f] = period;
+    if (full > n - 1) shown[n - 1] = static_cast<double>(full - (n - 1)) * period;
+  }
+  shown[frame_index(full, frames, loop)] += duration - static_cast<double>(full) * period;
+  return shown;
+}
+
+Image mean_frame(const Scene& scene, double duration) {
+  Image mean = scene.frames.front();
+  if (scene.frames.size() == 1) return mean;
+  std::fill(mean.pixels.begin(), mean.pixels.end(), 0.0);
+  const std::vector<double> shown = frame_exposures(scene.frames.size(), scene.frame_period, scene.loop, duration);
+  for (std::size_t f = 0; f < shown.size(); ++f) {
+    const double weight = shown[f] / duration;
+    if (weight == 0) continue;
+    for (std::size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += weight * scene.frames[f].pixels[i];
+  }
+  return mean;
+}
+
+}  // namespace aesim

@@ -1,0 +1,18 @@
+#include "kernel/systemc_kernel.hpp"
+
+namespace aesim {
+
+ScopedKernel::ScopedKernel() : previous_(sc_core::sc_get_curr_simcontext()), mine_(new sc_core::sc_simcontext) {
+  sc_core::sc_curr_simcontext = mine_;
+  sc_core::sc_default_global_context = mine_;
+  // A run that needs no sc_start (the event and queue rungs) is not an error.
+  sc_core::sc_report_handler::set_actions(sc_core::SC_ID_NO_SC_START_ACTIVITY_, sc_core::SC_DO_NOTHING);
+}
+
+ScopedKernel::~ScopedKernel() {
+  sc_core::sc_curr_simcontext = previous_;
+  sc_core::sc_default_global_context = previous_;
+  delete mine_;
+}
+
+}  // namespace aesim
