@@ -4,7 +4,6 @@
 #include "array/address_map.hpp"
 #include "bus/aloha_bus.hpp"
 #include "run/imager_simulation.hpp"
-#include "kernel/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {
@@ -13,7 +12,6 @@ constexpr double kTau = 0.5;  // s: exactly representable, so "exactly tau apart
 
 class EventBusTest : public ::testing::Test {
  protected:
-  const ScopedKernel kernel_;  // first, so every bus is gone before its SystemC context
   void SetUp() override {
     array_.rows = array_.cols = 32;
     array_.tile_rows = array_.tile_cols = 32;
@@ -32,7 +30,7 @@ class EventBusTest : public ::testing::Test {
   EventLog aloha(const std::vector<AddressEvent>& firings, bool detect) {
     EventLog log(1, true);
     const AddressMap map(array_);
-    AlohaBus bus("bus", log, map, kTau, detect);
+    AlohaBus bus(log, map, kTau, detect);
     for (const AddressEvent& f : firings) bus.request(f);
     bus.finish();
     log.finish();
@@ -94,7 +92,7 @@ TEST_F(EventBusTest, WithoutContentionDetectionTheReceiverGetsTheOrAsAGhost) {
 
 TEST_F(EventBusTest, ArbitratedBusServesInFireOrderWithLatency) {
   EventLog log(1, true);
-  ArbitratedBus bus("bus", log, kTau, 2.0);
+  ArbitratedBus bus(log, kTau, 2.0);
   // Three firings within one tau queue up: starts at 0, tau, 2 tau. A fourth, late, waits for
   // nobody. A fifth arrives when the queue would start it after the end of the run (2 s).
   for (const AddressEvent& f : {firing(0.0, 1, 1), firing(0.1, 2, 2), firing(0.2, 3, 3), firing(1.7, 4, 4),

@@ -98,11 +98,8 @@ int emulate_command(EmulateOptions opt) {
   const AddressMap map(sensor.array);
   std::vector<AddressEvent> stream;
   for (const EmulatedEvent& e : events) {
-    AddressEvent a;
+    AddressEvent a = map.event_at({e.x, e.y});
     a.t = e.t;
-    a.x = e.x;
-    a.y = e.y;
-    a.bus_address = map.bus_address({e.x, e.y});
     stream.push_back(a);
   }
   OutputFiles files;

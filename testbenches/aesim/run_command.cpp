@@ -67,7 +67,7 @@ int run(RunOptions opt) {
     }
     request.vcd_to = std::min(request.vcd_to, config.sim.duration);
   }
-  const Fidelity fidelity = resolve_fidelity(config, request);
+  const Fidelity fidelity = choose_rung(config, request).fidelity();
   if (!opt.recon.empty()) {
     try {
       check_image_path(opt.recon);

@@ -43,12 +43,8 @@ EventRecording from_aedat(const AedatFile& file, const std::string& path) {
     const AedatRecord& r = file.records[i];
     const auto p = map.decode(r.address);
     if (!p) throw InputError(fmt::format("event file '{}': event {} has address 0x{:x}, outside the array", path, i, r.address));
-    AddressEvent e;
+    AddressEvent e = map.event_at(*p);
     e.t = r.timestamp_us * 1e-6;
-    e.x = p->x;
-    e.y = p->y;
-    e.tile = map.tile_of(*p);
-    e.bus_address = map.bus_address(*p);
     rec.events.push_back(e);
   }
   return rec;

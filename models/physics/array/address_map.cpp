@@ -26,6 +26,15 @@ std::uint32_t AddressMap::bus_address(PixelAddress p) const {
   return ((p.y % tile_rows_) << xbits_) | (p.x % tile_cols_);
 }
 
+AddressEvent AddressMap::event_at(PixelAddress p) const {
+  AddressEvent e;
+  e.x = p.x;
+  e.y = p.y;
+  e.tile = tile_of(p);
+  e.bus_address = bus_address(p);
+  return e;
+}
+
 PixelAddress AddressMap::locate(std::uint32_t tile, std::uint32_t bus_address) const {
   return {(tile % tiles_per_row_) * tile_cols_ + (bus_address & ((1u << xbits_) - 1u)),
           (tile / tiles_per_row_) * tile_rows_ + (bus_address >> xbits_)};

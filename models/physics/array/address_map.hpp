@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "config/sensor_config.hpp"
+#include "events/address_event.hpp"
 
 namespace aesim {
 
@@ -27,6 +28,8 @@ class AddressMap {
 
   std::uint32_t tile_of(PixelAddress p) const;
   std::uint32_t bus_address(PixelAddress p) const;
+  // The event pixel p sends: its coordinates, tile and bus address (time 0, no flags).
+  AddressEvent event_at(PixelAddress p) const;
   std::uint32_t word(PixelAddress p) const { return (tile_of(p) << bus_bits()) | bus_address(p); }
   // The pixel a bus address names in a tile, without checking it lies inside the array (a ghost
   // address, the OR of several, may name a column past a narrow edge tile).

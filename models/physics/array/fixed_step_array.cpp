@@ -7,7 +7,7 @@
 namespace aesim {
 
 FixedStepArray::FixedStepArray(const sc_core::sc_module_name& name, const SensorConfig& config,
-                               const Photocurrents& light, const AddressMap& map, std::vector<TileBus*> buses)
+                               const Photocurrents& light, const AddressMap& map, std::vector<EventBus*> buses)
     : sc_module(name),
       light_(light),
       buses_(std::move(buses)),
@@ -25,11 +25,8 @@ FixedStepArray::FixedStepArray(const sc_core::sc_module_name& name, const Sensor
     threshold_[i] = pixel_threshold(config, i);
     charge_[i] = initial_fraction(config, i) * threshold_[i];
     current_[i] = light.current(0, i);
-    AddressEvent& e = identity_[i];
-    e.x = static_cast<std::uint32_t>(i % static_cast<std::size_t>(map.cols()));
-    e.y = static_cast<std::uint32_t>(i / static_cast<std::size_t>(map.cols()));
-    e.tile = map.tile_of({e.x, e.y});
-    e.bus_address = map.bus_address({e.x, e.y});
+    identity_[i] = map.event_at({static_cast<std::uint32_t>(i % static_cast<std::size_t>(map.cols())),
+                                 static_cast<std::uint32_t>(i / static_cast<std::size_t>(map.cols()))});
   }
   SC_METHOD(tick);
   sensitive << tick_event_;

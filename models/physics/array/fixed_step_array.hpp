@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "array/address_map.hpp"
-#include "bus/tile_bus.hpp"
+#include "bus/event_bus.hpp"
 #include "config/sensor_config.hpp"
 #include "scene/photocurrents.hpp"
 
@@ -22,7 +22,7 @@ namespace aesim {
 class FixedStepArray : public sc_core::sc_module {
  public:
   FixedStepArray(const sc_core::sc_module_name& name, const SensorConfig& config, const Photocurrents& light,
-                 const AddressMap& map, std::vector<TileBus*> buses);
+                 const AddressMap& map, std::vector<EventBus*> buses);
   SC_HAS_PROCESS(FixedStepArray);
 
   std::uint64_t multi_fire_steps() const { return multi_fire_steps_; }
@@ -31,7 +31,7 @@ class FixedStepArray : public sc_core::sc_module {
   void tick();
 
   const Photocurrents& light_;
-  std::vector<TileBus*> buses_;
+  std::vector<EventBus*> buses_;
   double step_, t_end_;
   std::uint32_t reset_steps_;
   std::uint64_t steps_ = 0;

@@ -69,12 +69,8 @@ std::vector<AddressEvent> queue_events(const SensorConfig& config, const Photocu
     for (std::size_t j = 0; j < queue.size(); ++j) {
       const std::uint32_t x = queue[j] % static_cast<std::uint32_t>(map.cols());
       const std::uint32_t y = queue[j] / static_cast<std::uint32_t>(map.cols());
-      AddressEvent e;
+      AddressEvent e = map.event_at({x, y});
       e.t = start + (static_cast<double>(j) + 0.5) * spacing;
-      e.x = x;
-      e.y = y;
-      e.tile = map.tile_of({x, y});
-      e.bus_address = map.bus_address({x, y});
       events.push_back(e);
     }
   }

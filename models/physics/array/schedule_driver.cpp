@@ -12,7 +12,7 @@ bool later(const AddressEvent& a, const AddressEvent& b) {
 }  // namespace
 
 ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const SensorConfig& config,
-                               const Photocurrents& light, const AddressMap& map, std::vector<TileBus*> buses)
+                               const Photocurrents& light, const AddressMap& map, std::vector<EventBus*> buses)
     : sc_module(name), buses_(std::move(buses)) {
   for (int t = 0; t < map.tiles(); ++t) {
     schedules_.push_back(std::make_unique<FiringSchedule>(config, light, map, static_cast<std::uint32_t>(t)));

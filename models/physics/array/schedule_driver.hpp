@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "array/firing_schedule.hpp"
-#include "bus/tile_bus.hpp"
+#include "bus/event_bus.hpp"
 
 namespace aesim {
 
@@ -14,7 +14,7 @@ namespace aesim {
 class ScheduleDriver : public sc_core::sc_module {
  public:
   ScheduleDriver(const sc_core::sc_module_name& name, const SensorConfig& config, const Photocurrents& light,
-                 const AddressMap& map, std::vector<TileBus*> buses);
+                 const AddressMap& map, std::vector<EventBus*> buses);
   SC_HAS_PROCESS(ScheduleDriver);
 
  private:
@@ -25,7 +25,7 @@ class ScheduleDriver : public sc_core::sc_module {
     std::size_t tile;
   };
   std::vector<std::unique_ptr<FiringSchedule>> schedules_;
-  std::vector<TileBus*> buses_;
+  std::vector<EventBus*> buses_;
   std::vector<Head> heads_;  // each tile's next firing, a binary min-heap on time
 };
 

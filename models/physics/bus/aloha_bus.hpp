@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "array/address_map.hpp"
-#include "bus/tile_bus.hpp"
+#include "bus/event_bus.hpp"
 #include "events/event_log.hpp"
 
 namespace aesim {
@@ -12,11 +12,10 @@ namespace aesim {
 // (t - tau, t + tau). Events closer than tau chain into a cluster that is lost whole. With
 // contention detection the receiver discards the cluster; without it, the receiver latches the
 // bitwise OR of the cluster's addresses once, at the cluster's first start: one ghost event.
-class AlohaBus : public TileBus {
+class AlohaBus : public EventBus {
  public:
-  AlohaBus(const sc_core::sc_module_name& name, EventLog& log, const AddressMap& map, double tau,
-           bool contention_detect)
-      : TileBus(name), log_(log), map_(map), tau_(tau), detect_(contention_detect) {}
+  AlohaBus(EventLog& log, const AddressMap& map, double tau, bool contention_detect)
+      : log_(log), map_(map), tau_(tau), detect_(contention_detect) {}
 
   void request(const AddressEvent& firing) override;
   void finish() override { close_cluster(); }
@@ -35,10 +34,10 @@ class AlohaBus : public TileBus {
 // bus.access=arbitrated: events take the bus one after the other in fire order, each for tau;
 // none is lost, each waits its turn. Delivery time is when its turn starts. Events whose turn
 // would start after the end of the run are counted as pending, not delivered.
-class ArbitratedBus : public TileBus {
+class ArbitratedBus : public EventBus {
  public:
-  ArbitratedBus(const sc_core::sc_module_name& name, EventLog& log, double tau, double t_end)
-      : TileBus(name), log_(log), tau_(tau), t_end_(t_end) {}
+  ArbitratedBus(EventLog& log, double tau, double t_end)
+      : log_(log), tau_(tau), t_end_(t_end) {}
 
   void request(const AddressEvent& firing) override;
 

@@ -1,43 +1,10 @@
 #include "bus/clocked_aloha_bus.hpp"
 
-#include <cmath>
-
-#include <fmt/format.h>
-
 namespace aesim {
-namespace {
 
-sc_core::sc_time clock_period(const SensorConfig& config) {
-  // A whole number of picoseconds, so edges fall exactly on SystemC's time grid.
-  return sc_core::sc_time(static_cast<double>(std::max<long long>(1, std::llround(1e12 / config.receiver.clock))),
-                          sc_core::SC_PS);
-}
-
-}  // namespace
-
-ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
-                                 const SensorConfig& config, EventLog& log, VcdRecorder* vcd,
-                                 const CycleOptions& options)
-    : TileBus(name),
-      clock_("clock", s_, clock_period(config), receiver_prescale(config), kReceiverTsWidth,
-             options.free_running_clock ? sc_core::sc_time(config.sim.duration, sc_core::SC_SEC)
-                                        : sc_core::SC_ZERO_TIME),
-      receiver_(options.receiver("receiver", s_, receiver_model_config(config, options))),
-      sink_("sink", s_, tile, map, receiver_tick(config), kReceiverTsWidth, log),
-      monitor_("monitor", fmt::format("tile{}", tile), map.bus_bits(), vcd),
-      stream_monitor_("stream_monitor", s_),
-      log_(log),
-      detect_(config.bus.contention_detect) {
-  if (options.sink_ready) sink_.set_ready_pattern(options.sink_ready);
-  const ReceiverCycleModel::Config rc = receiver_model_config(config, options);
-  s_.prescale.write(rc.prescale);
-  s_.fifo_limit.write(rc.fifo_limit);
-  s_.discard_collisions.write(rc.discard_collisions);
-  s_.ts_external.write(rc.ts_external);
-  monitor_.req(s_.req);
-  monitor_.ack(s_.ack);
-  monitor_.contention(s_.contention);
-  monitor_.addr(s_.addr);
+ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, ReceiverSignals& wires,
+                                 sc_core::sc_time clock_period, bool contention_detect, EventLog& log)
+    : sc_module(name), s_(wires), clock_period_(clock_period), detect_(contention_detect), log_(log) {
   SC_METHOD(on_ack);
   sensitive << s_.ack;
   dont_initialize();
@@ -56,7 +23,7 @@ void ClockedAlohaBus::drive() {
 
 void ClockedAlohaBus::request(const AddressEvent& firing) {
   log_.fired(firing);
-  if (sc_core::sc_time_stamp().value() % clock_.period().value() == 0) {
+  if (sc_core::sc_time_stamp().value() % clock_period_.value() == 0) {
     deferred_.push_back(firing);
     deferred_event_.notify(sc_core::sc_time(1, sc_core::SC_PS));
     return;
@@ -71,7 +38,7 @@ void ClockedAlohaBus::apply_deferred() {
 
 void ClockedAlohaBus::join(const AddressEvent& firing) {
   if (s_.ack.read()) {
-    log_.resolve(firing, Fate::Collided);  // absorbed by a transaction already acknowledged
+    log_.resolve(firing, Fate::Absorbed);
     return;
   }
   if (!in_transaction_) {

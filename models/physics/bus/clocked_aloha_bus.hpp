@@ -1,23 +1,16 @@
 #pragma once
 #include <cstdint>
-#include <memory>
 #include <systemc>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "bus/handshake_monitor.hpp"
-#include "bus/tile_bus.hpp"
+#include "bus/event_bus.hpp"
 #include "events/event_log.hpp"
-#include "receiver/event_sink.hpp"
-#include "receiver/gated_clock.hpp"
-#include "receiver/receiver_module.hpp"
 #include "receiver/receiver_signals.hpp"
-#include "receiver/stream_monitor.hpp"
 
 namespace aesim {
 
-// bus.access=aloha at the cycle fidelity: one tile's real wires, its clocked receiver (reference
-// model or RTL), the receiver's clock and the consumer of its event stream.
+// bus.access=aloha at the cycle fidelity: the pixel side of one tile's real wires. It drives the
+// wires of a CycleTile, whose receiver answers on them.
 //
 // Wires: `addr` (wired-OR of every pixel driving), `req` (wired-OR of their requests),
 // `contention` (high while two or more pixels drive: the contention detector), and `ack` from the
@@ -29,22 +22,17 @@ namespace aesim {
 // is no arbiter, so pixels firing before the receiver latches all drive together: the receiver
 // latches the OR of their addresses with `contention` high, and every one of them is lost
 // (Fate::Collided with contention detection, Fate::Ghost without). A pixel that fires while Ack is
-// already high sees Ack at once and withdraws before the synchronizer can register it: it is
-// absorbed and lost (Fate::Collided). An event the receiver latches but cannot store (FIFO full,
-// drop policy) is Fate::Dropped. The transaction time tau (Req rise to Ack fall) is measured.
-class ClockedAlohaBus : public TileBus {
+// already high sees Ack at once and withdraws before the synchronizer can register it
+// (Fate::Absorbed). An event the receiver latches but cannot store (FIFO full, drop policy) is
+// Fate::Dropped. The transaction time tau (Req rise to Ack fall) is measured.
+class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
  public:
-  ClockedAlohaBus(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
-                  const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options);
+  ClockedAlohaBus(const sc_core::sc_module_name& name, ReceiverSignals& wires, sc_core::sc_time clock_period,
+                  bool contention_detect, EventLog& log);
   SC_HAS_PROCESS(ClockedAlohaBus);
 
   void request(const AddressEvent& firing) override;
   double measured_tau() const override;
-
-  std::uint64_t protocol_violations() const { return monitor_.violations() + stream_monitor_.violations(); }
-  std::uint64_t transactions() const { return transactions_; }
-  std::uint64_t clock_edges() const { return clock_.edges(); }
-  const ReceiverModule& receiver() const { return *receiver_; }
 
  private:
   struct Driver {
@@ -56,14 +44,10 @@ class ClockedAlohaBus : public TileBus {
   void on_ack();
   void drive();
 
-  ReceiverSignals s_;
-  GatedClock clock_;
-  std::unique_ptr<ReceiverModule> receiver_;
-  EventSink sink_;
-  HandshakeMonitor monitor_;
-  StreamMonitor stream_monitor_;
-  EventLog& log_;
+  ReceiverSignals& s_;
+  sc_core::sc_time clock_period_;
   bool detect_;
+  EventLog& log_;
   std::vector<Driver> drivers_;
   std::vector<AddressEvent> deferred_;
   sc_core::sc_event deferred_event_;

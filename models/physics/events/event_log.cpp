@@ -72,7 +72,8 @@ std::vector<T> merge_tiles(const std::vector<std::vector<T>*>& parts) {
 const char* to_string(Fate fate) {
   switch (fate) {
     case Fate::Delivered: return "delivered";
-    case Fate::Collided: return "collided";
+    case Fate::Collided:
+    case Fate::Absorbed: return "collided";
     case Fate::Ghost: return "ghost";
     case Fate::Dropped: return "dropped";
     case Fate::Pending: return "pending";
@@ -94,6 +95,7 @@ void EventLog::resolve(const AddressEvent& firing, Fate fate, double t_deliver) 
       }
       break;
     case Fate::Collided:
+    case Fate::Absorbed:
     case Fate::Ghost: ++tile.counters.collided; break;
     case Fate::Dropped: ++tile.counters.dropped; break;
     case Fate::Pending: ++tile.counters.pending; break;

@@ -10,6 +10,8 @@ namespace aesim {
 enum class Fate : std::uint8_t {
   Delivered,  // reached the receiver output intact
   Collided,   // lost in a collision the receiver detected and discarded
+  Absorbed,   // fired while Ack was high (cycle fidelity): withdrawn before the receiver could see it;
+              // a collision with the transaction in progress, counted and written as "collided"
   Ghost,      // lost in a collision the receiver did not detect: it output the OR of the addresses
   Dropped,    // lost for another reason (receiver FIFO full)
   Pending,    // still waiting for the bus when the run ended (arbitrated bus past saturation)
@@ -24,7 +26,7 @@ struct TruthRecord {
 };
 
 // Counters of SPEC section 5, per tile. `collided` counts fired events lost to collisions,
-// whether detected (Fate::Collided) or not (Fate::Ghost); `ghost` counts the wrong events the
+// whether detected (Fate::Collided, Fate::Absorbed) or not (Fate::Ghost); `ghost` counts the wrong events the
 // receiver output for undetected collisions; `delivered` counts every output event, ghosts too.
 struct TileCounters {
   std::uint64_t fired = 0, delivered = 0, collided = 0, ghost = 0, dropped = 0, pending = 0;

@@ -31,7 +31,6 @@ void EventSink::on_clock() {
     e.y = p.y;
     e.flags = s_.evt_flags.read() ? kGhostEvent : kNormalEvent;
     log_.output(e);
-    ++beats_;
   }
   ++cycle_;
   s_.evt_ready.write(ready_ ? ready_(cycle_) : true);

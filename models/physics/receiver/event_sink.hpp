@@ -20,7 +20,6 @@ class EventSink : public sc_core::sc_module {
   SC_HAS_PROCESS(EventSink);
 
   void set_ready_pattern(std::function<bool(std::uint64_t cycle)> ready) { ready_ = std::move(ready); }
-  std::uint64_t beats() const { return beats_; }
 
  private:
   void on_clock();
@@ -32,7 +31,7 @@ class EventSink : public sc_core::sc_module {
   std::uint64_t ts_modulus_;
   EventLog& log_;
   std::function<bool(std::uint64_t)> ready_;
-  std::uint64_t cycle_ = 0, beats_ = 0;
+  std::uint64_t cycle_ = 0;
   std::uint64_t last_ts_ = 0, wraps_ = 0;
 };
 

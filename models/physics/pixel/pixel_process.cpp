@@ -1,10 +1,10 @@
-#include "pixel/pixel.hpp"
+#include "pixel/pixel_process.hpp"
 
 #include "pixel/pixel_draws.hpp"
 
 namespace aesim {
 
-Pixel::Pixel(const sc_core::sc_module_name& name, const SensorConfig& config,
+PixelProcess::PixelProcess(const sc_core::sc_module_name& name, const SensorConfig& config,
              const Photocurrents& light, std::size_t index, const AddressEvent& identity)
     : sc_module(name),
       light_(light),
@@ -19,7 +19,7 @@ Pixel::Pixel(const sc_core::sc_module_name& name, const SensorConfig& config,
   SC_METHOD(step);
 }
 
-void Pixel::step() {
+void PixelProcess::step() {
   if (!started_) {
     started_ = true;
   } else if (pending_fire_) {
@@ -34,7 +34,7 @@ void Pixel::step() {
   schedule();
 }
 
-void Pixel::schedule() {
+void PixelProcess::schedule() {
   const double t_fire = core_.next_fire();
   const double t_boundary =
       next_boundary_ == Photocurrents::kNoChange ? kNever : light_.boundary_time(next_boundary_);

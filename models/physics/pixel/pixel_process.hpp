@@ -8,16 +8,16 @@
 
 namespace aesim {
 
-// An integrate-and-fire pixel as a SystemC module. It wakes only when something happens to it:
+// An integrate-and-fire pixel as a SystemC module (sim.fidelity=pixel_processes). It wakes only when something happens to it:
 // its next firing (computed in closed form by IntegrateFire) or a frame boundary where its own
 // light changes. A dark pixel of a still scene never wakes at all.
-class Pixel : public sc_core::sc_module {
+class PixelProcess : public sc_core::sc_module {
  public:
   sc_core::sc_port<PixelBusIf> bus;
 
-  Pixel(const sc_core::sc_module_name& name, const SensorConfig& config,
+  PixelProcess(const sc_core::sc_module_name& name, const SensorConfig& config,
         const Photocurrents& light, std::size_t index, const AddressEvent& identity);
-  SC_HAS_PROCESS(Pixel);
+  SC_HAS_PROCESS(PixelProcess);
 
  private:
   void step();

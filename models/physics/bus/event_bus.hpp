@@ -1,0 +1,19 @@
+#pragma once
+#include "events/address_event.hpp"
+
+namespace aesim {
+
+// One tile's bus, whatever its model: a firing pixel requests it with its address at the firing
+// time, in time order. Plain C++, so that the rungs without SystemC time (event, queue) drive it
+// directly; SystemC pixels reach it through a PixelBusPort.
+class EventBus {
+ public:
+  virtual ~EventBus() = default;
+  virtual void request(const AddressEvent& firing) = 0;
+  // After the run: settles what the bus still holds (an undecided collision cluster, a queue).
+  virtual void finish() {}
+  // Mean duration of a bus transaction as this bus measured it (0 when it has none to measure).
+  virtual double measured_tau() const { return 0; }
+};
+
+}  // namespace aesim

@@ -1,0 +1,53 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <systemc>
+
+#include "array/address_map.hpp"
+#include "bus/clocked_aloha_bus.hpp"
+#include "bus/handshake_monitor.hpp"
+#include "events/event_log.hpp"
+#include "receiver/event_sink.hpp"
+#include "receiver/gated_clock.hpp"
+#include "receiver/receiver_module.hpp"
+#include "receiver/receiver_signals.hpp"
+#include "receiver/stream_monitor.hpp"
+#include "waveform/vcd_recorder.hpp"
+
+namespace aesim {
+
+// One tile at the cycle fidelity, as it would be on the chip: its wires, the pixel side of the
+// ALOHA bus driving them, the receiver (reference model or RTL, from the options' factory) with
+// its gated clock, the consumer of the receiver's event stream, and the monitors that check the
+// handshake and the stream. Firings enter through bus().
+class CycleTile : public sc_core::sc_module {
+ public:
+  CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
+            const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options);
+
+  EventBus& bus() { return bus_; }
+
+  // What the tile saw: handshake and stream rule breaks, receiver clock edges simulated, the
+  // co-simulation scoreboard's compared beats and mismatches (RTL receivers only), and the mean
+  // transaction time measured on the wires.
+  struct Stats {
+    std::uint64_t protocol_violations = 0, clock_edges = 0, scoreboard_beats = 0, scoreboard_mismatches = 0;
+    double measured_tau = 0;
+  };
+  Stats stats() const;
+
+ private:
+  ReceiverSignals s_;
+  GatedClock clock_;
+  std::unique_ptr<ReceiverModule> receiver_;
+  EventSink sink_;
+  HandshakeMonitor monitor_;
+  StreamMonitor stream_monitor_;
+  ClockedAlohaBus bus_;
+};
+
+// The receiver clock's period: a whole number of picoseconds, so edges fall exactly on SystemC's
+// time grid.
+sc_core::sc_time receiver_clock_period(const SensorConfig::Receiver& receiver);
+
+}  // namespace aesim

@@ -1,0 +1,37 @@
+#include "array/fixed_step_array.hpp"
+#include "kernel/systemc_kernel.hpp"
+#include "rungs/event_level_buses.hpp"
+#include "rungs/rung.hpp"
+
+namespace aesim {
+namespace {
+
+// sim.fidelity=fixed_step: every pixel integrated on a clock of period sim.step
+// (array/fixed_step_array), into the event-level buses.
+class FixedStepRung : public Rung {
+ public:
+  Fidelity fidelity() const override { return Fidelity::FixedStep; }
+  RungCapabilities capabilities() const override {
+    RungCapabilities can;
+    can.shot_noise = false;
+    return can;
+  }
+  void run(const RungRun& run, RunFacts& facts) const override {
+    const ScopedKernel kernel;  // first, so the modules are gone before their context
+    EventLevelBuses buses(run);
+    FixedStepArray array("fixed_step", run.config, run.photocurrents, run.map, buses.pointers());
+    sc_core::sc_start();
+    buses.finish();
+    facts.tau_s = run.config.bus.t_event;
+    facts.multi_fire_steps = array.multi_fire_steps();
+  }
+};
+
+}  // namespace
+
+const Rung& fixed_step_rung() {
+  static const FixedStepRung rung;
+  return rung;
+}
+
+}  // namespace aesim

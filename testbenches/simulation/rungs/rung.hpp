@@ -1,0 +1,58 @@
+#pragma once
+#include <vector>
+
+#include "array/address_map.hpp"
+#include "config/sensor_config.hpp"
+#include "events/event_log.hpp"
+#include "events/run_facts.hpp"
+#include "rungs/simulation_request.hpp"
+#include "scene/photocurrents.hpp"
+#include "waveform/vcd_recorder.hpp"
+
+namespace aesim {
+
+// What a rung can produce, for `auto` and for refusing a request a rung cannot serve.
+struct RungCapabilities {
+  bool exact = false;           // firing times from the pixel physics in closed form: auto may pick it
+  bool waveforms = false;       // bus wires to dump (--vcd)
+  bool receiver_model = false;  // a clocked receiver: the reference model or the RTL (receiver.model)
+  bool shot_noise = true;       // models pixel.shot_noise
+};
+
+// Everything one run of a rung works on; the rung writes into `log`.
+struct RungRun {
+  const SensorConfig& config;  // resolved (light.lux applied), validated
+  const Photocurrents& photocurrents;
+  const AddressMap& map;
+  const SimulationRequest& request;
+  EventLog& log;
+  VcdRecorder* vcd;  // when request.waveforms
+};
+
+// One fidelity rung: a way of simulating the array, from the paper's event queue to the clocked
+// bus with the receiver RTL in the loop. A rung is one file (rungs/NAME_rung.cpp) and one line of
+// the table in rung_table.cpp.
+class Rung {
+ public:
+  virtual ~Rung() = default;
+  virtual Fidelity fidelity() const = 0;
+  virtual RungCapabilities capabilities() const = 0;
+  // Refuses, naming the key, a configuration this rung cannot model (InputError); before any work.
+  virtual void check(const SensorConfig& config) const { (void)config; }
+  // The receiver's timestamp resolution in this rung's output.
+  virtual double tick(const SensorConfig& config) const { return config.receiver.tick; }
+  // Simulates sim.duration into run.log (settled, not yet finished) and fills the facts the rung
+  // knows (tau and its own counters); simulate() fills the rest.
+  virtual void run(const RungRun& run, RunFacts& facts) const = 0;
+};
+
+// Every rung, cheapest first (as measured on the shipped scenes, docs/fidelity_ladder.csv).
+const std::vector<const Rung*>& rung_table();
+const Rung& rung_for(Fidelity fidelity);
+
+// The rung a run uses: sim.fidelity, with auto resolved to the cheapest exact rung that can
+// produce what was asked, checked against the request and the configuration (InputError naming
+// the key when it cannot serve them).
+const Rung& choose_rung(const SensorConfig& config, const SimulationRequest& request);
+
+}  // namespace aesim
