@@ -25,7 +25,7 @@ SensorConfig uniform_aloha(double load) {
 nlohmann::json run(const SensorConfig& c) {
   const Photocurrents light(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}),
                             c.pixel);
-  const SimulationResult r = simulate(c, light);
+  const SimulationResult r = simulate(c.resolved(), light);
   return make_summary(c, r.log, r.facts);
 }
 
@@ -88,7 +88,7 @@ TEST(PureAlohaTheoryFails, MismatchAloneBreaksTheLockStepOverTime) {
   c.pixel.mismatch = 0.02;
   const Photocurrents light(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}),
                             c.pixel);
-  const SimulationResult r = simulate(c, light, testing::with_truth());
+  const SimulationResult r = simulate(c.resolved(), light, testing::with_truth());
   double first_lost = 0, first = 0, last_lost = 0, last = 0;
   for (const TruthRecord& t : r.log.truth()) {
     const bool lost = t.fate != Fate::Delivered;

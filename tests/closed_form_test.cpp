@@ -26,7 +26,7 @@ std::map<std::size_t, std::vector<double>> times_by_pixel(const SimulationResult
 
 void expect_closed_form(const SensorConfig& c, const Image& img) {
   const Photocurrents light(make_scene({img}), c.pixel);
-  const SimulationResult r = simulate(c, light);
+  const SimulationResult r = simulate(c.resolved(), light);
   const auto times = times_by_pixel(r, c.array.cols);
   const double q = c.pixel.c_int * c.pixel.dv_int;
   std::uint64_t total = 0;
@@ -83,7 +83,7 @@ std::vector<double> single_pixel_run(double t_reset, double frame_period) {
                                   make_image(1, 1, [](int, int) { return 0.5; })},
                                  frame_period);
   const Photocurrents light(scene, c.pixel);
-  const SimulationResult r = simulate(c, light);
+  const SimulationResult r = simulate(c.resolved(), light);
   std::vector<double> times;
   for (const AddressEvent& e : r.log.events()) times.push_back(e.t);
   return times;
@@ -115,7 +115,7 @@ TEST(ClosedForm, LoopedSequenceRepeats) {
                                   make_image(1, 1, [](int, int) { return 0.0; })},
                                  0.33, true);
   const Photocurrents light(scene, c.pixel);
-  const SimulationResult r = simulate(c, light);
+  const SimulationResult r = simulate(c.resolved(), light);
   std::vector<double> times;
   for (const AddressEvent& e : r.log.events()) times.push_back(e.t);
   expect_times(times, {0.1, 0.2, 0.3, 0.73, 0.83, 0.93});
@@ -126,7 +126,7 @@ TEST(Mismatch, SpreadOfPeriodsMatchesTheParameter) {
   c.pixel.mismatch = 0.05;
   c.sim.duration = 0.25;  // two firings per pixel at 1 pA: 0.1 * (1 +- 0.05 * 4.5 sigma)
   const Photocurrents light(make_scene({make_image(64, 64, [](int, int) { return 1.0; })}), c.pixel);
-  const auto times = times_by_pixel(simulate(c, light), 64);
+  const auto times = times_by_pixel(simulate(c.resolved(), light), 64);
   ASSERT_EQ(times.size(), 4096u);
   double sum = 0, sum2 = 0;
   for (const auto& [pixel, t] : times) {
@@ -147,7 +147,7 @@ TEST(Light, ZeroCurrentNeverFiresAndTerminates) {
   SensorConfig c = exact_sensor(32, 32, 16);
   c.sim.duration = 1e6;
   const Photocurrents light(make_scene({make_image(32, 32, [](int, int) { return 0.0; })}), c.pixel);
-  const SimulationResult r = simulate(c, light);
+  const SimulationResult r = simulate(c.resolved(), light);
   EXPECT_EQ(r.log.totals().fired, 0u);
   EXPECT_TRUE(r.log.events().empty());
 }
@@ -160,7 +160,7 @@ TEST(Light, VanishingCurrentsDoNotOverflowSimulatedTime) {
   c.sim.duration = 1e6;
   const Photocurrents light(make_scene({make_image(2, 1, [](int x, int) { return x == 0 ? 1.0 : 1e-11; })}),
                             c.pixel);
-  const SimulationResult r = simulate(c, light);
+  const SimulationResult r = simulate(c.resolved(), light);
   ASSERT_EQ(r.log.events().size(), 1u);
   EXPECT_EQ(r.log.events()[0].x, 0u);
   EXPECT_NEAR(r.log.events()[0].t, 8e5, 1e-6);
@@ -174,7 +174,7 @@ TEST(Seeds, SameSeedSameEventsOtherSeedOtherEvents) {
   const Photocurrents light(make_scene({make_image(16, 16, [](int x, int) { return x / 15.0; })}), c.pixel);
   auto run = [&](std::uint64_t seed) {
     c.sim.seed = seed;
-    const SimulationResult r = simulate(c, light);
+    const SimulationResult r = simulate(c.resolved(), light);
     std::vector<std::pair<double, std::uint32_t>> v;
     for (const AddressEvent& e : r.log.events()) v.emplace_back(e.t, e.y * 16 + e.x);
     return v;

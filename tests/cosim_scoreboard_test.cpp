@@ -47,9 +47,9 @@ TEST_P(Cosim, RtlMatchesTheReferenceEveryCycle) {
   request.sink_ready = [every](std::uint64_t cycle) { return cycle % every == 0; };
 
   c.receiver.model = ReceiverModel::Rtl;
-  const SimulationResult rtl = simulate(c, light, request);
+  const SimulationResult rtl = simulate(c.resolved(), light, request);
   c.receiver.model = ReceiverModel::Reference;
-  const SimulationResult ref = simulate(c, light, request);
+  const SimulationResult ref = simulate(c.resolved(), light, request);
 
   EXPECT_EQ(rtl.facts.scoreboard_mismatches, 0u);
   EXPECT_EQ(rtl.facts.protocol_violations, 0u);
@@ -102,8 +102,8 @@ TEST(ClockGating, StoppingTheIdleClockChangesNothing) {
   const Photocurrents light(scene, c.pixel);
   SimulationRequest free_running = testing::with_truth();
   free_running.free_running_clock = true;
-  const SimulationResult a = simulate(c, light, free_running);
-  const SimulationResult b = simulate(c, light, testing::with_truth());
+  const SimulationResult a = simulate(c.resolved(), light, free_running);
+  const SimulationResult b = simulate(c.resolved(), light, testing::with_truth());
   EXPECT_EQ(a.facts.scoreboard_mismatches, 0u);
   EXPECT_EQ(b.facts.scoreboard_mismatches, 0u);
   ASSERT_GT(a.log.events().size(), 10000u);

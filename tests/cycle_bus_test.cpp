@@ -169,7 +169,7 @@ TEST(HandshakeMonitor, CountsBrokenRules) {
 
 SimulationResult run_scene(SensorConfig c, const Image& img) {
   const Photocurrents light(testing::make_scene({img}), c.pixel);
-  return simulate(c, light, testing::with_truth());
+  return simulate(c.resolved(), light, testing::with_truth());
 }
 
 TEST(CycleFidelity, LoadedBusKeepsTheHandshakeAndDeliversOnlyFiredPixels) {

@@ -29,7 +29,7 @@ std::uint64_t mismatches() {
   request.receiver = [](const std::string& name, ReceiverSignals& s, const ReceiverCycleModel::Config& config) {
     return std::unique_ptr<ReceiverModule>(new RtlReceiver<V>(name.c_str(), s, config));
   };
-  const SimulationResult r = simulate(c, light, request);
+  const SimulationResult r = simulate(c.resolved(), light, request);
   EXPECT_GT(r.facts.scoreboard_beats, 1000u);
   return r.facts.scoreboard_mismatches;
 }

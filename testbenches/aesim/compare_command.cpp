@@ -5,12 +5,14 @@
 
 #include <fmt/format.h>
 
+#include "command_settings.hpp"
 #include "commands.hpp"
 #include "compare/fidelity_errors.hpp"
 #include "files/data_dir.hpp"
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "output/atomic_file.hpp"
+#include "pareto/pareto_front.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
 #include "run/imager_simulation.hpp"
@@ -29,12 +31,31 @@ struct CompareOptions {
   std::string max_events;
 };
 
-struct Rung {
+// One rung of the ladder as compare runs it: a rung of the table, with a receiver model and a step
+// where the rung has them.
+struct LadderStep {
   std::string name;
   Fidelity fidelity;
   ReceiverModel receiver = ReceiverModel::Reference;
   double step = 0;
 };
+
+// Every rung of the table; a rung with a receiver model with each receiver (the RTL one as
+// NAME_rtl), a stepped rung at each of `steps`.
+std::vector<LadderStep> ladder(const std::vector<double>& steps) {
+  std::vector<LadderStep> out;
+  for (const Rung* rung : rung_table()) {
+    const RungCapabilities can = rung->capabilities();
+    const std::string name = to_string(rung->fidelity());
+    if (can.stepped) {
+      for (double step : steps) out.push_back({name, rung->fidelity(), ReceiverModel::Reference, step});
+      continue;
+    }
+    out.push_back({name, rung->fidelity()});
+    if (can.receiver_model) out.push_back({name + "_rtl", rung->fidelity(), ReceiverModel::Rtl});
+  }
+  return out;
+}
 
 struct Row {
   std::string scene, rung;
@@ -51,14 +72,9 @@ std::string display(const std::string& path) {
 
 int compare(CompareOptions opt) {
   if (opt.scenes.empty()) opt.scenes = {data_dir() + "/scenes/letters/A.pgm"};
-  std::vector<Rung> rungs = {{"queue", Fidelity::Queue},
-                             {"event", Fidelity::Event},
-                             {"pixel_processes", Fidelity::PixelProcesses},
-                             {"cycle", Fidelity::Cycle},
-                             {"cycle_rtl", Fidelity::Cycle, ReceiverModel::Rtl}};
-  for (const std::string& s : opt.steps) {
-    rungs.push_back({"fixed_step", Fidelity::FixedStep, ReceiverModel::Reference, parse_si(s, "s", "--steps")});
-  }
+  std::vector<double> steps;
+  for (const std::string& text : opt.steps) steps.push_back(parse_si(text, "s", "--steps"));
+  const std::vector<LadderStep> rungs = ladder(steps);
   std::vector<std::string> inputs = {opt.sensor};
   for (const std::string& scene_path : opt.scenes) {
     const SceneFiles files = find_scene(scene_path);
@@ -71,28 +87,26 @@ int compare(CompareOptions opt) {
     const SceneFiles files = find_scene(scene_path);
     SensorConfig base = load_sensor(opt.sensor);
     apply_scene_settings(files, base);
-    base.apply_overrides(opt.sets);
-    base.set("sim.duration", opt.duration);
-    if (!opt.max_events.empty()) base.set("sim.max_events", opt.max_events);
-    base.validate();
-    base = base.resolved();
-    const Scene scene = load_scene(files, base);
-    const Photocurrents light(scene, base.pixel);
-    const Image mean = mean_frame(scene, base.sim.duration);
+    for (const Setting& setting : command_settings(opt.sets, opt.duration, opt.max_events)) {
+      base.set(setting.first, setting.second);
+    }
+    const ResolvedConfig resolved = base.resolved();
+    const Scene scene = load_scene(files, resolved);
+    const Photocurrents light(scene, resolved.pixel);
+    const Image mean = mean_frame(scene, resolved.sim.duration);
 
     SensorConfig ref_config = base;
     ref_config.sim.fidelity = Fidelity::Event;
     SimulationRequest request;
     request.keep_truth = true;
-    const SimulationResult reference = simulate(ref_config, light, request);
+    const SimulationResult reference = simulate(ref_config.resolved(), light, request);
     const std::size_t first = rows.size();
-    for (const Rung& rung : rungs) {
+    for (const LadderStep& rung : rungs) {
       SensorConfig c = base;
       c.sim.fidelity = rung.fidelity;
       c.receiver.model = rung.receiver;
       if (rung.step > 0) c.sim.step = rung.step;
-      c.validate();
-      const SimulationResult r = simulate(c, light, request);
+      const SimulationResult r = simulate(c.resolved(), light, request);
       Row row;
       row.scene = display(scene_path);
       row.rung = rung.name;
@@ -107,15 +121,10 @@ int compare(CompareOptions opt) {
                    rung.step > 0 ? (" " + format_si(rung.step, "s")).c_str() : "", row.wall, row.errors.count_error,
                    row.errors.rms_time_error_s);
     }
-    // Pareto front on (wall time per simulated second, RMS firing-time error): no other rung of
-    // this scene is at least as fast and as accurate, and better in one.
-    for (std::size_t i = first; i < rows.size(); ++i) {
-      rows[i].pareto = std::none_of(rows.begin() + static_cast<std::ptrdiff_t>(first), rows.end(), [&](const Row& o) {
-        const Row& r = rows[i];
-        return o.wall_per_sim <= r.wall_per_sim && o.errors.rms_time_error_s <= r.errors.rms_time_error_s &&
-               (o.wall_per_sim < r.wall_per_sim || o.errors.rms_time_error_s < r.errors.rms_time_error_s);
-      });
-    }
+    // Pareto front on (wall time per simulated second, RMS firing-time error) among this scene's rungs.
+    std::vector<std::pair<double, double>> scores;
+    for (std::size_t i = first; i < rows.size(); ++i) scores.emplace_back(rows[i].wall_per_sim, rows[i].errors.rms_time_error_s);
+    for (std::size_t k : pareto_front(scores)) rows[first + k].pareto = true;
   }
   OutputFiles files;
   std::ostream& csv = files.open(opt.output);

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "command_settings.hpp"
 #include "commands.hpp"
 #include "files/data_dir.hpp"
 #include "errors/input_error.hpp"
@@ -35,16 +36,6 @@ struct RunOptions {
   std::string max_events;
 };
 
-SensorConfig resolve_config(const RunOptions& opt, const SceneFiles& scene) {
-  SensorConfig config = load_sensor(opt.sensor);
-  apply_scene_settings(scene, config);
-  config.apply_overrides(opt.sets);
-  if (!opt.duration.empty()) config.set("sim.duration", opt.duration);
-  if (!opt.max_events.empty()) config.set("sim.max_events", opt.max_events);
-  config.validate();
-  return config.resolved();
-}
-
 int run(RunOptions opt) {
   const bool no_outputs_named = opt.out.empty() && opt.csv.empty() && opt.recon.empty() && opt.summary.empty();
   if (no_outputs_named) {
@@ -55,7 +46,8 @@ int run(RunOptions opt) {
   }
   if (opt.scene.empty()) opt.scene = data_dir() + "/scenes/letters/A.pgm";
   const SceneFiles scene_files = find_scene(opt.scene);
-  const SensorConfig config = resolve_config(opt, scene_files);
+  const ResolvedConfig config =
+      configure_run(load_sensor(opt.sensor), scene_files, command_settings(opt.sets, opt.duration, opt.max_events));
   SimulationRequest request;
   request.keep_truth = !opt.truth.empty();
   request.waveforms = !opt.vcd.empty();
@@ -149,7 +141,7 @@ int run(RunOptions opt) {
               static_cast<unsigned long long>(total.fired),
               format_si(static_cast<double>(total.fired) / config.sim.duration, "events/s").c_str(),
               static_cast<unsigned long long>(total.delivered), static_cast<unsigned long long>(total.collided),
-              total.fired ? 100.0 * static_cast<double>(total.collided) / static_cast<double>(total.fired) : 0.0,
+              100.0 * total.collision_fraction(),
               static_cast<unsigned long long>(total.ghost));
   std::printf("  bus load per tile: G = %.4g offered, S = %.4g delivered\n", summary["offered_load"].get<double>(),
               summary["throughput"].get<double>());

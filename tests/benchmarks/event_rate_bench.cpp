@@ -17,7 +17,7 @@ void run(benchmark::State& state, const SensorConfig& config, const Scene& scene
   const Photocurrents light(scene, config.pixel);
   double events = 0, edges = 0;
   for (auto _ : state) {
-    const SimulationResult r = simulate(config, light);
+    const SimulationResult r = simulate(config.resolved(), light);
     events += static_cast<double>(r.log.totals().fired);
     edges += static_cast<double>(r.facts.receiver_clock_edges);
     benchmark::DoNotOptimize(r.log.events().data());
@@ -71,7 +71,7 @@ void BM_CycleFreeRunningClock(benchmark::State& state, ReceiverModel model) {
   request.free_running_clock = true;
   double edges = 0;
   for (auto _ : state) {
-    const SimulationResult r = simulate(c, light, request);
+    const SimulationResult r = simulate(c.resolved(), light, request);
     edges += static_cast<double>(r.facts.receiver_clock_edges);
   }
   state.counters["edges_per_s"] = benchmark::Counter(edges, benchmark::Counter::kIsRate);

@@ -10,6 +10,7 @@
 
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
+#include "scene/scene.hpp"
 #include "emulator/y4m.hpp"
 #include "event_files/event_file.hpp"
 #include "scene/netpbm.hpp"
@@ -55,10 +56,9 @@ int set_values(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(bytes(data, size));
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return expect_result_or_input_error([&] {
-    SensorConfig config;
-    config.apply_overrides(lines);
-    config.validate();
-    config.resolved().to_json();
+    std::vector<Setting> settings;
+    for (const std::string& line : lines) settings.push_back(parse_setting(line));
+    configure_run(SensorConfig{}, SceneFiles{}, settings).to_json();
   });
 }
 

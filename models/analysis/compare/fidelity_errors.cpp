@@ -18,11 +18,6 @@ std::unordered_map<std::uint64_t, std::vector<double>> fire_times(const EventLog
   return by_pixel;
 }
 
-double collision_fraction(const EventLog& log) {
-  const TileCounters c = log.totals();
-  return c.fired ? static_cast<double>(c.collided) / static_cast<double>(c.fired) : 0.0;
-}
-
 }  // namespace
 
 double psnr_db(const Image& image, const Image& reference) {
@@ -56,8 +51,8 @@ FidelityErrors fidelity_errors(const EventLog& reference, const EventLog& run, c
   }
   e.count_error = count_ref > 0 ? count_diff / count_ref : 0.0;
   e.rms_time_error_s = pairs > 0 ? std::sqrt(sq / pairs) : 0.0;
-  e.collision_fraction = collision_fraction(run);
-  e.collision_fraction_error = std::abs(e.collision_fraction - collision_fraction(reference));
+  e.collision_fraction = run.totals().collision_fraction();
+  e.collision_fraction_error = std::abs(e.collision_fraction - reference.totals().collision_fraction());
 
   std::vector<AddressEvent> good;
   for (const AddressEvent& ev : run.events()) {

@@ -52,8 +52,7 @@ std::vector<EmulatedEvent> emulate(const std::vector<Image>& frames, const Emula
       }
     }
     for (std::size_t j = 0; j < kept.size(); ++j) {
-      const double t = (static_cast<double>(k) + (static_cast<double>(j) + 0.5) / static_cast<double>(kept.size())) /
-                       s.frame_rate;
+      const double t = queue_entry_time(static_cast<double>(k) / s.frame_rate, 1.0 / s.frame_rate, j, kept.size());
       events.push_back({t, kept[j] % static_cast<std::uint32_t>(w), kept[j] / static_cast<std::uint32_t>(w),
                         static_cast<std::uint32_t>(k)});
     }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "pareto/pareto_front.hpp"
 #include "errors/input_error.hpp"
 #include "units/si_units.hpp"
 
@@ -44,24 +45,16 @@ double margin(const DesignPoint& p, const Constraint& c) {
   return (c.at_most ? c.bound - v : v - c.bound) / scale;
 }
 
-// Points not dominated on (a, b), where better(a) and better(b) say which way is better.
+// The candidates on the Pareto front of (a, b), `low` saying for each whether lower is better;
+// ordered by a.
 std::vector<std::size_t> front(const std::vector<DesignPoint>& points, const std::vector<std::size_t>& candidates,
                                const std::string& a, bool a_low, const std::string& b, bool b_low) {
-  auto better_or_equal = [&](std::size_t i, std::size_t j, const std::string& col, bool low) {
-    return low ? value(points[i], col) <= value(points[j], col) : value(points[i], col) >= value(points[j], col);
-  };
-  auto strictly = [&](std::size_t i, std::size_t j, const std::string& col, bool low) {
-    return low ? value(points[i], col) < value(points[j], col) : value(points[i], col) > value(points[j], col);
-  };
-  std::vector<std::size_t> out;
+  std::vector<std::pair<double, double>> scores;
   for (std::size_t i : candidates) {
-    if (std::isnan(value(points[i], a)) || std::isnan(value(points[i], b))) continue;
-    const bool dominated = std::any_of(candidates.begin(), candidates.end(), [&](std::size_t j) {
-      return j != i && better_or_equal(j, i, a, a_low) && better_or_equal(j, i, b, b_low) &&
-             (strictly(j, i, a, a_low) || strictly(j, i, b, b_low));
-    });
-    if (!dominated) out.push_back(i);
+    scores.emplace_back(a_low ? value(points[i], a) : -value(points[i], a), b_low ? value(points[i], b) : -value(points[i], b));
   }
+  std::vector<std::size_t> out;
+  for (std::size_t k : pareto_front(scores)) out.push_back(candidates[k]);
   std::sort(out.begin(), out.end(), [&](std::size_t i, std::size_t j) { return value(points[i], a) < value(points[j], a); });
   return out;
 }

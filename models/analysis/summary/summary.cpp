@@ -54,13 +54,13 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
     tiles.push_back({{"fired", t.fired}, {"delivered", t.delivered}, {"collided", t.collided},
                      {"ghost", t.ghost}, {"dropped", t.dropped}, {"pending", t.pending},
                      {"offered_load", static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s},
-                     {"collision_fraction", t.fired ? static_cast<double>(t.collided) / t.fired : 0.0}});
+                     {"collision_fraction", t.collision_fraction()}});
   }
   const LatencyStats latency = log.latency();
   double worst_load = 0, worst_loss = 0;
   for (const TileCounters& t : log.tiles()) {
     worst_load = std::max(worst_load, static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s);
-    worst_loss = std::max(worst_loss, t.fired ? static_cast<double>(t.collided) / t.fired : 0.0);
+    worst_loss = std::max(worst_loss, t.collision_fraction());
   }
   nlohmann::json summary = {
       {"events_fired", total.fired},
@@ -71,7 +71,7 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
       {"events_pending", total.pending},
       {"offered_load", static_cast<double>(total.fired) * per_bus_rate * facts.tau_s},
       {"throughput", static_cast<double>(total.delivered - total.ghost) * per_bus_rate * facts.tau_s},
-      {"collision_fraction", total.fired ? static_cast<double>(total.collided) / total.fired : 0.0},
+      {"collision_fraction", total.collision_fraction()},
       {"offered_load_max_tile", worst_load},
       {"collision_fraction_max_tile", worst_loss},
       {"latency_mean_s", latency.mean},

@@ -130,8 +130,7 @@ bool FiringSchedule::next(AddressEvent& firing) {
     Pixel& p = pixels_[slot];
     const double t_fire = p.core.next_fire();
     const double t_boundary = p.next_boundary == kNoBoundary ? kNever : light_.boundary_time(p.next_boundary);
-    // On a tie the firing comes first: the charge reached threshold under the old light.
-    const bool fires = t_fire <= t_boundary;
+    const bool fires = fires_first(t_fire, t_boundary);
     if (fires) {
       firing.t = t_fire;
       firing.x = p.x;

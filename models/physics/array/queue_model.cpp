@@ -65,12 +65,11 @@ std::vector<AddressEvent> queue_events(const SensorConfig& config, const Photocu
     const double length = std::min(frame_time, duration - start);
     const std::vector<std::uint32_t> queue = queue_order(values, f_max, length, &budget);
     if (queue.empty() && empty_lit_frames && *std::max_element(values.begin(), values.end()) > 0) ++*empty_lit_frames;
-    const double spacing = length / static_cast<double>(std::max<std::size_t>(1, queue.size()));
     for (std::size_t j = 0; j < queue.size(); ++j) {
       const std::uint32_t x = queue[j] % static_cast<std::uint32_t>(map.cols());
       const std::uint32_t y = queue[j] / static_cast<std::uint32_t>(map.cols());
       AddressEvent e = map.event_at({x, y});
-      e.t = start + (static_cast<double>(j) + 0.5) * spacing;
+      e.t = queue_entry_time(start, length, j, queue.size());
       events.push_back(e);
     }
   }

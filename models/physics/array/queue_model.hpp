@@ -34,6 +34,12 @@ struct QueueBudget {
   double entries = 0, visits = 0;
 };
 
+// The synthetic time of entry j of a queue of m entries in the frame [start, start + length): the
+// entries split the frame evenly, each at the middle of its share, (j + 1/2) / m of the way.
+inline double queue_entry_time(double start, double length, std::size_t j, std::size_t m) {
+  return start + (static_cast<double>(j) + 0.5) * (length / static_cast<double>(m));
+}
+
 // One frame's queue as pixel indices (y * width + x) in queue order: eq. 3 on normalised values.
 // With a budget, the frame's work is charged to it first.
 std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double full_scale_rate, double frame_time,

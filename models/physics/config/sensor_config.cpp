@@ -198,14 +198,6 @@ void SensorConfig::set(const std::string& key, const std::string& value) {
   it->second.set(*this, value);
 }
 
-void SensorConfig::apply_overrides(const std::vector<std::string>& assignments) {
-  for (const std::string& kv : assignments) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("--set '{}': expected section.key=value", kv));
-    set(kv.substr(0, eq), kv.substr(eq + 1));
-  }
-}
-
 nlohmann::json SensorConfig::to_json() const {
   Json out = Json::object();
   for (const auto& [key, spec] : registry()) {
@@ -305,8 +297,9 @@ void apply_toml_text(SensorConfig& config, const std::string& text, const std::s
   }
 }
 
-SensorConfig SensorConfig::resolved() const {
-  SensorConfig c = *this;
+ResolvedConfig SensorConfig::resolved() const {
+  validate();
+  ResolvedConfig c(*this);
   if (light.lux > 0) {
     c.pixel.i_max = photocurrent_from_lux(light.lux, light.responsivity, light.efficacy, light.pixel_area,
                                           light.fill_factor);

@@ -19,6 +19,8 @@ enum class Fidelity { Queue, Event, Cycle, Auto, PixelProcesses, FixedStep };
 enum class ReceiverModel { Reference, Rtl };
 enum class FullPolicy { Drop, Hold };
 
+struct ResolvedConfig;
+
 // Every parameter of a run, in SI units. Field names are the keys of SPEC section 3.
 struct SensorConfig {
   struct Pixel {
@@ -77,16 +79,24 @@ struct SensorConfig {
 
   // Sets one key ("pixel.c_int") from text with SI units; throws InputError naming the key.
   void set(const std::string& key, const std::string& value);
-  // Applies command-line overrides "section.key=value" in order.
-  void apply_overrides(const std::vector<std::string>& assignments);
   // Every key with its value, as the summary and the AEDAT header echo them.
   nlohmann::json to_json() const;
   // Physical and structural consistency; throws InputError naming the offending key.
   void validate() const;
-  // The parameters a run uses: with light.lux set, pixel.i_max derived from the illuminance.
-  SensorConfig resolved() const;
+  // The parameters a run uses: validated (InputError naming the key), then with light.lux set,
+  // pixel.i_max derived from the illuminance.
+  ResolvedConfig resolved() const;
 
   static const std::vector<std::string>& keys();
+};
+
+// A configuration ready to run: validated, its derived values filled in. Only
+// SensorConfig::resolved() makes one, so whatever takes a ResolvedConfig cannot be handed a preset
+// as typed, before its illuminance is turned into a photocurrent.
+struct ResolvedConfig : SensorConfig {
+ private:
+  friend struct SensorConfig;
+  explicit ResolvedConfig(const SensorConfig& config) : SensorConfig(config) {}
 };
 
 // Loads a preset: NAME (a file in the sensors folder) or a path to a .toml file.

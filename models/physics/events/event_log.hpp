@@ -30,6 +30,10 @@ struct TruthRecord {
 // receiver output for undetected collisions; `delivered` counts every output event, ghosts too.
 struct TileCounters {
   std::uint64_t fired = 0, delivered = 0, collided = 0, ghost = 0, dropped = 0, pending = 0;
+  // The fraction of fired events lost to collisions (0 when none fired).
+  double collision_fraction() const {
+    return fired ? static_cast<double>(collided) / static_cast<double>(fired) : 0.0;
+  }
 };
 
 struct LatencyStats {

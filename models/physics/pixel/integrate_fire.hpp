@@ -25,6 +25,10 @@ inline constexpr double kNever = std::numeric_limits<double>::infinity();
 //
 // What all pixels of a sensor share (reset time, shot noise) is passed in, not stored, so that a
 // pixel's state is 56 bytes: a megapixel array schedules in well under 100 bytes per pixel.
+// When a pixel's next firing and its next change of light fall at the same time, the firing comes
+// first: the charge reached threshold under the old light. Every rung orders the two by this.
+inline bool fires_first(double t_fire, double t_light_change) { return t_fire <= t_light_change; }
+
 class IntegrateFire {
  public:
   struct Sensor {
@@ -47,7 +51,6 @@ class IntegrateFire {
   void set_current(const Sensor& sensor, double t, double current);
   // Charge collected at time t (zero during reset); t within [last firing, next_fire()].
   double charge_at(const Sensor& sensor, double t) const;
-  double current() const { return current_; }
 
  private:
   double reset_end_of_last_cycle(const Sensor& sensor) const;

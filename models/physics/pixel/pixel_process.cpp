@@ -38,8 +38,7 @@ void PixelProcess::schedule() {
   const double t_fire = core_.next_fire();
   const double t_boundary =
       next_boundary_ == Photocurrents::kNoChange ? kNever : light_.boundary_time(next_boundary_);
-  // On a tie the firing comes first: the charge reached threshold under the old light.
-  pending_fire_ = t_fire <= t_boundary;
+  pending_fire_ = fires_first(t_fire, t_boundary);
   const double t_next = pending_fire_ ? t_fire : t_boundary;
   if (!(t_next <= t_end_)) return;  // nothing more happens to this pixel within the run
   next_trigger(sc_core::sc_time(t_next, sc_core::SC_SEC) - sc_core::sc_time_stamp());

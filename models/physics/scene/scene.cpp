@@ -74,6 +74,20 @@ void apply_scene_settings(const SceneFiles& files, SensorConfig& config) {
   apply_toml_file(config, files.settings, "scene");
 }
 
+Setting parse_setting(const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw InputError(fmt::format("--set '{}': expected section.key=value", assignment));
+  }
+  return {assignment.substr(0, eq), assignment.substr(eq + 1)};
+}
+
+ResolvedConfig configure_run(SensorConfig sensor, const SceneFiles& scene, const std::vector<Setting>& settings) {
+  apply_scene_settings(scene, sensor);
+  for (const auto& [key, value] : settings) sensor.set(key, value);
+  return sensor.resolved();
+}
+
 std::vector<Image> read_frames(const SceneFiles& files) {
   std::vector<Image> frames;
   for (const std::string& path : files.frames) {

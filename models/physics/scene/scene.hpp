@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/sensor_config.hpp"
@@ -19,6 +20,15 @@ struct SceneFiles {
 SceneFiles find_scene(const std::string& file_or_dir);
 // Applies the folder's scene.toml to config.scene (command-line --set applies after this).
 void apply_scene_settings(const SceneFiles& files, SensorConfig& config);
+
+// A setting "section.key" = "value" as text with units, applied in order (later wins).
+using Setting = std::pair<std::string, std::string>;
+// "section.key=value" (--set) as a Setting; InputError naming the text when it is not one.
+Setting parse_setting(const std::string& assignment);
+
+// The configuration of a run, made the one way every command makes it: the sensor, then the
+// scene's own settings (scene.toml), then `settings` in order; validated and resolved.
+ResolvedConfig configure_run(SensorConfig sensor, const SceneFiles& scene, const std::vector<Setting>& settings);
 
 // A scene at the array's resolution: frames shown one after the other, each for frame_period.
 struct Scene {

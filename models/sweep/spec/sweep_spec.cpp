@@ -236,12 +236,10 @@ SweepSpec load_sweep_spec(const std::string& path) {
   }
   for (std::size_t i = 0; i < spec.points.size(); ++i) {
     const SweepPoint& p = spec.points[i];
-    SensorConfig c = base;
     try {
-      apply_scene_settings(find_scene(p.scene), c);
-      for (const auto& [k, v] : p.sets) c.set(k, v);
-      if (!spec.duration.empty()) c.set("sim.duration", spec.duration);
-      c.validate();
+      std::vector<Setting> settings(p.sets.begin(), p.sets.end());
+      if (!spec.duration.empty()) settings.emplace_back("sim.duration", spec.duration);
+      configure_run(base, find_scene(p.scene), settings);
     } catch (const InputError& e) {
       throw InputError(fmt::format("sweep spec '{}': group {}, point {}: {}", path, p.group, i + 1, e.what()));
     }

@@ -6,7 +6,7 @@
 
 namespace aesim {
 
-SimulationResult simulate(const SensorConfig& config, const Photocurrents& photocurrents,
+SimulationResult simulate(const ResolvedConfig& config, const Photocurrents& photocurrents,
                           const SimulationRequest& request) {
   const Rung& rung = choose_rung(config, request);
   check_work(config, photocurrents, rung.fidelity());

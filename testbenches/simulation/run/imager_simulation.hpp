@@ -20,7 +20,7 @@ struct SimulationResult {
 // Simulates sim.duration on the rung choose_rung() picks and returns what the receivers got,
 // time-ordered. The work is estimated and bounded first (rungs/run_budget). Each call is
 // independent (rungs under SystemC get a kernel of their own), so one process may run many.
-SimulationResult simulate(const SensorConfig& config, const Photocurrents& photocurrents,
+SimulationResult simulate(const ResolvedConfig& config, const Photocurrents& photocurrents,
                           const SimulationRequest& request = {});
 
 }  // namespace aesim

@@ -14,6 +14,7 @@ class FixedStepRung : public Rung {
   RungCapabilities capabilities() const override {
     RungCapabilities can;
     can.shot_noise = false;
+    can.stepped = true;
     return can;
   }
   void run(const RungRun& run, RunFacts& facts) const override {

@@ -17,11 +17,12 @@ struct RungCapabilities {
   bool waveforms = false;       // bus wires to dump (--vcd)
   bool receiver_model = false;  // a clocked receiver: the reference model or the RTL (receiver.model)
   bool shot_noise = true;       // models pixel.shot_noise
+  bool stepped = false;         // integrates on a clock of period sim.step
 };
 
 // Everything one run of a rung works on; the rung writes into `log`.
 struct RungRun {
-  const SensorConfig& config;  // resolved (light.lux applied), validated
+  const ResolvedConfig& config;
   const Photocurrents& photocurrents;
   const AddressMap& map;
   const SimulationRequest& request;
@@ -46,7 +47,9 @@ class Rung {
   virtual void run(const RungRun& run, RunFacts& facts) const = 0;
 };
 
-// Every rung, cheapest first (as measured on the shipped scenes, docs/fidelity_ladder.csv).
+// Every rung, in the ladder's order: the paper's event queue, the exact event-driven reference,
+// then the SystemC rungs (a process per pixel, the clocked bus, the fixed step). `auto` takes the
+// first exact one that can serve the request.
 const std::vector<const Rung*>& rung_table();
 const Rung& rung_for(Fidelity fidelity);
 

@@ -11,13 +11,13 @@ namespace aesim {
 // Each defined in its own file.
 const Rung& queue_rung();
 const Rung& event_rung();
-const Rung& cycle_rung();
 const Rung& pixel_processes_rung();
+const Rung& cycle_rung();
 const Rung& fixed_step_rung();
 
 const std::vector<const Rung*>& rung_table() {
-  static const std::vector<const Rung*> table = {&queue_rung(), &event_rung(), &cycle_rung(),
-                                                 &pixel_processes_rung(), &fixed_step_rung()};
+  static const std::vector<const Rung*> table = {&queue_rung(), &event_rung(), &pixel_processes_rung(),
+                                                 &cycle_rung(), &fixed_step_rung()};
   return table;
 }
 
