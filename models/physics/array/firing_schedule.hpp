@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "array/address_map.hpp"
+#include "containers/min_heap.hpp"
 #include "events/address_event.hpp"
 #include "config/sensor_config.hpp"
 #include "pixel/integrate_fire.hpp"
@@ -23,12 +24,9 @@ class FiringSchedule {
   // The next firing at or before sim.duration; false when none remains.
   bool next(AddressEvent& firing);
 
-  std::size_t active_pixels() const { return pixels_.size(); }
-  // Time of the next firing or boundary still scheduled (kNever when none).
-  double peek() const { return heap_.empty() ? kNever : heap_.front().t; }
-
-  // 72 bytes, plus 16 in the heap: with the 8-byte photocurrent, 96 bytes per lit pixel.
-  struct Pixel {
+  // A lit pixel's state: 72 bytes, plus 16 in the heap; with the 8-byte photocurrent, 96 bytes
+  // per lit pixel.
+  struct Slot {
     IntegrateFire core;
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again
     std::uint16_t x, y;           // array sides are at most 65535 pixels
@@ -40,12 +38,14 @@ class FiringSchedule {
     std::uint32_t key;  // bus address: the order of simultaneous firings
     std::uint32_t slot;
   };
+  // Written with bitwise operators so the compiler selects with conditional moves: heap keys are
+  // random, and mispredicted branches were most of the cost.
+  struct Before {
+    bool operator()(const Entry& a, const Entry& b) const { return (a.t < b.t) | ((a.t == b.t) & (a.key < b.key)); }
+  };
 
  private:
-  double wake_time(const Pixel& p) const;
-  void sift_down(std::size_t i);
-  void replace_top(double t);
-  void pop_top();
+  double wake_time(const Slot& p) const;
 
   const Photocurrents& light_;
   IntegrateFire::Sensor sensor_;
@@ -55,10 +55,10 @@ class FiringSchedule {
   SplitMix64& rng(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
   std::uint32_t boundary_after(std::uint64_t boundary, std::size_t index) const;
 
-  std::vector<Pixel> pixels_;
+  std::vector<Slot> pixels_;
   std::vector<SplitMix64> shot_noise_;  // per pixel, only with pixel.shot_noise
   SplitMix64 no_noise_{0};              // never drawn from: without shot noise nothing is random
-  std::vector<Entry> heap_;
+  MinHeap<Entry, Before, 4> heap_;
 };
 
 }  // namespace aesim

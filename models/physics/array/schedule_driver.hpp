@@ -5,6 +5,7 @@
 
 #include "array/firing_schedule.hpp"
 #include "bus/event_bus.hpp"
+#include "containers/min_heap.hpp"
 
 namespace aesim {
 
@@ -24,9 +25,13 @@ class ScheduleDriver : public sc_core::sc_module {
     AddressEvent firing;
     std::size_t tile;
   };
+  // Time order; simultaneous firings by tile, then bus address.
+  struct Before {
+    bool operator()(const Head& a, const Head& b) const;
+  };
   std::vector<std::unique_ptr<FiringSchedule>> schedules_;
   std::vector<EventBus*> buses_;
-  std::vector<Head> heads_;  // each tile's next firing, a binary min-heap on time
+  MinHeap<Head, Before, 2> heads_;  // each tile's next firing
 };
 
 }  // namespace aesim

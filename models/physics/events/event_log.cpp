@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 #include <tuple>
+
+#include "containers/min_heap.hpp"
 
 namespace aesim {
 namespace {
@@ -18,7 +19,7 @@ OrderKey key_of(const AddressEvent& e) { return {e.t, (std::uint64_t(e.tile) << 
 OrderKey key_of(const TruthRecord& r) { return key_of(r.firing); }
 
 // Sorts each tile's records if needed (simultaneous SystemC processes may have run in any order),
-// then merges the tiles in order through a binary heap of their heads, emptying them.
+// then merges the tiles in order through a heap of their heads, emptying them.
 template <typename T>
 std::vector<T> merge_tiles(const std::vector<std::vector<T>*>& parts) {
   auto less = [](const T& a, const T& b) { return key_of(a) < key_of(b); };
@@ -33,35 +34,25 @@ std::vector<T> merge_tiles(const std::vector<std::vector<T>*>& parts) {
     OrderKey key;
     std::size_t part, pos;
   };
-  std::vector<Head> heap;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    if (!parts[i]->empty()) heap.push_back({key_of(parts[i]->front()), i, 0});
-  }
-  auto sift = [&heap](std::size_t i) {
-    const Head moving = heap[i];
-    for (;;) {
-      std::size_t c = 2 * i + 1;
-      if (c >= heap.size()) break;
-      if (c + 1 < heap.size() && heap[c + 1].key < heap[c].key) ++c;
-      if (!(heap[c].key < moving.key)) break;
-      heap[i] = heap[c];
-      i = c;
-    }
-    heap[i] = moving;
+  struct Before {
+    bool operator()(const Head& a, const Head& b) const { return a.key < b.key; }
   };
-  for (std::size_t i = heap.size(); i-- > 0;) sift(i);
+  std::vector<Head> heads;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (!parts[i]->empty()) heads.push_back({key_of(parts[i]->front()), i, 0});
+  }
+  MinHeap<Head, Before, 2> heap;
+  heap.assign(std::move(heads));
   while (!heap.empty()) {
-    Head& h = heap.front();
+    Head h = heap.top();
     const std::vector<T>& part = *parts[h.part];
     out.push_back(part[h.pos]);
     if (++h.pos < part.size()) {
       h.key = key_of(part[h.pos]);
+      heap.replace_top(h);
     } else {
-      heap.front() = heap.back();
-      heap.pop_back();
-      if (heap.empty()) break;
+      heap.pop();
     }
-    sift(0);
   }
   for (auto* p : parts) std::vector<T>().swap(*p);
   return out;
