@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(AddressMap, AlohaLayoutIsTenBitsPerQuadrant) {
-  SensorConfig::Array a;  // 64x64 in 32x32 tiles
+  ArrayParams a;  // 64x64 in 32x32 tiles
   const AddressMap map(a);
   EXPECT_EQ(map.bus_bits(), 10);
   EXPECT_EQ(map.tiles(), 4);
@@ -32,7 +32,7 @@ TEST(AddressMap, AlohaLayoutIsTenBitsPerQuadrant) {
 }
 
 TEST(AddressMap, DecodeInvertsEveryPixelIncludingPartialEdgeTiles) {
-  SensorConfig::Array a;
+  ArrayParams a;
   a.rows = 144;
   a.cols = 176;  // QCIF: 5.5 x 4.5 tiles of 32x32
   const AddressMap map(a);

@@ -41,7 +41,7 @@ class EventBusTest : public ::testing::Test {
     for (const TruthRecord& r : log.truth()) v.push_back(r.fate);
     return v;
   }
-  SensorConfig::Array array_;
+  ArrayParams array_;
 };
 
 TEST_F(EventBusTest, CloserThanTauBothCollideFartherBothArrive) {

@@ -40,7 +40,7 @@ TEST_P(Cosim, RtlMatchesTheReferenceEveryCycle) {
   // scripts/test --full lengthens every run (AESIM_COSIM_SCALE) to compare millions of beats.
   const char* scale = std::getenv("AESIM_COSIM_SCALE");
   c.sim.duration = k.duration * (scale ? std::max(1.0, std::atof(scale)) : 1.0);
-  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c);
+  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
   const Photocurrents light(scene, c.pixel);
   SimulationRequest request;
   const unsigned every = k.ready_every;
@@ -98,7 +98,7 @@ TEST(ClockGating, StoppingTheIdleClockChangesNothing) {
   c.receiver.model = ReceiverModel::Rtl;
   c.receiver.clock = 100e3;  // slow, so the free-running run stays short
   c.sim.duration = 1.0;
-  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c);
+  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
   const Photocurrents light(scene, c.pixel);
   SimulationRequest free_running = testing::with_truth();
   free_running.free_running_clock = true;

@@ -131,7 +131,7 @@ TEST_F(SceneFilesTest, FrameFolderOrdersByNumberAndReadsSceneToml) {
   apply_scene_settings(files, c);
   EXPECT_DOUBLE_EQ(c.scene.frame_rate, 4.0);
   EXPECT_TRUE(c.scene.loop);
-  const Scene s = load_scene(files, c);
+  const Scene s = load_scene(files, c.array, c.scene);
   EXPECT_DOUBLE_EQ(s.frame_period, 0.25);
   EXPECT_DOUBLE_EQ(s.frames[1].at(0, 0), 10 / 255.0);
 }
@@ -140,7 +140,7 @@ TEST_F(SceneFilesTest, FramesOfDifferentSizesAreRejected) {
   write("f_1.pgm", std::string("P5\n1 1\n255\n") + char(1));
   write("f_2.pgm", std::string("P5\n2 1\n255\n") + char(1) + char(2));
   SensorConfig c;
-  EXPECT_THROW(load_scene(find_scene(dir_.string()), c), InputError);
+  EXPECT_THROW(load_scene(find_scene(dir_.string()), c.array, c.scene), InputError);
 }
 
 }  // namespace

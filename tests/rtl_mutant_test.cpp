@@ -22,7 +22,7 @@ std::uint64_t mismatches() {
   c.sim.duration = 1.0;
   c.receiver.clock = 1e6;
   c.receiver.fifo_depth = 64;
-  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c);
+  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
   const Photocurrents light(scene, c.pixel);
   SimulationRequest request;
   request.sink_ready = [](std::uint64_t cycle) { return cycle % 400 == 0; };

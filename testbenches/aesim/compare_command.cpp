@@ -91,7 +91,7 @@ int compare(CompareOptions opt) {
       base.set(setting.first, setting.second);
     }
     const ResolvedConfig resolved = base.resolved();
-    const Scene scene = load_scene(files, resolved);
+    const Scene scene = load_scene(files, resolved.array, resolved.scene);
     const Photocurrents light(scene, resolved.pixel);
     const Image mean = mean_frame(scene, resolved.sim.duration);
 

@@ -88,7 +88,7 @@ int run(RunOptions opt) {
   inputs.push_back(opt.sensor);
   check_output_paths(outputs, inputs);
 
-  const Scene scene = load_scene(scene_files, config);
+  const Scene scene = load_scene(scene_files, config.array, config.scene);
   const Photocurrents light(scene, config.pixel);
   OutputFiles files;
   if (!rtl_traces.empty()) {

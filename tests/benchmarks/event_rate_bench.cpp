@@ -34,7 +34,7 @@ void run(benchmark::State& state, const SensorConfig& config, const Scene& scene
 }
 
 Scene scene_for(const SensorConfig& c, const char* relative) {
-  return load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/" + relative), c);
+  return load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/" + relative), c.array, c.scene);
 }
 
 void BM_EventLetterA(benchmark::State& state) {

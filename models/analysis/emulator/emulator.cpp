@@ -14,7 +14,7 @@ namespace aesim {
 
 std::vector<EmulatedEvent> emulate(const std::vector<Image>& frames, const EmulatorSettings& s) {
   std::vector<EmulatedEvent> events;
-  SplitMix64 rng = stream_for(s.seed, Stream::InitialCharge, 0xE0);
+  SplitMix64 rng = stream_for(s.seed, Stream::EmulatorChaos, 0);
   QueueBudget budget{s.max_events, s.max_events * 100, "--max-events"};
   const Image* previous = nullptr;
   Image prepared_previous;

@@ -8,7 +8,7 @@ int address_bits_for(int n) {
   return bits;
 }
 
-AddressMap::AddressMap(const SensorConfig::Array& a)
+AddressMap::AddressMap(const ArrayParams& a)
     : rows_(a.rows),
       cols_(a.cols),
       tile_rows_(a.tile_rows),

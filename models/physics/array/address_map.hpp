@@ -16,7 +16,7 @@ struct PixelAddress {
 // get narrower tiles on the right and bottom edges, with the same address widths.
 class AddressMap {
  public:
-  explicit AddressMap(const SensorConfig::Array& array);
+  explicit AddressMap(const ArrayParams& array);
 
   int tiles() const { return tiles_per_row_ * tiles_per_col_; }
   int tiles_per_row() const { return tiles_per_row_; }
@@ -25,6 +25,8 @@ class AddressMap {
   int bus_bits() const { return xbits_ + ybits_; }
   int rows() const { return rows_; }
   int cols() const { return cols_; }
+  int tile_rows() const { return tile_rows_; }
+  int tile_cols() const { return tile_cols_; }
 
   std::uint32_t tile_of(PixelAddress p) const;
   std::uint32_t bus_address(PixelAddress p) const;

@@ -8,20 +8,20 @@ static_assert(sizeof(aesim::FiringSchedule::Slot) <= 72, "pixel record grew");
 
 namespace aesim {
 
-FiringSchedule::FiringSchedule(const SensorConfig& config, const Photocurrents& light, const AddressMap& map,
+FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& light, const AddressMap& map,
                                std::uint32_t tile)
     : light_(light),
-      sensor_(pixel_sensor(config)),
-      t_end_(config.sim.duration),
+      sensor_(pixel_sensor(pixel)),
+      t_end_(sim.duration),
       tile_(tile),
       cols_(static_cast<std::uint32_t>(map.cols())) {
   std::vector<Entry> entries;
   const std::uint32_t tx = tile % static_cast<std::uint32_t>(map.tiles_per_row());
   const std::uint32_t ty = tile / static_cast<std::uint32_t>(map.tiles_per_row());
-  const std::uint32_t x0 = tx * static_cast<std::uint32_t>(config.array.tile_cols);
-  const std::uint32_t y0 = ty * static_cast<std::uint32_t>(config.array.tile_rows);
-  const std::uint32_t x1 = std::min<std::uint32_t>(x0 + config.array.tile_cols, cols_);
-  const std::uint32_t y1 = std::min<std::uint32_t>(y0 + config.array.tile_rows, static_cast<std::uint32_t>(map.rows()));
+  const std::uint32_t x0 = tx * static_cast<std::uint32_t>(map.tile_cols());
+  const std::uint32_t y0 = ty * static_cast<std::uint32_t>(map.tile_rows());
+  const std::uint32_t x1 = std::min<std::uint32_t>(x0 + map.tile_cols(), cols_);
+  const std::uint32_t y1 = std::min<std::uint32_t>(y0 + map.tile_rows(), static_cast<std::uint32_t>(map.rows()));
   for (std::uint32_t y = y0; y < y1; ++y) {
     for (std::uint32_t x = x0; x < x1; ++x) {
       const std::uint32_t index = y * cols_ + x;
@@ -29,8 +29,8 @@ FiringSchedule::FiringSchedule(const SensorConfig& config, const Photocurrents& 
       const std::uint32_t boundary = boundary_after(0, index);
       if (!(current > 0) && boundary == kNoBoundary) continue;  // dark for the whole run
       Slot p;
-      SplitMix64 noise = shot_noise_stream(config, index);
-      p.core = IntegrateFire(sensor_, pixel_threshold(config, index), 0.0, current, initial_fraction(config, index),
+      SplitMix64 noise = shot_noise_stream(sim.seed, index);
+      p.core = IntegrateFire(sensor_, pixel_threshold(pixel, sim.seed, index), 0.0, current, initial_fraction(pixel, sim.seed, index),
                              noise);
       p.next_boundary = boundary;
       p.x = static_cast<std::uint16_t>(x);

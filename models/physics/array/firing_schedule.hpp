@@ -19,7 +19,7 @@ namespace aesim {
 // end of the run leaves the heap. Cost follows the events, not the pixels.
 class FiringSchedule {
  public:
-  FiringSchedule(const SensorConfig& config, const Photocurrents& light, const AddressMap& map, std::uint32_t tile);
+  FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& light, const AddressMap& map, std::uint32_t tile);
 
   // The next firing at or before sim.duration; false when none remains.
   bool next(AddressEvent& firing);

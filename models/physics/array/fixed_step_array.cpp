@@ -6,14 +6,14 @@
 
 namespace aesim {
 
-FixedStepArray::FixedStepArray(const sc_core::sc_module_name& name, const SensorConfig& config,
+FixedStepArray::FixedStepArray(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
                                const Photocurrents& light, const AddressMap& map, std::vector<EventBus*> buses)
     : sc_module(name),
       light_(light),
       buses_(std::move(buses)),
-      step_(config.sim.step),
-      t_end_(config.sim.duration),
-      reset_steps_(static_cast<std::uint32_t>(std::ceil(config.pixel.t_reset / config.sim.step - 1e-9))),
+      step_(sim.step),
+      t_end_(sim.duration),
+      reset_steps_(static_cast<std::uint32_t>(std::ceil(pixel.t_reset / sim.step - 1e-9))),
       next_boundary_(light.frames() > 1 ? 1 : Photocurrents::kNoChange) {
   const std::size_t n = light.pixels();
   charge_.resize(n);
@@ -22,8 +22,8 @@ FixedStepArray::FixedStepArray(const sc_core::sc_module_name& name, const Sensor
   resetting_.assign(n, 0);
   identity_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    threshold_[i] = pixel_threshold(config, i);
-    charge_[i] = initial_fraction(config, i) * threshold_[i];
+    threshold_[i] = pixel_threshold(pixel, sim.seed, i);
+    charge_[i] = initial_fraction(pixel, sim.seed, i) * threshold_[i];
     current_[i] = light.current(0, i);
     identity_[i] = map.event_at({static_cast<std::uint32_t>(i % static_cast<std::size_t>(map.cols())),
                                  static_cast<std::uint32_t>(i / static_cast<std::size_t>(map.cols()))});

@@ -21,7 +21,7 @@ namespace aesim {
 // Cost: pixels x steps, whatever the scene.
 class FixedStepArray : public sc_core::sc_module {
  public:
-  FixedStepArray(const sc_core::sc_module_name& name, const SensorConfig& config, const Photocurrents& light,
+  FixedStepArray(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim, const Photocurrents& light,
                  const AddressMap& map, std::vector<EventBus*> buses);
   SC_HAS_PROCESS(FixedStepArray);
 

@@ -10,12 +10,12 @@ bool ScheduleDriver::Before::operator()(const Head& a, const Head& b) const {
   return x.t < y.t || (x.t == y.t && (x.tile < y.tile || (x.tile == y.tile && x.bus_address < y.bus_address)));
 }
 
-ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const SensorConfig& config,
+ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
                                const Photocurrents& light, const AddressMap& map, std::vector<EventBus*> buses)
     : sc_module(name), buses_(std::move(buses)) {
   std::vector<Head> heads;
   for (int t = 0; t < map.tiles(); ++t) {
-    schedules_.push_back(std::make_unique<FiringSchedule>(config, light, map, static_cast<std::uint32_t>(t)));
+    schedules_.push_back(std::make_unique<FiringSchedule>(pixel, sim, light, map, static_cast<std::uint32_t>(t)));
     Head h;
     h.tile = static_cast<std::size_t>(t);
     if (schedules_.back()->next(h.firing)) heads.push_back(h);

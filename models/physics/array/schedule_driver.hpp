@@ -14,7 +14,7 @@ namespace aesim {
 // process per pixel at the cycle fidelity.
 class ScheduleDriver : public sc_core::sc_module {
  public:
-  ScheduleDriver(const sc_core::sc_module_name& name, const SensorConfig& config, const Photocurrents& light,
+  ScheduleDriver(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim, const Photocurrents& light,
                  const AddressMap& map, std::vector<EventBus*> buses);
   SC_HAS_PROCESS(ScheduleDriver);
 

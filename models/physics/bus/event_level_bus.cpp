@@ -7,7 +7,7 @@
 
 namespace aesim {
 
-std::unique_ptr<EventBus> make_event_level_bus(const SensorConfig::Bus& bus, double t_end, const AddressMap& map,
+std::unique_ptr<EventBus> make_event_level_bus(const BusParams& bus, double t_end, const AddressMap& map,
                                                EventLog& log) {
   switch (bus.access) {
     case BusAccess::Ideal: return std::make_unique<IdealBus>(log);

@@ -21,61 +21,79 @@ enum class FullPolicy { Drop, Hold };
 
 struct ResolvedConfig;
 
-// Every parameter of a run, in SI units. Field names are the keys of SPEC section 3.
+// The sections of a configuration, each the parameters of one part of the sensor or of the run, in
+// SI units; field names are the keys of SPEC section 3. The models take the sections they need.
+struct PixelParams {
+  double c_int = 100e-15;   // F, integration capacitance
+  double dv_int = 1.0;      // V, swing at which the pixel fires
+  double i_max = 1e-12;     // A, photocurrent at full-scale scene value 1
+  double i_dark = 0.0;      // A
+  double t_reset = 0.0;     // s, no integration after each firing
+  double mismatch = 0.0;    // relative std of the per-pixel threshold charge
+  bool shot_noise = false;  // Gamma-distributed integration times
+  InitialState initial = InitialState::Reset;
+  // The charge a pixel collects between firings (eq. 2's c_int * dv_int), before mismatch.
+  double threshold_charge() const { return c_int * dv_int; }
+};
+
+struct ArrayParams {
+  int rows = 64, cols = 64, tile_rows = 32, tile_cols = 32;
+};
+
+struct BusParams {
+  BusAccess access = BusAccess::Aloha;
+  double t_event = 100e-9;  // s, tau: how long one event holds the bus
+  bool contention_detect = true;
+};
+
+struct ReceiverParams {
+  double clock = 50e6;  // Hz
+  double tick = 1e-6;   // s, timestamp resolution
+  int fifo_depth = 16;
+  ReceiverModel model = ReceiverModel::Reference;  // cycle fidelity: SystemC reference or Verilated RTL
+  FullPolicy full_policy = FullPolicy::Drop;       // a full FIFO drops the event, or holds Ack back
+};
+
+struct SimParams {
+  double duration = 1.0;  // s
+  std::uint64_t seed = 1;
+  Fidelity fidelity = Fidelity::Auto;
+  int threads = 1;  // event fidelity: tiles simulated in parallel on this many threads (0: all cores)
+  double step = 1e-6;  // s, the clock of the fixed_step baseline
+  // The most work a run may ask for, in fired events (or frame wake-ups or fixed steps of a
+  // pixel): estimated before the run starts, refused beyond this (see run_budget.hpp).
+  double max_events = 1e8;
+};
+
+struct LightParams {
+  double lux = 0;               // > 0: pixel.i_max is the photocurrent of full-scale light at this illuminance
+  double responsivity = 0.3;    // A/W of the photodiode
+  double efficacy = 683;        // lm/W: 555 nm light (photopic peak)
+  double pixel_area = 900e-12;  // m^2: a 30 um pixel
+  double fill_factor = 0.3;
+};
+
+struct AnalysisParams {
+  double window = 1.0;   // s: readout window for dynamic range and reconstruction PSNR
+  int min_events = 2;    // a pixel "covered" fires at least this often within the window
+};
+
+struct SceneParams {
+  double frame_rate = 25.0;  // Hz, for frame folders without their own scene.toml
+  bool loop = false;         // after the last frame: repeat the sequence, or hold the last frame
+};
+
+// Every parameter of a run: one member per section ("pixel.c_int" is pixel.c_int).
 struct SensorConfig {
-  struct Pixel {
-    double c_int = 100e-15;   // F, integration capacitance
-    double dv_int = 1.0;      // V, swing at which the pixel fires
-    double i_max = 1e-12;     // A, photocurrent at full-scale scene value 1
-    double i_dark = 0.0;      // A
-    double t_reset = 0.0;     // s, no integration after each firing
-    double mismatch = 0.0;    // relative std of the per-pixel threshold charge
-    bool shot_noise = false;  // Gamma-distributed integration times
-    InitialState initial = InitialState::Reset;
-    // The charge a pixel collects between firings (eq. 2's c_int * dv_int), before mismatch.
-    double threshold_charge() const { return c_int * dv_int; }
-  } pixel;
-  struct Array {
-    int rows = 64, cols = 64, tile_rows = 32, tile_cols = 32;
-  } array;
-  struct Bus {
-    BusAccess access = BusAccess::Aloha;
-    double t_event = 100e-9;  // s, tau: how long one event holds the bus
-    bool contention_detect = true;
-  } bus;
-  struct Receiver {
-    double clock = 50e6;  // Hz
-    double tick = 1e-6;   // s, timestamp resolution
-    int fifo_depth = 16;
-    ReceiverModel model = ReceiverModel::Reference;  // cycle fidelity: SystemC reference or Verilated RTL
-    FullPolicy full_policy = FullPolicy::Drop;       // a full FIFO drops the event, or holds Ack back
-  } receiver;
-  struct Sim {
-    double duration = 1.0;  // s
-    std::uint64_t seed = 1;
-    Fidelity fidelity = Fidelity::Auto;
-    int threads = 1;  // event fidelity: tiles simulated in parallel on this many threads (0: all cores)
-    double step = 1e-6;  // s, the clock of the fixed_step baseline
-    // The most work a run may ask for, in fired events (or frame wake-ups or fixed steps of a
-    // pixel): estimated before the run starts, refused beyond this (see run_budget.hpp).
-    double max_events = 1e8;
-  } sim;
+  PixelParams pixel;
+  ArrayParams array;
+  BusParams bus;
+  ReceiverParams receiver;
+  SimParams sim;
   PowerParams power;  // models/physics/power/power_model.hpp
-  struct Light {
-    double lux = 0;               // > 0: pixel.i_max is the photocurrent of full-scale light at this illuminance
-    double responsivity = 0.3;    // A/W of the photodiode
-    double efficacy = 683;        // lm/W: 555 nm light (photopic peak)
-    double pixel_area = 900e-12;  // m^2: a 30 um pixel
-    double fill_factor = 0.3;
-  } light;
-  struct Analysis {
-    double window = 1.0;   // s: readout window for dynamic range and reconstruction PSNR
-    int min_events = 2;    // a pixel "covered" fires at least this often within the window
-  } analysis;
-  struct Scene {
-    double frame_rate = 25.0;  // Hz, for frame folders without their own scene.toml
-    bool loop = false;         // after the last frame: repeat the sequence, or hold the last frame
-  } scene;
+  LightParams light;
+  AnalysisParams analysis;
+  SceneParams scene;
 
   // Sets one key ("pixel.c_int") from text with SI units; throws InputError naming the key.
   void set(const std::string& key, const std::string& value);

@@ -4,16 +4,16 @@
 
 namespace aesim {
 
-PixelProcess::PixelProcess(const sc_core::sc_module_name& name, const SensorConfig& config,
+PixelProcess::PixelProcess(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
              const Photocurrents& light, std::size_t index, const AddressEvent& identity)
     : sc_module(name),
       light_(light),
       index_(index),
       identity_(identity),
-      t_end_(config.sim.duration),
-      rng_(shot_noise_stream(config, index)),
-      sensor_(pixel_sensor(config)),
-      core_(sensor_, pixel_threshold(config, index), 0.0, light.current(0, index), initial_fraction(config, index),
+      t_end_(sim.duration),
+      rng_(shot_noise_stream(sim.seed, index)),
+      sensor_(pixel_sensor(pixel)),
+      core_(sensor_, pixel_threshold(pixel, sim.seed, index), 0.0, light.current(0, index), initial_fraction(pixel, sim.seed, index),
             rng_),
       next_boundary_(light.next_change(0, index)) {
   SC_METHOD(step);

@@ -15,7 +15,7 @@ class PixelProcess : public sc_core::sc_module {
  public:
   sc_core::sc_port<PixelBusIf> bus;
 
-  PixelProcess(const sc_core::sc_module_name& name, const SensorConfig& config,
+  PixelProcess(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
         const Photocurrents& light, std::size_t index, const AddressEvent& identity);
   SC_HAS_PROCESS(PixelProcess);
 

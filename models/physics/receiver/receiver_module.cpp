@@ -26,22 +26,23 @@ ReceiverFactory reference_receiver_factory() {
   };
 }
 
-unsigned receiver_prescale(const SensorConfig& config) {
-  const double cycles = std::round(config.receiver.tick * config.receiver.clock);
+unsigned receiver_prescale(const ReceiverParams& receiver) {
+  const double cycles = std::round(receiver.tick * receiver.clock);
   return static_cast<unsigned>(std::clamp(cycles, 1.0, static_cast<double>(kReceiverMaxPrescale)));
 }
 
-double receiver_tick(const SensorConfig& config) { return receiver_prescale(config) / config.receiver.clock; }
+double receiver_tick(const ReceiverParams& receiver) { return receiver_prescale(receiver) / receiver.clock; }
 
-ReceiverCycleModel::Config receiver_model_config(const SensorConfig& config, const CycleOptions& options) {
+ReceiverCycleModel::Config receiver_model_config(const ReceiverParams& receiver, bool discard_collisions,
+                                                 const CycleOptions& options) {
   ReceiverCycleModel::Config c;
   c.addr_width = kReceiverAddrWidth;
   c.ts_width = kReceiverTsWidth;
   c.capacity = kReceiverFifoCapacity;
-  c.hold_when_full = config.receiver.full_policy == FullPolicy::Hold;
-  c.prescale = receiver_prescale(config);
-  c.fifo_limit = static_cast<unsigned>(config.receiver.fifo_depth);
-  c.discard_collisions = config.bus.contention_detect;
+  c.hold_when_full = receiver.full_policy == FullPolicy::Hold;
+  c.prescale = receiver_prescale(receiver);
+  c.fifo_limit = static_cast<unsigned>(receiver.fifo_depth);
+  c.discard_collisions = discard_collisions;
   c.ts_external = !options.free_running_clock;
   return c;
 }

@@ -39,9 +39,11 @@ struct CycleOptions {
 
 // The receiver's settings from the sensor: clock cycles per timestamp tick (receiver.tick rounded
 // to a whole number of clock periods, at least one) and the tick that results.
-unsigned receiver_prescale(const SensorConfig& config);
-double receiver_tick(const SensorConfig& config);
-ReceiverCycleModel::Config receiver_model_config(const SensorConfig& config, const CycleOptions& options);
+unsigned receiver_prescale(const ReceiverParams& receiver);
+double receiver_tick(const ReceiverParams& receiver);
+// The receiver as built, set up for the run: `discard_collisions` is bus.contention_detect.
+ReceiverCycleModel::Config receiver_model_config(const ReceiverParams& receiver, bool discard_collisions,
+                                                 const CycleOptions& options);
 
 // Limits of the receiver as built (rtl/aer_receiver.v parameters in aesim's build).
 inline constexpr int kReceiverAddrWidth = 16;

@@ -2,7 +2,7 @@
 
 namespace aesim {
 
-Photocurrents::Photocurrents(const Scene& scene, const SensorConfig::Pixel& pixel)
+Photocurrents::Photocurrents(const Scene& scene, const PixelParams& pixel)
     : pixels_(scene.frames.front().pixels.size()), period_(scene.frame_period), loop_(scene.loop) {
   currents_.reserve(pixels_ * scene.frames.size());
   for (const Image& frame : scene.frames) {

@@ -14,7 +14,7 @@ class Photocurrents {
  public:
   static constexpr std::uint64_t kNoChange = std::numeric_limits<std::uint64_t>::max();
 
-  Photocurrents(const Scene& scene, const SensorConfig::Pixel& pixel);
+  Photocurrents(const Scene& scene, const PixelParams& pixel);
 
   std::size_t pixels() const { return pixels_; }
   std::size_t frames() const { return currents_.size() / pixels_; }

@@ -101,14 +101,14 @@ std::vector<Image> read_frames(const SceneFiles& files) {
   return frames;
 }
 
-Scene load_scene(const SceneFiles& files, const SensorConfig& config) {
+Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown) {
   Scene scene;
-  scene.frame_period = 1.0 / config.scene.frame_rate;
-  scene.loop = config.scene.loop;
+  scene.frame_period = 1.0 / shown.frame_rate;
+  scene.loop = shown.loop;
   for (const Image& img : read_frames(files)) {
     scene.source_width = img.width;
     scene.source_height = img.height;
-    scene.frames.push_back(resample_area(img, config.array.cols, config.array.rows));
+    scene.frames.push_back(resample_area(img, array.cols, array.rows));
   }
   return scene;
 }

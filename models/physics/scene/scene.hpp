@@ -41,7 +41,8 @@ struct Scene {
 // The frames as stored (values of full scale), all of one size; throws InputError otherwise.
 std::vector<Image> read_frames(const SceneFiles& files);
 
-Scene load_scene(const SceneFiles& files, const SensorConfig& config);
+// The scene at the array's resolution (array.cols x array.rows, area resampling), shown as `shown` says.
+Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown);
 
 // The frame shown from boundary k on (frame k starts at k * period): sequences loop, or hold
 // their last frame.

@@ -48,6 +48,6 @@ class CycleTile : public sc_core::sc_module {
 
 // The receiver clock's period: a whole number of picoseconds, so edges fall exactly on SystemC's
 // time grid.
-sc_core::sc_time receiver_clock_period(const SensorConfig::Receiver& receiver);
+sc_core::sc_time receiver_clock_period(const ReceiverParams& receiver);
 
 }  // namespace aesim

@@ -84,7 +84,6 @@ class RtlReceiver : public ReceiverModule {
   std::uint64_t scoreboard_mismatches() const override { return mismatches_; }
   std::uint64_t scoreboard_beats() const override { return beats_; }
   const std::string& first_mismatch() const { return first_mismatch_; }
-  V& rtl() { return rtl_; }
 
  private:
   void on_rise() {

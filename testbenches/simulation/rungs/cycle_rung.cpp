@@ -26,7 +26,7 @@ class CycleArray : public sc_core::sc_module {
                                                    run.map, run.config, run.log, run.vcd, options));
       buses.push_back(&tiles_.back()->bus());
     }
-    driver_ = std::make_unique<ScheduleDriver>("schedule", run.config, run.photocurrents, run.map, std::move(buses));
+    driver_ = std::make_unique<ScheduleDriver>("schedule", run.config.pixel, run.config.sim, run.photocurrents, run.map, std::move(buses));
   }
   const std::vector<std::unique_ptr<CycleTile>>& tiles() const { return tiles_; }
 
@@ -76,7 +76,7 @@ class CycleRung : public Rung {
       throw InputError(fmt::format("receiver.tick: at most {} clock cycles per tick", kReceiverMaxPrescale));
     }
   }
-  double tick(const SensorConfig& config) const override { return receiver_tick(config); }
+  double tick(const SensorConfig& config) const override { return receiver_tick(config.receiver); }
   void run(const RungRun& run, RunFacts& facts) const override {
     const ScopedKernel kernel;  // first, so the modules are gone before their context
     CycleArray array("imager", run, cycle_options(run));

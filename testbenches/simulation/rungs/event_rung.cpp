@@ -29,7 +29,7 @@ class EventRung : public Rung {
     std::atomic<int> next_tile{0};
     auto work = [&] {
       for (int t = next_tile++; t < tiles; t = next_tile++) {
-        FiringSchedule schedule(run.config, run.photocurrents, run.map, static_cast<std::uint32_t>(t));
+        FiringSchedule schedule(run.config.pixel, run.config.sim, run.photocurrents, run.map, static_cast<std::uint32_t>(t));
         EventBus& bus = buses[static_cast<std::size_t>(t)];
         AddressEvent firing;
         while (schedule.next(firing)) bus.request(firing);

@@ -20,7 +20,7 @@ class FixedStepRung : public Rung {
   void run(const RungRun& run, RunFacts& facts) const override {
     const ScopedKernel kernel;  // first, so the modules are gone before their context
     EventLevelBuses buses(run);
-    FixedStepArray array("fixed_step", run.config, run.photocurrents, run.map, buses.pointers());
+    FixedStepArray array("fixed_step", run.config.pixel, run.config.sim, run.photocurrents, run.map, buses.pointers());
     sc_core::sc_start();
     buses.finish();
     facts.tau_s = run.config.bus.t_event;

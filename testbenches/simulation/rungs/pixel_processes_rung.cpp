@@ -26,7 +26,7 @@ class PixelArray : public sc_core::sc_module {
       for (int x = 0; x < run.map.cols(); ++x) {
         const AddressEvent identity = run.map.event_at({static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)});
         const std::size_t index = static_cast<std::size_t>(y) * run.map.cols() + x;
-        auto pixel = std::make_unique<PixelProcess>(fmt::format("px_{}_{}", x, y).c_str(), run.config,
+        auto pixel = std::make_unique<PixelProcess>(fmt::format("px_{}_{}", x, y).c_str(), run.config.pixel, run.config.sim,
                                                     run.photocurrents, index, identity);
         pixel->bus.bind(*ports_[identity.tile]);
         pixels_.push_back(std::move(pixel));

@@ -13,7 +13,7 @@ class QueueRung : public Rung {
   RungCapabilities capabilities() const override { return {}; }
   void run(const RungRun& run, RunFacts& facts) const override {
     EventLevelBuses buses(run);
-    for (const AddressEvent& e : queue_events(run.config, run.photocurrents, run.map, &facts.empty_queue_frames)) {
+    for (const AddressEvent& e : queue_events(run.config.pixel, run.config.sim, run.photocurrents, run.map, &facts.empty_queue_frames)) {
       buses[e.tile].request(e);
     }
     buses.finish();
