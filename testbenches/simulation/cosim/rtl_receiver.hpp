@@ -77,7 +77,10 @@ class RtlReceiver : public ReceiverModule {
     dont_initialize();
   }
 
+  // The RTL's final blocks run when the design is torn down, as Verilator's examples do at the end
+  // of simulation; then the trace is closed.
   ~RtlReceiver() override {
+    rtl_.final();
     if (vcd_) vcd_->close();
   }
 
