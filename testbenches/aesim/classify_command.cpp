@@ -11,14 +11,6 @@
 #include "units/si_units.hpp"
 
 namespace aesim {
-namespace {
-
-struct ClassifyOptions {
-  std::string events, templates, clock = "20MHz";
-  ClassifierOptions classifier;
-  bool no_ranks = false, json = false;
-  double cycles_per_template = 4;
-};
 
 int classify_command(ClassifyOptions opt) {
   if (opt.templates.empty()) opt.templates = data_dir() + "/scenes/templates/letters";
@@ -76,25 +68,6 @@ int classify_command(ClassifyOptions opt) {
   fmt::print("  estimated {} on a {} processor at {} cycles per template per event\n", format_si(seconds, "s"),
              format_si(clock, "Hz"), opt.cycles_per_template);
   return 0;
-}
-
-}  // namespace
-
-void add_classify_command(CLI::App& app, int& status) {
-  auto opt = std::make_shared<ClassifyOptions>();
-  CLI::App* cmd = app.add_subcommand("classify", "Recognise the subject of an event file with the paper's rank-weighted templates");
-  cmd->add_option("EVENTS", opt->events, "Event file (.aedat or .csv)")->required();
-  cmd->add_option("--templates", opt->templates, "Folder of binary .pgm templates (default scenes/templates/letters)");
-  cmd->add_option("--k", opt->classifier.k, "A winner leads the second score by at least K * r_max")->capture_default_str();
-  cmd->add_option("--max-events", opt->classifier.max_events, "Restart after this many events without a decision")
-      ->capture_default_str();
-  cmd->add_option("--overflow", opt->classifier.overflow, "Restart when a score exceeds this")->capture_default_str();
-  cmd->add_option("--center", opt->classifier.center_events, "Centre the subject on the centroid of the first N events");
-  cmd->add_flag("--no-ranks", opt->no_ranks, "Plain counting: every template adds 1");
-  cmd->add_flag("--json", opt->json, "Machine-readable output");
-  cmd->add_option("--cycles-per-template", opt->cycles_per_template, "For the time estimate")->capture_default_str();
-  cmd->add_option("--clock", opt->clock, "Processor clock for the time estimate")->capture_default_str();
-  cmd->callback([opt, &status] { status = classify_command(*opt); });
 }
 
 }  // namespace aesim

@@ -1,16 +1,76 @@
 #pragma once
-#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "classify/template_classifier.hpp"
 
 namespace aesim {
 
-// Each command registers its options on a CLI11 subcommand and returns the exit status.
-void add_run_command(CLI::App& app, int& status);
-void add_recon_command(CLI::App& app, int& status);
-void add_info_command(CLI::App& app, int& status);
-void add_sweep_command(CLI::App& app, int& status);
-void add_compare_command(CLI::App& app, int& status);
-void add_emulate_command(CLI::App& app, int& status);
-void add_classify_command(CLI::App& app, int& status);
-void add_report_command(CLI::App& app, int& status);
+// Each command's options as the command line fills them (command_line.cpp, the one file that
+// knows CLI11), and the command itself, which returns the exit status.
+
+struct ClassifyOptions {
+  std::string events, templates, clock = "20MHz";
+  ClassifierOptions classifier;
+  bool no_ranks = false, json = false;
+  double cycles_per_template = 4;
+};
+
+struct CompareOptions {
+  std::string sensor = "aloha";
+  std::vector<std::string> scenes;
+  std::string duration = "500ms";
+  std::vector<std::string> sets;
+  std::vector<std::string> steps = {"1us", "10us", "100us", "1ms"};
+  std::string output = "out/fidelity_ladder.csv";
+  std::string max_events;
+};
+
+struct EmulateOptions {
+  std::string input, behaviour = "intensity", size, clip = "0,255", queue, out, recon;
+  double threshold = 0, f_max = 20, frame_rate = 0, chaos_in = 0, chaos_out = 0, max_events = 1e8;
+  long long events = 0;
+  std::uint64_t seed = 1;
+};
+
+struct ReconOptions {
+  std::string events, output, window, mode = "histogram";
+  long long count = -1;
+};
+
+struct BandwidthOptions {
+  int width = 128, height = 96, bits = 8;
+  long long events = 400;
+};
+
+struct RunOptions {
+  std::string sensor = "aloha";
+  std::string scene;
+  std::string duration;
+  std::vector<std::string> sets;
+  std::string out, csv, recon, vcd, summary, truth;
+  std::string vcd_from = "0s", vcd_to;
+  std::string max_events;
+};
+
+struct SweepOptions {
+  std::string spec, output;
+  int jobs = -1;
+  bool no_chart = false;
+};
+
+int run_command(RunOptions opt);
+int recon_command(const ReconOptions& opt);
+int info_command(const std::string& path);
+int sweep_command(SweepOptions opt);
+int compare_command(CompareOptions opt);
+int emulate_command(EmulateOptions opt);
+int classify_command(ClassifyOptions opt);
+int bandwidth_command(const BandwidthOptions& opt);
+
+// Parses the command line and runs the command it names; CLI11's own errors (and --help) end
+// here with their status, aesim's exceptions pass through to main().
+int run_command_line(int argc, char** argv);
 
 }  // namespace aesim

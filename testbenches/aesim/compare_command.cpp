@@ -21,16 +21,6 @@
 namespace aesim {
 namespace {
 
-struct CompareOptions {
-  std::string sensor = "aloha";
-  std::vector<std::string> scenes;
-  std::string duration = "500ms";
-  std::vector<std::string> sets;
-  std::vector<std::string> steps = {"1us", "10us", "100us", "1ms"};
-  std::string output = "out/fidelity_ladder.csv";
-  std::string max_events;
-};
-
 // One rung of the ladder as compare runs it: a rung of the table, with a receiver model and a step
 // where the rung has them.
 struct LadderStep {
@@ -70,7 +60,9 @@ std::string display(const std::string& path) {
   return path.rfind(root, 0) == 0 ? path.substr(root.size()) : path;
 }
 
-int compare(CompareOptions opt) {
+}  // namespace
+
+int compare_command(CompareOptions opt) {
   if (opt.scenes.empty()) opt.scenes = {data_dir() + "/scenes/letters/A.pgm"};
   std::vector<double> steps;
   for (const std::string& text : opt.steps) steps.push_back(parse_si(text, "s", "--steps"));
@@ -139,22 +131,6 @@ int compare(CompareOptions opt) {
   files.commit();
   fmt::print("aesim compare: {} rungs on {} scenes -> {}\n", rungs.size(), opt.scenes.size(), opt.output);
   return 0;
-}
-
-}  // namespace
-
-void add_compare_command(CLI::App& app, int& status) {
-  auto opt = std::make_shared<CompareOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "compare", "Run every fidelity rung on the same scenes and sensor and measure each against the event rung");
-  cmd->add_option("--sensor", opt->sensor, "Sensor preset or .toml file")->capture_default_str();
-  cmd->add_option("--scene", opt->scenes, "Scene file or folder (repeatable; default scenes/letters/A.pgm)");
-  cmd->add_option("--duration", opt->duration, "Simulated time per run")->capture_default_str();
-  cmd->add_option("--set", opt->sets, "Override a parameter for every rung: section.key=value");
-  cmd->add_option("--steps", opt->steps, "Steps of the fixed_step baseline")->delimiter(',')->capture_default_str();
-  cmd->add_option("-o,--output", opt->output, "CSV file")->capture_default_str();
-  cmd->add_option("--max-events", opt->max_events, "The most work one run may ask for (default 1e8 fired events)");
-  cmd->callback([opt, &status] { status = compare(*opt); });
 }
 
 }  // namespace aesim

@@ -21,16 +21,11 @@
 namespace aesim {
 namespace {
 
-struct EmulateOptions {
-  std::string input, behaviour = "intensity", size, clip = "0,255", queue, out, recon;
-  double threshold = 0, f_max = 20, frame_rate = 0, chaos_in = 0, chaos_out = 0, max_events = 1e8;
-  long long events = 0;
-  std::uint64_t seed = 1;
-};
-
 void check_probability(double p, const char* name) {
   if (!(p >= 0 && p <= 1)) throw InputError(fmt::format("{}: a probability from 0 to 1 (got {})", name, p));
 }
+
+}  // namespace
 
 int emulate_command(EmulateOptions opt) {
   EmulatorSettings s;
@@ -128,33 +123,6 @@ int emulate_command(EmulateOptions opt) {
   }
   fmt::print("  wrote {}\n", written);
   return 0;
-}
-
-}  // namespace
-
-void add_emulate_command(CLI::App& app, int& status) {
-  auto opt = std::make_shared<EmulateOptions>();
-  CLI::App* cmd = app.add_subcommand("emulate", "Turn ordinary frames (PGM, numbered frames, Y4M video) into address events "
-                                                "as the source paper's emulator does (eq. 1 and eq. 3)");
-  cmd->add_option("INPUT", opt->input, "A .pgm/.pfm image, a folder of numbered frames, or a .y4m video")->required();
-  cmd->add_option("--behaviour", opt->behaviour, "intensity, motion, edge or centroid")->capture_default_str();
-  cmd->add_option("--threshold", opt->threshold, "Grey level (0-255) at or below which the behaviour's map is zero")
-      ->capture_default_str();
-  cmd->add_option("--clip", opt->clip, "LOW,HIGH: grey levels below LOW become 0, above HIGH become HIGH")
-      ->capture_default_str();
-  cmd->add_option("--size", opt->size, "Imager resolution WIDTHxHEIGHT (default: the input's)");
-  cmd->add_option("--f-max", opt->f_max, "Events per frame of a full-scale (255) pixel")->capture_default_str();
-  cmd->add_option("--frame-rate", opt->frame_rate, "Frames per second for the timestamps (default: the input's, else 25)");
-  cmd->add_option("--chaos-in", opt->chaos_in, "Probability that a random event enters after each event")->capture_default_str();
-  cmd->add_option("--chaos-out", opt->chaos_out, "Probability that an event leaves the queue")->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "Seed of the chaos draws")->capture_default_str();
-  cmd->add_option("--queue", opt->queue, "The event queue as text, one 'x y' per line in queue order");
-  cmd->add_option("--out", opt->out, "AEDAT 2.0 with synthetic timestamps");
-  cmd->add_option("--recon", opt->recon, "Histogram reconstruction (.png or .pgm)");
-  cmd->add_option("--events", opt->events, "Reconstruct from the first N events (default: all)");
-  cmd->add_option("--max-events", opt->max_events, "The most events (and a hundred times as many pixel visits) the "
-                  "emulation may ask for")->capture_default_str();
-  cmd->callback([opt, &status] { status = emulate_command(*opt); });
 }
 
 }  // namespace aesim

@@ -8,9 +8,8 @@
 #include "units/si_units.hpp"
 
 namespace aesim {
-namespace {
 
-int info(const std::string& path) {
+int info_command(const std::string& path) {
   const EventRecording rec = load_events(path);
   const std::size_t n = rec.events.size();
   const double span = n > 1 ? rec.events.back().t - rec.events.front().t : 0.0;
@@ -32,15 +31,6 @@ int info(const std::string& path) {
                span > 0 ? ", " + format_si(per_tile[t] / span, "events/s") : "");
   }
   return 0;
-}
-
-}  // namespace
-
-void add_info_command(CLI::App& app, int& status) {
-  auto path = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("info", "Counts, time span, rate and per-tile breakdown of an event file");
-  cmd->add_option("EVENTS", *path, "Event file (.aedat or .csv)")->required();
-  cmd->callback([path, &status] { status = info(*path); });
 }
 
 }  // namespace aesim

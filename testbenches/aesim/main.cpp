@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <systemc>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "commands.hpp"
@@ -15,26 +14,8 @@
 
 int sc_main(int argc, char* argv[]) {
   aesim::install_signal_cleanup();
-  CLI::App app{"aesim: cycle-level simulator of address-event (ALOHA) image sensors", "aesim"};
-  app.require_subcommand(1);
-  int status = 0;
-  aesim::add_run_command(app, status);
-  aesim::add_recon_command(app, status);
-  aesim::add_info_command(app, status);
-  aesim::add_sweep_command(app, status);
-  aesim::add_compare_command(app, status);
-  aesim::add_emulate_command(app, status);
-  aesim::add_classify_command(app, status);
-  aesim::add_report_command(app, status);
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "aesim: %s\n", e.what());
-    return 2;
+    return aesim::run_command_line(argc, argv);
   } catch (const aesim::InputError& e) {
     std::fprintf(stderr, "aesim: %s\n", e.what());
     return 2;
@@ -61,6 +42,5 @@ int sc_main(int argc, char* argv[]) {
     std::fprintf(stderr, "aesim: internal error: %s\n", e.what());
     return 1;
   }
-  return status;
 }
 

@@ -9,14 +9,8 @@
 #include "units/si_units.hpp"
 
 namespace aesim {
-namespace {
 
-struct ReconOptions {
-  std::string events, output, window, mode = "histogram";
-  long long count = -1;
-};
-
-int recon(const ReconOptions& opt) {
+int recon_command(const ReconOptions& opt) {
   if (opt.mode != "histogram" && opt.mode != "interval") {
     throw InputError(fmt::format("--mode: expected histogram or interval (got '{}')", opt.mode));
   }
@@ -39,20 +33,6 @@ int recon(const ReconOptions& opt) {
   fmt::print("aesim recon: {} of {} events, {} reconstruction {}x{} -> {}\n", chosen.size(), rec.events.size(),
              opt.mode, rec.width, rec.height, opt.output);
   return 0;
-}
-
-}  // namespace
-
-void add_recon_command(CLI::App& app, int& status) {
-  auto opt = std::make_shared<ReconOptions>();
-  CLI::App* cmd = app.add_subcommand("recon", "Reconstruct an image from an event file (.aedat or .csv)");
-  cmd->add_option("EVENTS", opt->events, "Event file")->required();
-  auto* window = cmd->add_option("--window", opt->window, "Use the events within this time of the first, e.g. 100ms");
-  cmd->add_option("--events", opt->count, "Use the first N events")->excludes(window);
-  cmd->add_option("--mode", opt->mode, "histogram (events per pixel) or interval (1 / time between a pixel's last two events)")
-      ->capture_default_str();
-  cmd->add_option("-o,--output", opt->output, "Output image (.png or .pgm)")->required();
-  cmd->callback([opt, &status] { status = recon(*opt); });
 }
 
 }  // namespace aesim

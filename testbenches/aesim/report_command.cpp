@@ -7,14 +7,8 @@
 #include "errors/input_error.hpp"
 
 namespace aesim {
-namespace {
 
-struct BandwidthOptions {
-  int width = 128, height = 96, bits = 8;
-  long long events = 400;
-};
-
-int bandwidth(const BandwidthOptions& o) {
+int bandwidth_command(const BandwidthOptions& o) {
   if (o.width < 1 || o.height < 1 || o.width > 65535 || o.height > 65535) throw InputError("--width/--height: 1 to 65535");
   if (o.bits < 1 || o.bits > 32) throw InputError("--bits: 1 to 32");
   if (o.events < 0) throw InputError("--events: must not be negative");
@@ -33,20 +27,6 @@ int bandwidth(const BandwidthOptions& o) {
   fmt::print("  {:<28} {:>12.0f} {:>12.0f}\n", "event histogram (16-bit)", static_cast<double>(o.width) * o.height * 16,
              static_cast<double>(o.width) * o.height * 2);
   return 0;
-}
-
-}  // namespace
-
-void add_report_command(CLI::App& app, int& status) {
-  CLI::App* report = app.add_subcommand("report", "Reports of the source paper");
-  report->require_subcommand(1);
-  auto opt = std::make_shared<BandwidthOptions>();
-  CLI::App* cmd = report->add_subcommand("bandwidth", "Bits of a raw frame against bits of its events, and frame memory");
-  cmd->add_option("--width", opt->width)->capture_default_str();
-  cmd->add_option("--height", opt->height)->capture_default_str();
-  cmd->add_option("--bits", opt->bits, "Bits per pixel of the frame")->capture_default_str();
-  cmd->add_option("--events", opt->events, "Events that carry the image")->capture_default_str();
-  cmd->callback([opt, &status] { status = bandwidth(*opt); });
 }
 
 }  // namespace aesim

@@ -24,19 +24,8 @@
 #include "units/si_units.hpp"
 
 namespace aesim {
-namespace {
 
-struct RunOptions {
-  std::string sensor = "aloha";
-  std::string scene;
-  std::string duration;
-  std::vector<std::string> sets;
-  std::string out, csv, recon, vcd, summary, truth;
-  std::string vcd_from = "0s", vcd_to;
-  std::string max_events;
-};
-
-int run(RunOptions opt) {
+int run_command(RunOptions opt) {
   const bool no_outputs_named = opt.out.empty() && opt.csv.empty() && opt.recon.empty() && opt.summary.empty();
   if (no_outputs_named) {
     opt.out = "out/events.aedat";
@@ -152,32 +141,6 @@ int run(RunOptions opt) {
   if (!rtl_traces.empty()) written += fmt::format(" (and RTL internals in {} .. tile{}.rtl.vcd)", rtl_traces.front(), rtl_traces.size() - 1);
   std::printf("  wrote %s\n", written.c_str());
   return 0;
-}
-
-}  // namespace
-
-void add_run_command(CLI::App& app, int& status) {
-  auto opt = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "run", "Simulate a sensor looking at a scene; with no options, the aloha sensor on scenes/letters/A.pgm "
-             "with all outputs under out/");
-  cmd->add_option("--sensor", opt->sensor, "Sensor preset name (models/sensors/NAME.toml) or a .toml file")
-      ->capture_default_str();
-  cmd->add_option("--scene", opt->scene, "Scene: a .pgm/.pfm image or a folder of numbered frames");
-  cmd->add_option("--duration", opt->duration, "Simulated time, e.g. 2s or 500ms (same as --set sim.duration=)");
-  cmd->add_option("--set", opt->sets, "Override a parameter: section.key=value with SI units, e.g. pixel.c_int=50fF")
-      ->allow_extra_args(false);
-  cmd->add_option("--out", opt->out, "Events as AEDAT 2.0");
-  cmd->add_option("--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
-  cmd->add_option("--recon", opt->recon, "Histogram reconstruction image (.png or .pgm)");
-  cmd->add_option("--vcd", opt->vcd, "Bus wires of every tile as a VCD file (needs sim.fidelity=cycle or auto)");
-  cmd->add_option("--vcd-from", opt->vcd_from, "Start of the VCD window, e.g. 100ms")->capture_default_str();
-  cmd->add_option("--vcd-to", opt->vcd_to, "End of the VCD window (default: end of the run)");
-  cmd->add_option("--truth", opt->truth, "Ground truth CSV: every fired event, its fate, delivery time and latency");
-  cmd->add_option("--summary", opt->summary, "Summary JSON");
-  cmd->add_option("--max-events", opt->max_events,
-                  "The most work the run may ask for, in fired events (default 1e8; same as --set sim.max_events=)");
-  cmd->callback([opt, &status] { status = run(*opt); });
 }
 
 }  // namespace aesim

@@ -34,12 +34,6 @@ namespace aesim {
 namespace fs = std::filesystem;
 namespace {
 
-struct SweepOptions {
-  std::string spec, output;
-  int jobs = -1;
-  bool no_chart = false;
-};
-
 // The SPEC section 5 summary columns, then aesim's extra ones, in this order.
 const char* const kSummaryColumns[] = {
     "events_fired", "events_delivered", "events_collided", "events_ghost", "events_dropped",
@@ -274,7 +268,9 @@ bool draw_chart(OutputFiles& files, const std::string& script, const std::string
   return true;
 }
 
-int sweep(SweepOptions opt) {
+}  // namespace
+
+int sweep_command(SweepOptions opt) {
   Share share;
   if (launched_by_mpirun()) {
 #ifdef AESIM_HAVE_MPI
@@ -403,20 +399,6 @@ int sweep(SweepOptions opt) {
 
   if (drawn) fmt::print("  chart {}.png, {}.svg\n", stem, stem);
   return 0;
-}
-
-}  // namespace
-
-void add_sweep_command(CLI::App& app, int& status) {
-  auto opt = std::make_shared<SweepOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "sweep", "Run a sweep of design points (a TOML spec) in parallel processes, or across hosts under mpirun, and "
-               "write one CSV (and a sizing report when the spec has [constraints]); an interrupted sweep resumes");
-  cmd->add_option("SPEC", opt->spec, "Sweep spec, e.g. scripts/sweeps/collisions.toml")->required();
-  cmd->add_option("-o,--output", opt->output, "CSV file (default out/SPEC_NAME.csv)");
-  cmd->add_option("-j,--jobs", opt->jobs, "Parallel processes (default: the spec's jobs; 0 = all cores)");
-  cmd->add_flag("--no-chart", opt->no_chart, "Do not draw the spec's chart");
-  cmd->callback([opt, &status] { status = sweep(*opt); });
 }
 
 }  // namespace aesim

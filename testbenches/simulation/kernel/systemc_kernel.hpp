@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <systemc>
 
 namespace aesim {
@@ -18,6 +19,8 @@ class ScopedKernel {
   ScopedKernel();
   ~ScopedKernel();
   ScopedKernel(const ScopedKernel&) = delete;
+  // How many kernels this process has set up: the rungs without SystemC must not add to it.
+  static std::uint64_t made();
   ScopedKernel& operator=(const ScopedKernel&) = delete;
 
  private:

@@ -1,0 +1,160 @@
+// The command line: every command's options, in the one translation unit that includes CLI11
+// (a header-only library that costs seconds of compile time in every file that uses it).
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+namespace aesim {
+namespace {
+
+void add_run(CLI::App& app, int& status) {
+  auto opt = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Simulate a sensor looking at a scene; with no options, the aloha sensor on scenes/letters/A.pgm "
+             "with all outputs under out/");
+  cmd->add_option("--sensor", opt->sensor, "Sensor preset name (models/sensors/NAME.toml) or a .toml file")
+      ->capture_default_str();
+  cmd->add_option("--scene", opt->scene, "Scene: a .pgm/.pfm image or a folder of numbered frames");
+  cmd->add_option("--duration", opt->duration, "Simulated time, e.g. 2s or 500ms (same as --set sim.duration=)");
+  cmd->add_option("--set", opt->sets, "Override a parameter: section.key=value with SI units, e.g. pixel.c_int=50fF")
+      ->allow_extra_args(false);
+  cmd->add_option("--out", opt->out, "Events as AEDAT 2.0");
+  cmd->add_option("--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
+  cmd->add_option("--recon", opt->recon, "Histogram reconstruction image (.png or .pgm)");
+  cmd->add_option("--vcd", opt->vcd, "Bus wires of every tile as a VCD file (needs sim.fidelity=cycle or auto)");
+  cmd->add_option("--vcd-from", opt->vcd_from, "Start of the VCD window, e.g. 100ms")->capture_default_str();
+  cmd->add_option("--vcd-to", opt->vcd_to, "End of the VCD window (default: end of the run)");
+  cmd->add_option("--truth", opt->truth, "Ground truth CSV: every fired event, its fate, delivery time and latency");
+  cmd->add_option("--summary", opt->summary, "Summary JSON");
+  cmd->add_option("--max-events", opt->max_events,
+                  "The most work the run may ask for, in fired events (default 1e8; same as --set sim.max_events=)");
+  cmd->callback([opt, &status] { status = run_command(*opt); });
+}
+
+void add_recon(CLI::App& app, int& status) {
+  auto opt = std::make_shared<ReconOptions>();
+  CLI::App* cmd = app.add_subcommand("recon", "Reconstruct an image from an event file (.aedat or .csv)");
+  cmd->add_option("EVENTS", opt->events, "Event file")->required();
+  auto* window = cmd->add_option("--window", opt->window, "Use the events within this time of the first, e.g. 100ms");
+  cmd->add_option("--events", opt->count, "Use the first N events")->excludes(window);
+  cmd->add_option("--mode", opt->mode, "histogram (events per pixel) or interval (1 / time between a pixel's last two events)")
+      ->capture_default_str();
+  cmd->add_option("-o,--output", opt->output, "Output image (.png or .pgm)")->required();
+  cmd->callback([opt, &status] { status = recon_command(*opt); });
+}
+
+void add_info(CLI::App& app, int& status) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("info", "Counts, time span, rate and per-tile breakdown of an event file");
+  cmd->add_option("EVENTS", *path, "Event file (.aedat or .csv)")->required();
+  cmd->callback([path, &status] { status = info_command(*path); });
+}
+
+void add_sweep(CLI::App& app, int& status) {
+  auto opt = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Run a sweep of design points (a TOML spec) in parallel processes, or across hosts under mpirun, and "
+               "write one CSV (and a sizing report when the spec has [constraints]); an interrupted sweep resumes");
+  cmd->add_option("SPEC", opt->spec, "Sweep spec, e.g. scripts/sweeps/collisions.toml")->required();
+  cmd->add_option("-o,--output", opt->output, "CSV file (default out/SPEC_NAME.csv)");
+  cmd->add_option("-j,--jobs", opt->jobs, "Parallel processes (default: the spec's jobs; 0 = all cores)");
+  cmd->add_flag("--no-chart", opt->no_chart, "Do not draw the spec's chart");
+  cmd->callback([opt, &status] { status = sweep_command(*opt); });
+}
+
+void add_compare(CLI::App& app, int& status) {
+  auto opt = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Run every fidelity rung on the same scenes and sensor and measure each against the event rung");
+  cmd->add_option("--sensor", opt->sensor, "Sensor preset or .toml file")->capture_default_str();
+  cmd->add_option("--scene", opt->scenes, "Scene file or folder (repeatable; default scenes/letters/A.pgm)");
+  cmd->add_option("--duration", opt->duration, "Simulated time per run")->capture_default_str();
+  cmd->add_option("--set", opt->sets, "Override a parameter for every rung: section.key=value");
+  cmd->add_option("--steps", opt->steps, "Steps of the fixed_step baseline")->delimiter(',')->capture_default_str();
+  cmd->add_option("-o,--output", opt->output, "CSV file")->capture_default_str();
+  cmd->add_option("--max-events", opt->max_events, "The most work one run may ask for (default 1e8 fired events)");
+  cmd->callback([opt, &status] { status = compare_command(*opt); });
+}
+
+void add_emulate(CLI::App& app, int& status) {
+  auto opt = std::make_shared<EmulateOptions>();
+  CLI::App* cmd = app.add_subcommand("emulate", "Turn ordinary frames (PGM, numbered frames, Y4M video) into address events "
+                                                "as the source paper's emulator does (eq. 1 and eq. 3)");
+  cmd->add_option("INPUT", opt->input, "A .pgm/.pfm image, a folder of numbered frames, or a .y4m video")->required();
+  cmd->add_option("--behaviour", opt->behaviour, "intensity, motion, edge or centroid")->capture_default_str();
+  cmd->add_option("--threshold", opt->threshold, "Grey level (0-255) at or below which the behaviour's map is zero")
+      ->capture_default_str();
+  cmd->add_option("--clip", opt->clip, "LOW,HIGH: grey levels below LOW become 0, above HIGH become HIGH")
+      ->capture_default_str();
+  cmd->add_option("--size", opt->size, "Imager resolution WIDTHxHEIGHT (default: the input's)");
+  cmd->add_option("--f-max", opt->f_max, "Events per frame of a full-scale (255) pixel")->capture_default_str();
+  cmd->add_option("--frame-rate", opt->frame_rate, "Frames per second for the timestamps (default: the input's, else 25)");
+  cmd->add_option("--chaos-in", opt->chaos_in, "Probability that a random event enters after each event")->capture_default_str();
+  cmd->add_option("--chaos-out", opt->chaos_out, "Probability that an event leaves the queue")->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "Seed of the chaos draws")->capture_default_str();
+  cmd->add_option("--queue", opt->queue, "The event queue as text, one 'x y' per line in queue order");
+  cmd->add_option("--out", opt->out, "AEDAT 2.0 with synthetic timestamps");
+  cmd->add_option("--recon", opt->recon, "Histogram reconstruction (.png or .pgm)");
+  cmd->add_option("--events", opt->events, "Reconstruct from the first N events (default: all)");
+  cmd->add_option("--max-events", opt->max_events, "The most events (and a hundred times as many pixel visits) the "
+                  "emulation may ask for")->capture_default_str();
+  cmd->callback([opt, &status] { status = emulate_command(*opt); });
+}
+
+void add_classify(CLI::App& app, int& status) {
+  auto opt = std::make_shared<ClassifyOptions>();
+  CLI::App* cmd = app.add_subcommand("classify", "Recognise the subject of an event file with the paper's rank-weighted templates");
+  cmd->add_option("EVENTS", opt->events, "Event file (.aedat or .csv)")->required();
+  cmd->add_option("--templates", opt->templates, "Folder of binary .pgm templates (default scenes/templates/letters)");
+  cmd->add_option("--k", opt->classifier.k, "A winner leads the second score by at least K * r_max")->capture_default_str();
+  cmd->add_option("--max-events", opt->classifier.max_events, "Restart after this many events without a decision")
+      ->capture_default_str();
+  cmd->add_option("--overflow", opt->classifier.overflow, "Restart when a score exceeds this")->capture_default_str();
+  cmd->add_option("--center", opt->classifier.center_events, "Centre the subject on the centroid of the first N events");
+  cmd->add_flag("--no-ranks", opt->no_ranks, "Plain counting: every template adds 1");
+  cmd->add_flag("--json", opt->json, "Machine-readable output");
+  cmd->add_option("--cycles-per-template", opt->cycles_per_template, "For the time estimate")->capture_default_str();
+  cmd->add_option("--clock", opt->clock, "Processor clock for the time estimate")->capture_default_str();
+  cmd->callback([opt, &status] { status = classify_command(*opt); });
+}
+
+void add_report(CLI::App& app, int& status) {
+  CLI::App* report = app.add_subcommand("report", "Reports of the source paper");
+  report->require_subcommand(1);
+  auto opt = std::make_shared<BandwidthOptions>();
+  CLI::App* cmd = report->add_subcommand("bandwidth", "Bits of a raw frame against bits of its events, and frame memory");
+  cmd->add_option("--width", opt->width)->capture_default_str();
+  cmd->add_option("--height", opt->height)->capture_default_str();
+  cmd->add_option("--bits", opt->bits, "Bits per pixel of the frame")->capture_default_str();
+  cmd->add_option("--events", opt->events, "Events that carry the image")->capture_default_str();
+  cmd->callback([opt, &status] { status = bandwidth_command(*opt); });
+}
+
+}  // namespace
+
+int run_command_line(int argc, char** argv) {
+  CLI::App app{"aesim: cycle-level simulator of address-event (ALOHA) image sensors", "aesim"};
+  app.require_subcommand(1);
+  int status = 0;
+  add_run(app, status);
+  add_recon(app, status);
+  add_info(app, status);
+  add_sweep(app, status);
+  add_compare(app, status);
+  add_emulate(app, status);
+  add_classify(app, status);
+  add_report(app, status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "aesim: %s\n", e.what());
+    return 2;
+  }
+  return status;
+}
+
+}  // namespace aesim
