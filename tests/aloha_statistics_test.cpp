@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "summary/summary.hpp"
 #include "scene/photocurrents.hpp"

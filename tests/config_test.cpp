@@ -1,5 +1,6 @@
 // SI values, presets, --set overrides and validation (SPEC section 3).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "summary/summary.hpp"
 #include "scene/netpbm.hpp"
@@ -44,7 +45,7 @@ TEST_P(Cosim, RtlMatchesTheReferenceEveryCycle) {
   const Photocurrents light(scene, c.pixel);
   SimulationRequest request;
   const unsigned every = k.ready_every;
-  request.sink_ready = [every](std::uint64_t cycle) { return cycle % every == 0; };
+  request.cycle.sink_ready = [every](std::uint64_t cycle) { return cycle % every == 0; };
 
   c.receiver.model = ReceiverModel::Rtl;
   const SimulationResult rtl = simulate(c.resolved(), light, request);
@@ -101,7 +102,7 @@ TEST(ClockGating, StoppingTheIdleClockChangesNothing) {
   const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
   const Photocurrents light(scene, c.pixel);
   SimulationRequest free_running = testing::with_truth();
-  free_running.free_running_clock = true;
+  free_running.cycle.free_running_clock = true;
   const SimulationResult a = simulate(c.resolved(), light, free_running);
   const SimulationResult b = simulate(c.resolved(), light, testing::with_truth());
   EXPECT_EQ(a.facts.scoreboard_mismatches, 0u);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "bus/pixel_bus_if.hpp"
 #include "bus/handshake_monitor.hpp"

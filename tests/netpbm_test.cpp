@@ -1,4 +1,5 @@
 // Scene files: PGM/PFM decoding, malformed files, resampling, frame folders.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>

@@ -25,8 +25,9 @@ std::uint64_t mismatches() {
   const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
   const Photocurrents light(scene, c.pixel);
   SimulationRequest request;
-  request.sink_ready = [](std::uint64_t cycle) { return cycle % 400 == 0; };
-  request.receiver = [](const std::string& name, ReceiverSignals& s, const ReceiverCycleModel::Config& config) {
+  request.cycle.sink_ready = [](std::uint64_t cycle) { return cycle % 400 == 0; };
+  request.cycle.receiver = [](const std::string& name, std::uint32_t, ReceiverSignals& s,
+                              const ReceiverCycleModel::Config& config) {
     return std::unique_ptr<ReceiverModule>(new RtlReceiver<V>(name.c_str(), s, config));
   };
   const SimulationResult r = simulate(c.resolved(), light, request);

@@ -68,7 +68,7 @@ void BM_CycleFreeRunningClock(benchmark::State& state, ReceiverModel model) {
   const Scene scene = scene_for(c, "scenes/letters/A.pgm");
   const Photocurrents light(scene, c.pixel);
   SimulationRequest request;
-  request.free_running_clock = true;
+  request.cycle.free_running_clock = true;
   double edges = 0;
   for (auto _ : state) {
     const SimulationResult r = simulate(c.resolved(), light, request);

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <nlohmann/json.hpp>
 
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"

@@ -1,6 +1,7 @@
 #include "summary/summary.hpp"
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "compare/fidelity_errors.hpp"
 #include "recon/reconstruct.hpp"

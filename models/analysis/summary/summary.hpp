@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <string>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "config/sensor_config.hpp"
 #include "events/event_log.hpp"

@@ -4,9 +4,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string_view>
 
 #include <fmt/format.h>
+#include <toml.hpp>
 
 namespace aesim {
 namespace {
@@ -111,6 +113,62 @@ void check_toml_text(const std::string& text, const std::string& label) {
     i += n;
   }
   check_structure(text, label);
+}
+
+std::optional<std::string> TomlValue::scalar_text() const {
+  switch (kind_) {
+    case Kind::String: return string_;
+    case Kind::Integer: return std::to_string(integer_);
+    case Kind::Floating: return fmt::format("{:.17g}", floating_);
+    case Kind::Boolean: return std::string(boolean_ ? "true" : "false");
+    default: return std::nullopt;
+  }
+}
+
+// Copies toml11's tree into TomlValue.
+class TomlReader {
+ public:
+  using Toml = toml::basic_value<toml::discard_comments, std::map, std::vector>;
+  static TomlValue read(const Toml& v) {
+    TomlValue out;
+    if (v.is_string()) {
+      out.kind_ = TomlValue::Kind::String;
+      out.string_ = v.as_string().str;
+    } else if (v.is_integer()) {
+      out.kind_ = TomlValue::Kind::Integer;
+      out.integer_ = v.as_integer();
+    } else if (v.is_floating()) {
+      out.kind_ = TomlValue::Kind::Floating;
+      out.floating_ = v.as_floating();
+    } else if (v.is_boolean()) {
+      out.kind_ = TomlValue::Kind::Boolean;
+      out.boolean_ = v.as_boolean();
+    } else if (v.is_table()) {
+      out.kind_ = TomlValue::Kind::Table;
+      for (const auto& [key, value] : v.as_table()) out.table_.emplace(key, read(value));
+    } else if (v.is_array()) {
+      out.kind_ = TomlValue::Kind::Array;
+      for (const Toml& item : v.as_array()) out.array_.push_back(read(item));
+    }
+    return out;
+  }
+};
+
+TomlValue parse_toml_text(const std::string& text, const std::string& label) {
+  check_toml_text(text, label);
+  std::istringstream in(text);
+  TomlReader::Toml doc;
+  try {
+    doc = toml::parse<toml::discard_comments, std::map, std::vector>(in, label);
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    throw InputError(label + ": malformed TOML: " + msg.substr(0, msg.find('\n')));
+  }
+  return TomlReader::read(doc);
+}
+
+TomlValue parse_toml_file(const std::string& path, const std::string& label) {
+  return parse_toml_text(checked_toml_text(path, label), label);
 }
 
 }  // namespace aesim

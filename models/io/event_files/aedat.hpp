@@ -8,7 +8,7 @@
 #include "array/address_map.hpp"
 #include "events/address_event.hpp"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 namespace aesim {
 

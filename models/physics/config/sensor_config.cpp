@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "array/address_map.hpp"
 #include "files/data_dir.hpp"
@@ -273,16 +275,12 @@ void apply_toml_file(SensorConfig& config, const std::string& path, const std::s
 
 void apply_toml_text(SensorConfig& config, const std::string& text, const std::string& path,
                      const std::string& section) {
-  const toml::value doc = parse_toml_text(text, fmt::format("'{}'", path));
-  auto apply = [&](const std::string& key, const toml::value& value) {
-    std::string text;
-    if (value.is_string()) text = value.as_string().str;
-    else if (value.is_integer()) text = std::to_string(value.as_integer());
-    else if (value.is_floating()) text = fmt::format("{:.17g}", value.as_floating());
-    else if (value.is_boolean()) text = value.as_boolean() ? "true" : "false";
-    else throw InputError(fmt::format("'{}': {}: unsupported value type", path, key));
+  const TomlValue doc = parse_toml_text(text, fmt::format("'{}'", path));
+  auto apply = [&](const std::string& key, const TomlValue& value) {
+    const std::optional<std::string> text = value.scalar_text();
+    if (!text) throw InputError(fmt::format("'{}': {}: unsupported value type", path, key));
     try {
-      config.set(key, text);
+      config.set(key, *text);
     } catch (const InputError& e) {
       throw InputError(fmt::format("'{}': {}", path, e.what()));
     }

@@ -21,7 +21,7 @@ class ReferenceReceiverModule : public ReceiverModule {
 }  // namespace
 
 ReceiverFactory reference_receiver_factory() {
-  return [](const std::string& name, ReceiverSignals& s, const ReceiverCycleModel::Config& config) {
+  return [](const std::string& name, std::uint32_t, ReceiverSignals& s, const ReceiverCycleModel::Config& config) {
     return std::make_unique<ReferenceReceiverModule>(name.c_str(), s, config);
   };
 }

@@ -20,15 +20,17 @@ class ReceiverModule : public sc_core::sc_module {
   virtual std::uint64_t scoreboard_beats() const { return 0; }
 };
 
+// Makes tile `tile`'s receiver, bound to its signals.
 using ReceiverFactory = std::function<std::unique_ptr<ReceiverModule>(
-    const std::string& name, ReceiverSignals& signals, const ReceiverCycleModel::Config& config)>;
+    const std::string& name, std::uint32_t tile, ReceiverSignals& signals, const ReceiverCycleModel::Config& config)>;
 
 // The reference receiver (models/physics/receiver/reference_receiver) as a factory.
 ReceiverFactory reference_receiver_factory();
 
 // How the cycle fidelity builds and runs each tile's receiver.
 struct CycleOptions {
-  ReceiverFactory receiver = reference_receiver_factory();
+  // Empty: the reference model (or the RTL, when the run's receiver.model says so).
+  ReceiverFactory receiver;
   // Keep the receiver clock running for the whole run and let the receiver count its own
   // timestamps, instead of stopping the clock while the bus is idle and feeding it the
   // free-running count. Both give the same results (a test shows it); this one costs more.

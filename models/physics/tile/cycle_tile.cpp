@@ -18,7 +18,8 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
       clock_("clock", s_, receiver_clock_period(config.receiver), receiver_prescale(config.receiver), kReceiverTsWidth,
              options.free_running_clock ? sc_core::sc_time(config.sim.duration, sc_core::SC_SEC)
                                         : sc_core::SC_ZERO_TIME),
-      receiver_(options.receiver("receiver", s_, receiver_model_config(config.receiver, config.bus.contention_detect, options))),
+      receiver_((options.receiver ? options.receiver : reference_receiver_factory())(
+          "receiver", tile, s_, receiver_model_config(config.receiver, config.bus.contention_detect, options))),
       sink_("sink", s_, tile, map, receiver_tick(config.receiver), kReceiverTsWidth, log),
       monitor_("monitor", fmt::format("tile{}", tile), map.bus_bits(), vcd),
       stream_monitor_("stream_monitor", s_),

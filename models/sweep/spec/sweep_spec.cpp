@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -23,15 +24,13 @@ namespace {
 constexpr std::size_t kMaxPoints = 100000;
 
 // Tables in key order (std::map), so that axes vary in a defined order whatever the hashing.
-using Value = toml::basic_value<toml::discard_comments, std::map, std::vector>;
-using Table = Value::table_type;
+using Value = TomlValue;
+using Table = std::map<std::string, TomlValue>;
 
 std::string scalar_text(const Value& v, const std::string& where) {
-  if (v.is_string()) return v.as_string().str;
-  if (v.is_integer()) return std::to_string(v.as_integer());
-  if (v.is_floating()) return fmt::format("{:.17g}", v.as_floating());
-  if (v.is_boolean()) return v.as_boolean() ? "true" : "false";
-  throw InputError(fmt::format("{}: expected a string, number or boolean", where));
+  const std::optional<std::string> text = v.scalar_text();
+  if (!text) throw InputError(fmt::format("{}: expected a string, number or boolean", where));
+  return *text;
 }
 
 // A range table {from, to, points, scale = "linear"|"log"}, in the key's unit.
@@ -106,7 +105,7 @@ std::string resolve_path(const std::string& p, const fs::path& spec_dir) {
 
 SweepSpec load_sweep_spec(const std::string& path) {
   if (!is_input_file(path, "sweep spec")) throw InputError(fmt::format("sweep spec '{}' not found", path));
-  const Value doc = parse_toml_file<toml::discard_comments, std::map, std::vector>(path, fmt::format("sweep spec '{}'", path));
+  const Value doc = parse_toml_file(path, fmt::format("sweep spec '{}'", path));
   const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
   SweepSpec spec;
   spec.path = path;

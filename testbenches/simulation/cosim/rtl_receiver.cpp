@@ -19,10 +19,9 @@ std::unique_ptr<ReceiverModule> make(const std::string& name, ReceiverSignals& s
 
 ReceiverFactory rtl_receiver_factory(FullPolicy policy, std::function<std::string(int)> trace_path,
                                      sc_core::sc_time from, sc_core::sc_time to) {
-  return [=, tile = 0](const std::string& name, ReceiverSignals& s,
-                       const ReceiverCycleModel::Config& config) mutable -> std::unique_ptr<ReceiverModule> {
-    RtlTrace trace{trace_path ? trace_path(tile) : std::string(), from, to};
-    ++tile;
+  return [=](const std::string& name, std::uint32_t tile, ReceiverSignals& s,
+             const ReceiverCycleModel::Config& config) -> std::unique_ptr<ReceiverModule> {
+    RtlTrace trace{trace_path ? trace_path(static_cast<int>(tile)) : std::string(), from, to};
     const RtlTrace* t = trace_path ? &trace : nullptr;
     if (policy == FullPolicy::Hold) return make<Vaer_receiver_hold>(name, s, config, t);
     return make<Vaer_receiver_drop>(name, s, config, t);

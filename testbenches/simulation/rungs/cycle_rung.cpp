@@ -35,16 +35,15 @@ class CycleArray : public sc_core::sc_module {
   std::unique_ptr<ScheduleDriver> driver_;
 };
 
+// The request's options, with the RTL receiver when receiver.model asks for it and the request
+// names no receiver of its own.
 CycleOptions cycle_options(const RungRun& run) {
-  CycleOptions options;
-  if (run.config.receiver.model == ReceiverModel::Rtl) {
+  CycleOptions options = run.request.cycle;
+  if (!options.receiver && run.config.receiver.model == ReceiverModel::Rtl) {
     options.receiver = rtl_receiver_factory(run.config.receiver.full_policy, run.request.rtl_trace_path,
                                             sc_core::sc_time(run.request.vcd_from, sc_core::SC_SEC),
                                             sc_core::sc_time(run.request.vcd_to, sc_core::SC_SEC));
   }
-  if (run.request.receiver) options.receiver = run.request.receiver;
-  options.free_running_clock = run.request.free_running_clock;
-  options.sink_ready = run.request.sink_ready;
   return options;
 }
 

@@ -14,12 +14,10 @@ struct SimulationRequest {
   double vcd_from = 0, vcd_to = 0;  // s, the VCD window
   // With the RTL receiver, also trace tile N's RTL internals (Verilator) to rtl_trace_path(N).
   std::function<std::string(int tile)> rtl_trace_path;
-  // Cycle fidelity: back-pressure on every receiver's output, and a free-running receiver clock
-  // (see CycleOptions). The receiver itself follows receiver.model.
-  std::function<bool(std::uint64_t)> sink_ready;
-  bool free_running_clock = false;
-  // A receiver to use instead of the one receiver.model names (verification of RTL variants).
-  ReceiverFactory receiver;
+  // How the cycle rung builds its tiles: back-pressure on every receiver's output, a free-running
+  // receiver clock, and a receiver to use instead of the one receiver.model names (verification of
+  // RTL variants).
+  CycleOptions cycle;
 };
 
 }  // namespace aesim
