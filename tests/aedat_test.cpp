@@ -60,9 +60,9 @@ TEST_F(AedatFileTest, WrittenAndReadBackByteExact) {
   c.pixel.mismatch = 0.02;
   c.pixel.initial = InitialState::Random;
   c.sim.duration = 0.5;
-  const Photocurrents light(
+  const Photocurrents photocurrents(
       testing::make_scene({testing::make_image(64, 64, [](int x, int y) { return (x ^ y) / 63.0; })}), c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   const AddressMap map(c.array);
   const auto header = aedat_header(map, {{"array.rows", "64"}, {"array.cols", "64"}, {"array.tile_rows", "32"},
                                          {"array.tile_cols", "32"}, {"pixel.c_int", "1e-13"}});

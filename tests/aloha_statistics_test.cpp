@@ -24,9 +24,9 @@ SensorConfig uniform_aloha(double load) {
 }
 
 nlohmann::json run(const SensorConfig& c) {
-  const Photocurrents light(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}),
-                            c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const Photocurrents photocurrents(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}),
+                                    c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   return make_summary(c, r.log, r.facts);
 }
 
@@ -87,9 +87,9 @@ TEST(PureAlohaTheoryFails, MismatchAloneBreaksTheLockStepOverTime) {
   // first periods collide far above theory; as pixels drift apart the loss falls toward it.
   SensorConfig c = uniform_aloha(0.1);
   c.pixel.mismatch = 0.02;
-  const Photocurrents light(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}),
-                            c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light, testing::with_truth());
+  const Photocurrents photocurrents(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}),
+                                    c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents, testing::with_truth());
   double first_lost = 0, first = 0, last_lost = 0, last = 0;
   for (const TruthRecord& t : r.log.truth()) {
     const bool lost = t.fate != Fate::Delivered;

@@ -25,8 +25,8 @@ std::map<std::size_t, std::vector<double>> times_by_pixel(const SimulationResult
 }
 
 void expect_closed_form(const SensorConfig& c, const Image& img) {
-  const Photocurrents light(make_scene({img}), c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const Photocurrents photocurrents(make_scene({img}), c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   const auto times = times_by_pixel(r, c.array.cols);
   const double q = c.pixel.c_int * c.pixel.dv_int;
   std::uint64_t total = 0;
@@ -82,8 +82,8 @@ std::vector<double> single_pixel_run(double t_reset, double frame_period) {
   const Scene scene = make_scene({make_image(1, 1, [](int, int) { return 1.0; }),
                                   make_image(1, 1, [](int, int) { return 0.5; })},
                                  frame_period);
-  const Photocurrents light(scene, c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const Photocurrents photocurrents(scene, c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   std::vector<double> times;
   for (const AddressEvent& e : r.log.events()) times.push_back(e.t);
   return times;
@@ -114,8 +114,8 @@ TEST(ClosedForm, LoopedSequenceRepeats) {
   const Scene scene = make_scene({make_image(1, 1, [](int, int) { return 1.0; }),
                                   make_image(1, 1, [](int, int) { return 0.0; })},
                                  0.33, true);
-  const Photocurrents light(scene, c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const Photocurrents photocurrents(scene, c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   std::vector<double> times;
   for (const AddressEvent& e : r.log.events()) times.push_back(e.t);
   expect_times(times, {0.1, 0.2, 0.3, 0.73, 0.83, 0.93});
@@ -125,8 +125,8 @@ TEST(Mismatch, SpreadOfPeriodsMatchesTheParameter) {
   SensorConfig c = exact_sensor(64, 64, 32);
   c.pixel.mismatch = 0.05;
   c.sim.duration = 0.25;  // two firings per pixel at 1 pA: 0.1 * (1 +- 0.05 * 4.5 sigma)
-  const Photocurrents light(make_scene({make_image(64, 64, [](int, int) { return 1.0; })}), c.pixel);
-  const auto times = times_by_pixel(simulate(c.resolved(), light), 64);
+  const Photocurrents photocurrents(make_scene({make_image(64, 64, [](int, int) { return 1.0; })}), c.pixel);
+  const auto times = times_by_pixel(simulate(c.resolved(), photocurrents), 64);
   ASSERT_EQ(times.size(), 4096u);
   double sum = 0, sum2 = 0;
   for (const auto& [pixel, t] : times) {
@@ -146,8 +146,8 @@ TEST(Mismatch, SpreadOfPeriodsMatchesTheParameter) {
 TEST(Light, ZeroCurrentNeverFiresAndTerminates) {
   SensorConfig c = exact_sensor(32, 32, 16);
   c.sim.duration = 1e6;
-  const Photocurrents light(make_scene({make_image(32, 32, [](int, int) { return 0.0; })}), c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const Photocurrents photocurrents(make_scene({make_image(32, 32, [](int, int) { return 0.0; })}), c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   EXPECT_EQ(r.log.totals().fired, 0u);
   EXPECT_TRUE(r.log.events().empty());
 }
@@ -158,9 +158,9 @@ TEST(Light, VanishingCurrentsDoNotOverflowSimulatedTime) {
   SensorConfig c = exact_sensor(1, 2, 1);
   c.pixel.i_max = 1.25e-19;
   c.sim.duration = 1e6;
-  const Photocurrents light(make_scene({make_image(2, 1, [](int x, int) { return x == 0 ? 1.0 : 1e-11; })}),
-                            c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const Photocurrents photocurrents(make_scene({make_image(2, 1, [](int x, int) { return x == 0 ? 1.0 : 1e-11; })}),
+                                    c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   ASSERT_EQ(r.log.events().size(), 1u);
   EXPECT_EQ(r.log.events()[0].x, 0u);
   EXPECT_NEAR(r.log.events()[0].t, 8e5, 1e-6);
@@ -171,10 +171,10 @@ TEST(Seeds, SameSeedSameEventsOtherSeedOtherEvents) {
   c.pixel.mismatch = 0.02;
   c.pixel.initial = InitialState::Random;
   c.pixel.shot_noise = true;
-  const Photocurrents light(make_scene({make_image(16, 16, [](int x, int) { return x / 15.0; })}), c.pixel);
+  const Photocurrents photocurrents(make_scene({make_image(16, 16, [](int x, int) { return x / 15.0; })}), c.pixel);
   auto run = [&](std::uint64_t seed) {
     c.sim.seed = seed;
-    const SimulationResult r = simulate(c.resolved(), light);
+    const SimulationResult r = simulate(c.resolved(), photocurrents);
     std::vector<std::pair<double, std::uint32_t>> v;
     for (const AddressEvent& e : r.log.events()) v.emplace_back(e.t, e.y * 16 + e.x);
     return v;

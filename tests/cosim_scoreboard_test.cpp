@@ -42,15 +42,15 @@ TEST_P(Cosim, RtlMatchesTheReferenceEveryCycle) {
   const char* scale = std::getenv("AESIM_COSIM_SCALE");
   c.sim.duration = k.duration * (scale ? std::max(1.0, std::atof(scale)) : 1.0);
   const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
-  const Photocurrents light(scene, c.pixel);
+  const Photocurrents photocurrents(scene, c.pixel);
   SimulationRequest request;
   const unsigned every = k.ready_every;
   request.cycle.sink_ready = [every](std::uint64_t cycle) { return cycle % every == 0; };
 
   c.receiver.model = ReceiverModel::Rtl;
-  const SimulationResult rtl = simulate(c.resolved(), light, request);
+  const SimulationResult rtl = simulate(c.resolved(), photocurrents, request);
   c.receiver.model = ReceiverModel::Reference;
-  const SimulationResult ref = simulate(c.resolved(), light, request);
+  const SimulationResult ref = simulate(c.resolved(), photocurrents, request);
 
   EXPECT_EQ(rtl.facts.scoreboard_mismatches, 0u);
   EXPECT_EQ(rtl.facts.protocol_violations, 0u);
@@ -100,11 +100,11 @@ TEST(ClockGating, StoppingTheIdleClockChangesNothing) {
   c.receiver.clock = 100e3;  // slow, so the free-running run stays short
   c.sim.duration = 1.0;
   const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
-  const Photocurrents light(scene, c.pixel);
+  const Photocurrents photocurrents(scene, c.pixel);
   SimulationRequest free_running = testing::with_truth();
   free_running.cycle.free_running_clock = true;
-  const SimulationResult a = simulate(c.resolved(), light, free_running);
-  const SimulationResult b = simulate(c.resolved(), light, testing::with_truth());
+  const SimulationResult a = simulate(c.resolved(), photocurrents, free_running);
+  const SimulationResult b = simulate(c.resolved(), photocurrents, testing::with_truth());
   EXPECT_EQ(a.facts.scoreboard_mismatches, 0u);
   EXPECT_EQ(b.facts.scoreboard_mismatches, 0u);
   ASSERT_GT(a.log.events().size(), 10000u);

@@ -169,8 +169,8 @@ TEST(HandshakeMonitor, CountsBrokenRules) {
 }
 
 SimulationResult run_scene(SensorConfig c, const Image& img) {
-  const Photocurrents light(testing::make_scene({img}), c.pixel);
-  return simulate(c.resolved(), light, testing::with_truth());
+  const Photocurrents photocurrents(testing::make_scene({img}), c.pixel);
+  return simulate(c.resolved(), photocurrents, testing::with_truth());
 }
 
 TEST(CycleFidelity, LoadedBusKeepsTheHandshakeAndDeliversOnlyFiredPixels) {

@@ -22,8 +22,8 @@ using testing::make_scene;
 
 SimulationResult run(SensorConfig c, Fidelity f, const Scene& scene) {
   c.sim.fidelity = f;
-  const Photocurrents light(scene, c.pixel);
-  return simulate(c.resolved(), light, testing::with_truth());
+  const Photocurrents photocurrents(scene, c.pixel);
+  return simulate(c.resolved(), photocurrents, testing::with_truth());
 }
 
 std::map<std::uint32_t, std::uint64_t> counts(const SimulationResult& r, int cols) {

@@ -23,14 +23,14 @@ std::uint64_t mismatches() {
   c.receiver.clock = 1e6;
   c.receiver.fifo_depth = 64;
   const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
-  const Photocurrents light(scene, c.pixel);
+  const Photocurrents photocurrents(scene, c.pixel);
   SimulationRequest request;
   request.cycle.sink_ready = [](std::uint64_t cycle) { return cycle % 400 == 0; };
   request.cycle.receiver = [](const std::string& name, std::uint32_t, ReceiverSignals& s,
                               const ReceiverCycleModel::Config& config) {
     return std::unique_ptr<ReceiverModule>(new RtlReceiver<V>(name.c_str(), s, config));
   };
-  const SimulationResult r = simulate(c.resolved(), light, request);
+  const SimulationResult r = simulate(c.resolved(), photocurrents, request);
   EXPECT_GT(r.facts.scoreboard_beats, 1000u);
   return r.facts.scoreboard_mismatches;
 }

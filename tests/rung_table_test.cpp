@@ -74,11 +74,11 @@ TEST(RungTable, OnlyTheSystemCRungsSetUpAKernel) {
   c.sim.duration = 0.05;
   c.pixel.i_max = 1e-10;  // 1 kHz at full scale: every rung fires within the run
   const Scene scene = testing::make_scene({testing::make_image(16, 16, [](int x, int y) { return (x + y) / 30.0; })});
-  const Photocurrents light(scene, c.pixel);
+  const Photocurrents photocurrents(scene, c.pixel);
   for (const Rung* rung : rung_table()) {
     c.sim.fidelity = rung->fidelity();
     const std::uint64_t before = ScopedKernel::made();
-    const SimulationResult r = simulate(c.resolved(), light);
+    const SimulationResult r = simulate(c.resolved(), photocurrents);
     EXPECT_GT(r.log.totals().fired, 0u) << to_string(rung->fidelity());
     const bool systemc = rung->fidelity() == Fidelity::Cycle || rung->fidelity() == Fidelity::PixelProcesses ||
                          rung->fidelity() == Fidelity::FixedStep;

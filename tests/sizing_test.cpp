@@ -59,8 +59,9 @@ TEST(PowerModel, AnAlohaQuadrantDrawsAboutSixMicrowattsAtTheChipsEventRate) {
   c.array.rows = c.array.cols = 32;
   c.pixel.i_max = 0.752e-12;
   c.sim.duration = 4.0;
-  const Photocurrents light(testing::make_scene({testing::make_image(32, 32, [](int, int) { return 1.0; })}), c.pixel);
-  const SimulationResult r = simulate(c.resolved(), light);
+  const Photocurrents photocurrents(testing::make_scene({testing::make_image(32, 32, [](int, int) { return 1.0; })}),
+                                    c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
   const nlohmann::json s = make_summary(c, r.log, r.facts);
   EXPECT_NEAR(s["events_fired"].get<double>() / 4.0, 7700, 100);
   EXPECT_NEAR(s["power_per_tile_w"].get<double>(), 6e-6, 0.6e-6);

@@ -84,21 +84,21 @@ int compare_command(CompareOptions opt) {
     }
     const ResolvedConfig resolved = base.resolved();
     const Scene scene = load_scene(files, resolved.array, resolved.scene);
-    const Photocurrents light(scene, resolved.pixel);
+    const Photocurrents photocurrents(scene, resolved.pixel);
     const Image mean = mean_frame(scene, resolved.sim.duration);
 
     SensorConfig ref_config = base;
     ref_config.sim.fidelity = Fidelity::Event;
     SimulationRequest request;
     request.keep_truth = true;
-    const SimulationResult reference = simulate(ref_config.resolved(), light, request);
+    const SimulationResult reference = simulate(ref_config.resolved(), photocurrents, request);
     const std::size_t first = rows.size();
     for (const LadderStep& rung : rungs) {
       SensorConfig c = base;
       c.sim.fidelity = rung.fidelity;
       c.receiver.model = rung.receiver;
       if (rung.step > 0) c.sim.step = rung.step;
-      const SimulationResult r = simulate(c.resolved(), light, request);
+      const SimulationResult r = simulate(c.resolved(), photocurrents, request);
       Row row;
       row.scene = display(scene_path);
       row.rung = rung.name;

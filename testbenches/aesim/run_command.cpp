@@ -79,7 +79,7 @@ int run_command(RunOptions opt) {
   check_output_paths(outputs, inputs);
 
   const Scene scene = load_scene(scene_files, config.array, config.scene);
-  const Photocurrents light(scene, config.pixel);
+  const Photocurrents photocurrents(scene, config.pixel);
   OutputFiles files;
   if (!rtl_traces.empty()) {
     // Verilator writes these during the run; they are renamed into place with the rest.
@@ -87,7 +87,7 @@ int run_command(RunOptions opt) {
     for (const std::string& trace : rtl_traces) temps.push_back(files.adopt(trace));
     request.rtl_trace_path = [temps](int tile) { return temps[static_cast<std::size_t>(tile)]; };
   }
-  const SimulationResult result = simulate(config, light, request);
+  const SimulationResult result = simulate(config, photocurrents, request);
 
   const Image mean = mean_frame(scene, config.sim.duration);
   const nlohmann::json summary = make_summary(config, result.log, result.facts, &mean);

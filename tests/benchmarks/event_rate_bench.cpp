@@ -14,10 +14,10 @@ namespace aesim {
 namespace {
 
 void run(benchmark::State& state, const SensorConfig& config, const Scene& scene) {
-  const Photocurrents light(scene, config.pixel);
+  const Photocurrents photocurrents(scene, config.pixel);
   double events = 0, edges = 0;
   for (auto _ : state) {
-    const SimulationResult r = simulate(config.resolved(), light);
+    const SimulationResult r = simulate(config.resolved(), photocurrents);
     events += static_cast<double>(r.log.totals().fired);
     edges += static_cast<double>(r.facts.receiver_clock_edges);
     benchmark::DoNotOptimize(r.log.events().data());
@@ -66,12 +66,12 @@ void BM_CycleFreeRunningClock(benchmark::State& state, ReceiverModel model) {
   c.sim.fidelity = Fidelity::Cycle;
   c.receiver.model = model;
   const Scene scene = scene_for(c, "scenes/letters/A.pgm");
-  const Photocurrents light(scene, c.pixel);
+  const Photocurrents photocurrents(scene, c.pixel);
   SimulationRequest request;
   request.cycle.free_running_clock = true;
   double edges = 0;
   for (auto _ : state) {
-    const SimulationResult r = simulate(c.resolved(), light, request);
+    const SimulationResult r = simulate(c.resolved(), photocurrents, request);
     edges += static_cast<double>(r.facts.receiver_clock_edges);
   }
   state.counters["edges_per_s"] = benchmark::Counter(edges, benchmark::Counter::kIsRate);

@@ -8,9 +8,9 @@ static_assert(sizeof(aesim::FiringSchedule::Slot) <= 72, "pixel record grew");
 
 namespace aesim {
 
-FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& light, const AddressMap& map,
-                               std::uint32_t tile)
-    : light_(light),
+FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& photocurrents,
+                               const AddressMap& map, std::uint32_t tile)
+    : photocurrents_(photocurrents),
       sensor_(pixel_sensor(pixel)),
       t_end_(sim.duration),
       tile_(tile),
@@ -25,7 +25,7 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
   for (std::uint32_t y = y0; y < y1; ++y) {
     for (std::uint32_t x = x0; x < x1; ++x) {
       const std::uint32_t index = y * cols_ + x;
-      const double current = light.current(0, index);
+      const double current = photocurrents.current(0, index);
       const std::uint32_t boundary = boundary_after(0, index);
       if (!(current > 0) && boundary == kNoBoundary) continue;  // dark for the whole run
       Slot p;
@@ -47,14 +47,14 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
 }
 
 std::uint32_t FiringSchedule::boundary_after(std::uint64_t boundary, std::size_t index) const {
-  const std::uint64_t b = light_.next_change(boundary, index);
+  const std::uint64_t b = photocurrents_.next_change(boundary, index);
   // A boundary past the run is as good as none (sim.duration * frame rate < 2^32 is validated).
-  return b == Photocurrents::kNoChange || light_.boundary_time(b) > t_end_ ? kNoBoundary
-                                                                           : static_cast<std::uint32_t>(b);
+  return b == Photocurrents::kNoChange || photocurrents_.boundary_time(b) > t_end_ ? kNoBoundary
+                                                                                   : static_cast<std::uint32_t>(b);
 }
 
 double FiringSchedule::wake_time(const Slot& p) const {
-  const double boundary = p.next_boundary == kNoBoundary ? kNever : light_.boundary_time(p.next_boundary);
+  const double boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
   return std::min(p.core.next_fire(), boundary);
 }
 
@@ -63,7 +63,7 @@ bool FiringSchedule::next(AddressEvent& firing) {
     const std::uint32_t slot = heap_.top().slot;
     Slot& p = pixels_[slot];
     const double t_fire = p.core.next_fire();
-    const double t_boundary = p.next_boundary == kNoBoundary ? kNever : light_.boundary_time(p.next_boundary);
+    const double t_boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
     const bool fires = fires_first(t_fire, t_boundary);
     if (fires) {
       firing.t = t_fire;
@@ -75,7 +75,7 @@ bool FiringSchedule::next(AddressEvent& firing) {
       p.core.fire(sensor_, rng(slot));
     } else {
       const std::size_t index = std::size_t(p.y) * cols_ + p.x;
-      p.core.set_current(sensor_, t_boundary, light_.current(p.next_boundary, index));
+      p.core.set_current(sensor_, t_boundary, photocurrents_.current(p.next_boundary, index));
       p.next_boundary = boundary_after(p.next_boundary, index);
     }
     const double t_next = wake_time(p);

@@ -19,7 +19,8 @@ namespace aesim {
 // end of the run leaves the heap. Cost follows the events, not the pixels.
 class FiringSchedule {
  public:
-  FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& light, const AddressMap& map, std::uint32_t tile);
+  FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& photocurrents,
+                 const AddressMap& map, std::uint32_t tile);
 
   // The next firing at or before sim.duration; false when none remains.
   bool next(AddressEvent& firing);
@@ -47,7 +48,7 @@ class FiringSchedule {
  private:
   double wake_time(const Slot& p) const;
 
-  const Photocurrents& light_;
+  const Photocurrents& photocurrents_;
   IntegrateFire::Sensor sensor_;
   double t_end_;
   std::uint32_t tile_;

@@ -7,15 +7,15 @@
 namespace aesim {
 
 FixedStepArray::FixedStepArray(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
-                               const Photocurrents& light, const AddressMap& map, std::vector<EventBus*> buses)
+                               const Photocurrents& photocurrents, const AddressMap& map, std::vector<EventBus*> buses)
     : sc_module(name),
-      light_(light),
+      photocurrents_(photocurrents),
       buses_(std::move(buses)),
       step_(sim.step),
       t_end_(sim.duration),
       reset_steps_(static_cast<std::uint32_t>(std::ceil(pixel.t_reset / sim.step - 1e-9))),
-      next_boundary_(light.frames() > 1 ? 1 : Photocurrents::kNoChange) {
-  const std::size_t n = light.pixels();
+      next_boundary_(photocurrents.frames() > 1 ? 1 : Photocurrents::kNoChange) {
+  const std::size_t n = photocurrents.pixels();
   charge_.resize(n);
   threshold_.resize(n);
   current_.resize(n);
@@ -24,7 +24,7 @@ FixedStepArray::FixedStepArray(const sc_core::sc_module_name& name, const PixelP
   for (std::size_t i = 0; i < n; ++i) {
     threshold_[i] = pixel_threshold(pixel, sim.seed, i);
     charge_[i] = initial_fraction(pixel, sim.seed, i) * threshold_[i];
-    current_[i] = light.current(0, i);
+    current_[i] = photocurrents.current(0, i);
     identity_[i] = map.event_at({static_cast<std::uint32_t>(i % static_cast<std::size_t>(map.cols())),
                                  static_cast<std::uint32_t>(i / static_cast<std::size_t>(map.cols()))});
   }
@@ -38,10 +38,10 @@ void FixedStepArray::tick() {
   ++steps_;
   const double now = static_cast<double>(steps_) * step_;
   // The light of the step that just ended: frames change only at tick granularity here.
-  while (next_boundary_ != Photocurrents::kNoChange && light_.boundary_time(next_boundary_) < now) {
+  while (next_boundary_ != Photocurrents::kNoChange && photocurrents_.boundary_time(next_boundary_) < now) {
     frame_ = next_boundary_;
     ++next_boundary_;
-    for (std::size_t i = 0; i < current_.size(); ++i) current_[i] = light_.current(frame_, i);
+    for (std::size_t i = 0; i < current_.size(); ++i) current_[i] = photocurrents_.current(frame_, i);
   }
   for (std::size_t i = 0; i < charge_.size(); ++i) {
     if (resetting_[i] > 0) {

@@ -21,8 +21,8 @@ namespace aesim {
 // Cost: pixels x steps, whatever the scene.
 class FixedStepArray : public sc_core::sc_module {
  public:
-  FixedStepArray(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim, const Photocurrents& light,
-                 const AddressMap& map, std::vector<EventBus*> buses);
+  FixedStepArray(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
+                 const Photocurrents& photocurrents, const AddressMap& map, std::vector<EventBus*> buses);
   SC_HAS_PROCESS(FixedStepArray);
 
   std::uint64_t multi_fire_steps() const { return multi_fire_steps_; }
@@ -30,7 +30,7 @@ class FixedStepArray : public sc_core::sc_module {
  private:
   void tick();
 
-  const Photocurrents& light_;
+  const Photocurrents& photocurrents_;
   std::vector<EventBus*> buses_;
   double step_, t_end_;
   std::uint32_t reset_steps_;

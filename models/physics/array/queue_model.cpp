@@ -47,20 +47,21 @@ std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double
   return queue;
 }
 
-std::vector<AddressEvent> queue_events(const PixelParams& pixel, const SimParams& sim, const Photocurrents& light, const AddressMap& map,
+std::vector<AddressEvent> queue_events(const PixelParams& pixel, const SimParams& sim,
+                                       const Photocurrents& photocurrents, const AddressMap& map,
                                        std::uint64_t* empty_lit_frames) {
   const double f_max = pixel.i_max / pixel.threshold_charge();
   const double duration = sim.duration;
-  const bool still = light.frames() == 1;
-  const double frame_time = still ? duration : light.boundary_time(1);
+  const bool still = photocurrents.frames() == 1;
+  const double frame_time = still ? duration : photocurrents.boundary_time(1);
   std::vector<AddressEvent> events;
-  std::vector<double> values(light.pixels());
+  std::vector<double> values(photocurrents.pixels());
   QueueBudget budget{sim.max_events, sim.max_events * 100};
   for (std::uint64_t k = 0;; ++k) {
     const double start = static_cast<double>(k) * frame_time;
     if (start >= duration) break;
     for (std::size_t i = 0; i < values.size(); ++i) {
-      values[i] = pixel.i_max > 0 ? (light.current(still ? 0 : k, i) - pixel.i_dark) / pixel.i_max : 0.0;
+      values[i] = pixel.i_max > 0 ? (photocurrents.current(still ? 0 : k, i) - pixel.i_dark) / pixel.i_max : 0.0;
     }
     const double length = std::min(frame_time, duration - start);
     const std::vector<std::uint32_t> queue = queue_order(values, f_max, length, &budget);

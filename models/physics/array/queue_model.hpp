@@ -23,7 +23,8 @@ namespace aesim {
 // Frames with light whose brightest pixel should fire less than half a time within the frame
 // round to zero iterations: the model then emits nothing for them. They are counted in
 // `empty_lit_frames` (when given) so that the run can say so instead of failing silently.
-std::vector<AddressEvent> queue_events(const PixelParams& pixel, const SimParams& sim, const Photocurrents& light, const AddressMap& map,
+std::vector<AddressEvent> queue_events(const PixelParams& pixel, const SimParams& sim,
+                                       const Photocurrents& photocurrents, const AddressMap& map,
                                        std::uint64_t* empty_lit_frames = nullptr);
 
 // The work queues may take over a run: entries (events) and pixel visits (iterations x pixels),

@@ -11,11 +11,12 @@ bool ScheduleDriver::Before::operator()(const Head& a, const Head& b) const {
 }
 
 ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
-                               const Photocurrents& light, const AddressMap& map, std::vector<EventBus*> buses)
+                               const Photocurrents& photocurrents, const AddressMap& map, std::vector<EventBus*> buses)
     : sc_module(name), buses_(std::move(buses)) {
   std::vector<Head> heads;
   for (int t = 0; t < map.tiles(); ++t) {
-    schedules_.push_back(std::make_unique<FiringSchedule>(pixel, sim, light, map, static_cast<std::uint32_t>(t)));
+    schedules_.push_back(
+        std::make_unique<FiringSchedule>(pixel, sim, photocurrents, map, static_cast<std::uint32_t>(t)));
     Head h;
     h.tile = static_cast<std::size_t>(t);
     if (schedules_.back()->next(h.firing)) heads.push_back(h);

@@ -14,8 +14,8 @@ namespace aesim {
 // process per pixel at the cycle fidelity.
 class ScheduleDriver : public sc_core::sc_module {
  public:
-  ScheduleDriver(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim, const Photocurrents& light,
-                 const AddressMap& map, std::vector<EventBus*> buses);
+  ScheduleDriver(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
+                 const Photocurrents& photocurrents, const AddressMap& map, std::vector<EventBus*> buses);
   SC_HAS_PROCESS(ScheduleDriver);
 
  private:

@@ -5,17 +5,17 @@
 namespace aesim {
 
 PixelProcess::PixelProcess(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
-             const Photocurrents& light, std::size_t index, const AddressEvent& identity)
+                           const Photocurrents& photocurrents, std::size_t index, const AddressEvent& identity)
     : sc_module(name),
-      light_(light),
+      photocurrents_(photocurrents),
       index_(index),
       identity_(identity),
       t_end_(sim.duration),
       rng_(shot_noise_stream(sim.seed, index)),
       sensor_(pixel_sensor(pixel)),
-      core_(sensor_, pixel_threshold(pixel, sim.seed, index), 0.0, light.current(0, index), initial_fraction(pixel, sim.seed, index),
-            rng_),
-      next_boundary_(light.next_change(0, index)) {
+      core_(sensor_, pixel_threshold(pixel, sim.seed, index), 0.0, photocurrents.current(0, index),
+            initial_fraction(pixel, sim.seed, index), rng_),
+      next_boundary_(photocurrents.next_change(0, index)) {
   SC_METHOD(step);
 }
 
@@ -28,8 +28,9 @@ void PixelProcess::step() {
     bus->request(e);
     core_.fire(sensor_, rng_);
   } else {
-    core_.set_current(sensor_, light_.boundary_time(next_boundary_), light_.current(next_boundary_, index_));
-    next_boundary_ = light_.next_change(next_boundary_, index_);
+    core_.set_current(sensor_, photocurrents_.boundary_time(next_boundary_),
+                      photocurrents_.current(next_boundary_, index_));
+    next_boundary_ = photocurrents_.next_change(next_boundary_, index_);
   }
   schedule();
 }
@@ -37,7 +38,7 @@ void PixelProcess::step() {
 void PixelProcess::schedule() {
   const double t_fire = core_.next_fire();
   const double t_boundary =
-      next_boundary_ == Photocurrents::kNoChange ? kNever : light_.boundary_time(next_boundary_);
+      next_boundary_ == Photocurrents::kNoChange ? kNever : photocurrents_.boundary_time(next_boundary_);
   pending_fire_ = fires_first(t_fire, t_boundary);
   const double t_next = pending_fire_ ? t_fire : t_boundary;
   if (!(t_next <= t_end_)) return;  // nothing more happens to this pixel within the run

@@ -16,14 +16,14 @@ class PixelProcess : public sc_core::sc_module {
   sc_core::sc_port<PixelBusIf> bus;
 
   PixelProcess(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
-        const Photocurrents& light, std::size_t index, const AddressEvent& identity);
+               const Photocurrents& photocurrents, std::size_t index, const AddressEvent& identity);
   SC_HAS_PROCESS(PixelProcess);
 
  private:
   void step();
   void schedule();
 
-  const Photocurrents& light_;
+  const Photocurrents& photocurrents_;
   std::size_t index_;
   AddressEvent identity_;
   double t_end_;

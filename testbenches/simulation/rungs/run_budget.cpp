@@ -11,18 +11,18 @@
 
 namespace aesim {
 
-WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& light, Fidelity fidelity) {
+WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& photocurrents, Fidelity fidelity) {
   WorkEstimate w;
-  const std::size_t frames = light.frames(), pixels = light.pixels();
+  const std::size_t frames = photocurrents.frames(), pixels = photocurrents.pixels();
   const double duration = config.sim.duration;
   const double q = config.pixel.threshold_charge();
   const std::vector<double> shown =
-      frame_exposures(frames, frames > 1 ? light.frame_period() : duration, light.loops(), duration);
+      frame_exposures(frames, frames > 1 ? photocurrents.frame_period() : duration, photocurrents.loops(), duration);
   for (std::size_t f = 0; f < frames; ++f) {
     if (shown[f] == 0) continue;
     double rate_sum = 0;
     for (std::size_t i = 0; i < pixels; ++i) {
-      const double current = light.current(f, i);
+      const double current = photocurrents.current(f, i);
       // Written so that a huge current gives a huge rate, never inf/inf.
       if (current > 0) rate_sum += 1.0 / (q / current + config.pixel.t_reset);
     }
@@ -34,10 +34,11 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& ligh
     std::vector<double> changed(frames, 0);
     for (std::size_t f = 0; f < frames; ++f) {
       const std::size_t before = f == 0 ? frames - 1 : f - 1;
-      for (std::size_t i = 0; i < pixels; ++i) changed[f] += light.current(f, i) != light.current(before, i) ? 1 : 0;
+      for (std::size_t i = 0; i < pixels; ++i)
+        changed[f] += photocurrents.current(f, i) != photocurrents.current(before, i) ? 1 : 0;
     }
-    const double boundaries = std::ceil(duration / light.frame_period());
-    if (light.loops()) {
+    const double boundaries = std::ceil(duration / photocurrents.frame_period());
+    if (photocurrents.loops()) {
       for (std::size_t f = 0; f < frames; ++f) w.frame_wakeups += changed[f] * boundaries / static_cast<double>(frames);
     } else {
       for (std::size_t f = 1; f < frames && static_cast<double>(f) < boundaries; ++f) w.frame_wakeups += changed[f];
@@ -45,11 +46,12 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& ligh
   }
   if (fidelity == Fidelity::FixedStep) w.scan_steps = static_cast<double>(pixels) * std::ceil(duration / config.sim.step);
   if (fidelity == Fidelity::Queue && config.pixel.i_max > 0) {
-    const double period = frames > 1 ? light.frame_period() : duration;
+    const double period = frames > 1 ? photocurrents.frame_period() : duration;
     const double f_max = config.pixel.i_max / q;
     for (std::size_t f = 0; f < frames; ++f) {
       double p_max = 0;
-      for (std::size_t i = 0; i < pixels; ++i) p_max = std::max(p_max, light.current(f, i) - config.pixel.i_dark);
+      for (std::size_t i = 0; i < pixels; ++i)
+        p_max = std::max(p_max, photocurrents.current(f, i) - config.pixel.i_dark);
       const double showings = std::ceil(shown[f] / period);
       w.scan_steps += showings * (std::round(f_max * p_max / config.pixel.i_max * period) + 1) * static_cast<double>(pixels);
     }
@@ -58,8 +60,8 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& ligh
   return w;
 }
 
-void check_work(const SensorConfig& config, const Photocurrents& light, Fidelity fidelity) {
-  const WorkEstimate w = estimate_work(config, light, fidelity);
+void check_work(const SensorConfig& config, const Photocurrents& photocurrents, Fidelity fidelity) {
+  const WorkEstimate w = estimate_work(config, photocurrents, fidelity);
   const double limit = config.sim.max_events;
   auto refuse = [&](const char* key, const std::string& what, const std::string& advice) {
     throw InputError(fmt::format("{}: the run would {} (limit {:.3g}, sim.max_events or --max-events); {}", key, what,

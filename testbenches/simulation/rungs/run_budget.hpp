@@ -18,11 +18,11 @@ struct WorkEstimate {
 
 // Rates are eq. 2 with the reset time: I / (c_int dv_int + I t_reset), the mean over mismatch
 // and shot noise. `fidelity` is the rung the run resolved to.
-WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& light, Fidelity fidelity);
+WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& photocurrents, Fidelity fidelity);
 
 // Throws InputError naming the figure, the key that drives it and sim.max_events (the limit,
 // --max-events on the command line) when the estimate exceeds it.
-void check_work(const SensorConfig& config, const Photocurrents& light, Fidelity fidelity);
+void check_work(const SensorConfig& config, const Photocurrents& photocurrents, Fidelity fidelity);
 
 // The most pixels the pixel_processes baseline elaborates (~2.5 KB of SystemC state each).
 constexpr double kMaxProcessPixels = 1 << 20;
