@@ -51,18 +51,16 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
   const double buses = static_cast<double>(log.tiles().size());
   const double per_bus_rate = 1.0 / (buses * facts.sim_time_s);
   nlohmann::json tiles = nlohmann::json::array();
-  for (const TileCounters& t : log.tiles()) {
-    tiles.push_back({{"fired", t.fired}, {"delivered", t.delivered}, {"collided", t.collided},
-                     {"ghost", t.ghost}, {"dropped", t.dropped}, {"pending", t.pending},
-                     {"offered_load", static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s},
-                     {"collision_fraction", t.collision_fraction()}});
-  }
-  const LatencyStats latency = log.latency();
   double worst_load = 0, worst_loss = 0;
   for (const TileCounters& t : log.tiles()) {
-    worst_load = std::max(worst_load, static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s);
+    const double load = static_cast<double>(t.fired) / facts.sim_time_s * facts.tau_s;
+    tiles.push_back({{"fired", t.fired}, {"delivered", t.delivered}, {"collided", t.collided},
+                     {"ghost", t.ghost}, {"dropped", t.dropped}, {"pending", t.pending},
+                     {"offered_load", load}, {"collision_fraction", t.collision_fraction()}});
+    worst_load = std::max(worst_load, load);
     worst_loss = std::max(worst_loss, t.collision_fraction());
   }
+  const LatencyStats latency = log.latency();
   nlohmann::json summary = {
       {"events_fired", total.fired},
       {"events_delivered", total.delivered},

@@ -22,9 +22,10 @@ class EventLevelBuses {
     for (const auto& bus : buses_) out.push_back(bus.get());
     return out;
   }
-  // Settles what every bus still holds.
-  void finish() {
+  // Settles what every bus still holds; an event-level bus's transaction time is bus.t_event.
+  void finish(const BusParams& params, RunFacts& facts) {
     for (auto& bus : buses_) bus->finish();
+    facts.tau_s = params.t_event;
   }
 
  private:

@@ -39,8 +39,7 @@ class EventRung : public Rung {
     for (int i = 1; i < threads; ++i) pool.emplace_back(work);
     work();
     for (std::thread& th : pool) th.join();
-    buses.finish();
-    facts.tau_s = run.config.bus.t_event;
+    buses.finish(run.config.bus, facts);
   }
 };
 

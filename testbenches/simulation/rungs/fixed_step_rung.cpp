@@ -22,8 +22,7 @@ class FixedStepRung : public Rung {
     EventLevelBuses buses(run);
     FixedStepArray array("fixed_step", run.config.pixel, run.config.sim, run.photocurrents, run.map, buses.pointers());
     sc_core::sc_start();
-    buses.finish();
-    facts.tau_s = run.config.bus.t_event;
+    buses.finish(run.config.bus, facts);
     facts.multi_fire_steps = array.multi_fire_steps();
   }
 };

@@ -55,8 +55,7 @@ class PixelProcessesRung : public Rung {
     PixelArray array("imager", run, buses);
     // Every pixel stops scheduling itself past sim.duration, so the kernel starves when done.
     sc_core::sc_start();
-    buses.finish();
-    facts.tau_s = run.config.bus.t_event;
+    buses.finish(run.config.bus, facts);
   }
 };
 

@@ -16,8 +16,7 @@ class QueueRung : public Rung {
     for (const AddressEvent& e : queue_events(run.config.pixel, run.config.sim, run.photocurrents, run.map, &facts.empty_queue_frames)) {
       buses[e.tile].request(e);
     }
-    buses.finish();
-    facts.tau_s = run.config.bus.t_event;
+    buses.finish(run.config.bus, facts);
   }
 };
 
