@@ -1,14 +1,22 @@
 // Address-event receiver for one tile's bus: the RTL that aesim verifies against its SystemC
 // reference model (models/receiver/receiver_cycle_model).
 //
-//  - A two-flop synchronizer on the asynchronous Req. The address (bundled data) and the
-//    contention line are latched once Req has been seen high on two consecutive edges, so a Req
-//    glitch shorter than a clock period is ignored.
+//  - A three-flop synchronizer on the asynchronous Req (aer_req_sync); decisions read only its
+//    second and third flops, never the first, which may be metastable. The address (bundled data)
+//    and the contention line are latched once Req has been seen high on two consecutive edges by
+//    those settled flops, so a Req glitch shorter than a clock period is ignored.
+//  - addr_i and contention_i are bundled data: they are sampled without a synchronizer because
+//    the bus drives them before it raises Req and holds them until Ack rises, and the latch
+//    happens at least two clock periods after Req rises. The bus must meet that: the data settle
+//    no later than Req, plus the flops' setup time (a single pixel's address is stable; a second
+//    pixel joining ORs its bits in and raises contention in the same step, both before a latch
+//    two periods away would see them only if they settle in under 2 periods minus setup).
 //  - 4-phase handshake: Ack rises with the latch, falls once Req has been seen low on two
-//    consecutive edges. Ack rises on the 3rd edge after Req rises, falls on the 3rd after it falls.
-//  - Timestamp of the latch edge: the internal counter (aer_timestamp, prescale_i cycles per tick,
-//    wrapping at 2^TS_WIDTH), or ts_i when ts_external_i is set, so the clock may be stopped while
-//    the bus is idle and a free-running timestamp still be used.
+//    consecutive edges. Ack rises on the 4th edge after Req rises, falls on the 4th after it falls.
+//  - Timestamp of the latch edge k (k rising edges since reset): floor(k / prescale_i) mod
+//    2^TS_WIDTH, the ticks completed by that edge, the edge included (aer_timestamp's next
+//    value); or ts_i when ts_external_i is set, so the clock may be stopped while the bus is idle
+//    and a free-running timestamp still be used.
 //  - Events go into a FIFO read as a valid/ready stream of {timestamp, address, flags}; flags[0]
 //    is the contention line sampled with the address. With discard_collisions_i a flagged event
 //    is counted and discarded instead.
@@ -56,13 +64,14 @@ module aer_receiver #(
   localparam WORD = TS_WIDTH + ADDR_WIDTH + 1;
   localparam [COUNT_WIDTH-1:0] ONE = {{(COUNT_WIDTH - 1) {1'b0}}, 1'b1};
 
-  wire req_s1, req_s2;
-  aer_sync2 u_sync (
+  wire req_s2, req_s3, req_any;
+  aer_req_sync u_sync (
       .clk_i (clk_i),
       .rst_ni(rst_ni),
       .d_i   (req_i),
-      .q1_o  (req_s1),
-      .q2_o  (req_s2)
+      .q2_o  (req_s2),
+      .q3_o  (req_s3),
+      .any_o (req_any)
   );
 
   wire [TS_WIDTH-1:0] ts_counter;
@@ -73,7 +82,7 @@ module aer_receiver #(
       .clk_i(clk_i),
       .rst_ni(rst_ni),
       .prescale_i(prescale_i),
-      .ts_o(ts_counter)
+      .ts_next_o(ts_counter)
   );
   wire [TS_WIDTH-1:0] ts_now = ts_external_i ? ts_i : ts_counter;
 
@@ -84,8 +93,8 @@ module aer_receiver #(
   wire fifo_full, fifo_valid;
   wire [WORD-1:0] fifo_out;
 
-  wire req_high = req_s1 && req_s2;
-  wire req_low = !req_s1 && !req_s2;
+  wire req_high = req_s2 && req_s3;
+  wire req_low = !req_s2 && !req_s3;
 
   always @(*) begin
     state_d = state_q;
@@ -167,5 +176,5 @@ module aer_receiver #(
   assign events_o = events_q;
   assign collisions_o = collisions_q;
   assign overflows_o = overflows_q;
-  assign idle_o = (state_q == S_IDLE) && !req_s1 && !req_s2 && !fifo_valid;
+  assign idle_o = (state_q == S_IDLE) && !req_any && !fifo_valid;
 endmodule

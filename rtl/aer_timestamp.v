@@ -1,6 +1,7 @@
-// Timestamp counter: ts_o advances by one every prescale_i clock cycles and wraps modulo
-// 2^TS_WIDTH. After the k-th rising edge since reset, ts_o = floor(k / prescale_i) mod 2^TS_WIDTH.
-// A prescale_i of 0 is treated as 1.
+// Timestamp counter: advances by one every prescale_i clock cycles and wraps modulo 2^TS_WIDTH.
+// ts_next_o is the value the counter takes at the coming rising edge: sampled at the k-th rising
+// edge since reset it reads floor(k / prescale_i) mod 2^TS_WIDTH, the ticks completed by that
+// edge. A prescale_i of 0 is treated as 1.
 module aer_timestamp #(
     parameter TS_WIDTH = 32,
     parameter PRESCALE_WIDTH = 16
@@ -8,7 +9,7 @@ module aer_timestamp #(
     input  wire                      clk_i,
     input  wire                      rst_ni,
     input  wire [PRESCALE_WIDTH-1:0] prescale_i,
-    output wire [TS_WIDTH-1:0]       ts_o
+    output wire [TS_WIDTH-1:0]       ts_next_o
 );
   reg [PRESCALE_WIDTH-1:0] div_q, div_d;
   reg [TS_WIDTH-1:0] ts_q, ts_d;
@@ -34,5 +35,5 @@ module aer_timestamp #(
     end
   end
 
-  assign ts_o = ts_q;
+  assign ts_next_o = ts_d;
 endmodule

@@ -12,12 +12,12 @@ import sys
 MUTANTS = {
     # The asynchronous Req used directly, without the two-flop synchronizer.
     "no_sync": ("aer_receiver.v", [
-        ("wire req_high = req_s1 && req_s2;", "wire req_high = req_i;"),
-        ("wire req_low = !req_s1 && !req_s2;", "wire req_low = !req_i;"),
+        ("wire req_high = req_s2 && req_s3;", "wire req_high = req_i;"),
+        ("wire req_low = !req_s2 && !req_s3;", "wire req_low = !req_i;"),
     ]),
     # Ack raised one cycle early: one synchronizer sample is taken as a stable Req.
     "ack_early": ("aer_receiver.v", [
-        ("wire req_high = req_s1 && req_s2;", "wire req_high = req_s1;"),
+        ("wire req_high = req_s2 && req_s3;", "wire req_high = req_s2;"),
     ]),
     # FIFO pointers wrap one word early (off by one), so the last slot is skipped.
     "fifo_off_by_one": ("aer_fifo.v", [
@@ -25,7 +25,7 @@ MUTANTS = {
          "advance = (ptr == DEPTH[PW-1:0] - {{(PW - 2) {1'b0}}, 2'b10})"),
     ]),
 }
-SOURCES = ["aer_receiver.v", "aer_sync2.v", "aer_timestamp.v", "aer_fifo.v"]
+SOURCES = ["aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"]
 
 
 def main():

@@ -27,7 +27,7 @@ constexpr double kPeriod = 20e-9;  // 50 MHz receiver clock
 // holds floor((k - 1) / prescale) ticks before edge k = t_latch / period.
 double stamp(double t_latch, double period, unsigned prescale) {
   const auto k = static_cast<std::uint64_t>(std::llround(t_latch / period));
-  return static_cast<double>((k - 1) / prescale) * prescale * period;
+  return static_cast<double>(k / prescale) * prescale * period;
 }
 
 // Fires chosen pixels at chosen times into a bus, as pixels would.
@@ -89,17 +89,18 @@ std::vector<Fate> fates(const EventLog& log) {
   return v;
 }
 
-// The firing falls exactly on an edge at t0, so it drives 1 ps later; the synchronizer sees it
-// at t0 + 1, 2 periods, the receiver latches and raises Ack at t0 + 3 periods; Req falls at once,
-// Ack falls 3 edges later at t0 + 6 periods: a 120 ns transaction less that picosecond.
-TEST(CycleBus, LoneEventIsLatchedOnTheThirdEdge) {
+// The firing falls exactly on an edge at t0, so it drives 1 ps later; the synchronizer's flops
+// take it at t0 + 1, 2, 3 periods, the receiver latches and raises Ack at t0 + 4 periods (the
+// settled second and third flops agree); Req falls at once, Ack falls 4 edges later at t0 + 8
+// periods: a 160 ns transaction less that picosecond.
+TEST(CycleBus, LoneEventIsLatchedOnTheFourthEdge) {
   const CycleRun r = two_firings(1e-3, true);  // the second firing is far away
   EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Delivered, Fate::Delivered}));
   ASSERT_EQ(r.log.events().size(), 2u);
-  EXPECT_NEAR(r.log.truth()[0].t_deliver - r.log.truth()[0].firing.t, 3 * kPeriod, 1e-15);
-  // Latched at edge 53 of the 50 MHz clock; 50 cycles per 1 us tick: timestamp 1 tick.
+  EXPECT_NEAR(r.log.truth()[0].t_deliver - r.log.truth()[0].firing.t, 4 * kPeriod, 1e-15);
+  // Latched at edge 54 of the 50 MHz clock; 50 cycles per 1 us tick: timestamp 1 tick.
   EXPECT_NEAR(r.log.events()[0].t, 1e-6, 1e-15);
-  EXPECT_NEAR(r.tau, 6 * kPeriod - 1e-12, 1e-15);
+  EXPECT_NEAR(r.tau, 8 * kPeriod - 1e-12, 1e-15);
   EXPECT_EQ(r.violations, 0u);
 }
 
@@ -121,8 +122,8 @@ TEST(CycleBus, WithoutContentionDetectionTheOrIsOutputAsAGhost) {
 }
 
 TEST(CycleBus, FiringWhileAckIsHighIsAbsorbed) {
-  // 3.5 periods after the first: the receiver has latched (at 3) and Ack is high until 6.
-  const CycleRun r = two_firings(3.5 * kPeriod, true);
+  // 4.5 periods after the first: the receiver has latched (at 4) and Ack is high until 8.
+  const CycleRun r = two_firings(4.5 * kPeriod, true);
   EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Delivered, Fate::Absorbed}));
   ASSERT_EQ(r.log.events().size(), 1u);
   EXPECT_EQ(r.log.events()[0].x, 1u);
@@ -130,10 +131,10 @@ TEST(CycleBus, FiringWhileAckIsHighIsAbsorbed) {
 }
 
 TEST(CycleBus, FiringAfterAckFallsStartsItsOwnTransaction) {
-  const CycleRun r = two_firings(6.5 * kPeriod, true);
+  const CycleRun r = two_firings(8.5 * kPeriod, true);
   EXPECT_EQ(fates(r.log), (std::vector<Fate>{Fate::Delivered, Fate::Delivered}));
-  // The second Req rises between edges, so it waits 2.5 periods for its 3rd edge.
-  EXPECT_NEAR(r.log.truth()[1].t_deliver - r.log.truth()[1].firing.t, 2.5 * kPeriod, 1e-15);
+  // The second Req rises between edges, so it waits 3.5 periods for its 4th edge.
+  EXPECT_NEAR(r.log.truth()[1].t_deliver - r.log.truth()[1].firing.t, 3.5 * kPeriod, 1e-15);
 }
 
 TEST(HandshakeMonitor, CountsBrokenRules) {
@@ -174,7 +175,7 @@ SimulationResult run_scene(SensorConfig c, const Image& img) {
 }
 
 TEST(CycleFidelity, LoadedBusKeepsTheHandshakeAndDeliversOnlyFiredPixels) {
-  // The letter-like load of the aloha preset, with a slow clock (1 MHz: tau ~5.5 us) so that the
+  // The letter-like load of the aloha preset, with a slow clock (1 MHz: tau ~7.5 us) so that the
   // offered load reaches ~0.1 and collisions are common.
   SensorConfig c = testing::exact_sensor(64, 64, 32);
   c.bus.access = BusAccess::Aloha;
@@ -188,8 +189,9 @@ TEST(CycleFidelity, LoadedBusKeepsTheHandshakeAndDeliversOnlyFiredPixels) {
   const TileCounters t = r.log.totals();
   EXPECT_GT(t.collided, 100u);
   EXPECT_EQ(t.fired, t.delivered + t.collided);
-  EXPECT_GT(r.facts.tau_s, 5 * 1e-6);
-  EXPECT_LT(r.facts.tau_s, 6 * 1e-6);
+  // 4 edges up and 4 down, the first of each 0 to 1 period after its change.
+  EXPECT_GT(r.facts.tau_s, 7 * 1e-6);
+  EXPECT_LT(r.facts.tau_s, 8 * 1e-6);
   // Every output event is a firing that the truth says was delivered, stamped with its latch
   // time (1 MHz clock, 1 us tick: one cycle per tick).
   std::set<std::tuple<double, std::uint32_t, std::uint32_t>> delivered;
@@ -245,11 +247,11 @@ TEST(CycleFidelity, AtLowLoadDeliversExactlyWhatTheEventFidelityDelivers) {
     ASSERT_EQ(a.y, b.y) << i;
     ASSERT_EQ(latched[i].firing.x, a.x) << i;
     ASSERT_EQ(latched[i].firing.t, a.t) << i;  // the same firing
-    // The receiver latches on the 3rd clock edge after Req: 2 to 3 periods after the firing, and
+    // The receiver latches on the 4th clock edge after Req: 3 to 4 periods after the firing, and
     // stamps it from its counter.
     const double delay = latched[i].t_deliver - a.t;
-    ASSERT_GE(delay, 2 * kPeriod - 1e-12) << i;
-    ASSERT_LE(delay, 3 * kPeriod + 1e-12) << i;
+    ASSERT_GE(delay, 3 * kPeriod - 1e-12) << i;
+    ASSERT_LE(delay, 4 * kPeriod + 1e-12) << i;
     ASSERT_NEAR(b.t, stamp(latched[i].t_deliver, kPeriod, 50), 1e-12) << i;
   }
 }

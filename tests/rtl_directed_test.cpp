@@ -143,35 +143,36 @@ void pulse(ReceiverSignals& s, std::uint64_t k, std::uint64_t from, std::uint64_
   }
 }
 
-TEST(RtlDirected, SingleEventIsLatchedOnTheThirdEdgeAndReleased) {
-  // Req rises after edge 5: the synchronizer holds it after edges 6 and 7, the receiver latches
-  // and raises Ack at edge 8. The sender drops Req after edge 8; Ack falls at edge 11.
+TEST(RtlDirected, SingleEventIsLatchedOnTheFourthEdgeAndReleased) {
+  // Req rises after edge 5: the synchronizer's three flops hold it after edges 6, 7 and 8; the
+  // settled second and third agree before edge 9, where the receiver latches and raises Ack. The
+  // sender drops Req after edge 9; Ack falls at edge 13.
   auto b = run<Vaer_receiver_drop>(
-      config(), [](ReceiverSignals& s, std::uint64_t k) { pulse(s, k, 5, 8, 0x2A5); }, 20);
-  for (std::uint64_t k = 1; k <= 20; ++k) EXPECT_EQ(b->after[k].ack, k >= 8 && k < 11) << "edge " << k;
+      config(), [](ReceiverSignals& s, std::uint64_t k) { pulse(s, k, 5, 9, 0x2A5); }, 20);
+  for (std::uint64_t k = 1; k <= 20; ++k) EXPECT_EQ(b->after[k].ack, k >= 9 && k < 13) << "edge " << k;
   ASSERT_EQ(b->taken.size(), 1u);
   EXPECT_EQ(b->taken[0].addr, 0x2A5u);
-  EXPECT_EQ(b->taken[0].ts, 7u);  // the counter before edge 8 (prescale 1)
+  EXPECT_EQ(b->taken[0].ts, 9u);  // the ticks completed by the latch edge 9 (prescale 1)
   EXPECT_FALSE(b->taken[0].flags);
-  EXPECT_EQ(b->taken[0].cycle, 9u);  // offered after edge 8, taken at edge 9
+  EXPECT_EQ(b->taken[0].cycle, 10u);  // offered after edge 9, taken at edge 10
   EXPECT_EQ(b->after[20].events, 1u);
   EXPECT_TRUE(b->after[20].idle);
   EXPECT_FALSE(b->after[9].idle);
 }
 
 TEST(RtlDirected, BackToBackEventsKeepTheirOrder) {
-  // A second sender raises Req as soon as the first handshake ends (Ack low after edge 11).
+  // A second sender raises Req as soon as the first handshake ends (Ack low after edge 13).
   auto b = run<Vaer_receiver_drop>(
       config(),
       [](ReceiverSignals& s, std::uint64_t k) {
-        pulse(s, k, 5, 8, 0x001);
-        pulse(s, k, 11, 14, 0x3FF);
+        pulse(s, k, 5, 9, 0x001);
+        pulse(s, k, 13, 17, 0x3FF);
       },
       30);
   ASSERT_EQ(b->taken.size(), 2u);
   EXPECT_EQ(b->taken[0].addr, 0x001u);
   EXPECT_EQ(b->taken[1].addr, 0x3FFu);
-  EXPECT_EQ(b->taken[1].ts, 13u);
+  EXPECT_EQ(b->taken[1].ts, 17u);
 }
 
 TEST(RtlDirected, ReqGlitchShorterThanTheSynchronizerIsIgnored) {
@@ -185,12 +186,12 @@ TEST(RtlDirected, ReqGlitchShorterThanTheSynchronizerIsIgnored) {
 }
 
 TEST(RtlDirected, CollisionIsCountedAndDiscardedOrFlagged) {
-  auto script = [](ReceiverSignals& s, std::uint64_t k) { pulse(s, k, 5, 8, 0x0F3, true); };
+  auto script = [](ReceiverSignals& s, std::uint64_t k) { pulse(s, k, 5, 9, 0x0F3, true); };
   auto discard = run<Vaer_receiver_drop>(config(), script, 20);
   EXPECT_TRUE(discard->taken.empty());
   EXPECT_EQ(discard->after[20].collisions, 1u);
   EXPECT_EQ(discard->after[20].events, 0u);
-  EXPECT_TRUE(discard->after[9].ack);  // still acknowledged, so the senders release
+  EXPECT_TRUE(discard->after[10].ack);  // still acknowledged, so the senders release
 
   ReceiverCycleModel::Config keep = config();
   keep.discard_collisions = false;
@@ -248,8 +249,8 @@ TEST(RtlDirected, CollisionIntoAFullFifoIsDroppedAndCountedTwice) {
   auto b = run<Vaer_receiver_drop>(
       c,
       [](ReceiverSignals& s, std::uint64_t k) {
-        pulse(s, k, 5, 8, 0x011);
-        pulse(s, k, 15, 18, 0x033, true);
+        pulse(s, k, 5, 9, 0x011);
+        pulse(s, k, 15, 19, 0x033, true);
         s.evt_ready.write(false);
       },
       30);
@@ -267,14 +268,14 @@ TEST(RtlDirected, ResetInTheMiddleOfAHandshakeStartsClean) {
       config(),
       [](ReceiverSignals& s, std::uint64_t k) {
         if (k == 5) pulse(s, k, 5, 0, 0x0AA);
-        if (k == 8) s.rst_n.write(false);
-        if (k == 9) s.rst_n.write(true);
-        if (k > 12 && s.ack.read() && s.req.read()) pulse(s, k, 0, k, 0);
+        if (k == 9) s.rst_n.write(false);
+        if (k == 10) s.rst_n.write(true);
+        if (k > 13 && s.ack.read() && s.req.read()) pulse(s, k, 0, k, 0);
       },
       30);
-  EXPECT_TRUE(b->after[8].ack);
-  EXPECT_FALSE(b->after[9].ack);
-  EXPECT_EQ(b->after[9].events, 0u);
+  EXPECT_TRUE(b->after[9].ack);
+  EXPECT_FALSE(b->after[10].ack);
+  EXPECT_EQ(b->after[10].events, 0u);
   EXPECT_EQ(b->after[30].events, 1u);  // counted once, after the reset
   EXPECT_TRUE(b->after[30].idle);
   ASSERT_EQ(b->taken.size(), 1u);
@@ -286,22 +287,22 @@ TEST(RtlDirected, TimestampWrapsModuloItsWidth) {
   auto b = run<Vaer_receiver_ts8>(
       config(false, 8),
       [](ReceiverSignals& s, std::uint64_t k) {
-        pulse(s, k, 250, 253, 0x001);
-        pulse(s, k, 262, 265, 0x002);
+        pulse(s, k, 250, 254, 0x001);
+        pulse(s, k, 262, 266, 0x002);
       },
       280);
   ASSERT_EQ(b->taken.size(), 2u);
-  EXPECT_EQ(b->taken[0].ts, 252u);
-  EXPECT_EQ(b->taken[1].ts, (264u) % 256u);
+  EXPECT_EQ(b->taken[0].ts, 254u);
+  EXPECT_EQ(b->taken[1].ts, (266u) % 256u);
 }
 
 TEST(RtlDirected, PrescaledTimestampCountsTicksNotCycles) {
   ReceiverCycleModel::Config c = config();
   c.prescale = 5;
   auto b = run<Vaer_receiver_drop>(
-      c, [](ReceiverSignals& s, std::uint64_t k) { pulse(s, k, 40, 43, 0x010); }, 60);
+      c, [](ReceiverSignals& s, std::uint64_t k) { pulse(s, k, 40, 44, 0x010); }, 60);
   ASSERT_EQ(b->taken.size(), 1u);
-  EXPECT_EQ(b->taken[0].ts, 42u / 5u);  // latched at edge 43: floor(42 / 5)
+  EXPECT_EQ(b->taken[0].ts, 44u / 5u);  // latched at edge 44: floor(44 / 5) ticks completed
 }
 
 TEST(RtlDirected, LongBackPressureKeepsEveryBeatInOrder) {

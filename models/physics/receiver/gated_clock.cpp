@@ -25,7 +25,7 @@ void GatedClock::run() {
     // The first edge strictly after now.
     std::uint64_t k = sc_core::sc_time_stamp().value() / p + 1;
     for (;; ++k) {
-      s_.ts.write(static_cast<std::uint32_t>(((k - 1) / prescale_) & ts_mask_));
+      s_.ts.write(static_cast<std::uint32_t>((k / prescale_) & ts_mask_));
       wait(sc_core::sc_time::from_value(k * p) - sc_core::sc_time_stamp());
       s_.clk.write(true);
       ++edges_;

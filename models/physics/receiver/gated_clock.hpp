@@ -10,8 +10,8 @@ namespace aesim {
 // later, exactly as a free-running clock started at t = 0. It is stopped (at a falling edge)
 // whenever the receiver reports idle with Req low, and restarted at the next edge after Req
 // rises: the receiver cannot change state meanwhile, so no result differs. Before each rising
-// edge k it drives the external timestamp a free-running counter would hold there,
-// floor((k - 1) / prescale) mod 2^ts_width. Releases reset at t = 0.
+// edge k it drives the external timestamp a free-running counter latches there, the ticks
+// completed by that edge, floor(k / prescale) mod 2^ts_width. Releases reset at t = 0.
 class GatedClock : public sc_core::sc_module {
  public:
   GatedClock(const sc_core::sc_module_name& name, ReceiverSignals& s, sc_core::sc_time period, unsigned prescale,

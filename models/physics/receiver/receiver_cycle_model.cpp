@@ -10,7 +10,7 @@ std::uint64_t mask(int width) { return width >= 64 ? ~0ULL : (1ULL << width) - 1
 }  // namespace
 
 void ReceiverCycleModel::reset() {
-  s1_ = s2_ = acking_ = false;
+  s1_ = s2_ = s3_ = acking_ = false;
   divider_ = ts_ = 0;
   events_ = collisions_ = overflows_ = 0;
   fifo_.clear();
@@ -18,9 +18,14 @@ void ReceiverCycleModel::reset() {
 
 void ReceiverCycleModel::clock(const Inputs& in) {
   // Values held before the edge.
-  const bool req_high = s1_ && s2_;
-  const bool req_low = !s1_ && !s2_;
-  const std::uint64_t ts_now = config_.ts_external ? (in.ts & mask(config_.ts_width)) : ts_;
+  // Only the settled synchronizer stages decide; s1_ may be metastable in the circuit.
+  const bool req_high = s2_ && s3_;
+  const bool req_low = !s2_ && !s3_;
+  // The stamp is the counter's value after this edge: the ticks completed by the latch edge.
+  const unsigned prescale = std::max(1u, config_.prescale);
+  const bool tick_ends = divider_ + 1 >= prescale;
+  const std::uint64_t ts_next = tick_ends ? (ts_ + 1) & mask(config_.ts_width) : ts_;
+  const std::uint64_t ts_now = config_.ts_external ? (in.ts & mask(config_.ts_width)) : ts_next;
   const std::size_t count = fifo_.size();
   const bool full = count >= config_.fifo_limit || count >= config_.capacity;
   const bool pop = count > 0 && in.ready;
@@ -52,13 +57,9 @@ void ReceiverCycleModel::clock(const Inputs& in) {
   if (pop) fifo_.pop_front();
   if (push) fifo_.push_back({ts_now, addr, in.contention});
 
-  const unsigned prescale = std::max(1u, config_.prescale);
-  if (divider_ + 1 >= prescale) {
-    divider_ = 0;
-    ts_ = (ts_ + 1) & mask(config_.ts_width);
-  } else {
-    ++divider_;
-  }
+  divider_ = tick_ends ? 0 : divider_ + 1;
+  ts_ = ts_next;
+  s3_ = s2_;
   s2_ = s1_;
   s1_ = in.req;
   events_ &= 0xFFFFFFFFULL;
@@ -75,7 +76,7 @@ ReceiverCycleModel::Outputs ReceiverCycleModel::outputs() const {
   o.collisions = collisions_;
   o.overflows = overflows_;
   o.fifo_count = static_cast<unsigned>(fifo_.size());
-  o.idle = !acking_ && !s1_ && !s2_ && fifo_.empty();
+  o.idle = !acking_ && !s1_ && !s2_ && !s3_ && fifo_.empty();
   return o;
 }
 

@@ -49,7 +49,7 @@ class ReceiverCycleModel {
 
  private:
   Config config_;
-  bool s1_ = false, s2_ = false;
+  bool s1_ = false, s2_ = false, s3_ = false;  // the Req synchronizer's three flops
   bool acking_ = false;
   std::uint64_t divider_ = 0, ts_ = 0;
   std::uint64_t events_ = 0, collisions_ = 0, overflows_ = 0;
