@@ -62,6 +62,20 @@ void add_sweep(CLI::App& app, int& status) {
   cmd->callback([opt, &status] { status = sweep_command(*opt); });
 }
 
+void add_verify(CLI::App& app, int& status) {
+  auto opt = std::make_shared<VerifyCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "verify", "Verify a receiver RTL against its description (a TOML file): Verilated at run time (cached), driven "
+                "by directed protocol cases and scene runs, checked transaction by transaction");
+  cmd->add_option("RECEIVER", opt->description, "Receiver description, e.g. rtl/aer_receiver.toml")->required();
+  cmd->add_option("--plan", opt->plan, "quick (seconds), full (millions of transactions) or a plan file")
+      ->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "Seed of the scene runs' pixels and back-pressure")->capture_default_str();
+  cmd->add_option("--out", opt->out, "Folder for verify.json (and failure.vcd)")->capture_default_str();
+  cmd->add_option("--export-tb", opt->export_tb, "Folder for a self-checking Verilog-2005 testbench of a scene run");
+  cmd->callback([opt, &status] { status = verify_command(*opt); });
+}
+
 void add_compare(CLI::App& app, int& status) {
   auto opt = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
@@ -141,6 +155,7 @@ int run_command_line(int argc, char** argv) {
   add_info(app, status);
   add_sweep(app, status);
   add_compare(app, status);
+  add_verify(app, status);
   add_emulate(app, status);
   add_classify(app, status);
   add_report(app, status);

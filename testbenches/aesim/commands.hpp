@@ -60,7 +60,13 @@ struct SweepOptions {
   bool no_chart = false;
 };
 
+struct VerifyCommandOptions {
+  std::string description, plan = "quick", out = "out/verify", export_tb;
+  std::uint64_t seed = 1;
+};
+
 int run_command(RunOptions opt);
+int verify_command(const VerifyCommandOptions& opt);
 int recon_command(const ReconOptions& opt);
 int info_command(const std::string& path);
 int sweep_command(SweepOptions opt);

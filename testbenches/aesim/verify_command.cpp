@@ -1,0 +1,95 @@
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "build/dut_build.hpp"
+#include "commands.hpp"
+#include "description/receiver_description.hpp"
+#include "driver/bound_ports.hpp"
+#include "errors/input_error.hpp"
+#include "export/testbench_export.hpp"
+#include "output/atomic_file.hpp"
+#include "plan/verification_plan.hpp"
+#include "report/verify_report.hpp"
+#include "session/verify_session.hpp"
+
+namespace aesim {
+
+int verify_command(const VerifyCommandOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  const ReceiverDescription d = read_receiver_description(opt.description);
+  const std::string report_path = opt.out + "/verify.json", vcd_path = opt.out + "/failure.vcd";
+  std::vector<OutputPath> outputs = {{"--out", report_path}};
+  if (!opt.export_tb.empty()) outputs.push_back({"--export-tb", opt.export_tb + "/tb.v"});
+  std::vector<std::string> inputs = d.sources;
+  inputs.push_back(d.file);
+  check_output_paths(outputs, inputs);
+
+  const VerificationPlan plan = make_plan(opt.plan);
+  const std::vector<VerifyCase> cases = plan_cases(plan, d, opt.seed);
+  const double cycles = plan_cycles(cases);
+  if (cycles > kMaxPlanCycles) {
+    throw InputError(fmt::format("--plan {}: asks for up to {:.3g} receiver clock cycles, more than the {:.0e} aesim "
+                                 "runs in one command (hours); use fewer firings or seeds",
+                                 opt.plan, cycles, kMaxPlanCycles));
+  }
+  if (!opt.export_tb.empty() && std::none_of(cases.begin(), cases.end(), [](const VerifyCase& c) { return c.kind == "scene"; })) {
+    throw InputError("--export-tb: the plan has no scene run to export");
+  }
+
+  DutBuildOptions build_options;
+  build_options.cache_dir = default_cache_dir();
+  build_options.log_dir = opt.out;
+  const DutBuild build = build_dut(d, build_options);
+  check_ports(d, build.ports, kVerifyBusBits);
+  const DutLibrary library(build.library);
+
+  std::fprintf(stderr, "aesim verify: %s (%s), plan %s, %zu cases, seed %llu\n", d.top.c_str(),
+               build.cached ? "cached model" : fmt::format("built in {:.1f} s", build.seconds).c_str(),
+               plan.name.c_str(), cases.size(), static_cast<unsigned long long>(opt.seed));
+  VerifyOptions options;
+  ExportedRun exported;
+  if (!opt.export_tb.empty()) options.exported = &exported;
+  const VerifyResult result = verify_receiver(library, build.ports, d, cases, options);
+
+  OutputFiles files;
+  if (result.first_failure) {
+    const std::string temp = files.adopt(vcd_path);
+    for (const VerifyCase& c : cases) {
+      if (c.name == result.first_failure->case_name) {
+        trace_failure(library, build.ports, d, c, result.first_failure->cycle, temp);
+        break;
+      }
+    }
+  }
+  if (!opt.export_tb.empty()) write_testbench(opt.export_tb, d, build.ports, exported, files);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  files.open(report_path) << verify_report(d, opt.plan, opt.seed, build, result, wall).dump(2) << "\n";
+  files.commit();
+  if (!result.first_failure) {
+    std::error_code ec;
+    std::filesystem::remove(vcd_path, ec);  // a stale trace of an earlier failure would mislead
+  }
+
+  std::printf("%s: %llu transactions, %llu beats checked, %llu receiver cycles in %.2f s (%.3g cycles/s)\n",
+              result.passed() ? "PASS" : "FAIL", static_cast<unsigned long long>(result.transactions),
+              static_cast<unsigned long long>(result.beats_checked),
+              static_cast<unsigned long long>(result.receiver_cycles), result.run_seconds,
+              result.run_seconds > 0 ? static_cast<double>(result.receiver_cycles) / result.run_seconds : 0.0);
+  if (result.first_failure) {
+    const VerifyFailure& f = *result.first_failure;
+    std::printf("first failure: %s in case '%s' at cycle %llu (%.9f s): expected %s, observed %s\n", f.check.c_str(),
+                f.case_name.c_str(), static_cast<unsigned long long>(f.cycle), f.time_s, f.expected.c_str(),
+                f.observed.c_str());
+    std::printf("%llu failed checks (%llu protocol violations); trace: %s\n",
+                static_cast<unsigned long long>(result.failures),
+                static_cast<unsigned long long>(result.protocol_violations), vcd_path.c_str());
+  }
+  std::printf("wrote %s%s\n", report_path.c_str(), opt.export_tb.empty() ? "" : (", " + opt.export_tb + "/tb.v").c_str());
+  return result.passed() ? 0 : 1;
+}
+
+}  // namespace aesim

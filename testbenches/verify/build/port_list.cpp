@@ -1,0 +1,50 @@
+#include "build/port_list.hpp"
+
+#include <regex>
+#include <sstream>
+
+namespace aesim {
+
+std::vector<RtlPort> ports_in_verilated_header(const std::string& header_text) {
+  // VL_IN8(&name,msb,lsb) and VL_OUT16, VL_IN (32 bits), VL_OUT64, VL_INW(&name,msb,lsb,words).
+  static const std::regex declaration(R"(VL_(IN|OUT|INOUT)(8|16|64|W)?\(&(\w+),(\d+),(\d+)(,\d+)?\);)");
+  std::vector<RtlPort> ports;
+  for (auto it = std::sregex_iterator(header_text.begin(), header_text.end(), declaration); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    RtlPort p;
+    p.name = m[3];
+    p.input = m[1] != "OUT";
+    p.width = std::stoi(m[4]) - std::stoi(m[5]) + 1;
+    const std::string size = m[2];
+    p.bytes = size == "8" ? 1 : size == "16" ? 2 : size.empty() ? 4 : size == "64" ? 8 : 0;
+    ports.push_back(p);
+  }
+  return ports;
+}
+
+std::string port_list_text(const std::vector<RtlPort>& ports) {
+  std::ostringstream out;
+  for (const RtlPort& p : ports) out << (p.input ? "in " : "out ") << p.width << ' ' << p.bytes << ' ' << p.name << '\n';
+  return out.str();
+}
+
+std::vector<RtlPort> parse_port_list_text(const std::string& text) {
+  std::vector<RtlPort> ports;
+  std::istringstream in(text);
+  std::string direction;
+  RtlPort p;
+  while (in >> direction >> p.width >> p.bytes >> p.name) {
+    p.input = direction == "in";
+    ports.push_back(p);
+  }
+  return ports;
+}
+
+const RtlPort* find_port(const std::vector<RtlPort>& ports, const std::string& name) {
+  for (const RtlPort& p : ports) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+}  // namespace aesim

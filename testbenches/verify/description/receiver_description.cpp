@@ -1,0 +1,240 @@
+#include "description/receiver_description.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/input_path.hpp"
+#include "files/toml_file.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Reader {
+ public:
+  Reader(const std::string& path, const TomlValue& root) : path_(path), root_(root) {
+    dir_ = fs::path(path).parent_path();
+    if (dir_.empty()) dir_ = ".";
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw InputError(fmt::format("receiver description '{}': {}: {}", path_, key, what));
+  }
+
+  const TomlValue* find(const TomlValue& table, const std::string& key) const {
+    const auto& t = table.as_table();
+    const auto it = t.find(key);
+    return it == t.end() ? nullptr : &it->second;
+  }
+  const TomlValue& need(const TomlValue& table, const std::string& key, const std::string& label) const {
+    const TomlValue* v = find(table, key);
+    if (!v) fail(label, "missing");
+    return *v;
+  }
+  std::string string_of(const TomlValue& v, const std::string& label) const {
+    if (!v.is_string()) fail(label, "expected a string");
+    if (v.as_string().empty()) fail(label, "empty");
+    return v.as_string();
+  }
+  std::string path_of(const TomlValue& v, const std::string& label, bool folder) const {
+    const fs::path p = fs::path(string_of(v, label));
+    const std::string full = (p.is_absolute() ? p : dir_ / p).lexically_normal().string();
+    const bool ok = folder ? is_input_folder(full, label) : is_input_file(full, label);
+    if (!ok) fail(label, fmt::format("'{}' is not {}", full, folder ? "a folder" : "a readable file"));
+    return full;
+  }
+  std::vector<std::string> paths(const std::string& key, bool folder, bool required) const {
+    std::vector<std::string> out;
+    const TomlValue* v = find(root_, key);
+    if (!v) {
+      if (required) fail(key, "missing");
+      return out;
+    }
+    if (v->is_string()) {
+      out.push_back(path_of(*v, key, folder));
+      return out;
+    }
+    if (!v->is_array()) fail(key, "expected a list of paths");
+    for (std::size_t i = 0; i < v->as_array().size(); ++i) {
+      out.push_back(path_of(v->as_array()[i], fmt::format("{}[{}]", key, i), folder));
+    }
+    if (required && out.empty()) fail(key, "empty");
+    return out;
+  }
+  // Verilog identifiers only: these names reach Verilator's command line and the exported
+  // testbench, so nothing else may pass.
+  std::string identifier(const std::string& text, const std::string& label) const {
+    const bool ok = !text.empty() && text.size() <= 128 && !std::isdigit(static_cast<unsigned char>(text[0])) &&
+                    std::all_of(text.begin(), text.end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    });
+    if (!ok) fail(label, fmt::format("'{}' is not a plain Verilog identifier", text));
+    return text;
+  }
+  std::string literal(const TomlValue& v, const std::string& label) const {
+    if (v.is_integer()) return std::to_string(v.as_integer());
+    if (v.is_boolean()) return v.as_boolean() ? "1" : "0";
+    if (v.is_string()) {
+      const std::string& s = v.as_string();
+      const bool printable = std::all_of(s.begin(), s.end(), [](char c) { return c >= 0x20 && c < 0x7f && c != '"' && c != '\\'; });
+      if (!printable) fail(label, "a string value may hold printable characters other than \" and \\ only");
+      return "\"" + s + "\"";
+    }
+    fail(label, "expected an integer, a boolean or a string");
+  }
+  const TomlValue& root() const { return root_; }
+
+ private:
+  std::string path_;
+  fs::path dir_;
+  const TomlValue& root_;
+};
+
+}  // namespace
+
+const std::vector<PortRole>& port_roles() {
+  static const std::vector<PortRole> roles = {
+      {"clk", true, false},         {"req", true, false},        {"ack", false, false},
+      {"addr", true, false},        {"valid", false, false},     {"ready", true, false},
+      {"out_addr", false, false},   {"timestamp", false, false}, {"contention", true, true},
+      {"flags", false, true},       {"overflow_count", false, true}};
+  return roles;
+}
+
+const char* to_string(ReceiverDescription::Collisions c) {
+  switch (c) {
+    case ReceiverDescription::Collisions::Discard: return "discard";
+    case ReceiverDescription::Collisions::Flag: return "flag";
+    case ReceiverDescription::Collisions::Pass: return "pass";
+  }
+  return "?";
+}
+
+const char* to_string(ReceiverDescription::Full f) { return f == ReceiverDescription::Full::Drop ? "drop" : "hold"; }
+
+ReceiverDescription read_receiver_description(const std::string& path) {
+  if (!is_input_file(path, "receiver description")) {
+    throw InputError(fmt::format("receiver description '{}': no such file", path));
+  }
+  const TomlValue root = parse_toml_file(path, fmt::format("receiver description '{}'", path));
+  const Reader r(path, root);
+  ReceiverDescription d;
+  d.file = path;
+  for (const auto& [key, value] : root.as_table()) {
+    static const char* known[] = {"top", "sources", "include_dirs", "defines", "parameters", "clock",
+                                  "reset", "ports", "inputs", "behaviour"};
+    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) r.fail(key, "unknown key");
+    (void)value;
+  }
+  d.top = r.identifier(r.string_of(r.need(root, "top", "top"), "top"), "top");
+  d.sources = r.paths("sources", false, true);
+  d.include_dirs = r.paths("include_dirs", true, false);
+  for (const char* table : {"defines", "parameters"}) {
+    const TomlValue* t = r.find(root, table);
+    if (!t) continue;
+    if (!t->is_table()) r.fail(table, "expected a table, e.g. { NAME = 1 }");
+    for (const auto& [name, value] : t->as_table()) {
+      const std::string label = fmt::format("{}.{}", table, name);
+      r.identifier(name, label);
+      if (std::string(table) == "defines") {
+        d.defines[name] = value.is_string() && value.as_string().empty() ? "" : r.literal(value, label);
+      } else {
+        d.parameters[name] = r.literal(value, label);
+      }
+    }
+  }
+  const TomlValue& clock = r.need(root, "clock", "clock");
+  d.clock_hz = parse_si(clock.is_string() ? clock.as_string() : r.string_of(clock, "clock"), "Hz", "clock");
+  if (!(d.clock_hz >= 1e3 && d.clock_hz <= 10e9)) r.fail("clock", "must be 1 kHz to 10 GHz");
+
+  const TomlValue& reset = r.need(root, "reset", "reset");
+  if (!reset.is_table()) r.fail("reset", "expected { port = \"...\", active = \"low\" or \"high\" }");
+  d.reset_port = r.identifier(r.string_of(r.need(reset, "port", "reset.port"), "reset.port"), "reset.port");
+  const std::string active = r.string_of(r.need(reset, "active", "reset.active"), "reset.active");
+  if (active != "low" && active != "high") r.fail("reset.active", "must be \"low\" or \"high\"");
+  d.reset_active_high = active == "high";
+
+  const TomlValue& ports = r.need(root, "ports", "ports");
+  if (!ports.is_table()) r.fail("ports", "expected a table of role = \"port name\"");
+  for (const auto& [role, name] : ports.as_table()) {
+    const auto& roles = port_roles();
+    if (std::none_of(roles.begin(), roles.end(), [&](const PortRole& p) { return role == p.name; })) {
+      r.fail("ports." + role, "not a port role (clk, req, ack, addr, contention, valid, ready, out_addr, timestamp, "
+                              "flags, overflow_count)");
+    }
+    d.ports[role] = r.identifier(r.string_of(name, "ports." + role), "ports." + role);
+  }
+  for (const PortRole& p : port_roles()) {
+    if (!p.optional && !d.has(p.name)) r.fail(fmt::format("ports.{}", p.name), "missing");
+  }
+  std::map<std::string, std::string> used;  // port -> what uses it
+  used[d.reset_port] = "reset.port";
+  for (const auto& [role, name] : d.ports) {
+    if (used.count(name)) r.fail("ports." + role, fmt::format("port {} is also {}", name, used[name]));
+    used[name] = "ports." + role;
+  }
+  if (const TomlValue* inputs = r.find(root, "inputs")) {
+    if (!inputs->is_table()) r.fail("inputs", "expected a table of PORT = value");
+    for (const auto& [name, value] : inputs->as_table()) {
+      const std::string label = "inputs." + name;
+      r.identifier(name, label);
+      if (used.count(name)) r.fail(label, fmt::format("port {} is also {}", name, used[name]));
+      if (value.is_boolean()) {
+        d.inputs[name] = value.as_boolean() ? 1 : 0;
+      } else if (value.is_integer() && value.as_integer() >= 0) {
+        d.inputs[name] = static_cast<std::uint64_t>(value.as_integer());
+      } else {
+        r.fail(label, "expected a non-negative integer or a boolean");
+      }
+    }
+  }
+
+  const TomlValue& behaviour = r.need(root, "behaviour", "behaviour");
+  if (!behaviour.is_table()) r.fail("behaviour", "expected a table");
+  for (const auto& [key, value] : behaviour.as_table()) {
+    static const char* known[] = {"collisions", "full", "timestamp_tick", "timestamp_bits", "ack_latency_cycles"};
+    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) r.fail("behaviour." + key, "unknown key");
+    (void)value;
+  }
+  const std::string collisions = r.string_of(r.need(behaviour, "collisions", "behaviour.collisions"), "behaviour.collisions");
+  if (collisions == "discard") d.collisions = ReceiverDescription::Collisions::Discard;
+  else if (collisions == "flag") d.collisions = ReceiverDescription::Collisions::Flag;
+  else if (collisions == "pass") d.collisions = ReceiverDescription::Collisions::Pass;
+  else r.fail("behaviour.collisions", "must be \"discard\", \"flag\" or \"pass\"");
+  const std::string full = r.string_of(r.need(behaviour, "full", "behaviour.full"), "behaviour.full");
+  if (full == "drop") d.full = ReceiverDescription::Full::Drop;
+  else if (full == "hold") d.full = ReceiverDescription::Full::Hold;
+  else r.fail("behaviour.full", "must be \"drop\" or \"hold\"");
+  const TomlValue& tick = r.need(behaviour, "timestamp_tick", "behaviour.timestamp_tick");
+  d.timestamp_tick = parse_si(r.string_of(tick, "behaviour.timestamp_tick"), "s", "behaviour.timestamp_tick");
+  if (!(d.timestamp_tick * d.clock_hz >= 1 - 1e-9)) r.fail("behaviour.timestamp_tick", "shorter than a clock period");
+  if (!(d.timestamp_tick <= 1.0)) r.fail("behaviour.timestamp_tick", "at most 1 s");
+  const TomlValue& bits = r.need(behaviour, "timestamp_bits", "behaviour.timestamp_bits");
+  if (!bits.is_integer() || bits.as_integer() < 2 || bits.as_integer() > 64) {
+    r.fail("behaviour.timestamp_bits", "expected an integer from 2 to 64");
+  }
+  d.timestamp_bits = static_cast<int>(bits.as_integer());
+  const TomlValue& latency = r.need(behaviour, "ack_latency_cycles", "behaviour.ack_latency_cycles");
+  const auto& l = latency.as_array();
+  if (!latency.is_array() || l.size() != 2 || !l[0].is_integer() || !l[1].is_integer() || l[0].as_integer() < 1 ||
+      l[1].as_integer() < l[0].as_integer() || l[1].as_integer() > 1000) {
+    r.fail("behaviour.ack_latency_cycles", "expected [min, max] clock edges, 1 <= min <= max <= 1000");
+  }
+  d.ack_latency_min = static_cast<int>(l[0].as_integer());
+  d.ack_latency_max = static_cast<int>(l[1].as_integer());
+
+  if (d.collisions != ReceiverDescription::Collisions::Pass && !d.has("contention")) {
+    r.fail("behaviour.collisions", fmt::format("\"{}\" needs the contention port ([ports] contention)", collisions));
+  }
+  if (d.collisions == ReceiverDescription::Collisions::Flag && !d.has("flags")) {
+    r.fail("behaviour.collisions", "\"flag\" needs the flags port ([ports] flags)");
+  }
+  return d;
+}
+
+}  // namespace aesim

@@ -1,0 +1,225 @@
+#include "driver/case_driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+
+#include "random/splitmix64.hpp"
+
+namespace aesim {
+
+std::uint64_t clock_period_ps(const ReceiverDescription& d) {
+  // Even, so that the falling edge lies exactly half-way (also in an exported testbench).
+  return std::max<std::uint64_t>(2, 2 * static_cast<std::uint64_t>(std::llround(0.5e12 / d.clock_hz)));
+}
+
+namespace {
+
+constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+
+// The pixel side of the bus and the wires it drives, with any glitch on top.
+class BusSide {
+ public:
+  BusSide(const VerifyCase& c, const BoundPorts& ports, TransactionScoreboard* sb, std::vector<WaveRecord>* wave)
+      : queued_(c.queued_senders), ports_(ports), sb_(sb), wave_(wave) {}
+
+  void fire(std::uint32_t addr, bool ack, std::uint64_t t, std::uint64_t edges_done, CaseStats& stats) {
+    ++stats.firings;
+    if (queued_) {
+      if (req_ || ack || !waiting_.empty()) {
+        waiting_.push_back(addr);
+        return;
+      }
+    } else if (ack) {
+      ++stats.absorbed;  // the pixel sees Ack already high and withdraws
+      return;
+    }
+    drivers_.push_back(addr);
+    drive(t, edges_done);
+  }
+  void glitch(bool on, std::uint32_t addr, std::uint64_t t, std::uint64_t edges_done) {
+    glitch_ = on;
+    glitch_addr_ = addr;
+    drive(t, edges_done);
+  }
+  void ack_changed(bool ack, std::uint64_t t, std::uint64_t edges_done) {
+    if (ack) {
+      drivers_.clear();  // every pixel driving sees Ack and releases
+      drive(t, edges_done);
+    } else if (queued_ && !waiting_.empty() && drivers_.empty()) {
+      drivers_.push_back(waiting_.front());
+      waiting_.pop_front();
+      drive(t, edges_done);
+    }
+  }
+  bool quiet() const { return drivers_.empty() && waiting_.empty() && !glitch_; }
+  bool req() const { return req_; }
+  void record_controls(std::uint64_t t, bool ready, bool reset) {
+    ready_ = ready;
+    reset_ = reset;
+    record(t);
+  }
+
+ private:
+  void drive(std::uint64_t t, std::uint64_t edges_done) {
+    std::uint64_t addr = glitch_ ? glitch_addr_ : 0;
+    for (std::uint32_t a : drivers_) addr |= a;
+    const bool req = !drivers_.empty() || glitch_;
+    const bool contention = drivers_.size() >= 2;
+    if (req == req_ && addr == addr_ && contention == contention_) return;
+    req_ = req;
+    addr_ = addr;
+    contention_ = contention;
+    ports_.req.write(req);
+    ports_.addr.write(addr);
+    if (ports_.contention.bound()) ports_.contention.write(contention);
+    if (sb_) sb_->wires(t, edges_done, req, addr, contention);
+    record(t);
+  }
+  void record(std::uint64_t t) {
+    if (wave_) wave_->push_back({t, req_, contention_, ready_, reset_, addr_});
+  }
+
+  bool queued_;
+  const BoundPorts& ports_;
+  TransactionScoreboard* sb_;
+  std::vector<WaveRecord>* wave_;
+  std::vector<std::uint32_t> drivers_;
+  std::deque<std::uint32_t> waiting_;
+  bool glitch_ = false;
+  std::uint32_t glitch_addr_ = 0;
+  bool req_ = false, contention_ = false, ready_ = true, reset_ = true;
+  std::uint64_t addr_ = 0;
+};
+
+}  // namespace
+
+CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDescription& d, const VerifyCase& c,
+                   TransactionScoreboard* sb, const CaseRunOptions& options) {
+  const std::uint64_t period = clock_period_ps(d), half = period / 2;
+  auto off_edge = [half](std::uint64_t t) { return t % half == 0 ? t + 1 : t; };
+  CaseStats stats;
+  BusSide bus(c, ports, sb, options.waveform);
+  if (sb) sb->begin_case(c.name);
+
+  std::unique_ptr<FiringSource> source = c.make_firings ? c.make_firings() : nullptr;
+  Firing next;
+  bool have_next = source && source->next(next);
+  if (have_next) next.t_ps = off_edge(next.t_ps);
+  // Glitch starts and ends, in time order.
+  struct GlitchEdge {
+    std::uint64_t t;
+    bool on;
+    std::uint32_t addr;
+  };
+  std::vector<GlitchEdge> glitch_edges;
+  for (const ReqGlitch& g : c.glitches) {
+    glitch_edges.push_back({off_edge(g.from_ps), true, g.addr});
+    glitch_edges.push_back({off_edge(g.to_ps), false, g.addr});
+  }
+  std::sort(glitch_edges.begin(), glitch_edges.end(), [](const GlitchEdge& a, const GlitchEdge& b) { return a.t < b.t; });
+  std::size_t gi = 0;
+
+  SplitMix64 ready_rng = stream_for(c.seed, Stream::VerifyReady, 0);
+  bool ready = true, reset = true, ack = false, draining = false;
+  std::uint64_t acks = 0, reset_from = kNever, quiet = 0;
+  std::uint64_t stalls_end = 0;
+  for (const auto& s : c.stalls) stalls_end = std::max(stalls_end, s.second);
+  const std::uint64_t quiet_needed = 2 * static_cast<std::uint64_t>(d.ack_latency_max) + 8;
+
+  ports.clk.write(0);
+  ports.req.write(0);
+  ports.addr.write(0);
+  if (ports.contention.bound()) ports.contention.write(0);
+  ports.ready.write(1);
+  ports.set_reset(true);
+  dut.eval();
+  bus.record_controls(0, true, true);
+  bool dirty = false;
+
+  std::uint64_t k = 1;
+  for (; k <= c.max_edges; ++k) {
+    const std::uint64_t t_edge = k * period;
+    for (;;) {
+      const std::uint64_t tf = have_next ? next.t_ps : kNever;
+      const std::uint64_t tg = gi < glitch_edges.size() ? glitch_edges[gi].t : kNever;
+      const std::uint64_t t = std::min(tf, tg);
+      if (t >= t_edge) break;
+      if (tg <= tf) {
+        bus.glitch(glitch_edges[gi].on, glitch_edges[gi].addr, tg, k - 1);
+        ++gi;
+      } else {
+        bus.fire(next.addr, ack, tf, k - 1, stats);
+        have_next = source->next(next);
+        if (have_next) next.t_ps = std::max(off_edge(next.t_ps), tf);
+      }
+      dirty = true;
+    }
+
+    // The consumer and the reset change between the falling edge and the next rising edge.
+    bool ready_k = true;
+    if (!draining) {
+      const bool stalled = std::any_of(c.stalls.begin(), c.stalls.end(),
+                                       [k](const auto& s) { return k >= s.first && k < s.second; });
+      ready_k = !stalled && (c.ready_probability >= 1 || uniform01(ready_rng) < c.ready_probability);
+    }
+    const bool reset_k = k <= kResetEdges || (k >= reset_from && k < reset_from + static_cast<std::uint64_t>(c.reset_edges));
+    if (ready_k != ready || reset_k != reset) {
+      ready = ready_k;
+      reset = reset_k;
+      ports.ready.write(ready);
+      ports.set_reset(reset);
+      bus.record_controls((k - 1) * period + half + half / 2, ready, reset);
+      dirty = true;
+    }
+    if (dirty) {
+      dut.eval();
+      dirty = false;
+    }
+
+    EdgeSample s;
+    s.reset = reset;
+    s.ready = ready;
+    s.ack = ack;
+    s.valid = ports.valid.read() != 0;
+    if (s.valid) {
+      s.out_addr = ports.out_addr.read();
+      s.timestamp = ports.timestamp.read();
+      s.flags = ports.flags.bound() ? ports.flags.read() : 0;
+    }
+    if (ports.overflow.bound()) s.overflow = ports.overflow.read();
+    if (sb) sb->edge(k, t_edge, s);
+    if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1});
+
+    ports.clk.write(1);
+    dut.eval();
+    const bool trace_now = options.trace && k >= options.trace_from && k <= options.trace_to;
+    if (trace_now) dut.dump(t_edge);
+    const bool ack_now = ports.ack.read() != 0;
+    if (ack_now != ack) {
+      ack = ack_now;
+      if (sb) sb->ack_changed(k, t_edge, ack);
+      if (ack && ++acks == static_cast<std::uint64_t>(c.reset_after_ack) && c.reset_after_ack > 0) {
+        reset_from = k + static_cast<std::uint64_t>(c.reset_delay);
+      }
+      bus.ack_changed(ack, t_edge + 1, k);
+      dirty = true;
+    }
+    ports.clk.write(0);
+    dut.eval();
+    if (trace_now) dut.dump(t_edge + half);
+
+    const bool reset_over = c.reset_after_ack == 0 || (reset_from != kNever && k >= reset_from + static_cast<std::uint64_t>(c.reset_edges));
+    if (!have_next && gi == glitch_edges.size() && bus.quiet() && reset_over && k >= stalls_end) draining = true;
+    if (draining) {
+      quiet = (!s.valid && !ack && !bus.req()) ? quiet + 1 : 0;
+      if (quiet > quiet_needed) break;
+    }
+  }
+  stats.edges = std::min(k, c.max_edges);
+  if (sb) sb->finish_case(stats.edges, stats.edges * period);
+  return stats;
+}
+
+}  // namespace aesim

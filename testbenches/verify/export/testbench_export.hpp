@@ -1,0 +1,21 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "build/port_list.hpp"
+#include "description/receiver_description.hpp"
+#include "output/atomic_file.hpp"
+#include "session/verify_session.hpp"
+
+namespace aesim {
+
+// A self-checking Verilog-2005 testbench of one run, for any simulator: DIR/tb.v (top module
+// tb) replays the run's exact inputs (DIR/tb_inputs.hex: every change of Req, address,
+// contention, ready and reset, to the picosecond) against the team's RTL, and compares every beat
+// taken with the beats the run gave (DIR/tb_expected.hex: address, stamp, collision flag, in
+// order). It also stops on Ack rising while Req is low. Its last line starts with PASS or FAIL.
+// `iverilog -g2005 -o sim tb.v SOURCES...` then `vvp sim` in DIR runs it.
+void write_testbench(const std::string& dir, const ReceiverDescription& d, const std::vector<RtlPort>& ports,
+                     const ExportedRun& run, OutputFiles& files);
+
+}  // namespace aesim

@@ -1,0 +1,39 @@
+#include "report/verify_report.hpp"
+
+namespace aesim {
+
+nlohmann::json verify_report(const ReceiverDescription& d, const std::string& plan, std::uint64_t seed,
+                             const DutBuild& build, const VerifyResult& r, double wall_time_s) {
+  nlohmann::json j;
+  j["passed"] = r.passed();
+  j["transactions"] = r.transactions;
+  j["beats_checked"] = r.beats_checked;
+  j["failures"] = r.failures;
+  j["protocol_violations"] = r.protocol_violations;
+  j["receiver_cycles"] = r.receiver_cycles;
+  j["wall_time_s"] = wall_time_s;
+  if (r.first_failure) {
+    const VerifyFailure& f = *r.first_failure;
+    j["first_failure"] = {{"time_s", f.time_s}, {"cycle", f.cycle},       {"check", f.check},
+                          {"expected", f.expected}, {"observed", f.observed}, {"case", f.case_name}};
+  } else {
+    j["first_failure"] = nullptr;
+  }
+  j["drops_accounted"] = r.drops;
+  j["receiver"] = {{"description", d.file}, {"top", d.top},
+                   {"collisions", to_string(d.collisions)}, {"full", to_string(d.full)}};
+  j["plan"] = plan;
+  j["seed"] = seed;
+  j["build"] = {{"cached", build.cached}, {"seconds", build.seconds}};
+  j["run_time_s"] = r.run_seconds;
+  j["cycles_per_second"] = r.run_seconds > 0 ? static_cast<double>(r.receiver_cycles) / r.run_seconds : 0.0;
+  nlohmann::json cases = nlohmann::json::array();
+  for (const CaseSummary& c : r.cases) {
+    cases.push_back({{"name", c.name}, {"kind", c.kind}, {"receiver_cycles", c.edges}, {"firings", c.firings},
+                     {"transactions", c.transactions}, {"beats_checked", c.beats}, {"failures", c.failures}});
+  }
+  j["cases"] = cases;
+  return j;
+}
+
+}  // namespace aesim

@@ -1,0 +1,310 @@
+#include "scoreboard/transaction_scoreboard.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace aesim {
+
+using Collisions = ReceiverDescription::Collisions;
+using Full = ReceiverDescription::Full;
+
+TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool has_flags, bool has_overflow,
+                                             int overflow_width, std::uint64_t period_ps)
+    : collisions_(d.collisions),
+      full_(d.full),
+      has_flags_(has_flags),
+      has_overflow_(has_overflow),
+      overflow_mask_(overflow_width >= 64 ? ~0ULL : (1ULL << overflow_width) - 1),
+      period_ps_(period_ps),
+      tick_ps_(static_cast<std::uint64_t>(std::llround(d.timestamp_tick * 1e12))),
+      ts_mask_(d.timestamp_bits >= 64 ? ~0ULL : (1ULL << d.timestamp_bits) - 1),
+      lat_min_(d.ack_latency_min),
+      lat_max_(d.ack_latency_max) {}
+
+void TransactionScoreboard::begin_case(const std::string& name) {
+  case_ = name;
+  pending_.clear();
+  open_id_.reset();
+  req_ = ack_ = in_reset_ = contention_ = false;
+  addr_ = 0;
+  edges_done_ = 0;
+  ack_fall_due_ = late_reported_ = false;
+  t0_ps_ = 0;
+  last_ts_.reset();
+  held_.reset();
+  last_stall_edge_ = 0;
+  stalled_ever_ = false;
+  overflow_base_ = overflow_now_ = 0;
+  drops_strict_ = drops_maybe_ = 0;
+}
+
+TransactionScoreboard::Transaction* TransactionScoreboard::open() {
+  if (!open_id_ || pending_.empty() || *open_id_ < pending_.front().id) return nullptr;
+  return &pending_[*open_id_ - pending_.front().id];
+}
+
+void TransactionScoreboard::fail(const char* check, std::uint64_t cycle, std::uint64_t t_ps, std::string expected,
+                                 std::string observed, bool protocol) {
+  ++failures_;
+  violations_ += protocol ? 1 : 0;
+  if (!first_) {
+    first_ = VerifyFailure{case_, check, std::move(expected), std::move(observed), static_cast<double>(t_ps) * 1e-12, cycle};
+  }
+}
+
+std::string TransactionScoreboard::describe(const Transaction& t) const {
+  std::string values;
+  for (const auto& [a, c] : t.values) values += fmt::format("{}0x{:x}{}", values.empty() ? "" : " or ", a, c ? " (contention)" : "");
+  return fmt::format("the transaction of Req at {:.6f} us: address {}", static_cast<double>(t.t_req) * 1e-6, values);
+}
+
+bool TransactionScoreboard::has_contention(const Transaction& t) const {
+  return std::any_of(t.values.begin(), t.values.end(), [](const auto& v) { return v.second; });
+}
+
+bool TransactionScoreboard::value_matches(const Transaction& t, const Beat& b) const {
+  for (const auto& [a, c] : t.values) {
+    if (a != b.addr) continue;
+    switch (collisions_) {
+      case Collisions::Discard:
+        if (!c && !b.flag) return true;
+        break;
+      case Collisions::Flag:
+        if (b.flag == c) return true;
+        break;
+      case Collisions::Pass:
+        if (!b.flag) return true;
+        break;
+    }
+  }
+  return false;
+}
+
+bool TransactionScoreboard::may_lack_beat(const Transaction& t) const {
+  if (t.withdrawn) return true;
+  if (collisions_ == Collisions::Discard && has_contention(t)) return true;
+  return full_ == Full::Drop && t.stalled;
+}
+
+std::uint64_t TransactionScoreboard::ticks_at(std::uint64_t t_ps) const {
+  return t_ps <= t0_ps_ ? 0 : (t_ps - t0_ps_) / tick_ps_;
+}
+
+// A transaction allowed to give no beat: a glitch counts nothing; a discarded collision is no
+// drop, unless the output was full then too (a receiver may count it either way); else a drop.
+void TransactionScoreboard::count_missing_beat(const Transaction& t) {
+  if (t.withdrawn) return;
+  if (collisions_ == Collisions::Discard && has_contention(t)) {
+    drops_maybe_ += full_ == Full::Drop && t.stalled ? 1 : 0;
+  } else {
+    ++drops_strict_;
+  }
+}
+
+void TransactionScoreboard::clear_for_reset() {
+  pending_.clear();
+  open_id_.reset();
+  held_.reset();
+  ack_fall_due_ = late_reported_ = false;
+}
+
+void TransactionScoreboard::wires(std::uint64_t t_ps, std::uint64_t edges_done, bool req, std::uint64_t addr,
+                                  bool contention) {
+  const bool rose = req && !req_, fell = !req && req_;
+  req_ = req;
+  addr_ = addr;
+  contention_ = contention;
+  edges_done_ = edges_done;
+  if (in_reset_) return;
+  if (rose) {
+    Transaction t;
+    t.id = next_id_++;
+    t.t_req = t_ps;
+    t.first_edge = edges_done + 1;
+    t.values.push_back({addr, contention});
+    pending_.push_back(std::move(t));
+    open_id_ = pending_.back().id;
+    late_reported_ = false;
+    return;
+  }
+  Transaction* t = open();
+  if (fell) {
+    if (t) {
+      t->withdrawn = true;  // Req fell before any Ack: a glitch, not a transaction
+      open_id_.reset();
+    } else if (ack_) {
+      ack_fall_due_ = true;
+      req_fall_edge_ = edges_done + 1;
+      late_reported_ = false;
+    }
+    return;
+  }
+  if (req && t && (t->values.back().first != addr || t->values.back().second != contention)) {
+    t->values.push_back({addr, contention});
+  }
+}
+
+void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s) {
+  edges_done_ = cycle - 1;
+  if (s.reset) {
+    if (!in_reset_) clear_for_reset();
+    in_reset_ = true;
+    return;
+  }
+  if (in_reset_) {
+    in_reset_ = false;
+    t0_ps_ = t_ps - period_ps_;
+    last_ts_.reset();
+    overflow_base_ = s.overflow;
+    drops_strict_ = drops_maybe_ = 0;
+    if (s.ack) fail("reset", cycle, t_ps, "Ack low after reset", "Ack high", true);
+    ack_ = s.ack;
+    if (req_) {  // a Req held through the reset is a new transaction for the receiver
+      Transaction t;
+      t.id = next_id_++;
+      t.t_req = t_ps - period_ps_;
+      t.first_edge = cycle;
+      t.values.push_back({addr_, contention_});
+      pending_.push_back(std::move(t));
+      open_id_ = pending_.back().id;
+    }
+  }
+  overflow_now_ = s.overflow;
+
+  // A beat offered and not taken must wait, unchanged.
+  if (held_) {
+    const Beat now{s.out_addr, s.timestamp, (s.flags & 1) != 0};
+    if (!s.valid) {
+      fail("stalled_output", cycle, t_ps, fmt::format("valid held with address 0x{:x}", held_->addr), "valid fell", false);
+    } else if (now.addr != held_->addr || now.ts != held_->ts || now.flag != held_->flag) {
+      fail("stalled_output", cycle, t_ps, fmt::format("address 0x{:x} stamp {} flag {}", held_->addr, held_->ts, held_->flag),
+           fmt::format("address 0x{:x} stamp {} flag {}", now.addr, now.ts, now.flag), false);
+    }
+  }
+  held_.reset();
+  if (s.valid) {
+    const Beat b{s.out_addr, s.timestamp, (s.flags & 1) != 0};
+    if (s.ready) {
+      beat(cycle, t_ps, b);
+    } else {
+      held_ = b;
+      last_stall_edge_ = cycle;
+      stalled_ever_ = true;
+    }
+  }
+
+  // Ack overdue: reported at the first edge past the bound, once per change.
+  if (!late_reported_) {
+    if (Transaction* t = open(); t && req_ && !ack_) {
+      std::uint64_t start = t->first_edge;
+      if (full_ == Full::Hold && stalled_ever_ && last_stall_edge_ + 1 > start) start = last_stall_edge_ + 1;
+      if (cycle >= start && cycle - start + 1 > static_cast<std::uint64_t>(lat_max_)) {
+        late_reported_ = true;
+        fail("ack_rise_latency", cycle, t_ps, fmt::format("Ack within {} edges of Req rising", lat_max_),
+             fmt::format("no Ack after {} edges", cycle - start + 1), true);
+      }
+    } else if (ack_fall_due_ && cycle - req_fall_edge_ + 1 > static_cast<std::uint64_t>(lat_max_)) {
+      late_reported_ = true;
+      fail("ack_fall_latency", cycle, t_ps, fmt::format("Ack low within {} edges of Req falling", lat_max_),
+           fmt::format("Ack still high after {} edges", cycle - req_fall_edge_ + 1), true);
+    }
+  }
+}
+
+void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps, bool ack) {
+  ack_ = ack;
+  if (in_reset_) return;
+  if (ack) {
+    Transaction* t = open();
+    if (!req_ || !t) {
+      fail("ack_without_req", cycle, t_ps, "Ack rises only while Req is high", "Ack rose with Req low", true);
+      return;
+    }
+    const std::uint64_t latency = cycle - t->first_edge + 1;
+    std::uint64_t start = t->first_edge;
+    if (full_ == Full::Hold && stalled_ever_ && last_stall_edge_ + 1 > start) start = last_stall_edge_ + 1;
+    const std::uint64_t excused = cycle >= start ? cycle - start + 1 : 1;
+    if (!late_reported_ && (latency < static_cast<std::uint64_t>(lat_min_) || excused > static_cast<std::uint64_t>(lat_max_))) {
+      fail("ack_rise_latency", cycle, t_ps, fmt::format("{} to {} edges", lat_min_, lat_max_),
+           fmt::format("{} edges", latency), true);
+    }
+    t->acked = true;
+    t->t_ack = t_ps;
+    t->stalled = stalled_ever_ && last_stall_edge_ + 2 >= t->first_edge;
+    open_id_.reset();
+    ++transactions_;
+    late_reported_ = false;
+    return;
+  }
+  if (req_) {
+    fail("ack_fell_with_req", cycle, t_ps, "Ack falls only after Req fell (four-phase order)", "Ack fell with Req high", true);
+    return;
+  }
+  if (ack_fall_due_) {
+    const std::uint64_t latency = cycle - req_fall_edge_ + 1;
+    if (!late_reported_ && (latency < static_cast<std::uint64_t>(lat_min_) || latency > static_cast<std::uint64_t>(lat_max_))) {
+      fail("ack_fall_latency", cycle, t_ps, fmt::format("{} to {} edges", lat_min_, lat_max_), fmt::format("{} edges", latency), true);
+    }
+  }
+  ack_fall_due_ = false;
+  late_reported_ = false;
+}
+
+void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b) {
+  ++beats_;
+  const std::string seen = fmt::format("address 0x{:x}, stamp {}, flag {}", b.addr, b.ts, b.flag ? 1 : 0);
+  auto matches = [&](const Transaction& t) { return !t.withdrawn && value_matches(t, b); };
+  std::size_t i = 0;
+  while (i < pending_.size() && !matches(pending_[i]) && may_lack_beat(pending_[i])) ++i;
+  if (i == pending_.size() || !matches(pending_[i])) {
+    const Transaction* head = nullptr;
+    for (const Transaction& t : pending_) {
+      if (!t.withdrawn) {
+        head = &t;
+        break;
+      }
+    }
+    fail("beat", cycle, t_ps, head ? describe(*head) : "no beat (no transaction is waiting)", seen, false);
+    return;
+  }
+  for (std::size_t k = 0; k < i; ++k) count_missing_beat(pending_[k]);
+  const Transaction& t = pending_[i];
+  const std::uint64_t lo = ticks_at(t.t_req), hi = ticks_at(t.acked ? t.t_ack : t_ps);
+  const std::uint64_t from = (lo - 1) & ts_mask_, span = hi - lo + 2;
+  if (((b.ts - from) & ts_mask_) > span) {
+    fail("timestamp", cycle, t_ps, fmt::format("{} to {} (within a tick of {})", from, (hi + 1) & ts_mask_, describe(t)),
+         fmt::format("{}", b.ts), false);
+  } else if (last_ts_ && ((b.ts - *last_ts_) & ts_mask_) > ts_mask_ / 2) {
+    fail("timestamp", cycle, t_ps, fmt::format("a stamp at or after {}", *last_ts_), fmt::format("{}", b.ts), false);
+  }
+  last_ts_ = b.ts;
+  if (open_id_ && *open_id_ <= t.id) open_id_.reset();
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(i) + 1);
+}
+
+void TransactionScoreboard::finish_case(std::uint64_t cycle, std::uint64_t t_ps) {
+  if (in_reset_) return;
+  for (const Transaction& t : pending_) {
+    if (!t.acked && !t.withdrawn) continue;  // never acknowledged: the latency check reported it
+    if (!may_lack_beat(t)) {
+      fail("lost", cycle, t_ps, describe(t) + " gives a beat", "no beat", false);
+      continue;
+    }
+    count_missing_beat(t);
+  }
+  pending_.clear();
+  drops_total_ += drops_strict_;
+  if (has_overflow_) {
+    const std::uint64_t counted = (overflow_now_ - overflow_base_) & overflow_mask_;
+    if (counted < drops_strict_ || counted > drops_strict_ + drops_maybe_) {
+      fail("overflow_count", cycle, t_ps,
+           drops_maybe_ ? fmt::format("{} to {} drops counted", drops_strict_, drops_strict_ + drops_maybe_)
+                        : fmt::format("{} drops counted", drops_strict_),
+           fmt::format("{}", counted), false);
+    }
+  }
+}
+
+}  // namespace aesim

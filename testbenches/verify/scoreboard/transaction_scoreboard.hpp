@@ -1,0 +1,114 @@
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "description/receiver_description.hpp"
+
+namespace aesim {
+
+// What the receiver showed just before a rising clock edge, with the inputs that edge sees.
+struct EdgeSample {
+  bool reset = false, ready = true, valid = false, ack = false;
+  std::uint64_t out_addr = 0, timestamp = 0, flags = 0, overflow = 0;
+};
+
+struct VerifyFailure {
+  std::string case_name, check, expected, observed;
+  double time_s = 0;
+  std::uint64_t cycle = 0;
+};
+
+// Checks a receiver against its description alone, at the level of transactions: it sees the bus
+// wires and the receiver's ports, never its insides.
+//  - Every output beat is a transaction the bus carried, in bus order: an address (and contention
+//    flag, per the collision policy) the wires held between Req rising and Ack rising, so nothing
+//    is invented and nothing reordered. A transaction with no beat is allowed only when the
+//    description says so: a collision under "discard", or a full output under "drop" (the output
+//    was stalled around it), and then overflow_count, if present, must have counted exactly the
+//    drops. A Req that falls before any Ack (a glitch) is not a transaction.
+//  - Stamps count timestamp_tick since reset modulo 2^bits, lie within one tick of the
+//    transaction's span (Req rise to Ack rise), and never go backwards (modulo the wrap).
+//  - A beat offered and not taken (valid, not ready) stays, unchanged, until taken.
+//  - The handshake: Ack rises only while Req is high and falls only after Req fell (four-phase
+//    order), each within ack_latency_cycles edges of the change; under "hold" a rising Ack may also
+//    wait while the output is stalled. Ack is low after a reset.
+class TransactionScoreboard {
+ public:
+  TransactionScoreboard(const ReceiverDescription& description, bool has_flags, bool has_overflow, int overflow_width,
+                        std::uint64_t period_ps);
+
+  void begin_case(const std::string& name);
+  // The bus wires changed at t_ps, after `edges_done` rising edges of this case.
+  void wires(std::uint64_t t_ps, std::uint64_t edges_done, bool req, std::uint64_t addr, bool contention);
+  // Rising edge `cycle` at t_ps, with what stood before it.
+  void edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s);
+  // Ack changed right after rising edge `cycle`.
+  void ack_changed(std::uint64_t cycle, std::uint64_t t_ps, bool ack);
+  // The case is over and the receiver drained: accounts for every transaction left.
+  void finish_case(std::uint64_t cycle, std::uint64_t t_ps);
+
+  std::uint64_t transactions() const { return transactions_; }
+  std::uint64_t beats_checked() const { return beats_; }
+  std::uint64_t failures() const { return failures_; }
+  std::uint64_t protocol_violations() const { return violations_; }
+  std::uint64_t drops_accepted() const { return drops_total_; }
+  const std::optional<VerifyFailure>& first_failure() const { return first_; }
+
+ private:
+  struct Transaction {
+    std::uint64_t id = 0;
+    std::uint64_t t_req = 0, t_ack = 0;
+    std::uint64_t first_edge = 0;  // the first rising edge after Req rose
+    bool acked = false, withdrawn = false, stalled = false;
+    std::vector<std::pair<std::uint64_t, bool>> values;  // (addr, contention) held while open
+  };
+  struct Beat {
+    std::uint64_t addr, ts;
+    bool flag;
+  };
+  void fail(const char* check, std::uint64_t cycle, std::uint64_t t_ps, std::string expected, std::string observed,
+            bool protocol);
+  void beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b);
+  bool value_matches(const Transaction& t, const Beat& b) const;
+  bool may_lack_beat(const Transaction& t) const;
+  void count_missing_beat(const Transaction& t);
+  bool has_contention(const Transaction& t) const;
+  std::uint64_t ticks_at(std::uint64_t t_ps) const;
+  std::string describe(const Transaction& t) const;
+  void clear_for_reset();
+
+  ReceiverDescription::Collisions collisions_;
+  ReceiverDescription::Full full_;
+  bool has_flags_, has_overflow_;
+  std::uint64_t overflow_mask_;
+  std::uint64_t period_ps_, tick_ps_, ts_mask_;
+  int lat_min_, lat_max_;
+
+  std::string case_;
+  std::deque<Transaction> pending_;
+  Transaction* open();  // the transaction whose Req is up and not yet acknowledged, if any
+  std::optional<std::uint64_t> open_id_;
+  std::uint64_t next_id_ = 0;
+  bool req_ = false, ack_ = false, in_reset_ = false;
+  std::uint64_t addr_ = 0;
+  bool contention_ = false;
+  std::uint64_t edges_done_ = 0;
+  std::uint64_t req_fall_edge_ = 0;  // first edge after Req fell, while Ack is due to fall
+  bool ack_fall_due_ = false, late_reported_ = false;
+  std::uint64_t t0_ps_ = 0;  // the stamps' zero: the last edge of the reset
+  std::optional<std::uint64_t> last_ts_;
+  std::optional<Beat> held_;  // offered, not taken, at the previous edge
+  std::uint64_t last_stall_edge_ = 0;
+  bool stalled_ever_ = false;
+  std::uint64_t overflow_base_ = 0, overflow_now_ = 0;
+  std::uint64_t drops_strict_ = 0, drops_maybe_ = 0;
+
+  std::uint64_t transactions_ = 0, beats_ = 0, failures_ = 0, violations_ = 0, drops_total_ = 0;
+  std::optional<VerifyFailure> first_;
+};
+
+}  // namespace aesim

@@ -1,0 +1,53 @@
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "build/port_list.hpp"
+#include "description/receiver_description.hpp"
+#include "driver/case_driver.hpp"
+#include "driver/dut_library.hpp"
+#include "scoreboard/transaction_scoreboard.hpp"
+#include "stimulus/verify_case.hpp"
+
+namespace aesim {
+
+struct CaseSummary {
+  std::string name, kind;
+  std::uint64_t edges = 0, firings = 0, transactions = 0, beats = 0, failures = 0;
+};
+
+struct VerifyResult {
+  std::uint64_t transactions = 0, beats_checked = 0, failures = 0, protocol_violations = 0, receiver_cycles = 0;
+  std::uint64_t drops = 0;
+  double run_seconds = 0;  // the cases alone, not the build
+  std::optional<VerifyFailure> first_failure;
+  std::vector<CaseSummary> cases;
+  bool passed() const { return failures == 0; }
+};
+
+// The exact inputs and the beats of one case, for a testbench outside aesim.
+struct ExportedRun {
+  std::string case_name;
+  std::vector<WaveRecord> waveform;
+  std::vector<TakenBeat> beats;
+  std::uint64_t end_ps = 0;
+};
+
+struct VerifyOptions {
+  bool progress = true;
+  ExportedRun* exported = nullptr;  // filled from the first scene case when set
+};
+
+// Runs every case on a fresh model from the library, with the transaction scoreboard.
+VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPort>& ports,
+                             const ReceiverDescription& d, const std::vector<VerifyCase>& cases,
+                             const VerifyOptions& options);
+
+// The case again, from reset, with Verilator's trace of every signal into `path` over the 64
+// cycles before `cycle` and 16 after it.
+void trace_failure(const DutLibrary& library, const std::vector<RtlPort>& ports, const ReceiverDescription& d,
+                   const VerifyCase& c, std::uint64_t cycle, const std::string& path);
+
+}  // namespace aesim
