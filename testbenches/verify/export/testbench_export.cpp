@@ -49,9 +49,10 @@ void write_testbench(const std::string& dir, const ReceiverDescription& d, const
   std::string flag_check = "1'b0";
   std::string extra_wires;
   if (d.has("flags")) {
-    extra_wires += fmt::format("  wire {}flags;\n", range(width_of(ports, d.port("flags"))));
+    const int fw = width_of(ports, d.port("flags"));
+    extra_wires += fmt::format("  wire {}flags;\n", range(fw));
     connect(d.port("flags"), "flags");
-    flag_check = "flags[0]";
+    flag_check = fw > 1 ? "flags[0]" : "flags";
   }
   if (d.has("overflow_count")) {
     extra_wires += fmt::format("  wire {}overflow_count;\n", range(width_of(ports, d.port("overflow_count"))));

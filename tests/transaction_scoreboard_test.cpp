@@ -1,0 +1,209 @@
+// The transaction scoreboard on hand-written bus histories: what it must accept and what it must
+// catch, with no RTL at all.
+#include <gtest/gtest.h>
+
+#include "scoreboard/transaction_scoreboard.hpp"
+
+namespace aesim {
+namespace {
+
+constexpr std::uint64_t kPeriod = 20000;  // 50 MHz in ps
+
+ReceiverDescription description(ReceiverDescription::Collisions collisions = ReceiverDescription::Collisions::Discard,
+                                ReceiverDescription::Full full = ReceiverDescription::Full::Drop) {
+  ReceiverDescription d;
+  d.collisions = collisions;
+  d.full = full;
+  d.timestamp_tick = 1e-6;
+  d.timestamp_bits = 8;
+  d.ack_latency_min = 2;
+  d.ack_latency_max = 3;
+  return d;
+}
+
+// Drives the scoreboard edge by edge: reset on edges 1..4, then what each test scripts.
+class History {
+ public:
+  explicit History(const ReceiverDescription& d, bool overflow = false) : sb(d, true, overflow, 8, kPeriod) {
+    sb.begin_case("hand");
+    for (int i = 0; i < 4; ++i) edge(true);
+  }
+  void edge(bool reset = false) {
+    ++k;
+    s.reset = reset;
+    sb.edge(k, k * kPeriod, s);
+  }
+  void wires(bool req, std::uint64_t addr, bool contention = false) {
+    sb.wires(k * kPeriod + kPeriod / 3, k, req, addr, contention);
+  }
+  void ack(bool a) {
+    s.ack = a;
+    sb.ack_changed(k, k * kPeriod, a);
+  }
+  // A clean transaction: Req after edge k, Ack rising `latency` edges later, Req released at
+  // once, Ack falling `latency` edges later.
+  void transaction(std::uint64_t addr, int latency = 2, bool contention = false) {
+    wires(true, addr, contention);
+    for (int i = 0; i < latency; ++i) edge();
+    ack(true);
+    sb.wires(k * kPeriod + 1, k, false, 0, false);
+    for (int i = 0; i < latency; ++i) edge();
+    ack(false);
+  }
+  void offer(std::uint64_t addr, std::uint64_t ts, bool flag = false) {
+    s.valid = true;
+    s.out_addr = addr;
+    s.timestamp = ts;
+    s.flags = flag ? 1 : 0;
+  }
+  void idle_output() { s.valid = false; }
+
+  TransactionScoreboard sb;
+  EdgeSample s;
+  std::uint64_t k = 0;
+};
+
+TEST(TransactionScoreboard, AcceptsACleanTransactionAndItsBeat) {
+  History h(description());
+  for (int i = 0; i < 46; ++i) h.edge();  // edge 50: 1 us after the reset's last edge (4)
+  h.transaction(0x2A5);
+  h.offer(0x2A5, 0);  // stamped within a tick of the Req at 46 cycles = 0.92 us
+  h.edge();
+  h.idle_output();
+  h.edge();
+  h.sb.finish_case(h.k, h.k * kPeriod);
+  EXPECT_EQ(h.sb.failures(), 0u) << h.sb.first_failure()->check;
+  EXPECT_EQ(h.sb.transactions(), 1u);
+  EXPECT_EQ(h.sb.beats_checked(), 1u);
+}
+
+TEST(TransactionScoreboard, CatchesAWrongAddressAStaleStampAndALostBeat) {
+  {
+    History h(description());
+    h.transaction(0x2A5);
+    h.offer(0x2A4, 0);
+    h.edge();
+    EXPECT_EQ(h.sb.first_failure()->check, "beat");
+  }
+  {
+    History h(description());
+    for (int i = 0; i < 200; ++i) h.edge();  // 4 us after reset
+    h.transaction(0x001);
+    h.offer(0x001, 1);  // two ticks early
+    h.edge();
+    EXPECT_EQ(h.sb.first_failure()->check, "timestamp");
+  }
+  {
+    History h(description());
+    h.transaction(0x001);
+    h.edge();
+    h.sb.finish_case(h.k, h.k * kPeriod);
+    EXPECT_EQ(h.sb.first_failure()->check, "lost");
+  }
+}
+
+TEST(TransactionScoreboard, CatchesHandshakeViolations) {
+  {
+    History h(description());
+    h.edge();
+    h.ack(true);  // no Req at all
+    EXPECT_EQ(h.sb.first_failure()->check, "ack_without_req");
+    EXPECT_EQ(h.sb.protocol_violations(), 1u);
+  }
+  {
+    History h(description());
+    h.wires(true, 0x10);
+    h.edge();
+    h.ack(true);  // after 1 edge; the description says 2 to 3
+    EXPECT_EQ(h.sb.first_failure()->check, "ack_rise_latency");
+  }
+  {
+    History h(description());
+    h.wires(true, 0x10);
+    for (int i = 0; i < 4; ++i) h.edge();  // the 4th edge finds no Ack: too late
+    EXPECT_EQ(h.sb.first_failure()->check, "ack_rise_latency");
+  }
+  {
+    History h(description());
+    h.wires(true, 0x10);
+    h.edge();
+    h.edge();
+    h.ack(true);
+    h.edge();
+    h.ack(false);  // Req still high
+    EXPECT_EQ(h.sb.first_failure()->check, "ack_fell_with_req");
+  }
+}
+
+TEST(TransactionScoreboard, CollisionsFollowTheDeclaredPolicy) {
+  using C = ReceiverDescription::Collisions;
+  {  // discard: no beat is right, a beat is invented
+    History quiet(description(C::Discard));
+    quiet.transaction(0x0FF, 2, true);
+    quiet.edge();
+    quiet.sb.finish_case(quiet.k, quiet.k * kPeriod);
+    EXPECT_EQ(quiet.sb.failures(), 0u);
+    History noisy(description(C::Discard));
+    noisy.transaction(0x0FF, 2, true);
+    noisy.offer(0x0FF, 0, true);
+    noisy.edge();
+    EXPECT_EQ(noisy.sb.first_failure()->check, "beat");
+  }
+  {  // flag: the beat must carry the flag
+    History flagged(description(C::Flag));
+    flagged.transaction(0x0FF, 2, true);
+    flagged.offer(0x0FF, 0, true);
+    flagged.edge();
+    EXPECT_EQ(flagged.sb.failures(), 0u);
+    History unflagged(description(C::Flag));
+    unflagged.transaction(0x0FF, 2, true);
+    unflagged.offer(0x0FF, 0, false);
+    unflagged.edge();
+    EXPECT_EQ(unflagged.sb.first_failure()->check, "beat");
+  }
+}
+
+TEST(TransactionScoreboard, DropsNeedAStalledOutputAndAnExactCount) {
+  // Two transactions while the output is stalled with a beat; the second is dropped. The
+  // overflow counter must say 1.
+  for (std::uint64_t counted : {1u, 0u}) {
+    History h(description(), true);
+    h.transaction(0x001);
+    h.offer(0x001, 0);
+    h.s.ready = false;
+    h.edge();
+    h.transaction(0x002);
+    h.s.overflow = counted;
+    h.s.ready = true;
+    h.edge();  // 0x001 taken
+    h.idle_output();
+    h.edge();
+    h.sb.finish_case(h.k, h.k * kPeriod);
+    if (counted == 1) {
+      EXPECT_EQ(h.sb.failures(), 0u) << h.sb.first_failure()->check;
+    } else {
+      EXPECT_EQ(h.sb.first_failure()->check, "overflow_count");
+    }
+  }
+  // Without a stall, a missing beat is a loss whatever the counter says.
+  History h(description(), true);
+  h.transaction(0x001);
+  h.s.overflow = 1;
+  h.edge();
+  h.sb.finish_case(h.k, h.k * kPeriod);
+  EXPECT_EQ(h.sb.first_failure()->check, "lost");
+}
+
+TEST(TransactionScoreboard, AHeldBeatMustNotMove) {
+  History h(description());
+  h.transaction(0x001);
+  h.offer(0x001, 0);
+  h.s.ready = false;
+  h.edge();
+  h.offer(0x002, 0);
+  h.edge();
+  EXPECT_EQ(h.sb.first_failure()->check, "stalled_output");
+}
+
+}  // namespace
+}  // namespace aesim
