@@ -240,6 +240,11 @@ TEST_F(CliTest, RtlReceiverInTheLoopTracesItsInternalsBesideTheBus) {
     EXPECT_NE(rtl.find("$var wire  1 "), std::string::npos) << t;
     EXPECT_NE(rtl.find(" state_q "), std::string::npos) << t;  // an internal register
     EXPECT_NE(rtl.find(" req_s3 "), std::string::npos) << t;   // the synchronizer
+    // Scope names without dots (GTKWave reads dots as another level of hierarchy).
+    EXPECT_NE(rtl.find("$scope module imager_tile" + std::to_string(t) + "_receiver_rtl $end"), std::string::npos) << t;
+    for (std::size_t at = rtl.find("$scope"); at != std::string::npos; at = rtl.find("$scope", at + 1)) {
+      EXPECT_EQ(rtl.substr(at, rtl.find("$end", at) - at).find('.'), std::string::npos) << t;
+    }
   }
   // The reference receiver gives the same events.
   ASSERT_EQ(aesim("run --set receiver.model=reference --set sim.fidelity=cycle --duration 500ms --csv ref.csv").status, 0);

@@ -57,10 +57,15 @@ int verify_command(const VerifyCommandOptions& opt) {
 
   OutputFiles files;
   if (result.first_failure) {
+    // The failing case again on the traced build of the same RTL (built now, cached too).
+    DutBuildOptions traced = build_options;
+    traced.trace = true;
+    const DutBuild traced_build = build_dut(d, traced);
+    const DutLibrary traced_library(traced_build.library);
     const std::string temp = files.adopt(vcd_path);
     for (const VerifyCase& c : cases) {
       if (c.name == result.first_failure->case_name) {
-        trace_failure(library, build.ports, d, c, result.first_failure->cycle, temp);
+        trace_failure(traced_library, traced_build.ports, d, c, result.first_failure->cycle, temp);
         break;
       }
     }

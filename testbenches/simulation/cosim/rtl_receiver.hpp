@@ -10,6 +10,7 @@
 #include <verilated.h>
 #include <verilated_vcd_c.h>
 
+#include "cosim/dot_free_vcd_file.hpp"
 #include "receiver/receiver_cycle_model.hpp"
 #include "receiver/receiver_module.hpp"
 #include "receiver/receiver_signals.hpp"
@@ -114,7 +115,8 @@ class RtlReceiver : public ReceiverModule {
   }
   void start_of_simulation() override {
     if (!tracing_) return;
-    vcd_ = std::make_unique<VerilatedVcdC>();
+    vcd_file_ = std::make_unique<DotFreeScopesFile>();
+    vcd_ = std::make_unique<VerilatedVcdC>(vcd_file_.get());
     rtl_.trace(vcd_.get(), 99);
     vcd_->open(trace_.path.c_str());
   }
@@ -139,6 +141,7 @@ class RtlReceiver : public ReceiverModule {
   bool tracing_ = false;
   RtlTrace trace_;
   sc_core::sc_event settled_;
+  std::unique_ptr<DotFreeScopesFile> vcd_file_;  // outlives vcd_, which writes through it
   std::unique_ptr<VerilatedVcdC> vcd_;
 };
 

@@ -105,9 +105,10 @@ Toolchain toolchain(const fs::path& scratch) {
 // Flags of the model and of Verilator's runtime alike (verilated.mk's, for a C++ model with VCD
 // tracing). Hidden visibility and -Bsymbolic at the link keep the library's Verilator runtime
 // its own: aesim itself links another (a SystemC one) that must not be interposed.
-std::vector<std::string> compile_flags(const Toolchain& t) {
+std::vector<std::string> compile_flags(const Toolchain& t, bool trace) {
+  const std::string on = trace ? "1" : "0";
   return {"-std=c++17", "-O2", "-fPIC", "-fvisibility=hidden", "-faligned-new", "-w",
-          "-DVM_COVERAGE=0", "-DVM_SC=0", "-DVM_TRACE=1", "-DVM_TRACE_FST=0", "-DVM_TRACE_VCD=1",
+          "-DVM_COVERAGE=0", "-DVM_SC=0", "-DVM_TRACE=" + on, "-DVM_TRACE_FST=0", "-DVM_TRACE_VCD=" + on,
           "-I" + t.verilator_root + "/include", "-I" + t.verilator_root + "/include/vltstd"};
 }
 
@@ -140,9 +141,12 @@ int compile_all(const std::string& compiler, const std::vector<std::vector<std::
 }
 
 // Verilator's runtime, compiled once per Verilator and compiler for every model in the cache.
-std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain& t, const Progress& progress) {
-  const std::vector<std::string> units = {"verilated", "verilated_vcd_c", "verilated_threads"};
-  const fs::path dir = cache / ("runtime-" + hex_hash(t.verilator_version + "\n" + t.verilator_root + "\n" + t.compiler));
+std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain& t, bool trace, const Progress& progress) {
+  std::vector<std::string> units = {"verilated", "verilated_threads"};
+  if (trace) units.push_back("verilated_vcd_c");
+  std::string key = t.verilator_version + "\n" + t.verilator_root + "\n" + t.compiler + "\n";
+  for (const std::string& flag : compile_flags(t, trace)) key += flag + " ";
+  const fs::path dir = cache / ("runtime-" + hex_hash(key));
   std::vector<std::string> objects;
   for (const std::string& u : units) objects.push_back((dir / (u + ".o")).string());
   if (fs::is_directory(dir)) return objects;
@@ -152,7 +156,7 @@ std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain&
   fs::create_directories(work);
   std::vector<std::vector<std::string>> jobs;
   for (const std::string& u : units) {
-    std::vector<std::string> args = compile_flags(t);
+    std::vector<std::string> args = compile_flags(t, trace);
     for (const std::string& a : {std::string("-c"), t.verilator_root + "/include/" + u + ".cpp", std::string("-o"),
                                  (work / (u + ".o")).string()}) {
       args.push_back(a);
@@ -168,9 +172,22 @@ std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain&
   return objects;
 }
 
-std::string cache_key(const ReceiverDescription& d, const Toolchain& t) {
-  std::string all = "aesim-dut-glue-v" + std::to_string(kDutGlueVersion) + "\n" + t.verilator_version + "\n" +
-                    t.verilator_root + "\n" + t.compiler + "\ntop " + d.top + "\n";
+std::vector<std::string> verilator_args(const ReceiverDescription& d, const fs::path& obj, bool trace) {
+  std::vector<std::string> args = {"--cc", "-O3", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--prefix", "Vdut",
+                                   "--top-module", d.top, "--Mdir", obj.string()};
+  if (trace) args.push_back("--trace");
+  for (const std::string& dir : d.include_dirs) args.push_back("-I" + dir);
+  for (const auto& [k, v] : d.defines) args.push_back(v.empty() ? "+define+" + k : "+define+" + k + "=" + v);
+  for (const auto& [k, v] : d.parameters) args.push_back("-G" + k + "=" + v);
+  for (const std::string& s : d.sources) args.push_back(s);
+  return args;
+}
+
+std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool trace) {
+  std::string all = "aesim-dut-glue-v" + std::to_string(kDutGlueVersion) + (trace ? " traced\n" : "\n") +
+                    t.verilator_version + "\n" + t.verilator_root + "\n" + t.compiler + "\ntop " + d.top + "\n";
+  for (const std::string& flag : compile_flags(t, trace)) all += flag + " ";
+  for (const std::string& arg : verilator_args(d, "", trace)) all += arg + " ";
   for (const std::string& s : d.sources) all += "source " + s + "\n" + read_text(s) + "\n";
   for (const std::string& dir : d.include_dirs) {
     std::vector<fs::path> files;
@@ -187,15 +204,6 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t) {
   return hex_hash(all);
 }
 
-std::vector<std::string> verilator_args(const ReceiverDescription& d, const fs::path& obj) {
-  std::vector<std::string> args = {"--cc", "--trace", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--prefix", "Vdut",
-                                   "--top-module", d.top, "--Mdir", obj.string()};
-  for (const std::string& dir : d.include_dirs) args.push_back("-I" + dir);
-  for (const auto& [k, v] : d.defines) args.push_back(v.empty() ? "+define+" + k : "+define+" + k + "=" + v);
-  for (const auto& [k, v] : d.parameters) args.push_back("-G" + k + "=" + v);
-  for (const std::string& s : d.sources) args.push_back(s);
-  return args;
-}
 
 [[noreturn]] void build_failed(const std::string& tool, const fs::path& log, const DutBuildOptions& options) {
   std::string kept = log.string();
@@ -236,7 +244,7 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   } cleanup{work};
 
   const Toolchain t = toolchain(work);
-  const fs::path entry = cache / ("model-" + cache_key(d, t));
+  const fs::path entry = cache / ((options.trace ? "traced-" : "model-") + cache_key(d, t, options.trace));
   DutBuild out;
   out.library = (entry / "dut.so").string();
   if (fs::is_regular_file(out.library) && fs::is_regular_file(entry / "ports.txt")) {
@@ -246,12 +254,12 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
     return out;
   }
   if (options.progress) {
-    std::fprintf(stderr, "aesim verify: building %s (first run of these sources; cached in %s)\n", d.top.c_str(),
-                 entry.string().c_str());
+    std::fprintf(stderr, "aesim verify: building %s%s (first run of these sources; cached in %s)\n", d.top.c_str(),
+                 options.trace ? " with Verilator's tracing" : "", entry.string().c_str());
   }
   progress.step("verilator --cc " + d.top);
   const fs::path obj = work / "obj";
-  if (run_child("verilator", verilator_args(d, obj), {(work / "verilator.log").string(), (work / "verilator.log").string()}) != 0) {
+  if (run_child("verilator", verilator_args(d, obj, options.trace), {(work / "verilator.log").string(), (work / "verilator.log").string()}) != 0) {
     build_failed("verilator", work / "verilator.log", options);
   }
   out.ports = ports_in_verilated_header(read_text(obj / "Vdut.h"));
@@ -268,9 +276,9 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   unity += "#include \"" + (work / "dut_glue.cpp").string() + "\"\n";
   write_text(work / "model.cpp", unity);
 
-  const std::vector<std::string> runtime = runtime_objects(cache, t, progress);
+  const std::vector<std::string> runtime = runtime_objects(cache, t, options.trace, progress);
   progress.step("compiling the model");
-  std::vector<std::string> args = compile_flags(t);
+  std::vector<std::string> args = compile_flags(t, options.trace);
   for (const std::string& a : {"-I" + obj.string(), std::string("-c"), (work / "model.cpp").string(), std::string("-o"),
                                (work / "model.o").string()}) {
     args.push_back(a);

@@ -11,6 +11,9 @@ struct DutBuildOptions {
   std::string cache_dir;  // built models, one folder per hash of sources and options
   std::string log_dir;    // where the tools' logs go when the RTL does not build
   bool progress = true;   // one line per step on stderr while building
+  // With Verilator's tracing (--trace), for the rerun that writes failure.vcd. Tracing costs
+  // about a quarter of the speed even when no trace is open, so runs use the model without it.
+  bool trace = false;
 };
 
 // A team's receiver Verilated as a shared object that aesim loads (driver/dut_library).

@@ -15,13 +15,17 @@ std::string dut_glue_source(const std::vector<RtlPort>& ports) {
 #include <memory>
 
 #include "Vdut.h"
+#if VM_TRACE
 #include "verilated_vcd_c.h"
+#endif
 
 namespace {{
 struct Dut {{
   VerilatedContext context;
   std::unique_ptr<Vdut> top;
+#if VM_TRACE
   std::unique_ptr<VerilatedVcdC> vcd;
+#endif
 }};
 }}  // namespace
 
@@ -40,7 +44,9 @@ AESIM_API void* aesim_dut_create(int trace) {{
 AESIM_API void aesim_dut_destroy(void* p) {{
   Dut* d = static_cast<Dut*>(p);
   d->top->final();
+#if VM_TRACE
   if (d->vcd) d->vcd->close();
+#endif
   delete d;
 }}
 
@@ -51,7 +57,13 @@ AESIM_API void* aesim_dut_port(void* p, const char* name) {{
 {1}  return nullptr;
 }}
 
+// A model built without --trace (the fast one) has no trace: open fails, dump does nothing.
 AESIM_API int aesim_dut_trace_open(void* p, const char* path) {{
+#if !VM_TRACE
+  (void)p;
+  (void)path;
+  return 0;
+#else
   Dut* d = static_cast<Dut*>(p);
   d->vcd = std::make_unique<VerilatedVcdC>();
   d->top->trace(d->vcd.get(), 99);
@@ -59,11 +71,17 @@ AESIM_API int aesim_dut_trace_open(void* p, const char* path) {{
   d->vcd->set_time_resolution("1ps");
   d->vcd->open(path);
   return d->vcd->isOpen() ? 1 : 0;
+#endif
 }}
 
 AESIM_API void aesim_dut_trace_dump(void* p, unsigned long long time_ps) {{
+#if VM_TRACE
   Dut* d = static_cast<Dut*>(p);
   if (d->vcd) d->vcd->dump(static_cast<uint64_t>(time_ps));
+#else
+  (void)p;
+  (void)time_ps;
+#endif
 }}
 )",
                      kDutGlueVersion, port_table);

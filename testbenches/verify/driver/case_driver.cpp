@@ -122,11 +122,50 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   std::size_t gi = 0;
 
   SplitMix64 ready_rng = stream_for(c.seed, Stream::VerifyReady, 0);
+  // Ready with probability p: the top 53 bits of a draw below p * 2^53 (uniform01 < p, in integers).
+  const bool always_ready = c.ready_probability >= 1;
+  const auto ready_below = static_cast<std::uint64_t>(std::max(0.0, c.ready_probability) * 0x1.0p53);
   bool ready = true, reset = true, ack = false, draining = false;
   std::uint64_t acks = 0, reset_from = kNever, quiet = 0;
   std::uint64_t stalls_end = 0;
   for (const auto& s : c.stalls) stalls_end = std::max(stalls_end, s.second);
   const std::uint64_t quiet_needed = 2 * static_cast<std::uint64_t>(d.ack_latency_max) + 8;
+
+  // Bus changes due before t_limit, in time order, after `edges_done` rising edges.
+  auto apply_until = [&](std::uint64_t t_limit, std::uint64_t edges_done) {
+    bool changed = false;
+    for (;;) {
+      const std::uint64_t tf = have_next ? next.t_ps : kNever;
+      const std::uint64_t tg = gi < glitch_edges.size() ? glitch_edges[gi].t : kNever;
+      if (std::min(tf, tg) >= t_limit) return changed;
+      if (tg <= tf) {
+        bus.glitch(glitch_edges[gi].on, glitch_edges[gi].addr, tg, edges_done);
+        ++gi;
+      } else {
+        bus.fire(next.addr, ack, tf, edges_done, stats);
+        have_next = source->next(next);
+        if (have_next) next.t_ps = std::max(off_edge(next.t_ps), tf);
+      }
+      changed = true;
+    }
+  };
+  // The consumer and the reset for rising edge k, set a quarter period after edge k-1 (before
+  // the falling edge, so that one evaluation takes them with it).
+  auto set_controls = [&](std::uint64_t k) {
+    bool ready_k = true;
+    if (!draining) {
+      const bool stalled = std::any_of(c.stalls.begin(), c.stalls.end(),
+                                       [k](const auto& s) { return k >= s.first && k < s.second; });
+      ready_k = !stalled && (always_ready || (ready_rng() >> 11) < ready_below);
+    }
+    const bool reset_k = k <= kResetEdges || (k >= reset_from && k < reset_from + static_cast<std::uint64_t>(c.reset_edges));
+    if (ready_k == ready && reset_k == reset) return;
+    ready = ready_k;
+    reset = reset_k;
+    ports.ready.write(ready);
+    ports.set_reset(reset);
+    bus.record_controls((k - 1) * period + half / 2, ready, reset);
+  };
 
   ports.clk.write(0);
   ports.req.write(0);
@@ -134,49 +173,14 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   if (ports.contention.bound()) ports.contention.write(0);
   ports.ready.write(1);
   ports.set_reset(true);
-  dut.eval();
   bus.record_controls(0, true, true);
-  bool dirty = false;
+  apply_until(half, 0);
+  dut.eval();
 
   std::uint64_t k = 1;
   for (; k <= c.max_edges; ++k) {
     const std::uint64_t t_edge = k * period;
-    for (;;) {
-      const std::uint64_t tf = have_next ? next.t_ps : kNever;
-      const std::uint64_t tg = gi < glitch_edges.size() ? glitch_edges[gi].t : kNever;
-      const std::uint64_t t = std::min(tf, tg);
-      if (t >= t_edge) break;
-      if (tg <= tf) {
-        bus.glitch(glitch_edges[gi].on, glitch_edges[gi].addr, tg, k - 1);
-        ++gi;
-      } else {
-        bus.fire(next.addr, ack, tf, k - 1, stats);
-        have_next = source->next(next);
-        if (have_next) next.t_ps = std::max(off_edge(next.t_ps), tf);
-      }
-      dirty = true;
-    }
-
-    // The consumer and the reset change between the falling edge and the next rising edge.
-    bool ready_k = true;
-    if (!draining) {
-      const bool stalled = std::any_of(c.stalls.begin(), c.stalls.end(),
-                                       [k](const auto& s) { return k >= s.first && k < s.second; });
-      ready_k = !stalled && (c.ready_probability >= 1 || uniform01(ready_rng) < c.ready_probability);
-    }
-    const bool reset_k = k <= kResetEdges || (k >= reset_from && k < reset_from + static_cast<std::uint64_t>(c.reset_edges));
-    if (ready_k != ready || reset_k != reset) {
-      ready = ready_k;
-      reset = reset_k;
-      ports.ready.write(ready);
-      ports.set_reset(reset);
-      bus.record_controls((k - 1) * period + half + half / 2, ready, reset);
-      dirty = true;
-    }
-    if (dirty) {
-      dut.eval();
-      dirty = false;
-    }
+    if (apply_until(t_edge, k - 1)) dut.eval();  // changes in the second half of the cycle
 
     EdgeSample s;
     s.reset = reset;
@@ -204,11 +208,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
         reset_from = k + static_cast<std::uint64_t>(c.reset_delay);
       }
       bus.ack_changed(ack, t_edge + 1, k);
-      dirty = true;
     }
-    ports.clk.write(0);
-    dut.eval();
-    if (trace_now) dut.dump(t_edge + half);
 
     const bool reset_over = c.reset_after_ack == 0 || (reset_from != kNever && k >= reset_from + static_cast<std::uint64_t>(c.reset_edges));
     if (!have_next && gi == glitch_edges.size() && bus.quiet() && reset_over && k >= stalls_end) draining = true;
@@ -216,6 +216,12 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       quiet = (!s.valid && !ack && !bus.req()) ? quiet + 1 : 0;
       if (quiet > quiet_needed) break;
     }
+
+    set_controls(k + 1);
+    apply_until(t_edge + half, k);
+    ports.clk.write(0);
+    dut.eval();
+    if (trace_now) dut.dump(t_edge + half);
   }
   stats.edges = std::min(k, c.max_edges);
   if (sb) sb->finish_case(stats.edges, stats.edges * period);

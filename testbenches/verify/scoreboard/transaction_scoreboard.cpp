@@ -147,6 +147,12 @@ void TransactionScoreboard::wires(std::uint64_t t_ps, std::uint64_t edges_done, 
 }
 
 void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s) {
+  // Most edges of a run: no beat offered or held, no Ack awaited, no reset. Nothing to check.
+  const bool awaiting_ack = !late_reported_ && (open_id_ || ack_fall_due_);
+  if (!s.valid && !held_ && !awaiting_ack && !s.reset && !in_reset_) {
+    overflow_now_ = s.overflow;
+    return;
+  }
   edges_done_ = cycle - 1;
   if (s.reset) {
     if (!in_reset_) clear_for_reset();
