@@ -122,10 +122,3 @@ BENCHMARK_CAPTURE(BM_QcifBrightUniform, pixel_processes, Fidelity::PixelProcesse
 
 }  // namespace
 }  // namespace aesim
-
-int sc_main(int argc, char* argv[]) {
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

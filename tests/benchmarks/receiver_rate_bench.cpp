@@ -8,7 +8,6 @@
 #include <memory>
 
 #include <benchmark/benchmark.h>
-#include <systemc>  // sc_main, which libsystemc's main() calls
 
 #include "build/dut_build.hpp"
 #include "description/receiver_description.hpp"
@@ -85,10 +84,3 @@ BENCHMARK_CAPTURE(BM_VerifyDriver, scoreboard, true)->Unit(benchmark::kMilliseco
 
 }  // namespace
 }  // namespace aesim
-
-int sc_main(int argc, char* argv[]) {
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

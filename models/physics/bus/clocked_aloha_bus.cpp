@@ -14,11 +14,9 @@ ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, ReceiverSi
 }
 
 void ClockedAlohaBus::drive() {
-  std::uint32_t address = 0;
-  for (const Driver& d : drivers_) address |= d.firing.bus_address;
-  s_.addr.write(address);
-  s_.req.write(!drivers_.empty());
-  s_.contention.write(drivers_.size() >= 2);
+  s_.addr.write(lines_.addr());
+  s_.req.write(lines_.req());
+  s_.contention.write(lines_.contention());
 }
 
 void ClockedAlohaBus::request(const AddressEvent& firing) {
@@ -37,7 +35,7 @@ void ClockedAlohaBus::apply_deferred() {
 }
 
 void ClockedAlohaBus::join(const AddressEvent& firing) {
-  if (s_.ack.read()) {
+  if (!lines_.join({firing, sc_core::sc_time_stamp()}, firing.bus_address, s_.ack.read())) {
     log_.resolve(firing, Fate::Absorbed);
     return;
   }
@@ -45,7 +43,6 @@ void ClockedAlohaBus::join(const AddressEvent& firing) {
     in_transaction_ = true;
     transaction_start_ = sc_core::sc_time_stamp();
   }
-  drivers_.push_back({firing, sc_core::sc_time_stamp()});
   drive();
 }
 
@@ -62,11 +59,11 @@ void ClockedAlohaBus::on_ack() {
   const bool dropped = s_.overflows.read() != overflows_seen_;
   overflows_seen_ = s_.overflows.read();
   const Fate lost = dropped ? Fate::Dropped : detect_ ? Fate::Collided : Fate::Ghost;
-  for (const Driver& d : drivers_) {
-    if (drivers_.size() == 1 && !dropped) log_.resolve(d.firing, Fate::Delivered, now.to_seconds());
+  const std::vector<Driver> seen = lines_.release();
+  for (const Driver& d : seen) {
+    if (seen.size() == 1 && !dropped) log_.resolve(d.firing, Fate::Delivered, now.to_seconds());
     else log_.resolve(d.firing, lost);
   }
-  drivers_.clear();
   drive();
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bus/event_bus.hpp"
+#include "bus/wired_or_lines.hpp"
 #include "events/event_log.hpp"
 #include "receiver/receiver_signals.hpp"
 
@@ -48,7 +49,7 @@ class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
   sc_core::sc_time clock_period_;
   bool detect_;
   EventLog& log_;
-  std::vector<Driver> drivers_;
+  WiredOrLines<Driver> lines_;
   std::vector<AddressEvent> deferred_;
   sc_core::sc_event deferred_event_;
   sc_core::sc_time transaction_start_;

@@ -5,6 +5,7 @@
 #include <deque>
 #include <limits>
 
+#include "bus/wired_or_lines.hpp"
 #include "random/splitmix64.hpp"
 
 namespace aesim {
@@ -18,7 +19,8 @@ namespace {
 
 constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 
-// The pixel side of the bus and the wires it drives, with any glitch on top.
+// The pixel side of the bus (the cycle rung's wired-OR lines, or a queue of senders taking turns)
+// and the wires it drives, with any glitch on top.
 class BusSide {
  public:
   BusSide(const VerifyCase& c, const BoundPorts& ports, TransactionScoreboard* sb, std::vector<WaveRecord>* wave)
@@ -26,16 +28,14 @@ class BusSide {
 
   void fire(std::uint32_t addr, bool ack, std::uint64_t t, std::uint64_t edges_done, CaseStats& stats) {
     ++stats.firings;
-    if (queued_) {
-      if (req_ || ack || !waiting_.empty()) {
-        waiting_.push_back(addr);
-        return;
-      }
-    } else if (ack) {
-      ++stats.absorbed;  // the pixel sees Ack already high and withdraws
+    if (queued_ && (req_ || ack || !waiting_.empty())) {
+      waiting_.push_back(addr);
       return;
     }
-    drivers_.push_back(addr);
+    if (!lines_.join(addr, addr, ack)) {
+      ++stats.absorbed;
+      return;
+    }
     drive(t, edges_done);
   }
   void glitch(bool on, std::uint32_t addr, std::uint64_t t, std::uint64_t edges_done) {
@@ -45,15 +45,15 @@ class BusSide {
   }
   void ack_changed(bool ack, std::uint64_t t, std::uint64_t edges_done) {
     if (ack) {
-      drivers_.clear();  // every pixel driving sees Ack and releases
+      lines_.release();
       drive(t, edges_done);
-    } else if (queued_ && !waiting_.empty() && drivers_.empty()) {
-      drivers_.push_back(waiting_.front());
+    } else if (queued_ && !waiting_.empty() && !lines_.req()) {
+      lines_.join(waiting_.front(), waiting_.front(), false);
       waiting_.pop_front();
       drive(t, edges_done);
     }
   }
-  bool quiet() const { return drivers_.empty() && waiting_.empty() && !glitch_; }
+  bool quiet() const { return !lines_.req() && waiting_.empty() && !glitch_; }
   bool req() const { return req_; }
   void record_controls(std::uint64_t t, bool ready, bool reset) {
     ready_ = ready;
@@ -63,10 +63,9 @@ class BusSide {
 
  private:
   void drive(std::uint64_t t, std::uint64_t edges_done) {
-    std::uint64_t addr = glitch_ ? glitch_addr_ : 0;
-    for (std::uint32_t a : drivers_) addr |= a;
-    const bool req = !drivers_.empty() || glitch_;
-    const bool contention = drivers_.size() >= 2;
+    const std::uint64_t addr = lines_.addr() | (glitch_ ? glitch_addr_ : 0);
+    const bool req = lines_.req() || glitch_;
+    const bool contention = lines_.contention();
     if (req == req_ && addr == addr_ && contention == contention_) return;
     req_ = req;
     addr_ = addr;
@@ -85,7 +84,7 @@ class BusSide {
   const BoundPorts& ports_;
   TransactionScoreboard* sb_;
   std::vector<WaveRecord>* wave_;
-  std::vector<std::uint32_t> drivers_;
+  WiredOrLines<std::uint32_t> lines_;  // the pixels driving, by address
   std::deque<std::uint32_t> waiting_;
   bool glitch_ = false;
   std::uint32_t glitch_addr_ = 0;
