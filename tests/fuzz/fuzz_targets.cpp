@@ -15,6 +15,8 @@
 #include "emulator/y4m.hpp"
 #include "event_files/event_file.hpp"
 #include "scene/netpbm.hpp"
+#include "description/receiver_description.hpp"
+#include "plan/verification_plan.hpp"
 #include "spec/sweep_spec.hpp"
 
 namespace aesim::fuzz {
@@ -74,21 +76,57 @@ int sensor_toml(const std::uint8_t* data, std::size_t size) {
   });
 }
 
-int sweep_spec(const std::uint8_t* data, std::size_t size) {
-  // The spec is read from a file (it names scenes and charts relative to itself).
+namespace {
+
+// A folder of the fuzzing process for inputs read from files (they name files relative to
+// themselves), with one Verilog source for descriptions to name.
+const std::filesystem::path& scratch() {
   struct Folder {
-    std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("aesim_fuzz_sweep_" + std::to_string(::getpid()));
-    Folder() { std::filesystem::create_directories(path); }
+    std::filesystem::path path = std::filesystem::temp_directory_path() / ("aesim_fuzz_" + std::to_string(::getpid()));
+    Folder() {
+      std::filesystem::create_directories(path);
+      std::ofstream(path / "rx.v") << "module rx; endmodule\n";
+    }
     ~Folder() {
       std::error_code ignored;
       std::filesystem::remove_all(path, ignored);
     }
   };
   static const Folder dir;
-  const std::string path = (dir.path / "spec.toml").string();
+  return dir.path;
+}
+
+std::string write_scratch(const std::string& name, const std::uint8_t* data, std::size_t size) {
+  const std::string path = (scratch() / name).string();
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes(data, size);
+  return path;
+}
+
+}  // namespace
+
+int sweep_spec(const std::uint8_t* data, std::size_t size) {
+  const std::string path = write_scratch("spec.toml", data, size);
   return expect_result_or_input_error([&] { load_sweep_spec(path); });
+}
+
+int receiver_toml(const std::uint8_t* data, std::size_t size) {
+  // The first byte chooses the form: a receiver description or a verification plan (its cases
+  // are made too: scene runs load their scenes and size their work, nothing is simulated).
+  const bool plan = size > 0 && (data[0] & 1);
+  const std::string path = write_scratch("receiver.toml", size > 0 ? data + 1 : data, size > 0 ? size - 1 : 0);
+  return expect_result_or_input_error([&] {
+    if (!plan) {
+      read_receiver_description(path);
+      return;
+    }
+    ReceiverDescription d;
+    d.clock_hz = 50e6;
+    d.timestamp_tick = 1e-6;
+    d.timestamp_bits = 32;
+    d.ack_latency_min = d.ack_latency_max = 4;
+    const VerificationPlan p = make_plan(path);
+    if (p.scenes.size() <= 4) plan_cycles(plan_cases(p, d, 1));
+  });
 }
 
 }  // namespace aesim::fuzz

@@ -15,6 +15,7 @@ int events_csv(const std::uint8_t* data, std::size_t size);    // event CSV file
 int set_values(const std::uint8_t* data, std::size_t size);    // --set key=value lines with units
 int sensor_toml(const std::uint8_t* data, std::size_t size);   // sensor presets and scene.toml
 int sweep_spec(const std::uint8_t* data, std::size_t size);    // sweep specs
+int receiver_toml(const std::uint8_t* data, std::size_t size);  // aesim verify's descriptions and plans
 
 struct Target {
   const char* name;
@@ -23,6 +24,6 @@ struct Target {
 inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
                                       {"aedat", aedat},           {"events_csv", events_csv},
                                       {"set_values", set_values}, {"sensor_toml", sensor_toml},
-                                      {"sweep_spec", sweep_spec}};
+                                      {"sweep_spec", sweep_spec}, {"receiver_toml", receiver_toml}};
 
 }  // namespace aesim::fuzz

@@ -1,5 +1,7 @@
 #include "description/receiver_description.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -161,9 +163,11 @@ ReceiverDescription read_receiver_description(const std::string& path) {
 
   const TomlValue& ports = r.need(root, "ports", "ports");
   if (!ports.is_table()) r.fail("ports", "expected a table of role = \"port name\"");
-  for (const auto& [role, name] : ports.as_table()) {
+  for (const auto& entry : ports.as_table()) {
+    const std::string& role = entry.first;
+    const TomlValue& name = entry.second;
     const auto& roles = port_roles();
-    if (std::none_of(roles.begin(), roles.end(), [&](const PortRole& p) { return role == p.name; })) {
+    if (std::none_of(roles.begin(), roles.end(), [&role](const PortRole& p) { return role == p.name; })) {
       r.fail("ports." + role, "not a port role (clk, req, ack, addr, contention, valid, ready, out_addr, timestamp, "
                               "flags, overflow_count)");
     }

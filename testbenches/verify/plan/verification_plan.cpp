@@ -58,7 +58,9 @@ VerificationPlan read_plan(const std::string& path) {
     SceneLoad base;
     base.scene = default_scene();
     std::vector<std::uint64_t> seeds = {1};
-    for (const auto& [key, v] : t.as_table()) {
+    for (const auto& entry : t.as_table()) {
+      const std::string& key = entry.first;
+      const TomlValue& v = entry.second;
       const std::string k = at + "." + key;
       auto number = [&](double lo, double hi) {
         const double x = v.is_integer() ? static_cast<double>(v.as_integer()) : v.is_floating() ? v.as_floating() : -1e300;

@@ -10,11 +10,10 @@ namespace aesim {
 using Collisions = ReceiverDescription::Collisions;
 using Full = ReceiverDescription::Full;
 
-TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool has_flags, bool has_overflow,
-                                             int overflow_width, std::uint64_t period_ps)
+TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool has_overflow, int overflow_width,
+                                             std::uint64_t period_ps)
     : collisions_(d.collisions),
       full_(d.full),
-      has_flags_(has_flags),
       has_overflow_(has_overflow),
       overflow_mask_(overflow_width >= 64 ? ~0ULL : (1ULL << overflow_width) - 1),
       period_ps_(period_ps),

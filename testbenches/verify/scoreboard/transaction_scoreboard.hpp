@@ -38,7 +38,9 @@ struct VerifyFailure {
 //    wait while the output is stalled. Ack is low after a reset.
 class TransactionScoreboard {
  public:
-  TransactionScoreboard(const ReceiverDescription& description, bool has_flags, bool has_overflow, int overflow_width,
+  // Without a flags port every beat counts as unflagged; without overflow_count drops are
+  // checked against the stalls alone.
+  TransactionScoreboard(const ReceiverDescription& description, bool has_overflow, int overflow_width,
                         std::uint64_t period_ps);
 
   void begin_case(const std::string& name);
@@ -83,7 +85,7 @@ class TransactionScoreboard {
 
   ReceiverDescription::Collisions collisions_;
   ReceiverDescription::Full full_;
-  bool has_flags_, has_overflow_;
+  bool has_overflow_;
   std::uint64_t overflow_mask_;
   std::uint64_t period_ps_, tick_ps_, ts_mask_;
   int lat_min_, lat_max_;

@@ -23,7 +23,7 @@ void trace_failure(const DutLibrary& library, const std::vector<RtlPort>& ports,
 VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPort>& ports, const ReceiverDescription& d,
                              const std::vector<VerifyCase>& cases, const VerifyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  TransactionScoreboard sb(d, d.has("flags"), d.has("overflow_count"),
+  TransactionScoreboard sb(d, d.has("overflow_count"),
                            d.has("overflow_count") ? find_port(ports, d.port("overflow_count"))->width : 0,
                            clock_period_ps(d));
   VerifyResult r;
