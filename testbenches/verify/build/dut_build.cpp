@@ -197,7 +197,13 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
     }
     std::sort(files.begin(), files.end());
     all += "include " + dir + "\n";
-    for (const fs::path& f : files) all += f.string() + "\n" + read_text(f) + "\n";
+    for (const fs::path& f : files) {
+      // Every file of an include folder is hashed (Verilator may read any of them).
+      if (all.size() + fs::file_size(f, ec) > (256u << 20)) {
+        throw InputError(fmt::format("include_dirs: '{}' holds over 256 MiB; point it at the RTL's include files only", dir));
+      }
+      all += f.string() + "\n" + read_text(f) + "\n";
+    }
   }
   for (const auto& [k, v] : d.defines) all += "define " + k + "=" + v + "\n";
   for (const auto& [k, v] : d.parameters) all += "parameter " + k + "=" + v + "\n";

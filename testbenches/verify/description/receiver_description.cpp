@@ -17,6 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Sources are read whole to hash them for the cache.
+constexpr std::uintmax_t kMaxSourceBytes = 64ull << 20;
+
 class Reader {
  public:
   Reader(const std::string& path, const TomlValue& root) : path_(path), root_(root) {
@@ -48,6 +51,10 @@ class Reader {
     const std::string full = (p.is_absolute() ? p : dir_ / p).lexically_normal().string();
     const bool ok = folder ? is_input_folder(full, label) : is_input_file(full, label);
     if (!ok) fail(label, fmt::format("'{}' is not {}", full, folder ? "a folder" : "a readable file"));
+    std::error_code ec;
+    if (!folder && fs::file_size(full, ec) > kMaxSourceBytes) {
+      fail(label, fmt::format("'{}' is over {} MiB; aesim reads at most that per RTL file", full, kMaxSourceBytes >> 20));
+    }
     return full;
   }
   std::vector<std::string> paths(const std::string& key, bool folder, bool required) const {
@@ -66,6 +73,7 @@ class Reader {
       out.push_back(path_of(v->as_array()[i], fmt::format("{}[{}]", key, i), folder));
     }
     if (required && out.empty()) fail(key, "empty");
+    if (out.size() > 1000) fail(key, "more than 1000 entries");
     return out;
   }
   // Verilog identifiers only: these names reach Verilator's command line and the exported
