@@ -230,6 +230,13 @@ TEST_F(VerifyTest, PlanFileRunsTheTeamsOwnCases) {
   ASSERT_EQ(r["cases"].size(), 2u);
   EXPECT_EQ(r["cases"][0]["kind"], "scene");
   EXPECT_GT(r["transactions"].get<double>(), 600);
+  write("some.toml", "directed = [\"single_event\", \"collision\"]\n");
+  ASSERT_EQ(verify(kSecond + "/ae_rx_alt.toml --plan some.toml --out some").status, 0);
+  const nlohmann::json some = report("some");
+  ASSERT_EQ(some["cases"].size(), 2u);
+  EXPECT_EQ(some["cases"][1]["name"], "collision");
+  write("bad.toml", "directed = [\"no_such_case\"]\n");
+  EXPECT_EQ(verify(kSecond + "/ae_rx_alt.toml --plan bad.toml --out bad").status, 2);
   write("huge.toml", "[[scene]]\nfirings = 1e8\nseeds = 1000\nload = 0.0001\n");
   const Outcome huge = verify(kSecond + "/ae_rx_alt.toml --plan huge.toml --out h");
   EXPECT_EQ(huge.status, 2);

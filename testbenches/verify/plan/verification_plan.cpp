@@ -1,8 +1,10 @@
 #include "plan/verification_plan.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "errors/input_error.hpp"
 #include "files/data_dir.hpp"
@@ -40,8 +42,24 @@ VerificationPlan read_plan(const std::string& path) {
   p.name = path;
   for (const auto& [key, value] : root.as_table()) {
     if (key == "directed") {
-      if (!value.is_boolean()) fail(key, "expected true or false");
-      p.directed = value.as_boolean();
+      if (value.is_boolean()) {
+        p.directed = value.as_boolean();
+        continue;
+      }
+      // A list names the directed cases to run, e.g. without req_glitch for a receiver that
+      // makes no promise about glitches.
+      if (!value.is_array()) fail(key, "expected true, false or a list of directed case names");
+      ReceiverDescription any;
+      any.clock_hz = 1e6;
+      any.ack_latency_min = any.ack_latency_max = 1;
+      std::vector<std::string> known;
+      for (const VerifyCase& c : directed_cases(any)) known.push_back(c.name);
+      for (const TomlValue& name : value.as_array()) {
+        if (!name.is_string() || std::find(known.begin(), known.end(), name.as_string()) == known.end()) {
+          fail(key, fmt::format("not a directed case (one of {})", fmt::join(known, ", ")));
+        }
+        p.directed_cases.push_back(name.as_string());
+      }
     } else if (key != "scene") {
       fail(key, "unknown key (directed, [[scene]])");
     }
@@ -114,7 +132,12 @@ VerificationPlan make_plan(const std::string& plan) {
 
 std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverDescription& d, std::uint64_t seed) {
   std::vector<VerifyCase> cases;
-  if (plan.directed) cases = directed_cases(d);
+  if (plan.directed) {
+    for (VerifyCase& c : directed_cases(d)) {
+      const auto& only = plan.directed_cases;
+      if (only.empty() || std::find(only.begin(), only.end(), c.name) != only.end()) cases.push_back(std::move(c));
+    }
+  }
   for (SceneLoad l : plan.scenes) {
     l.seed += seed - 1;
     cases.push_back(scene_case(l, d));

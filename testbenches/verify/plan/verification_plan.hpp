@@ -14,7 +14,8 @@ namespace aesim {
 //          the time) load on scenes/letters/A.pgm, two seeds each, 2000 firings a run: seconds.
 //   full:  the same loads with four seeds and 300,000 firings a run: millions of transactions.
 // A plan file (TOML) names its own:
-//   directed = true
+//   directed = true                 # or a list of the directed cases to run, e.g.
+//                                   # ["single_event", "back_to_back", "collision"]
 //   [[scene]]
 //   file = "scenes/letters/A.pgm"   # relative to the plan file; default the letter A
 //   load = 0.3                      # offered load G
@@ -24,6 +25,7 @@ namespace aesim {
 struct VerificationPlan {
   std::string name;
   bool directed = true;
+  std::vector<std::string> directed_cases;  // empty: all of them
   std::vector<SceneLoad> scenes;  // one per run (seed expanded)
 };
 
