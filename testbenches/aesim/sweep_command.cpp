@@ -20,6 +20,7 @@
 #include "commands.hpp"
 #include "files/data_dir.hpp"
 #include "errors/input_error.hpp"
+#include "files/scratch_folder.hpp"
 #include "output/atomic_file.hpp"
 #include "output/temp_files.hpp"
 #include "process/child_process.hpp"
@@ -314,15 +315,8 @@ int sweep_command(SweepOptions opt) {
   std::ostream* csv_stream = share.rank == 0 ? &files.open(opt.output) : nullptr;
   fs::create_directories(folder.empty() ? fs::path(".") : folder);
   remove_stale_temps(folder.string());
-  const fs::path work = temp_name_for(opt.output, fmt::format(".points{}", share.rank));
-  fs::create_directories(work);
-  struct Cleanup {
-    fs::path dir;
-    ~Cleanup() {
-      std::error_code ignored;
-      fs::remove_all(dir, ignored);
-    }
-  } cleanup{work};
+  const ScratchFolder scratch(temp_name_for(opt.output, fmt::format(".points{}", share.rank)));
+  const fs::path& work = scratch.path();
 
   // The journal of finished points: an interrupted sweep resumes from it.
   const std::string journal = share.size > 1 ? (work / "journal").string() : opt.output + ".partial";

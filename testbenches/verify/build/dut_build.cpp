@@ -14,6 +14,7 @@
 
 #include "build/dut_glue.hpp"
 #include "errors/input_error.hpp"
+#include "files/scratch_folder.hpp"
 #include "process/child_process.hpp"
 
 namespace aesim {
@@ -238,16 +239,8 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   std::error_code ec;
   fs::create_directories(cache, ec);
   if (ec) throw InputError(fmt::format("cache folder '{}': {}", cache.string(), ec.message()));
-  const fs::path work = cache / fmt::format("tmp.{}", ::getpid());
-  fs::remove_all(work);
-  fs::create_directories(work);
-  struct Cleanup {
-    fs::path p;
-    ~Cleanup() {
-      std::error_code e;
-      fs::remove_all(p, e);
-    }
-  } cleanup{work};
+  const ScratchFolder scratch(cache / fmt::format("tmp.{}", ::getpid()));
+  const fs::path& work = scratch.path();
 
   const Toolchain t = toolchain(work);
   const fs::path entry = cache / ((options.trace ? "traced-" : "model-") + cache_key(d, t, options.trace));

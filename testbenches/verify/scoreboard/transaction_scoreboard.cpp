@@ -44,15 +44,6 @@ TransactionScoreboard::Transaction* TransactionScoreboard::open() {
   return &pending_[*open_id_ - pending_.front().id];
 }
 
-void TransactionScoreboard::fail(const char* check, std::uint64_t cycle, std::uint64_t t_ps, std::string expected,
-                                 std::string observed, bool protocol) {
-  ++failures_;
-  violations_ += protocol ? 1 : 0;
-  if (!first_) {
-    first_ = VerifyFailure{case_, check, std::move(expected), std::move(observed), static_cast<double>(t_ps) * 1e-12, cycle};
-  }
-}
-
 std::string TransactionScoreboard::describe(const Transaction& t) const {
   std::string values;
   for (const auto& [a, c] : t.values) values += fmt::format("{}0x{:x}{}", values.empty() ? "" : " or ", a, c ? " (contention)" : "");
@@ -164,7 +155,7 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     last_ts_.reset();
     overflow_base_ = s.overflow;
     drops_strict_ = drops_maybe_ = 0;
-    if (s.ack) fail("reset", cycle, t_ps, "Ack low after reset", "Ack high", true);
+    if (s.ack) fail("reset", cycle, t_ps, true, [&] { return Texts{"Ack low after reset", "Ack high"}; });
     ack_ = s.ack;
     if (req_) {  // a Req held through the reset is a new transaction for the receiver
       Transaction t;
@@ -182,10 +173,14 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
   if (held_) {
     const Beat now{s.out_addr, s.timestamp, (s.flags & 1) != 0};
     if (!s.valid) {
-      fail("stalled_output", cycle, t_ps, fmt::format("valid held with address 0x{:x}", held_->addr), "valid fell", false);
+      fail("stalled_output", cycle, t_ps, false, [&] {
+        return Texts{fmt::format("valid held with address 0x{:x}", held_->addr), "valid fell"};
+      });
     } else if (now.addr != held_->addr || now.ts != held_->ts || now.flag != held_->flag) {
-      fail("stalled_output", cycle, t_ps, fmt::format("address 0x{:x} stamp {} flag {}", held_->addr, held_->ts, held_->flag),
-           fmt::format("address 0x{:x} stamp {} flag {}", now.addr, now.ts, now.flag), false);
+      fail("stalled_output", cycle, t_ps, false, [&] {
+        return Texts{fmt::format("address 0x{:x} stamp {} flag {}", held_->addr, held_->ts, held_->flag),
+                     fmt::format("address 0x{:x} stamp {} flag {}", now.addr, now.ts, now.flag)};
+      });
     }
   }
   held_.reset();
@@ -207,13 +202,17 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
       if (full_ == Full::Hold && stalled_ever_ && last_stall_edge_ + 1 > start) start = last_stall_edge_ + 1;
       if (cycle >= start && cycle - start + 1 > static_cast<std::uint64_t>(lat_max_)) {
         late_reported_ = true;
-        fail("ack_rise_latency", cycle, t_ps, fmt::format("Ack within {} edges of Req rising", lat_max_),
-             fmt::format("no Ack after {} edges", cycle - start + 1), true);
+        fail("ack_rise_latency", cycle, t_ps, true, [&] {
+          return Texts{fmt::format("Ack within {} edges of Req rising", lat_max_),
+                       fmt::format("no Ack after {} edges", cycle - start + 1)};
+        });
       }
     } else if (ack_fall_due_ && cycle - req_fall_edge_ + 1 > static_cast<std::uint64_t>(lat_max_)) {
       late_reported_ = true;
-      fail("ack_fall_latency", cycle, t_ps, fmt::format("Ack low within {} edges of Req falling", lat_max_),
-           fmt::format("Ack still high after {} edges", cycle - req_fall_edge_ + 1), true);
+      fail("ack_fall_latency", cycle, t_ps, true, [&] {
+        return Texts{fmt::format("Ack low within {} edges of Req falling", lat_max_),
+                     fmt::format("Ack still high after {} edges", cycle - req_fall_edge_ + 1)};
+      });
     }
   }
 }
@@ -224,7 +223,9 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
   if (ack) {
     Transaction* t = open();
     if (!req_ || !t) {
-      fail("ack_without_req", cycle, t_ps, "Ack rises only while Req is high", "Ack rose with Req low", true);
+      fail("ack_without_req", cycle, t_ps, true, [&] {
+        return Texts{"Ack rises only while Req is high", "Ack rose with Req low"};
+      });
       return;
     }
     const std::uint64_t latency = cycle - t->first_edge + 1;
@@ -232,8 +233,9 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     if (full_ == Full::Hold && stalled_ever_ && last_stall_edge_ + 1 > start) start = last_stall_edge_ + 1;
     const std::uint64_t excused = cycle >= start ? cycle - start + 1 : 1;
     if (!late_reported_ && (latency < static_cast<std::uint64_t>(lat_min_) || excused > static_cast<std::uint64_t>(lat_max_))) {
-      fail("ack_rise_latency", cycle, t_ps, fmt::format("{} to {} edges", lat_min_, lat_max_),
-           fmt::format("{} edges", latency), true);
+      fail("ack_rise_latency", cycle, t_ps, true, [&] {
+        return Texts{fmt::format("{} to {} edges", lat_min_, lat_max_), fmt::format("{} edges", latency)};
+      });
     }
     t->acked = true;
     t->t_ack = t_ps;
@@ -244,13 +246,17 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     return;
   }
   if (req_) {
-    fail("ack_fell_with_req", cycle, t_ps, "Ack falls only after Req fell (four-phase order)", "Ack fell with Req high", true);
+    fail("ack_fell_with_req", cycle, t_ps, true, [&] {
+      return Texts{"Ack falls only after Req fell (four-phase order)", "Ack fell with Req high"};
+    });
     return;
   }
   if (ack_fall_due_) {
     const std::uint64_t latency = cycle - req_fall_edge_ + 1;
     if (!late_reported_ && (latency < static_cast<std::uint64_t>(lat_min_) || latency > static_cast<std::uint64_t>(lat_max_))) {
-      fail("ack_fall_latency", cycle, t_ps, fmt::format("{} to {} edges", lat_min_, lat_max_), fmt::format("{} edges", latency), true);
+      fail("ack_fall_latency", cycle, t_ps, true, [&] {
+        return Texts{fmt::format("{} to {} edges", lat_min_, lat_max_), fmt::format("{} edges", latency)};
+      });
     }
   }
   ack_fall_due_ = false;
@@ -271,7 +277,9 @@ void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const 
         break;
       }
     }
-    fail("beat", cycle, t_ps, head ? describe(*head) : "no beat (no transaction is waiting)", seen, false);
+    fail("beat", cycle, t_ps, false, [&] {
+      return Texts{head ? describe(*head) : "no beat (no transaction is waiting)", seen};
+    });
     return;
   }
   for (std::size_t k = 0; k < i; ++k) count_missing_beat(pending_[k]);
@@ -279,10 +287,14 @@ void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const 
   const std::uint64_t lo = ticks_at(t.t_req), hi = ticks_at(t.acked ? t.t_ack : t_ps);
   const std::uint64_t from = (lo - 1) & ts_mask_, span = hi - lo + 2;
   if (((b.ts - from) & ts_mask_) > span) {
-    fail("timestamp", cycle, t_ps, fmt::format("{} to {} (within a tick of {})", from, (hi + 1) & ts_mask_, describe(t)),
-         fmt::format("{}", b.ts), false);
+    fail("timestamp", cycle, t_ps, false, [&] {
+      return Texts{fmt::format("{} to {} (within a tick of {})", from, (hi + 1) & ts_mask_, describe(t)),
+                   fmt::format("{}", b.ts)};
+    });
   } else if (last_ts_ && ((b.ts - *last_ts_) & ts_mask_) > ts_mask_ / 2) {
-    fail("timestamp", cycle, t_ps, fmt::format("a stamp at or after {}", *last_ts_), fmt::format("{}", b.ts), false);
+    fail("timestamp", cycle, t_ps, false, [&] {
+      return Texts{fmt::format("a stamp at or after {}", *last_ts_), fmt::format("{}", b.ts)};
+    });
   }
   last_ts_ = b.ts;
   if (open_id_ && *open_id_ <= t.id) open_id_.reset();
@@ -294,7 +306,7 @@ void TransactionScoreboard::finish_case(std::uint64_t cycle, std::uint64_t t_ps)
   for (const Transaction& t : pending_) {
     if (!t.acked && !t.withdrawn) continue;  // never acknowledged: the latency check reported it
     if (!may_lack_beat(t)) {
-      fail("lost", cycle, t_ps, describe(t) + " gives a beat", "no beat", false);
+      fail("lost", cycle, t_ps, false, [&] { return Texts{describe(t) + " gives a beat", "no beat"}; });
       continue;
     }
     count_missing_beat(t);
@@ -304,10 +316,11 @@ void TransactionScoreboard::finish_case(std::uint64_t cycle, std::uint64_t t_ps)
   if (has_overflow_) {
     const std::uint64_t counted = (overflow_now_ - overflow_base_) & overflow_mask_;
     if (counted < drops_strict_ || counted > drops_strict_ + drops_maybe_) {
-      fail("overflow_count", cycle, t_ps,
-           drops_maybe_ ? fmt::format("{} to {} drops counted", drops_strict_, drops_strict_ + drops_maybe_)
-                        : fmt::format("{} drops counted", drops_strict_),
-           fmt::format("{}", counted), false);
+      fail("overflow_count", cycle, t_ps, false, [&] {
+        return Texts{drops_maybe_ ? fmt::format("{} to {} drops counted", drops_strict_, drops_strict_ + drops_maybe_)
+                                  : fmt::format("{} drops counted", drops_strict_),
+                     fmt::format("{}", counted)};
+      });
     }
   }
 }

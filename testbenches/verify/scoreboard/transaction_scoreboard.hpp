@@ -72,8 +72,18 @@ class TransactionScoreboard {
     std::uint64_t addr, ts;
     bool flag;
   };
-  void fail(const char* check, std::uint64_t cycle, std::uint64_t t_ps, std::string expected, std::string observed,
-            bool protocol);
+  // The expected and observed texts of a failure, made only for the first one: a broken receiver
+  // fails millions of checks, and formatting each would cost more than the run.
+  using Texts = std::pair<std::string, std::string>;
+  template <class Describe>
+  void fail(const char* check, std::uint64_t cycle, std::uint64_t t_ps, bool protocol, Describe describe) {
+    ++failures_;
+    violations_ += protocol ? 1 : 0;
+    if (first_) return;
+    Texts texts = describe();
+    first_ = VerifyFailure{case_, check, std::move(texts.first), std::move(texts.second),
+                           static_cast<double>(t_ps) * 1e-12, cycle};
+  }
   void beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b);
   bool value_matches(const Transaction& t, const Beat& b) const;
   bool may_lack_beat(const Transaction& t) const;
