@@ -135,6 +135,44 @@ TEST(TransactionScoreboard, CatchesHandshakeViolations) {
   }
 }
 
+TEST(TransactionScoreboard, AGlitchMayBeIgnoredOrAnsweredButAckMustStillFall) {
+  auto glitch = [](History& h) {
+    h.edge();
+    h.wires(true, 0x155);
+    h.sb.wires(h.k * kPeriod + kPeriod / 2, h.k, false, 0, false);  // Req falls within the cycle
+  };
+  {  // answered 2 edges later (within the bound), Ack falls 2 edges after that: fine
+    History h(description());
+    glitch(h);
+    h.edge();
+    h.edge();
+    h.ack(true);
+    h.edge();
+    h.edge();
+    h.ack(false);
+    h.sb.finish_case(h.k, h.k * kPeriod);
+    EXPECT_EQ(h.sb.failures(), 0u) << h.sb.first_failure()->check;
+  }
+  {  // answered, but Ack never falls
+    History h(description());
+    glitch(h);
+    h.edge();
+    h.edge();
+    h.ack(true);
+    for (int i = 0; i < 4; ++i) h.edge();
+    ASSERT_TRUE(h.sb.first_failure());
+    EXPECT_EQ(h.sb.first_failure()->check, "ack_fall_latency");
+  }
+  {  // an Ack long after the glitch answers nothing
+    History h(description());
+    glitch(h);
+    for (int i = 0; i < 6; ++i) h.edge();
+    h.ack(true);
+    ASSERT_TRUE(h.sb.first_failure());
+    EXPECT_EQ(h.sb.first_failure()->check, "ack_without_req");
+  }
+}
+
 TEST(TransactionScoreboard, CollisionsFollowTheDeclaredPolicy) {
   using C = ReceiverDescription::Collisions;
   {  // discard: no beat is right, a beat is invented

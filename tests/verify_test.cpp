@@ -1,13 +1,14 @@
 // `aesim verify` as a team meets it: its own receiver through a description file, the bundled
 // receiver through its own, mutants of both that must fail at the check they break, a testbench
 // exported for another simulator, and bad descriptions.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
+#include <utility>
 
 #include "support/temp_dir_test.hpp"
 
@@ -80,6 +81,35 @@ TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {
   }
   EXPECT_EQ(missing, report()["drops_accounted"].get<double>());
   EXPECT_GT(missing, 0);
+}
+
+// A receiver whose synchronizer has no glitch filter takes the directed case's glitch (half a
+// period across an edge) for a request: it answers with an Ack after Req fell and outputs the
+// glitch's address. That is allowed (a glitch breaks the bus protocol, not the receiver's); the
+// filtered receiver ignores it. Both then deliver the next event.
+TEST_F(VerifyTest, AReceiverWithoutAGlitchFilterMayAnswerTheGlitch) {
+  std::string rtl = slurp(kSecond + "/ae_rx_alt.v");
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"wire seen_high = sync[2] & held;", "wire seen_high = sync[2];"},
+        {"wire seen_low = ~sync[2] & ~held;", "wire seen_low = ~sync[2];"}}) {
+    const auto at = rtl.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    rtl.replace(at, from.size(), to);
+  }
+  write("ae_rx_alt.v", rtl);
+  std::string description = slurp(kSecond + "/ae_rx_alt.toml");
+  const auto at = description.find("ack_latency_cycles = [5, 5]");
+  ASSERT_NE(at, std::string::npos);
+  description.replace(at, 27, "ack_latency_cycles = [4, 4]");
+  write("rx.toml", description);
+  const Outcome o = verify("rx.toml --out unfiltered");
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  ASSERT_EQ(verify(kSecond + "/ae_rx_alt.toml --out filtered").status, 0);
+  const nlohmann::json unfiltered = report("unfiltered"), filtered = report("filtered");
+  ASSERT_EQ(unfiltered["cases"][2]["name"], "req_glitch");
+  EXPECT_EQ(unfiltered["cases"][2]["beats_checked"], 2);  // the glitch's address, then the event
+  EXPECT_EQ(filtered["cases"][2]["beats_checked"], 1);
+  EXPECT_EQ(unfiltered["cases"][2]["transactions"], 1);
 }
 
 TEST_F(VerifyTest, SecondRunStartsFromTheCache) {

@@ -46,8 +46,7 @@ VerificationPlan read_plan(const std::string& path) {
         p.directed = value.as_boolean();
         continue;
       }
-      // A list names the directed cases to run, e.g. without req_glitch for a receiver that
-      // makes no promise about glitches.
+      // A list names the directed cases to run.
       if (!value.is_array()) fail(key, "expected true, false or a list of directed case names");
       ReceiverDescription any;
       any.clock_hz = 1e6;

@@ -29,7 +29,7 @@ void TransactionScoreboard::begin_case(const std::string& name) {
   req_ = ack_ = in_reset_ = contention_ = false;
   addr_ = 0;
   edges_done_ = 0;
-  ack_fall_due_ = late_reported_ = false;
+  ack_fall_due_ = late_reported_ = answered_glitch_ = false;
   t0_ps_ = 0;
   last_ts_.reset();
   held_.reset();
@@ -97,7 +97,7 @@ void TransactionScoreboard::clear_for_reset() {
   pending_.clear();
   open_id_.reset();
   held_.reset();
-  ack_fall_due_ = late_reported_ = false;
+  ack_fall_due_ = late_reported_ = answered_glitch_ = false;
 }
 
 void TransactionScoreboard::wires(std::uint64_t t_ps, std::uint64_t edges_done, bool req, std::uint64_t addr,
@@ -222,6 +222,23 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
   if (in_reset_) return;
   if (ack) {
     Transaction* t = open();
+    if (!req_ && !t && !pending_.empty()) {
+      // Ack answering a Req that fell before it (a glitch): a receiver without a glitch filter
+      // took the pulse for a request. Allowed, if it came within the latency bound of that Req;
+      // Ack must then fall as after any Req, and a beat of the glitch's address may follow.
+      Transaction& glitch = pending_.back();
+      if (glitch.withdrawn && !glitch.answered &&
+          cycle - glitch.first_edge + 1 <= static_cast<std::uint64_t>(lat_max_)) {
+        glitch.answered = true;
+        glitch.t_ack = t_ps;
+        glitch.values.push_back({addr_, contention_});  // the wires as the receiver latched them
+        ack_fall_due_ = true;
+        answered_glitch_ = true;
+        req_fall_edge_ = cycle + 1;
+        late_reported_ = false;
+        return;
+      }
+    }
     if (!req_ || !t) {
       fail("ack_without_req", cycle, t_ps, true, [&] {
         return Texts{"Ack rises only while Req is high", "Ack rose with Req low"};
@@ -239,7 +256,9 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     }
     t->acked = true;
     t->t_ack = t_ps;
-    t->stalled = stalled_ever_ && last_stall_edge_ + 2 >= t->first_edge;
+    // Met a full output: the output stalled within a few edges before the Req (a receiver may
+    // decide on fullness a pipeline stage or two early) or while waiting for the Ack.
+    t->stalled = stalled_ever_ && last_stall_edge_ + static_cast<std::uint64_t>(lat_max_) + 8 >= t->first_edge;
     open_id_.reset();
     ++transactions_;
     late_reported_ = false;
@@ -253,20 +272,22 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
   }
   if (ack_fall_due_) {
     const std::uint64_t latency = cycle - req_fall_edge_ + 1;
-    if (!late_reported_ && (latency < static_cast<std::uint64_t>(lat_min_) || latency > static_cast<std::uint64_t>(lat_max_))) {
+    const bool early = latency < static_cast<std::uint64_t>(lat_min_) && !answered_glitch_;
+    if (!late_reported_ && (early || latency > static_cast<std::uint64_t>(lat_max_))) {
       fail("ack_fall_latency", cycle, t_ps, true, [&] {
         return Texts{fmt::format("{} to {} edges", lat_min_, lat_max_), fmt::format("{} edges", latency)};
       });
     }
   }
   ack_fall_due_ = false;
+  answered_glitch_ = false;
   late_reported_ = false;
 }
 
 void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b) {
   ++beats_;
   const std::string seen = fmt::format("address 0x{:x}, stamp {}, flag {}", b.addr, b.ts, b.flag ? 1 : 0);
-  auto matches = [&](const Transaction& t) { return !t.withdrawn && value_matches(t, b); };
+  auto matches = [&](const Transaction& t) { return (!t.withdrawn || t.answered) && value_matches(t, b); };
   std::size_t i = 0;
   while (i < pending_.size() && !matches(pending_[i]) && may_lack_beat(pending_[i])) ++i;
   if (i == pending_.size() || !matches(pending_[i])) {

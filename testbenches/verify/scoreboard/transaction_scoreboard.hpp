@@ -29,7 +29,10 @@ struct VerifyFailure {
 //    is invented and nothing reordered. A transaction with no beat is allowed only when the
 //    description says so: a collision under "discard", or a full output under "drop" (the output
 //    was stalled around it), and then overflow_count, if present, must have counted exactly the
-//    drops. A Req that falls before any Ack (a glitch) is not a transaction.
+//    drops. A Req that falls before any Ack (a glitch) is not a transaction: a receiver may
+//    ignore it, or (without a glitch filter) answer it within the latency bound with an Ack that
+//    then falls as usual and perhaps a beat of the glitch's address; the next transactions must
+//    go through as ever.
 //  - Stamps count timestamp_tick since reset modulo 2^bits, lie within one tick of the
 //    transaction's span (Req rise to Ack rise), and never go backwards (modulo the wrap).
 //  - A beat offered and not taken (valid, not ready) stays, unchanged, until taken.
@@ -66,6 +69,7 @@ class TransactionScoreboard {
     std::uint64_t t_req = 0, t_ack = 0;
     std::uint64_t first_edge = 0;  // the first rising edge after Req rose
     bool acked = false, withdrawn = false, stalled = false;
+    bool answered = false;                               // withdrawn (a glitch), yet the receiver raised Ack for it
     std::vector<std::pair<std::uint64_t, bool>> values;  // (addr, contention) held while open
   };
   struct Beat {
@@ -110,7 +114,7 @@ class TransactionScoreboard {
   bool contention_ = false;
   std::uint64_t edges_done_ = 0;
   std::uint64_t req_fall_edge_ = 0;  // first edge after Req fell, while Ack is due to fall
-  bool ack_fall_due_ = false, late_reported_ = false;
+  bool ack_fall_due_ = false, late_reported_ = false, answered_glitch_ = false;
   std::uint64_t t0_ps_ = 0;  // the stamps' zero: the last edge of the reset
   std::optional<std::uint64_t> last_ts_;
   std::optional<Beat> held_;  // offered, not taken, at the previous edge
