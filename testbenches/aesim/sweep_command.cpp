@@ -20,6 +20,7 @@
 #include "commands.hpp"
 #include "files/data_dir.hpp"
 #include "errors/input_error.hpp"
+#include "files/content_hash.hpp"
 #include "files/scratch_folder.hpp"
 #include "output/atomic_file.hpp"
 #include "output/temp_files.hpp"
@@ -66,7 +67,7 @@ std::string sweep_identity(const SweepSpec& spec) {
     all += "|" + p.scene;
     for (const auto& [k, v] : p.sets) all += "," + k + "=" + v;
   }
-  return fmt::format("{:016x}", std::hash<std::string>{}(all));
+  return content_hash_hex(all);
 }
 
 // This process's share of a sweep: under mpirun, point i belongs to rank i mod size.

@@ -35,7 +35,7 @@ void ClockedAlohaBus::apply_deferred() {
 }
 
 void ClockedAlohaBus::join(const AddressEvent& firing) {
-  if (!lines_.join({firing, sc_core::sc_time_stamp()}, firing.bus_address, s_.ack.read())) {
+  if (!lines_.join(firing, firing.bus_address, s_.ack.read())) {
     log_.resolve(firing, Fate::Absorbed);
     return;
   }
@@ -59,10 +59,10 @@ void ClockedAlohaBus::on_ack() {
   const bool dropped = s_.overflows.read() != overflows_seen_;
   overflows_seen_ = s_.overflows.read();
   const Fate lost = dropped ? Fate::Dropped : detect_ ? Fate::Collided : Fate::Ghost;
-  const std::vector<Driver> seen = lines_.release();
-  for (const Driver& d : seen) {
-    if (seen.size() == 1 && !dropped) log_.resolve(d.firing, Fate::Delivered, now.to_seconds());
-    else log_.resolve(d.firing, lost);
+  const std::vector<AddressEvent> seen = lines_.release();
+  for (const AddressEvent& firing : seen) {
+    if (seen.size() == 1 && !dropped) log_.resolve(firing, Fate::Delivered, now.to_seconds());
+    else log_.resolve(firing, lost);
   }
   drive();
 }

@@ -36,10 +36,6 @@ class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
   double measured_tau() const override;
 
  private:
-  struct Driver {
-    AddressEvent firing;
-    sc_core::sc_time since;
-  };
   void apply_deferred();
   void join(const AddressEvent& firing);
   void on_ack();
@@ -49,7 +45,7 @@ class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
   sc_core::sc_time clock_period_;
   bool detect_;
   EventLog& log_;
-  WiredOrLines<Driver> lines_;
+  WiredOrLines<AddressEvent> lines_;  // the firings driving the wires
   std::vector<AddressEvent> deferred_;
   sc_core::sc_event deferred_event_;
   sc_core::sc_time transaction_start_;

@@ -14,6 +14,7 @@
 
 #include "build/dut_glue.hpp"
 #include "errors/input_error.hpp"
+#include "files/content_hash.hpp"
 #include "files/scratch_folder.hpp"
 #include "process/child_process.hpp"
 
@@ -34,8 +35,6 @@ void write_text(const fs::path& path, const std::string& text) {
   out << text;
   if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
 }
-
-std::string hex_hash(const std::string& text) { return fmt::format("{:016x}", std::hash<std::string>{}(text)); }
 
 // A tool's output captured through a file (no shell, no pipe to drain).
 std::string tool_output(const std::string& program, const std::vector<std::string>& args, const fs::path& scratch) {
@@ -147,7 +146,7 @@ std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain&
   if (trace) units.push_back("verilated_vcd_c");
   std::string key = t.verilator_version + "\n" + t.verilator_root + "\n" + t.compiler + "\n";
   for (const std::string& flag : compile_flags(t, trace)) key += flag + " ";
-  const fs::path dir = cache / ("runtime-" + hex_hash(key));
+  const fs::path dir = cache / ("runtime-" + content_hash_hex(key));
   std::vector<std::string> objects;
   for (const std::string& u : units) objects.push_back((dir / (u + ".o")).string());
   if (fs::is_directory(dir)) return objects;
@@ -208,7 +207,7 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
   }
   for (const auto& [k, v] : d.defines) all += "define " + k + "=" + v + "\n";
   for (const auto& [k, v] : d.parameters) all += "parameter " + k + "=" + v + "\n";
-  return hex_hash(all);
+  return content_hash_hex(all);
 }
 
 

@@ -28,7 +28,6 @@ void TransactionScoreboard::begin_case(const std::string& name) {
   open_id_.reset();
   req_ = ack_ = in_reset_ = contention_ = false;
   addr_ = 0;
-  edges_done_ = 0;
   ack_fall_due_ = late_reported_ = answered_glitch_ = false;
   t0_ps_ = 0;
   last_ts_.reset();
@@ -106,7 +105,6 @@ void TransactionScoreboard::wires(std::uint64_t t_ps, std::uint64_t edges_done, 
   req_ = req;
   addr_ = addr;
   contention_ = contention;
-  edges_done_ = edges_done;
   if (in_reset_) return;
   if (rose) {
     Transaction t;
@@ -143,7 +141,6 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     overflow_now_ = s.overflow;
     return;
   }
-  edges_done_ = cycle - 1;
   if (s.reset) {
     if (!in_reset_) clear_for_reset();
     in_reset_ = true;

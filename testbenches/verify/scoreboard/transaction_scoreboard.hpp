@@ -112,7 +112,6 @@ class TransactionScoreboard {
   bool req_ = false, ack_ = false, in_reset_ = false;
   std::uint64_t addr_ = 0;
   bool contention_ = false;
-  std::uint64_t edges_done_ = 0;
   std::uint64_t req_fall_edge_ = 0;  // first edge after Req fell, while Ack is due to fall
   bool ack_fall_due_ = false, late_reported_ = false, answered_glitch_ = false;
   std::uint64_t t0_ps_ = 0;  // the stamps' zero: the last edge of the reset
