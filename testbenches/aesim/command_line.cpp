@@ -76,6 +76,29 @@ void add_verify(CLI::App& app, int& status) {
   cmd->callback([opt, &status] { status = verify_command(*opt); });
 }
 
+void add_calibrate(CLI::App& app, int& status) {
+  auto opt = std::make_shared<CalibrateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "calibrate", "Fit the pixel model to a pixel circuit: ngspice runs the deck over a range of photocurrents; "
+                   "writes a preset with the fitted c_int, t_reset, i_dark, the measured period table and the energy");
+  cmd->add_option("DECK", opt->deck, "SPICE deck defining .subckt NAME vdd out gnd params: iph=1p")->required();
+  cmd->add_option("--subckt", opt->subckt, "The pixel's subcircuit in the deck")->required();
+  cmd->add_option("-o,--output", opt->output, "Preset to write (.toml)")->required();
+  cmd->add_option("--base", opt->base, "Preset whose other keys the calibrated one keeps")->capture_default_str();
+  cmd->add_option("--vdd", opt->vdd, "Supply voltage; a firing is out rising through vdd/2")->capture_default_str();
+  cmd->add_option("--currents", opt->currents, "Photocurrent range LOW:HIGH, points spaced logarithmically")
+      ->capture_default_str();
+  cmd->add_option("--points", opt->points, "Photocurrents in the range")->capture_default_str();
+  cmd->add_option("--mc", opt->mc, "Monte Carlo runs (ngspice seeds 1..N) at the range's geometric middle: "
+                                   "pixel.mismatch from the spread of periods")->capture_default_str();
+  cmd->add_option("--chart", opt->chart, "Period against photocurrent: ngspice, calibrated model, ideal eq. 2 (.png)");
+  cmd->add_option("--firings", opt->firings, "Periods each transient measures")->capture_default_str();
+  cmd->add_option("--probe", opt->probe, "Integration node inside the subcircuit, for the comparator delay "
+                                         "(skipped when the subcircuit has no such node)")->capture_default_str();
+  cmd->add_option("-j,--jobs", opt->jobs, "ngspice processes at once (0: all cores)")->capture_default_str();
+  cmd->callback([opt, &status] { status = calibrate_command(*opt); });
+}
+
 void add_compare(CLI::App& app, int& status) {
   auto opt = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
@@ -156,6 +179,7 @@ int run_command_line(int argc, char** argv) {
   add_sweep(app, status);
   add_compare(app, status);
   add_verify(app, status);
+  add_calibrate(app, status);
   add_emulate(app, status);
   add_classify(app, status);
   add_report(app, status);

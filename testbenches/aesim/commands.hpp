@@ -65,7 +65,13 @@ struct VerifyCommandOptions {
   std::uint64_t seed = 1;
 };
 
+struct CalibrateOptions {
+  std::string deck, subckt, output, base = "aloha", vdd = "3.3V", currents = "1fA:1nA", chart, probe = "int";
+  int points = 13, mc = 0, firings = 8, jobs = 0;
+};
+
 int run_command(RunOptions opt);
+int calibrate_command(const CalibrateOptions& opt);
 int verify_command(const VerifyCommandOptions& opt);
 int recon_command(const ReconOptions& opt);
 int info_command(const std::string& path);

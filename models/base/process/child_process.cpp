@@ -5,7 +5,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cerrno>
+#include <chrono>
+#include <thread>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -68,6 +71,29 @@ int wait_child(pid_t pid) {
   }
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 1;
+}
+
+std::optional<int> wait_child_for(pid_t pid, double seconds) {
+  // Polling keeps SIGCHLD alone (other threads run children too); a child of a tool's run lasts
+  // seconds, so a 2 ms poll costs little.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  for (;;) {
+    int status = 0;
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) {
+      if (WIFEXITED(status)) return WEXITSTATUS(status);
+      return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 1;
+    }
+    if (done < 0 && errno != EINTR) {
+      throw std::runtime_error(fmt::format("waiting for a child process: {}", std::strerror(errno)));
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      wait_child(pid);
+      return std::nullopt;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
 }
 
 int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output) {

@@ -1,6 +1,7 @@
 #pragma once
 #include <sys/types.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,6 +20,10 @@ pid_t spawn_child(const std::string& program, const std::vector<std::string>& ar
 
 // Waits for a child; returns its exit status, or 128 + the signal that ended it.
 int wait_child(pid_t pid);
+
+// Waits at most `seconds` for a child; past that, kills it (SIGKILL), reaps it and returns
+// nullopt, so that a tool that runs away cannot hang the command that started it.
+std::optional<int> wait_child_for(pid_t pid, double seconds);
 
 // spawn_child then wait_child.
 int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output = {});

@@ -31,6 +31,7 @@ std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor)
   std::map<std::string, std::string> flat;
   for (const auto& [section, body] : sensor.items()) {
     for (const auto& [key, value] : body.items()) {
+      if (value.is_null()) continue;  // a key that is not set (pixel.transfer without a table)
       flat[section + "." + key] = value.is_string() ? value.get<std::string>() : value.dump();
     }
   }

@@ -14,6 +14,7 @@
 #include "errors/input_error.hpp"
 #include "files/input_path.hpp"
 #include "files/toml_file.hpp"
+#include "text/ascii_case.hpp"
 #include "power/power_model.hpp"
 #include "units/si_units.hpp"
 
@@ -27,13 +28,8 @@ struct KeySpec {
 
 using Json = nlohmann::json;
 
-std::string lower(std::string s) {
-  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return s;
-}
-
 bool parse_bool(const std::string& text, const std::string& key) {
-  const std::string t = lower(text);
+  const std::string t = ascii_lower(text);
   if (t == "true" || t == "1" || t == "yes" || t == "on") return true;
   if (t == "false" || t == "0" || t == "no" || t == "off") return false;
   throw InputError(fmt::format("{}: expected true or false (got '{}')", key, text));
@@ -50,7 +46,7 @@ long long parse_integer(const std::string& text, const std::string& key) {
 template <typename Enum>
 Enum parse_enum(const std::string& text, const std::string& key,
                 const std::vector<std::pair<const char*, Enum>>& names) {
-  const std::string t = lower(text);
+  const std::string t = ascii_lower(text);
   std::string allowed;
   for (const auto& [name, value] : names) {
     if (t == name) return value;
@@ -120,6 +116,13 @@ const std::map<std::string, KeySpec>& registry() {
     boolean("pixel.shot_noise", [](auto& c) -> auto& { return c.pixel.shot_noise; });
     enumerated("pixel.initial", [](auto& c) -> auto& { return c.pixel.initial; },
                kInitial);
+    t["pixel.transfer"] = {[](SensorConfig& c, const std::string& v) {
+                             c.pixel.transfer = transfer_from_text(v, "pixel.transfer");
+                           },
+                           [](const SensorConfig& c) {
+                             if (c.pixel.transfer.empty()) return Json(nullptr);
+                             return Json{{"current", c.pixel.transfer.current}, {"period", c.pixel.transfer.period}};
+                           }};
     integer("array.rows", [](auto& c) -> auto& { return c.array.rows; });
     integer("array.cols", [](auto& c) -> auto& { return c.array.cols; });
     integer("array.tile_rows", [](auto& c) -> auto& { return c.array.tile_rows; });
@@ -248,6 +251,7 @@ void SensorConfig::validate() const {
   require(receiver.tick >= 1e-12 && receiver.tick <= 1, "receiver.tick", "must be from 1 ps to 1 s");
   require(bus.t_event <= 1, "bus.t_event", "must be at most 1 s");
   require(pixel.t_reset <= 1e3, "pixel.t_reset", "must be at most 1000 s");
+  pixel.transfer.validate("pixel.transfer", pixel.t_reset);
   require(receiver.fifo_depth >= 1, "receiver.fifo_depth", "must be at least 1");
   // SystemC time is a 64-bit count of 1 ps steps; keep well inside it.
   require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
@@ -277,6 +281,14 @@ void apply_toml_text(SensorConfig& config, const std::string& text, const std::s
                      const std::string& section) {
   const TomlValue doc = parse_toml_text(text, fmt::format("'{}'", path));
   auto apply = [&](const std::string& key, const TomlValue& value) {
+    if (key == "pixel.transfer" && value.is_table()) {
+      try {
+        config.pixel.transfer = transfer_from_toml(value, key);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("'{}': {}", path, e.what()));
+      }
+      return;
+    }
     const std::optional<std::string> text = value.scalar_text();
     if (!text) throw InputError(fmt::format("'{}': {}: unsupported value type", path, key));
     try {

@@ -6,6 +6,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "limits/limits.hpp"
+#include "pixel/transfer_curve.hpp"
 #include "power/power_model.hpp"
 
 namespace aesim {
@@ -32,8 +33,15 @@ struct PixelParams {
   double mismatch = 0.0;    // relative std of the per-pixel threshold charge
   bool shot_noise = false;  // Gamma-distributed integration times
   InitialState initial = InitialState::Reset;
+  TransferCurve transfer;   // measured period against photocurrent (aesim calibrate); empty: eq. 2
   // The charge a pixel collects between firings (eq. 2's c_int * dv_int), before mismatch.
   double threshold_charge() const { return c_int * dv_int; }
+  // The current the pixel integrates at scene value v: i_dark + i_max * v (SPEC section 1), or
+  // with a transfer table the current that fires with the table's period (transfer_curve.hpp).
+  double integrating_current(double v) const {
+    if (transfer.empty()) return i_dark + i_max * v;
+    return transfer.integrating_current(i_max * v, threshold_charge(), i_dark, t_reset);
+  }
 };
 
 struct ArrayParams {

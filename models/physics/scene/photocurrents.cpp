@@ -6,7 +6,7 @@ Photocurrents::Photocurrents(const Scene& scene, const PixelParams& pixel)
     : pixels_(scene.frames.front().pixels.size()), period_(scene.frame_period), loop_(scene.loop) {
   currents_.reserve(pixels_ * scene.frames.size());
   for (const Image& frame : scene.frames) {
-    for (double v : frame.pixels) currents_.push_back(pixel.i_dark + pixel.i_max * v);
+    for (double v : frame.pixels) currents_.push_back(pixel.integrating_current(v));
   }
 }
 

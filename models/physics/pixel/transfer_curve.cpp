@@ -1,0 +1,107 @@
+#include "pixel/transfer_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/toml_file.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+// A table this long is a measurement of a pixel, not a way to smuggle a scene into a preset.
+constexpr std::size_t kMaxPoints = 10000;
+
+std::vector<double> numbers(const TomlValue& array, const std::string& key, const char* field, const char* unit) {
+  if (!array.is_array()) throw InputError(fmt::format("{}: '{}' must be an array of numbers", key, field));
+  if (array.as_array().size() > kMaxPoints) {
+    throw InputError(fmt::format("{}: more than {} points in '{}'", key, kMaxPoints, field));
+  }
+  std::vector<double> out;
+  for (const TomlValue& v : array.as_array()) {
+    if (v.is_floating()) {
+      out.push_back(v.as_floating());
+    } else if (v.is_integer()) {
+      out.push_back(static_cast<double>(v.as_integer()));
+    } else if (v.is_string()) {
+      out.push_back(parse_si(v.as_string(), unit, key));
+    } else {
+      throw InputError(fmt::format("{}: '{}' must be an array of numbers", key, field));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+double TransferCurve::period_at(double photocurrent) const {
+  const auto upper = std::upper_bound(current.begin(), current.end(), photocurrent);
+  if (upper == current.begin()) return period.front();
+  if (upper == current.end()) return period.back();
+  const std::size_t k = static_cast<std::size_t>(upper - current.begin());
+  const double u = std::log(photocurrent / current[k - 1]) / std::log(current[k] / current[k - 1]);
+  return std::exp(std::log(period[k - 1]) + u * std::log(period[k] / period[k - 1]));
+}
+
+double TransferCurve::integrating_current(double photocurrent, double threshold_charge, double i_dark,
+                                          double t_reset) const {
+  const auto effective = [&](double i) { return threshold_charge / (period_at(i) - t_reset); };
+  if (photocurrent < current.front()) {
+    const double at_end = effective(current.front());
+    return at_end * (photocurrent + i_dark) / (current.front() + i_dark);
+  }
+  if (photocurrent > current.back()) {
+    const double at_end = effective(current.back());
+    return at_end * (photocurrent + i_dark) / (current.back() + i_dark);
+  }
+  return effective(photocurrent);
+}
+
+void TransferCurve::validate(const std::string& key, double t_reset) const {
+  if (empty()) return;
+  if (current.size() != period.size()) {
+    throw InputError(fmt::format("{}: {} currents but {} periods", key, current.size(), period.size()));
+  }
+  if (current.size() < 2) throw InputError(fmt::format("{}: needs at least 2 points", key));
+  for (std::size_t k = 0; k < current.size(); ++k) {
+    if (!(current[k] > 0) || !std::isfinite(current[k])) {
+      throw InputError(fmt::format("{}: current {} is not a positive number", key, current[k]));
+    }
+    if (k > 0 && !(current[k] > current[k - 1])) {
+      throw InputError(fmt::format("{}: currents must increase (point {} after {})", key, current[k], current[k - 1]));
+    }
+    if (!(period[k] > t_reset) || !std::isfinite(period[k])) {
+      throw InputError(fmt::format("{}: period {} s at {} A is not longer than pixel.t_reset ({} s)", key, period[k],
+                                   current[k], t_reset));
+    }
+  }
+}
+
+TransferCurve transfer_from_toml(const TomlValue& value, const std::string& key) {
+  if (value.is_string() && (value.as_string().empty() || value.as_string() == "none")) return {};
+  if (!value.is_table()) throw InputError(fmt::format("{}: expected {{ current = [...], period = [...] }}", key));
+  const auto& table = value.as_table();
+  for (const auto& entry : table) {
+    if (entry.first != "current" && entry.first != "period") {
+      throw InputError(fmt::format("{}: unknown field '{}' (expected current and period)", key, entry.first));
+    }
+  }
+  const auto current = table.find("current"), period = table.find("period");
+  if (current == table.end() || period == table.end()) {
+    throw InputError(fmt::format("{}: needs both current and period", key));
+  }
+  return {numbers(current->second, key, "current", "A"), numbers(period->second, key, "period", "s")};
+}
+
+TransferCurve transfer_from_text(const std::string& text, const std::string& key) {
+  if (text.empty() || text == "none") return {};
+  const std::string document = "transfer = " + text;
+  check_toml_text(document, key);
+  const TomlValue doc = parse_toml_text(document, key);
+  return transfer_from_toml(doc.as_table().at("transfer"), key);
+}
+
+}  // namespace aesim

@@ -1,0 +1,39 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace aesim {
+
+class TomlValue;
+
+// pixel.transfer: a pixel's measured firing period at each photocurrent (from `aesim calibrate`,
+// i.e. from the pixel's circuit in ngspice), for where the circuit bends away from eq. 2.
+//
+// The table is indexed by photocurrent, i_max * v: the circuit's own leakage is inside the
+// measured periods, so pixel.i_dark is not added to the look-up. Between points the period is
+// interpolated log-log (a power law per segment, which eq. 2 is at both ends of its range).
+//
+// A pixel integrates an effective current chosen so that, under constant light, it fires with the
+// table's period: I_eff = Q / (period(I) - t_reset), Q the threshold charge. Charge then carries
+// over exactly when the light changes, as without the table, and mismatch and shot noise act on
+// Q as before. Outside the table the effective current follows eq. 2's current, I + i_dark, scaled
+// to meet the table at its end point, so zero light fires at the dark current's rate (or never).
+struct TransferCurve {
+  std::vector<double> current;  // A, strictly increasing, positive
+  std::vector<double> period;   // s, each longer than pixel.t_reset
+
+  bool empty() const { return current.empty(); }
+  // The table's period at a photocurrent within [current.front(), current.back()].
+  double period_at(double photocurrent) const;
+  // The current the pixel integrates at this photocurrent (see above).
+  double integrating_current(double photocurrent, double threshold_charge, double i_dark, double t_reset) const;
+  // Sizes, order and signs; throws InputError naming `key`. t_reset: every period must exceed it.
+  void validate(const std::string& key, double t_reset) const;
+};
+
+// From TOML ({ current = [...], period = [...] }, numbers in A and s or strings with units) or
+// from --set text in the same form; "none" or "" is no table. Throws InputError naming `key`.
+TransferCurve transfer_from_toml(const TomlValue& value, const std::string& key);
+TransferCurve transfer_from_text(const std::string& text, const std::string& key);
+
+}  // namespace aesim

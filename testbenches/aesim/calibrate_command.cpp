@@ -1,0 +1,107 @@
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "chart/calibration_chart.hpp"
+#include "commands.hpp"
+#include "config/sensor_config.hpp"
+#include "deck/pixel_deck.hpp"
+#include "errors/input_error.hpp"
+#include "output/atomic_file.hpp"
+#include "preset/calibrated_preset.hpp"
+#include "session/pixel_calibration.hpp"
+#include "units/si_units.hpp"
+
+namespace aesim {
+namespace {
+
+// The most transients one command may ask for (points and Monte Carlo runs), each a fraction of
+// a second to a few seconds: an hour of ngspice at worst.
+constexpr int kMaxTransients = 2000;
+
+CalibrationOptions parse_options(const CalibrateOptions& opt) {
+  CalibrationOptions o;
+  o.vdd = parse_si(opt.vdd, "V", "--vdd");
+  if (!(o.vdd > 0 && o.vdd <= 100)) throw InputError(fmt::format("--vdd: {} is not a supply (0 to 100 V)", opt.vdd));
+  const auto colon = opt.currents.find(':');
+  if (colon == std::string::npos) throw InputError(fmt::format("--currents: expected LOW:HIGH, e.g. 1fA:1nA (got '{}')", opt.currents));
+  o.i_low = parse_si(opt.currents.substr(0, colon), "A", "--currents");
+  o.i_high = parse_si(opt.currents.substr(colon + 1), "A", "--currents");
+  if (!(o.i_low > 0 && o.i_high > o.i_low && o.i_high <= 1)) {
+    throw InputError(fmt::format("--currents: needs 0 < LOW < HIGH <= 1 A (got '{}')", opt.currents));
+  }
+  if (o.i_high / o.i_low > 1e12) throw InputError("--currents: more than 12 decades");
+  if (opt.points < 3 || opt.points > 200) throw InputError(fmt::format("--points: {} is not from 3 to 200", opt.points));
+  if (opt.mc < 0 || opt.mc == 1 || opt.mc > 1000) throw InputError(fmt::format("--mc: {} is not 0 or from 2 to 1000", opt.mc));
+  if (opt.firings < 2 || opt.firings > 100) throw InputError(fmt::format("--firings: {} is not from 2 to 100", opt.firings));
+  if (opt.jobs < 0 || opt.jobs > 256) throw InputError(fmt::format("--jobs: {} is not from 0 (all cores) to 256", opt.jobs));
+  if (opt.points + opt.mc > kMaxTransients) {
+    throw InputError(fmt::format("--points and --mc ask for {} transients, more than {}", opt.points + opt.mc, kMaxTransients));
+  }
+  o.points = opt.points;
+  o.mc = opt.mc;
+  o.firings = opt.firings;
+  o.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.progress = ::isatty(STDERR_FILENO) != 0;
+  return o;
+}
+
+}  // namespace
+
+int calibrate_command(const CalibrateOptions& opt) {
+  CalibrationOptions options = parse_options(opt);
+  const SensorConfig base = load_sensor(opt.base);
+  base.validate();
+  options.charge_guess = base.pixel.threshold_charge();
+  if (std::filesystem::path(opt.output).extension() != ".toml") {
+    throw InputError(fmt::format("-o '{}': a preset is a .toml file", opt.output));
+  }
+  if (!opt.chart.empty() && std::filesystem::path(opt.chart).extension() != ".png") {
+    throw InputError(fmt::format("--chart '{}': use a .png file name", opt.chart));
+  }
+  check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}}, {opt.deck});
+  const PixelDeck deck = read_pixel_deck(opt.deck, opt.subckt, opt.probe);
+
+  std::fprintf(stderr, "aesim calibrate: %s (%s), %d photocurrents from %s to %s%s, %d ngspice at once\n",
+               deck.subckt.c_str(), opt.deck.c_str(), options.points, format_si(options.i_low, "A").c_str(),
+               format_si(options.i_high, "A").c_str(),
+               options.mc > 0 ? fmt::format(", {} Monte Carlo runs", options.mc).c_str() : "", options.jobs);
+  const Calibration c = calibrate_pixel(deck, options);
+  const SensorConfig calibrated = calibrated_config(base, c, options.vdd);
+  const std::string text = calibrated_preset_text(calibrated, c, deck, opt.base, options);
+  // What is written must load: read it back as any run would before it replaces anything.
+  SensorConfig reread;
+  apply_toml_text(reread, text, opt.output, "");
+  reread.validate();
+
+  OutputFiles files;
+  files.open(opt.output) << text;
+  if (!opt.chart.empty()) {
+    const std::string png = files.adopt(opt.chart);
+    const std::string data = files.adopt(opt.chart + ".csv");
+    files.flush();
+    draw_calibration_chart(c, calibrated.pixel, base.pixel, data, png);
+  }
+  files.commit();
+
+  std::printf("pixel %s: Q = %s (c_int %s at dv_int %s), t_reset = %s, i_dark = %s; eq. 2 fits within %.2f %% (rms %.2f %%)\n",
+              deck.subckt.c_str(), format_si(c.fit.charge, "C").c_str(), format_si(calibrated.pixel.c_int, "F").c_str(),
+              format_si(calibrated.pixel.dv_int, "V").c_str(), format_si(c.fit.t_reset, "s").c_str(),
+              format_si(c.fit.i_dark, "A").c_str(), 100 * c.fit.max_residual, 100 * c.fit.rms_residual);
+  std::printf("energy per firing %s (e_pixel_event %s), static %s; ",
+              format_si(options.vdd * c.supply.charge_per_firing, "J").c_str(),
+              format_si(calibrated.power.e_pixel_event, "J").c_str(), format_si(calibrated.power.p_static_pixel, "W").c_str());
+  if (c.mismatch) std::printf("mismatch %.4g from %d runs; ", *c.mismatch, options.mc);
+  int runs = 0;
+  for (const CalibrationPoint& p : c.points) runs += p.runs;
+  std::printf("%d ngspice transients in %.1f s\n", runs + options.mc, c.wall);
+  std::printf("wrote %s%s%s\n", opt.output.c_str(), opt.chart.empty() ? "" : ", ", opt.chart.c_str());
+  return 0;
+}
+
+}  // namespace aesim

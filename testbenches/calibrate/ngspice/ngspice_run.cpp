@@ -1,0 +1,166 @@
+#include "ngspice/ngspice_run.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "text/ascii_case.hpp"
+#include "process/child_process.hpp"
+
+namespace aesim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A run is a few thousand time steps of a small circuit (a fraction of a second); one that takes
+// this long has collapsed its time step and would never finish.
+constexpr double kRunSeconds = 300;
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r\n");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
+}
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// ngspice's first error as one line: the "Error" line and the lines that explain it, up to the
+// line that says the run stopped.
+std::string first_error(const std::string& log) {
+  std::istringstream in(log);
+  std::string line, message;
+  bool in_error = false;
+  int extra = 0;
+  while (std::getline(in, line)) {
+    const std::string t = trim(line);
+    if (t.empty()) continue;
+    const std::string l = ascii_lower(t);
+    if (!in_error && l.find("error") != std::string::npos) {
+      in_error = true;
+      message = t;
+    } else if (in_error) {
+      if (l.find("simulation interrupted") != std::string::npos || l.rfind("note:", 0) == 0 || ++extra > 2) break;
+      message += " " + t;
+    }
+  }
+  return message;
+}
+
+}  // namespace
+
+std::string testbench_text(const PixelDeck& deck, double vdd, const TransientRequest& r, const std::string& data_path) {
+  std::string probe;
+  if (!deck.probe.empty()) probe = fmt::format(" v(xpix.{})", deck.probe);
+  // Gear integration: the trapezoidal rule rings on the pixel's fast edges and fakes firings at
+  // slow ramps. Tolerances sized for femtoamps and femtocoulombs (the defaults, 1 pA and 10 fC,
+  // are the size of what is measured), and gmin, the conductance ngspice puts across every
+  // junction (1 pS by default, i.e. picoamps of fake leakage), far below the deck's own leakage.
+  // The deck comes after them, so its own .options win.
+  return fmt::format(
+      "* aesim calibrate: {} at iph = {:.6g} A\n"
+      ".options method=gear reltol=1e-4 abstol=1e-17 chgtol=1e-19 gmin=1e-18{}\n"
+      ".include \"{}\"\n"
+      "Vdd vdd 0 {:.12g}\n"
+      "Xpix vdd out 0 {} iph={:.12g}\n"
+      ".control\n"
+      "tran {:.6g} {:.12g} 0 {:.6g} uic\n"
+      "set wr_singlescale\n"
+      "set numdgt=15\n"
+      "set wr_vecnames\n"
+      "wrdata {} v(out) i(vdd){}\n"
+      "quit 0\n"
+      ".endc\n"
+      ".end\n",
+      deck.subckt, r.iph, r.seed ? fmt::format(" seed={}", *r.seed) : std::string(), deck.path, vdd, deck.subckt,
+      r.iph, r.t_max, r.t_stop, r.t_max, data_path, probe);
+}
+
+Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest& request, const fs::path& scratch,
+                       const std::string& name) {
+  const fs::path cir = scratch / (name + ".cir"), data = scratch / (name + ".txt"), log = scratch / (name + ".log");
+  {
+    std::ofstream out(cir);
+    out << testbench_text(deck, vdd, request, data.string());
+    if (!out) throw std::runtime_error(fmt::format("cannot write '{}'", cir.string()));
+  }
+  pid_t pid = 0;
+  try {
+    pid = spawn_child("ngspice", {"-b", "-n", cir.string()}, {(scratch / (name + ".out")).string(), log.string()});
+  } catch (const ToolMissing&) {
+    throw InputError("ngspice is not installed: run scripts/setup (or apt-get install ngspice)");
+  }
+  const std::optional<int> status = wait_child_for(pid, kRunSeconds);
+  if (!status) {
+    throw InputError(fmt::format("deck '{}': ngspice ran longer than {:.0f} s at iph = {:.3g} A; its time step "
+                                 "collapsed (check the deck's models and initial conditions)",
+                                 deck.path, kRunSeconds, request.iph));
+  }
+  if (*status != 0) {
+    const std::string error = first_error(read_all(log) + "\n" + read_all(scratch / (name + ".out")));
+    if (ascii_lower(error).find("unknown subckt") != std::string::npos) {
+      throw InputError(fmt::format("deck '{}': ngspice finds no subcircuit '{}' ({})", deck.path, deck.subckt, error));
+    }
+    throw InputError(fmt::format("deck '{}': ngspice rejects it: {}", deck.path,
+                                 error.empty() ? fmt::format("exit status {}", *status) : error));
+  }
+  const std::string messages = read_all(log);
+  if (ascii_lower(messages).find("timestep too small") != std::string::npos) {
+    throw TransientAborted(fmt::format("deck '{}': ngspice stops at iph = {:.3g} A: {}", deck.path, request.iph,
+                                       first_error(messages).empty() ? "timestep too small" : first_error(messages)));
+  }
+  Waveform w;
+  std::ifstream in(data);
+  std::string header;
+  if (!std::getline(in, header)) {
+    throw InputError(fmt::format("deck '{}': ngspice wrote no waveform at iph = {:.3g} A ({})", deck.path, request.iph,
+                                 first_error(read_all(log))));
+  }
+  const bool probe = !deck.probe.empty();
+  double t = 0, out = 0, supply = 0, node = 0;
+  while (in >> t >> out >> supply) {
+    if (probe && !(in >> node)) break;
+    w.t.push_back(t);
+    w.out.push_back(out);
+    w.supply.push_back(supply);
+    if (probe) w.probe.push_back(node);
+  }
+  return w;
+}
+
+std::string ngspice_version() {
+  static const std::string version = [] {
+    const fs::path out = fs::temp_directory_path() / fmt::format("aesim-ngspice-version-{}", ::getpid());
+    std::string v = "ngspice (version unknown)";
+    try {
+      if (run_child("ngspice", {"-v"}, {out.string(), "/dev/null"}) == 0) {
+        std::istringstream in(read_all(out));
+        std::string line;
+        while (std::getline(in, line)) {
+          const auto at = line.find("ngspice-");
+          if (at != std::string::npos) {
+            std::istringstream words(line.substr(at));
+            words >> v;
+            break;
+          }
+        }
+      }
+    } catch (const ToolMissing&) {
+    }
+    std::error_code ec;
+    fs::remove(out, ec);
+    return v;
+  }();
+  return version;
+}
+
+}  // namespace aesim

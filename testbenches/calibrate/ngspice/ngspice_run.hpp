@@ -1,0 +1,47 @@
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "deck/pixel_deck.hpp"
+
+namespace aesim {
+
+// One transient of the pixel at a constant photocurrent.
+struct TransientRequest {
+  double iph = 0;     // A
+  double t_stop = 0;  // s
+  double t_max = 0;   // s, ngspice's largest internal step
+  std::optional<unsigned> seed;  // Monte Carlo: ngspice's seed for agauss() and friends
+};
+
+// What a run records: the pixel's output, the supply's current (ngspice's sign: negative when the
+// supply delivers), and the probe node's voltage when the deck has one.
+struct Waveform {
+  std::vector<double> t, out, supply, probe;
+};
+
+// The generated top level: the supply, one instance of the pixel, the simulator settings and the
+// control block that writes the waveform to `data_path`.
+std::string testbench_text(const PixelDeck& deck, double vdd, const TransientRequest& request,
+                           const std::string& data_path);
+
+// Runs ngspice (an argument vector, no shell; `-b -n`: batch, no user init file) on the testbench
+// in `scratch` and reads the waveform. A deck ngspice rejects is an InputError with ngspice's
+// first error line; ngspice missing is an InputError saying how to install it; a transient ngspice
+// abandons is TransientAborted with its reason.
+Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest& request,
+                       const std::filesystem::path& scratch, const std::string& name);
+
+// ngspice gave up part-way ("timestep too small"): a finer maximum step usually gets through.
+class TransientAborted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "ngspice-39", from `ngspice -v`.
+std::string ngspice_version();
+
+}  // namespace aesim

@@ -1,0 +1,94 @@
+#include "preset/calibrated_preset.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace aesim {
+namespace {
+
+std::string toml_value(const nlohmann::json& v) {
+  if (v.is_string()) return nlohmann::json(v.get<std::string>()).dump();  // JSON string escapes are TOML's
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_integer() || v.is_number_unsigned()) return v.dump();
+  if (v.is_number()) return fmt::format("{:.10g}", v.get<double>());
+  if (v.is_array()) {
+    std::string out = "[";
+    for (std::size_t k = 0; k < v.size(); ++k) out += (k ? ", " : "") + toml_value(v[k]);
+    return out + "]";
+  }
+  std::string out = "{ ";
+  bool first = true;
+  for (const auto& [key, value] : v.items()) {
+    out += (first ? "" : ", ") + key + " = " + toml_value(value);
+    first = false;
+  }
+  return out + " }";
+}
+
+std::string engineering(double v, const char* unit) {
+  if (!std::isfinite(v)) return "-";
+  return fmt::format("{:.4g} {}", v, unit);
+}
+
+}  // namespace
+
+SensorConfig calibrated_config(SensorConfig base, const Calibration& c, double vdd) {
+  base.pixel.c_int = c.fit.charge / base.pixel.dv_int;
+  base.pixel.t_reset = c.fit.t_reset;
+  base.pixel.i_dark = c.fit.i_dark;
+  base.pixel.transfer = {c.current, c.period};
+  if (c.mismatch) base.pixel.mismatch = *c.mismatch;
+  base.power.vdd = vdd;
+  base.power.e_pixel_event = std::max(0.0, vdd * (c.supply.charge_per_firing - c.fit.charge));
+  base.power.p_static_pixel = vdd * c.supply.static_current;
+  return base;
+}
+
+std::string calibrated_preset_text(const SensorConfig& config, const Calibration& c, const PixelDeck& deck,
+                                   const std::string& base, const CalibrationOptions& o) {
+  std::string text = fmt::format(
+      "# Calibrated by `aesim calibrate` from the pixel circuit '{}', subcircuit {} (FNV-1a 64 of the deck and its\n"
+      "# includes: {}), simulated with {}: vdd {:.4g} V, {} photocurrents from {:.4g} A to {:.4g} A, {} periods each.\n"
+      "# Base preset: {}. Every key below is the base's except the fitted ones.\n"
+      "#\n"
+      "# Fit of eq. 2, period = Q / (I + i_dark) + t_reset, to the measured periods (relative least squares):\n"
+      "#   Q = {:.6g} C (pixel.c_int = Q / pixel.dv_int), t_reset = {:.6g} s, i_dark = {:.6g} A\n"
+      "#   residuals: rms {:.3f} %, max {:.3f} %. pixel.transfer keeps the measured periods, so the model fires\n"
+      "#   with the circuit's period where the circuit departs from eq. 2.\n"
+      "# Supply charge per firing = {:.6g} C + {:.6g} A x period: power.e_pixel_event and power.p_static_pixel.\n",
+      deck.path, deck.subckt, deck.hash, c.ngspice, o.vdd, o.points, o.i_low, o.i_high, o.firings, base, c.fit.charge,
+      c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
+      c.supply.static_current);
+  if (c.mismatch) {
+    text += fmt::format("# Monte Carlo: {} runs at {:.4g} A: threshold-charge spread (pixel.mismatch) {:.4g}\n",
+                        c.mc_periods.size(), c.mc_current, *c.mismatch);
+  }
+  if (std::isfinite(c.trip_level)) {
+    text += fmt::format("# Probe node '{}' trips the comparator at {:.4g} V.\n", deck.probe, c.trip_level);
+  }
+  text += "#\n#   photocurrent   period        fit residual  pulse         comparator    supply charge\n";
+  std::size_t fitted = 0;
+  for (const CalibrationPoint& p : c.points) {
+    const bool fired = std::isfinite(p.period);
+    text += fmt::format("#   {:<14} {:<13} {:<13} {:<13} {:<13} {}\n", engineering(p.current, "A"),
+                        fired ? engineering(p.period, "s") : std::string("never fired"),
+                        fired ? fmt::format("{:+.3f} %", 100 * c.fit.residuals[fitted]) : std::string("-"),
+                        engineering(p.pulse, "s"), engineering(p.comparator_delay, "s"),
+                        engineering(p.supply_charge, "C"));
+    if (fired) ++fitted;
+  }
+  const nlohmann::json json = config.to_json();
+  for (const auto& [section, body] : json.items()) {
+    text += fmt::format("\n[{}]\n", section);
+    for (const auto& [key, value] : body.items()) {
+      if (value.is_null()) continue;
+      text += fmt::format("{} = {}\n", key, toml_value(value));
+    }
+  }
+  return text;
+}
+
+}  // namespace aesim

@@ -1,0 +1,51 @@
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "deck/pixel_deck.hpp"
+#include "fit/transfer_fit.hpp"
+
+namespace aesim {
+
+struct CalibrationOptions {
+  double vdd = 3.3;                        // V
+  double i_low = 1e-15, i_high = 1e-9;     // A, the photocurrents' range
+  int points = 13;                         // spaced logarithmically over the range
+  int firings = 8;                         // periods each transient measures (after its first firing)
+  int mc = 0;                              // Monte Carlo runs for the mismatch
+  int jobs = 1;                            // ngspice processes at once
+  double charge_guess = 100e-15;           // C, sizes the first transient of each point
+  bool progress = false;                   // a progress bar on stderr
+};
+
+// One photocurrent's measurement.
+struct CalibrationPoint {
+  double current = 0;          // A
+  double period = 0;           // s, mean firing period (NaN: never fired)
+  double pulse = 0;            // s, out's pulse width
+  double comparator_delay = 0; // s, NaN without a probe node
+  double supply_charge = 0;    // C per firing
+  int runs = 0;                // transients it took to size the run
+  double simulated = 0;        // s of circuit time simulated
+};
+
+struct Calibration {
+  std::vector<CalibrationPoint> points;  // every current asked for
+  std::vector<double> current, period;   // the points that fired: the transfer table
+  PixelFit fit;
+  SupplyFit supply;
+  double trip_level = 0;                 // V of the probe node where the comparator trips (NaN: none)
+  std::optional<double> mismatch;        // relative std of the threshold charge (--mc)
+  std::vector<double> mc_periods;        // s, one per Monte Carlo run
+  double mc_current = 0;                 // A
+  std::string ngspice;                   // version
+  double wall = 0;                       // s
+};
+
+// Runs the deck at every photocurrent (in parallel, `jobs` at a time), each transient sized from a
+// guess of its period and rerun until it holds `firings` periods resolved by ~500 time steps each,
+// then fits eq. 2. Throws InputError when ngspice rejects the deck or the pixel never fires.
+Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& options);
+
+}  // namespace aesim
