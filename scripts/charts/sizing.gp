@@ -7,7 +7,6 @@ set grid
 set key outside bottom center horizontal font ",10"
 set xlabel "power per 32x32 quadrant (uW)"
 set ylabel "PSNR of the reconstruction after the 1 s window (dB)"
-set xrange [5.5:10.5]
 do for [format in "png svg"] {
   if (format eq "png") { set terminal pngcairo size 1100,700 font ",11"; set output png }
   if (format eq "svg") { set terminal svg size 1100,700 dynamic font ",11"; set output svg }

@@ -64,7 +64,9 @@ int calibrate_command(const CalibrateOptions& opt) {
   if (!opt.chart.empty() && std::filesystem::path(opt.chart).extension() != ".png") {
     throw InputError(fmt::format("--chart '{}': use a .png file name", opt.chart));
   }
-  check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}}, {opt.deck});
+  const std::string chart_data =
+      opt.chart.empty() ? std::string() : std::filesystem::path(opt.chart).replace_extension(".csv").string();
+  check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {opt.deck});
   const PixelDeck deck = read_pixel_deck(opt.deck, opt.subckt, opt.probe);
 
   std::fprintf(stderr, "aesim calibrate: %s (%s), %d photocurrents from %s to %s%s, %d ngspice at once\n",
@@ -83,7 +85,7 @@ int calibrate_command(const CalibrateOptions& opt) {
   files.open(opt.output) << text;
   if (!opt.chart.empty()) {
     const std::string png = files.adopt(opt.chart);
-    const std::string data = files.adopt(opt.chart + ".csv");
+    const std::string data = files.adopt(chart_data);
     files.flush();
     draw_calibration_chart(c, calibrated.pixel, base.pixel, data, png);
   }
@@ -100,7 +102,8 @@ int calibrate_command(const CalibrateOptions& opt) {
   int runs = 0;
   for (const CalibrationPoint& p : c.points) runs += p.runs;
   std::printf("%d ngspice transients in %.1f s\n", runs + options.mc, c.wall);
-  std::printf("wrote %s%s%s\n", opt.output.c_str(), opt.chart.empty() ? "" : ", ", opt.chart.c_str());
+  std::printf("wrote %s%s\n", opt.output.c_str(),
+              opt.chart.empty() ? "" : fmt::format(", {} (its data: {})", opt.chart, chart_data).c_str());
   return 0;
 }
 

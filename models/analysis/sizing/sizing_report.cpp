@@ -122,6 +122,21 @@ SizingAnalysis analyse_sizing(const std::vector<DesignPoint>& points, const std:
   }
   if (a.recommended >= 0) {
     for (const Constraint& c : constraints) a.margins.push_back(margin(points[static_cast<std::size_t>(a.recommended)], c));
+    return a;
+  }
+  double closest = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < points.size() && !constraints.empty(); ++i) {
+    double worst = std::numeric_limits<double>::infinity();
+    for (const Constraint& c : constraints) worst = std::min(worst, margin(points[i], c));
+    if (worst > closest) {
+      closest = worst;
+      a.closest = static_cast<int>(i);
+    }
+  }
+  for (const Constraint& c : constraints) {
+    a.meeting.push_back(static_cast<std::size_t>(
+        std::count_if(points.begin(), points.end(), [&](const DesignPoint& p) { return margin(p, c) >= 0; })));
+    if (a.closest >= 0) a.closest_margins.push_back(margin(points[static_cast<std::size_t>(a.closest)], c));
   }
   return a;
 }
@@ -149,6 +164,18 @@ std::string sizing_report(const std::vector<DesignPoint>& points, const std::vec
   r += "\n## Recommendation\n\n";
   if (a.recommended < 0) {
     r += "No design point meets every constraint.\n";
+    if (a.closest < 0) return r;
+    r += "\nEach constraint alone:\n\n";
+    for (std::size_t k = 0; k < constraints.size(); ++k) {
+      r += fmt::format("- `{}`: met by {} of {} designs\n", constraints[k].column, a.meeting[k], points.size());
+    }
+    const DesignPoint& near = points[static_cast<std::size_t>(a.closest)];
+    r += fmt::format("\nClosest: **{}** (the least negative worst margin):\n\n", near.label);
+    for (std::size_t k = 0; k < constraints.size(); ++k) {
+      r += fmt::format("- `{}` = {}: margin {:.0f} %{}\n", constraints[k].column,
+                       shown(value(near, constraints[k].column), unit_of(constraints[k].column)),
+                       100 * a.closest_margins[k], a.closest_margins[k] < 0 ? " (violated)" : "");
+    }
     return r;
   }
   const DesignPoint& best = points[static_cast<std::size_t>(a.recommended)];

@@ -28,6 +28,11 @@ struct SizingAnalysis {
   std::vector<std::size_t> front_power_latency;  // lower power_w, lower latency_p99_s
   int recommended = -1;                          // feasible point with the largest worst margin
   std::vector<double> margins;                   // of the recommended point, per constraint (relative)
+  // With no feasible point: the one whose worst margin is least negative, and its margins; and
+  // per constraint, how many designs meet it alone (which constraint binds).
+  int closest = -1;
+  std::vector<double> closest_margins;
+  std::vector<std::size_t> meeting;
 };
 
 // Merges points with the same label (one design on several scenes) into their worst case: the

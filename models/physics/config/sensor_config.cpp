@@ -121,7 +121,10 @@ const std::map<std::string, KeySpec>& registry() {
                            },
                            [](const SensorConfig& c) {
                              if (c.pixel.transfer.empty()) return Json(nullptr);
-                             return Json{{"current", c.pixel.transfer.current}, {"period", c.pixel.transfer.period}};
+                             Json table{{"current", c.pixel.transfer.current}, {"period", c.pixel.transfer.period}};
+                             if (c.pixel.transfer.charge > 0) table["charge"] = c.pixel.transfer.charge;
+                             if (c.pixel.transfer.t_reset >= 0) table["t_reset"] = c.pixel.transfer.t_reset;
+                             return table;
                            }};
     integer("array.rows", [](auto& c) -> auto& { return c.array.rows; });
     integer("array.cols", [](auto& c) -> auto& { return c.array.cols; });

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -48,7 +49,9 @@ double TransferCurve::period_at(double photocurrent) const {
 
 double TransferCurve::integrating_current(double photocurrent, double threshold_charge, double i_dark,
                                           double t_reset) const {
-  const auto effective = [&](double i) { return threshold_charge / (period_at(i) - t_reset); };
+  const double q = charge > 0 ? charge : threshold_charge;
+  const double reset = this->t_reset >= 0 ? this->t_reset : t_reset;
+  const auto effective = [&](double i) { return q / (period_at(i) - reset); };
   if (photocurrent < current.front()) {
     const double at_end = effective(current.front());
     return at_end * (photocurrent + i_dark) / (current.front() + i_dark);
@@ -60,8 +63,14 @@ double TransferCurve::integrating_current(double photocurrent, double threshold_
   return effective(photocurrent);
 }
 
-void TransferCurve::validate(const std::string& key, double t_reset) const {
+void TransferCurve::validate(const std::string& key, double pixel_t_reset) const {
   if (empty()) return;
+  const double t_reset = this->t_reset >= 0 ? this->t_reset : pixel_t_reset;
+  const char* reset_key = this->t_reset >= 0 ? "its t_reset" : "pixel.t_reset";
+  if (!(charge >= 0) || !std::isfinite(charge)) throw InputError(fmt::format("{}: charge must be positive", key));
+  if (!std::isfinite(this->t_reset) || this->t_reset > 1e3) {
+    throw InputError(fmt::format("{}: t_reset must be at most 1000 s", key));
+  }
   if (current.size() != period.size()) {
     throw InputError(fmt::format("{}: {} currents but {} periods", key, current.size(), period.size()));
   }
@@ -74,8 +83,8 @@ void TransferCurve::validate(const std::string& key, double t_reset) const {
       throw InputError(fmt::format("{}: currents must increase (point {} after {})", key, current[k], current[k - 1]));
     }
     if (!(period[k] > t_reset) || !std::isfinite(period[k])) {
-      throw InputError(fmt::format("{}: period {} s at {} A is not longer than pixel.t_reset ({} s)", key, period[k],
-                                   current[k], t_reset));
+      throw InputError(fmt::format("{}: period {} s at {} A is not longer than {} ({} s)", key, period[k],
+                                   current[k], reset_key, t_reset));
     }
   }
 }
@@ -85,15 +94,30 @@ TransferCurve transfer_from_toml(const TomlValue& value, const std::string& key)
   if (!value.is_table()) throw InputError(fmt::format("{}: expected {{ current = [...], period = [...] }}", key));
   const auto& table = value.as_table();
   for (const auto& entry : table) {
-    if (entry.first != "current" && entry.first != "period") {
-      throw InputError(fmt::format("{}: unknown field '{}' (expected current and period)", key, entry.first));
+    if (entry.first != "current" && entry.first != "period" && entry.first != "charge" && entry.first != "t_reset") {
+      throw InputError(
+          fmt::format("{}: unknown field '{}' (expected current, period, charge, t_reset)", key, entry.first));
     }
   }
   const auto current = table.find("current"), period = table.find("period");
   if (current == table.end() || period == table.end()) {
     throw InputError(fmt::format("{}: needs both current and period", key));
   }
-  return {numbers(current->second, key, "current", "A"), numbers(period->second, key, "period", "s")};
+  TransferCurve t;
+  t.current = numbers(current->second, key, "current", "A");
+  t.period = numbers(period->second, key, "period", "s");
+  const auto scalar = [&](const char* field, const char* unit, double& out) {
+    const auto it = table.find(field);
+    if (it == table.end()) return;
+    const std::optional<std::string> text = it->second.scalar_text();
+    if (!text || it->second.is_boolean()) throw InputError(fmt::format("{}: '{}' must be a number", key, field));
+    out = parse_si(*text, unit, key);
+  };
+  scalar("charge", "C", t.charge);
+  scalar("t_reset", "s", t.t_reset);
+  if (table.count("charge") && !(t.charge > 0)) throw InputError(fmt::format("{}: charge must be positive", key));
+  if (table.count("t_reset") && !(t.t_reset >= 0)) throw InputError(fmt::format("{}: t_reset must not be negative", key));
+  return t;
 }
 
 TransferCurve transfer_from_text(const std::string& text, const std::string& key) {

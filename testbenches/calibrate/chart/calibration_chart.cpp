@@ -27,15 +27,17 @@ void draw_calibration_chart(const Calibration& c, const PixelParams& calibrated,
   if (!program_available("gnuplot")) throw InputError("--chart: gnuplot is not installed (apt-get install gnuplot-nox)");
   {
     std::ofstream out(data_path);
-    out << "current_A,ngspice_s,model_s,ideal_s\n";
+    out << "current_A,ngspice_s,model_s,ideal_s,ideal_at_ngspice_s\n";
     const double lo = c.points.front().current / 10, hi = c.points.back().current * 10;
     const int steps = 200;
     for (int k = 0; k <= steps; ++k) {
       const double i = lo * std::pow(hi / lo, static_cast<double>(k) / steps);
-      out << fmt::format("{:.6g},,{:.6g},{:.6g}\n", i, model_period(calibrated, i), model_period(ideal, i));
+      out << fmt::format("{:.6g},,{:.6g},{:.6g},\n", i, model_period(calibrated, i), model_period(ideal, i));
     }
     for (const CalibrationPoint& p : c.points) {
-      if (std::isfinite(p.period)) out << fmt::format("{:.6g},{:.6g},,\n", p.current, p.period);
+      if (std::isfinite(p.period)) {
+        out << fmt::format("{:.6g},{:.6g},,,{:.6g}\n", p.current, p.period, model_period(ideal, p.current));
+      }
     }
     if (!out) throw OutputError(fmt::format("cannot write '{}'", data_path));
   }

@@ -128,6 +128,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
                                  path));
   }
   deck.subckt = subckt;
+  deck.given = path;
   std::uint64_t h = fnv1a(text, 0xcbf29ce484222325ull);
   const std::vector<std::string> lines = logical_lines(text);
   std::optional<Subcircuit> found = find_subckt(lines, subckt);

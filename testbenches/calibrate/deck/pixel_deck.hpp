@@ -8,6 +8,7 @@ namespace aesim {
 // `.subckt NAME vdd out gnd params: iph=...`, its models and includes its own.
 struct PixelDeck {
   std::string path;      // absolute, as the generated testbench .include's it
+  std::string given;     // as the user named it, for messages and provenance
   std::string subckt;    // as the deck spells it
   std::string probe;     // the integration node when the subcircuit has one by that name, else empty
   std::string hash;      // FNV-1a 64 of the deck's bytes and its .include'd files', for provenance

@@ -35,16 +35,21 @@ std::string read_all(const fs::path& path) {
 }
 
 // ngspice's first error as one line: the "Error" line and the lines that explain it, up to the
-// line that says the run stopped.
+// line that says the run stopped; without such a line (ngspice's parser words some errors
+// otherwise, e.g. 'Closing "}" not found.'), its first two lines.
 std::string first_error(const std::string& log) {
   std::istringstream in(log);
-  std::string line, message;
+  std::string line, message, opening;
   bool in_error = false;
-  int extra = 0;
+  int extra = 0, lines = 0;
   while (std::getline(in, line)) {
     const std::string t = trim(line);
     if (t.empty()) continue;
     const std::string l = ascii_lower(t);
+    if (lines < 2 && l.rfind("note:", 0) != 0) {
+      opening += (lines ? " " : "") + t;
+      ++lines;
+    }
     if (!in_error && l.find("error") != std::string::npos) {
       in_error = true;
       message = t;
@@ -53,7 +58,7 @@ std::string first_error(const std::string& log) {
       message += " " + t;
     }
   }
-  return message;
+  return in_error ? message : opening;
 }
 
 }  // namespace
@@ -103,26 +108,26 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   if (!status) {
     throw InputError(fmt::format("deck '{}': ngspice ran longer than {:.0f} s at iph = {:.3g} A; its time step "
                                  "collapsed (check the deck's models and initial conditions)",
-                                 deck.path, kRunSeconds, request.iph));
+                                 deck.given, kRunSeconds, request.iph));
   }
   if (*status != 0) {
-    const std::string error = first_error(read_all(log) + "\n" + read_all(scratch / (name + ".out")));
+    const std::string error = first_error(read_all(log));
     if (ascii_lower(error).find("unknown subckt") != std::string::npos) {
-      throw InputError(fmt::format("deck '{}': ngspice finds no subcircuit '{}' ({})", deck.path, deck.subckt, error));
+      throw InputError(fmt::format("deck '{}': ngspice finds no subcircuit '{}' ({})", deck.given, deck.subckt, error));
     }
-    throw InputError(fmt::format("deck '{}': ngspice rejects it: {}", deck.path,
+    throw InputError(fmt::format("deck '{}': ngspice rejects it: {}", deck.given,
                                  error.empty() ? fmt::format("exit status {}", *status) : error));
   }
   const std::string messages = read_all(log);
   if (ascii_lower(messages).find("timestep too small") != std::string::npos) {
-    throw TransientAborted(fmt::format("deck '{}': ngspice stops at iph = {:.3g} A: {}", deck.path, request.iph,
+    throw TransientAborted(fmt::format("deck '{}': ngspice stops at iph = {:.3g} A: {}", deck.given, request.iph,
                                        first_error(messages).empty() ? "timestep too small" : first_error(messages)));
   }
   Waveform w;
   std::ifstream in(data);
   std::string header;
   if (!std::getline(in, header)) {
-    throw InputError(fmt::format("deck '{}': ngspice wrote no waveform at iph = {:.3g} A ({})", deck.path, request.iph,
+    throw InputError(fmt::format("deck '{}': ngspice wrote no waveform at iph = {:.3g} A ({})", deck.given, request.iph,
                                  first_error(read_all(log))));
   }
   const bool probe = !deck.probe.empty();

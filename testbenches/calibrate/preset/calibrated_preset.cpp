@@ -39,7 +39,10 @@ SensorConfig calibrated_config(SensorConfig base, const Calibration& c, double v
   base.pixel.c_int = c.fit.charge / base.pixel.dv_int;
   base.pixel.t_reset = c.fit.t_reset;
   base.pixel.i_dark = c.fit.i_dark;
-  base.pixel.transfer = {c.current, c.period};
+  base.pixel.transfer.current = c.current;
+  base.pixel.transfer.period = c.period;
+  base.pixel.transfer.charge = c.fit.charge;
+  base.pixel.transfer.t_reset = c.fit.t_reset;
   if (c.mismatch) base.pixel.mismatch = *c.mismatch;
   base.power.vdd = vdd;
   base.power.e_pixel_event = std::max(0.0, vdd * (c.supply.charge_per_firing - c.fit.charge));
@@ -50,16 +53,19 @@ SensorConfig calibrated_config(SensorConfig base, const Calibration& c, double v
 std::string calibrated_preset_text(const SensorConfig& config, const Calibration& c, const PixelDeck& deck,
                                    const std::string& base, const CalibrationOptions& o) {
   std::string text = fmt::format(
-      "# Calibrated by `aesim calibrate` from the pixel circuit '{}', subcircuit {} (FNV-1a 64 of the deck and its\n"
-      "# includes: {}), simulated with {}: vdd {:.4g} V, {} photocurrents from {:.4g} A to {:.4g} A, {} periods each.\n"
+      "# Calibrated by `aesim calibrate` from the pixel circuit '{}', subcircuit {}\n"
+      "# (FNV-1a 64 of the deck and its includes: {}), simulated with {}:\n"
+      "# vdd {:.4g} V, {} photocurrents from {:.4g} A to {:.4g} A, {} periods each\n"
+      "# ({} of them added between the log-spaced ones, where log-log interpolation would miss by over 0.2 %).\n"
       "# Base preset: {}. Every key below is the base's except the fitted ones.\n"
       "#\n"
       "# Fit of eq. 2, period = Q / (I + i_dark) + t_reset, to the measured periods (relative least squares):\n"
       "#   Q = {:.6g} C (pixel.c_int = Q / pixel.dv_int), t_reset = {:.6g} s, i_dark = {:.6g} A\n"
       "#   residuals: rms {:.3f} %, max {:.3f} %. pixel.transfer keeps the measured periods, so the model fires\n"
-      "#   with the circuit's period where the circuit departs from eq. 2.\n"
+      "#   with the circuit's period where the circuit departs from eq. 2; its charge and t_reset are the fit's,\n"
+      "#   so that a pixel resized from this one (pixel.c_int, dv_int, t_reset) scales from the circuit.\n"
       "# Supply charge per firing = {:.6g} C + {:.6g} A x period: power.e_pixel_event and power.p_static_pixel.\n",
-      deck.path, deck.subckt, deck.hash, c.ngspice, o.vdd, o.points, o.i_low, o.i_high, o.firings, base, c.fit.charge,
+      deck.given, deck.subckt, deck.hash, c.ngspice, o.vdd, c.points.size(), o.i_low, o.i_high, o.firings, c.refined, base, c.fit.charge,
       c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
       c.supply.static_current);
   if (c.mismatch) {

@@ -31,7 +31,8 @@ struct CalibrationPoint {
 };
 
 struct Calibration {
-  std::vector<CalibrationPoint> points;  // every current asked for
+  std::vector<CalibrationPoint> points;  // every current measured, in increasing order
+  int refined = 0;                       // of them added between the grid's points (see the .cpp)
   std::vector<double> current, period;   // the points that fired: the transfer table
   PixelFit fit;
   SupplyFit supply;
@@ -44,8 +45,8 @@ struct Calibration {
 };
 
 // Runs the deck at every photocurrent (in parallel, `jobs` at a time), each transient sized from a
-// guess of its period and rerun until it holds `firings` periods resolved by ~500 time steps each,
-// then fits eq. 2. Throws InputError when ngspice rejects the deck or the pixel never fires.
+// guess of its period and rerun until it holds `firings` periods resolved by ~500 time steps each;
+// adds points where log-log interpolation between neighbours would miss; fits eq. 2. Throws InputError when ngspice rejects the deck or the pixel never fires.
 Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& options);
 
 }  // namespace aesim

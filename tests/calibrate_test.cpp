@@ -1,0 +1,411 @@
+// `aesim calibrate` and pixel.transfer: the table's arithmetic against hand-computed values, the
+// fit and the measurements against constructed data, and, with ngspice, a deck whose answer is
+// known by construction, the shipped deck against aesim runs at every exact rung, a light step
+// against ngspice's own transient, Monte Carlo, and the decks a user gets wrong.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "config/sensor_config.hpp"
+#include "deck/pixel_deck.hpp"
+#include "errors/input_error.hpp"
+#include "fit/transfer_fit.hpp"
+#include "measure/firing_measure.hpp"
+#include "ngspice/ngspice_run.hpp"
+#include "pixel/transfer_curve.hpp"
+#include "process/child_process.hpp"
+#include "session/pixel_calibration.hpp"
+#include "support/temp_dir_test.hpp"
+
+namespace aesim {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::Outcome;
+using testing::slurp;
+
+const std::string kSource = AESIM_SOURCE_DIR;
+const std::string kShippedDeck = kSource + "/models/circuits/aesim_pixel.cir";
+const std::string kIdealDeck = kSource + "/tests/circuits/ideal_pixel.cir";
+
+// Text of a number with every digit (std::to_string would print 2.5e-14 as 0.000000).
+std::string num(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// --- pixel.transfer -------------------------------------------------------------------------
+
+TEST(TransferCurve, InterpolatesLogLogBetweenPoints) {
+  const TransferCurve t{{1e-12, 1e-10}, {0.1, 1e-3}};
+  EXPECT_DOUBLE_EQ(t.period_at(1e-12), 0.1);
+  EXPECT_DOUBLE_EQ(t.period_at(1e-10), 1e-3);
+  // A power law between the points: a decade up from 1 pA is a decade down in period.
+  EXPECT_NEAR(t.period_at(1e-11), 1e-2, 1e-15);
+  EXPECT_NEAR(t.period_at(std::sqrt(10.0) * 1e-12), 0.1 / std::sqrt(10.0), 1e-15);
+}
+
+TEST(TransferCurve, IntegratingCurrentFiresWithTheTablePeriod) {
+  const TransferCurve t{{1e-13, 1e-12, 1e-11}, {2.0, 0.25, 0.02}};
+  const double q = 1e-13, t_reset = 1e-3;
+  for (double i : {1e-13, 3e-13, 1e-12, 4e-12, 1e-11}) {
+    const double current = t.integrating_current(i, q, 0, t_reset);
+    EXPECT_NEAR(q / current + t_reset, t.period_at(i), 1e-12) << i;
+  }
+}
+
+TEST(TransferCurve, AResizedPixelScalesItsIntegrationFromTheMeasuredOne) {
+  TransferCurve t{{1e-13, 1e-12}, {2.0, 0.25}};
+  t.charge = 1e-13;
+  t.t_reset = 1e-3;
+  // Twice the threshold charge and its own 5 ms reset: the integration (period less the measured
+  // reset) doubles, then the pixel's own reset follows.
+  for (double i : {1e-13, 4e-13, 1e-12}) {
+    const double current = t.integrating_current(i, 2e-13, 0, 5e-3);
+    EXPECT_NEAR(2e-13 / current + 5e-3, 2 * (t.period_at(i) - 1e-3) + 5e-3, 1e-12) << i;
+  }
+}
+
+TEST(TransferCurve, BeyondTheTableFollowsEq2CurrentFromTheEnds) {
+  const TransferCurve t{{1e-13, 1e-11}, {1.0, 0.01}};
+  const double q = 1e-13, i_dark = 1e-15, t_reset = 0;
+  const double at_low = t.integrating_current(1e-13, q, i_dark, t_reset);  // 1e-13 A: q / 1 s
+  EXPECT_NEAR(at_low, 1e-13, 1e-25);
+  // Half the light (plus dark) below the table: the current scales with I + i_dark.
+  EXPECT_NEAR(t.integrating_current(0.5e-13, q, i_dark, t_reset), at_low * (0.5e-13 + i_dark) / (1e-13 + i_dark), 1e-25);
+  // No light: the dark current's share; no light and no dark current: never fires.
+  EXPECT_NEAR(t.integrating_current(0, q, i_dark, t_reset), at_low * i_dark / (1e-13 + i_dark), 1e-27);
+  EXPECT_EQ(t.integrating_current(0, q, 0, t_reset), 0.0);
+  const double at_high = t.integrating_current(1e-11, q, i_dark, t_reset);
+  EXPECT_NEAR(t.integrating_current(2e-11, q, i_dark, t_reset), at_high * (2e-11 + i_dark) / (1e-11 + i_dark), 1e-22);
+}
+
+TEST(TransferCurve, ConfigReadsTheTableFromTomlAndSetAndRefusesBadOnes) {
+  SensorConfig c;
+  apply_toml_text(c, "[pixel]\ntransfer = { current = [1e-13, \"1pA\"], period = [1.0, \"100ms\"] }\n", "p.toml", "");
+  ASSERT_EQ(c.pixel.transfer.current.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.pixel.transfer.current[1], 1e-12);
+  EXPECT_DOUBLE_EQ(c.pixel.transfer.period[1], 0.1);
+  c.set("pixel.transfer", "{current=[1e-12,1e-11],period=[0.1,0.01]}");
+  EXPECT_DOUBLE_EQ(c.pixel.transfer.period[0], 0.1);
+  EXPECT_NO_THROW(c.validate());
+  // The summary echoes it; "none" removes it.
+  EXPECT_EQ(c.to_json()["pixel"]["transfer"]["period"][1].get<double>(), 0.01);
+  c.set("pixel.transfer", "none");
+  EXPECT_TRUE(c.pixel.transfer.empty());
+  EXPECT_TRUE(c.to_json()["pixel"]["transfer"].is_null());
+
+  auto message = [](const std::string& value) {
+    SensorConfig bad;
+    try {
+      bad.set("pixel.transfer", value);
+      bad.validate();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message("{current=[1e-12],period=[0.1,0.2]}").find("1 currents but 2 periods"), std::string::npos);
+  EXPECT_NE(message("{current=[1e-11,1e-12],period=[0.1,0.2]}").find("currents must increase"), std::string::npos);
+  EXPECT_NE(message("{current=[1e-12,1e-11],period=[0.1,0]}").find("not longer than pixel.t_reset"), std::string::npos);
+  EXPECT_NE(message("{current=[1e-12,1e-11]}").find("needs both"), std::string::npos);
+  EXPECT_NE(message("{current=[1e-12,1e-11],period=[0.1,0.01],extra=1}").find("unknown field"), std::string::npos);
+  EXPECT_NE(message("{current=[1e-12,1e-11],period=[0.1,0.01],charge=0}").find("charge must be positive"),
+            std::string::npos);
+  EXPECT_NE(message("{current=[1e-12,1e-11],period=[0.1,0.01],t_reset=\"0.2s\"}").find("its t_reset"),
+            std::string::npos);
+  // The measured charge and reset travel with the table.
+  SensorConfig with;
+  with.set("pixel.transfer", "{current=[1e-12,1e-11],period=[0.1,0.01],charge=\"95fC\",t_reset=2e-6}");
+  EXPECT_DOUBLE_EQ(with.pixel.transfer.charge, 95e-15);
+  EXPECT_EQ(with.to_json()["pixel"]["transfer"]["t_reset"].get<double>(), 2e-6);
+  EXPECT_NE(message("[1,2]").find("pixel.transfer"), std::string::npos);
+}
+
+// --- the fit and the measurements on constructed data ----------------------------------------
+
+TEST(TransferFit, RecoversEq2FromExactPeriods) {
+  const double q = 100e-15, t_reset = 2e-6, i_dark = 3e-15;
+  std::vector<double> current, period;
+  for (int k = 0; k <= 12; ++k) {
+    current.push_back(1e-15 * std::pow(10.0, k / 2.0));
+    period.push_back(q / (current.back() + i_dark) + t_reset);
+  }
+  const PixelFit fit = fit_pixel(current, period);
+  EXPECT_NEAR(fit.charge / q, 1, 1e-6);
+  EXPECT_NEAR(fit.t_reset / t_reset, 1, 1e-4);
+  EXPECT_NEAR(fit.i_dark / i_dark, 1, 1e-4);
+  EXPECT_LT(fit.max_residual, 1e-6);
+}
+
+TEST(TransferFit, SupplySplitsIntoChargePerFiringAndStaticCurrent) {
+  const std::vector<double> period = {1e-3, 1e-2, 1e-1, 1.0};
+  std::vector<double> charge;
+  for (double p : period) charge.push_back(5e-12 + 2e-9 * p);
+  const SupplyFit s = fit_supply(period, charge);
+  EXPECT_NEAR(s.charge_per_firing / 5e-12, 1, 1e-9);
+  EXPECT_NEAR(s.static_current / 2e-9, 1, 1e-9);
+}
+
+// A hand-built waveform: out high for 1 us every 10 us (edges 10 ns), the supply delivering
+// 1 uA while out is high and nothing else, the probe ramping 0 -> 1 V between pulses.
+Waveform pulse_train(int pulses) {
+  Waveform w;
+  for (int k = 0; k < pulses; ++k) {
+    const double t0 = 10e-6 * (k + 1);
+    for (const auto& [dt, out, supply] : std::vector<std::tuple<double, double, double>>{
+             {-5e-6, 0, 0}, {-10e-9, 0, 0}, {0, 3.3, -1e-6}, {1e-6, 3.3, -1e-6}, {1e-6 + 10e-9, 0, 0}}) {
+      w.t.push_back(t0 + dt);
+      w.out.push_back(out);
+      w.supply.push_back(supply);
+      w.probe.push_back(dt < 0 ? 1.0 + dt / 9e-6 : 0.0);
+    }
+  }
+  return w;
+}
+
+TEST(FiringMeasure, PeriodPulseAndSupplyChargeOfAHandBuiltWaveform) {
+  const FiringMeasure m = measure_firings(pulse_train(6), 3.3);
+  ASSERT_EQ(m.fires.size(), 6u);
+  // Rising through 1.65 V halfway up a 10 ns edge.
+  EXPECT_NEAR(m.fires[0], 10e-6 - 5e-9, 1e-15);
+  EXPECT_NEAR(m.period, 10e-6, 1e-15);
+  EXPECT_NEAR(m.pulse, 1e-6 + 10e-9, 1e-15);
+  // 1 uA for 1 us plus two 10 ns half-ramps per period: 1.01 pC.
+  EXPECT_NEAR(m.supply_charge, 1.01e-12, 1e-18);
+  EXPECT_TRUE(m.probe_rising);
+  EXPECT_FALSE(std::isfinite(measure_firings(pulse_train(2), 3.3).period));
+}
+
+// --- with ngspice --------------------------------------------------------------------------------
+
+class NgspiceTest : public testing::TempDirTest {
+ protected:
+  void SetUp() override {
+    TempDirTest::SetUp();
+    if (!program_available("ngspice")) GTEST_SKIP() << "ngspice is not installed (scripts/setup installs it)";
+  }
+};
+
+TEST_F(NgspiceTest, KnownDeckGivesItsThresholdChargeAndResetWithinOnePercent) {
+  const PixelDeck deck = read_pixel_deck(kIdealDeck, "ideal_pixel", "int");
+  CalibrationOptions o;
+  o.i_low = 100e-15;
+  o.i_high = 100e-9;
+  o.points = 10;
+  o.jobs = 2;
+  const Calibration c = calibrate_pixel(deck, o);
+  ASSERT_GE(c.current.size(), 10u);  // and the points added where interpolation would miss
+  // By construction (tests/circuits/ideal_pixel.cir): Q = 100 fF x 0.999 V, t_reset =
+  // 1.59 Mohm x 100 fF x ln(0.999 / 0.001), no dark current.
+  const double q = 100e-15 * 0.999, t_reset = 1.59e6 * 100e-15 * std::log(0.999 / 0.001);
+  EXPECT_NEAR(c.fit.charge / q, 1, 0.01);
+  EXPECT_NEAR(c.fit.t_reset / t_reset, 1, 0.01);
+  EXPECT_LT(c.fit.i_dark, 0.01 * o.i_low);
+  // The pulse on out is the reset, within the edges' time steps.
+  EXPECT_NEAR(c.points.back().pulse / t_reset, 1, 0.02);
+}
+
+// Firing times of pixel (0, 0) from an `aesim run` truth file, in seconds.
+std::vector<double> truth_fires(const std::string& csv) {
+  std::vector<double> t;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string x, y, tile, t_us;
+    std::getline(row, x, ',');
+    std::getline(row, y, ',');
+    std::getline(row, tile, ',');
+    std::getline(row, t_us, ',');
+    if (x == "0" && y == "0") t.push_back(std::stod(t_us) * 1e-6);
+  }
+  return t;
+}
+
+// A 2x2 scene lit at pixel (0, 0) only, at 8-bit value `value`, the others dark.
+std::string lone_pixel_pgm(int value) {
+  std::string pgm = "P5\n2 2\n255\n";
+  pgm += static_cast<char>(value);
+  pgm += std::string(3, '\0');
+  return pgm;
+}
+
+class ShippedDeckTest : public NgspiceTest {
+ protected:
+  void SetUp() override {
+    NgspiceTest::SetUp();
+    if (IsSkipped()) return;
+    preset_ = (dir_ / "pixel.toml").string();
+    const Outcome o = aesim("calibrate '" + kShippedDeck + "' --subckt aesim_pixel -o pixel.toml");
+    ASSERT_EQ(o.status, 0) << o.err;
+    SensorConfig c;
+    apply_toml_file(c, preset_, "");
+    config_ = c;
+  }
+
+  // The circuit's own firings at a constant photocurrent, finely stepped (a reference, not a calibration).
+  FiringMeasure circuit(double iph, double periods, const std::string& deck_path) const {
+    const PixelDeck deck = read_pixel_deck(deck_path, "aesim_pixel", "int");
+    const double p = config_.pixel.transfer.period_at(iph);
+    return measure_firings(
+        run_transient(deck, 3.3, {iph, p * periods, p / 2000, std::nullopt}, dir_, "reference"), 3.3);
+  }
+
+  std::string common_sets(double i_max) const {
+    return " --set pixel.mismatch=0 --set pixel.initial=reset --set array.rows=2 --set array.cols=2"
+           " --set array.tile_rows=2 --set array.tile_cols=2 --set pixel.i_max=" +
+           num(i_max);
+  }
+
+  std::string preset_;
+  SensorConfig config_;
+};
+
+TEST_F(ShippedDeckTest, LandsNearTheAlohaPixelAndRunsWithNgspicesPeriodAtEveryExactRung) {
+  // Near the aloha preset's 10 Hz at 1 pA (100 fC) with ~1 fA of dark current.
+  EXPECT_NEAR(config_.pixel.threshold_charge() / 100e-15, 1, 0.1);
+  EXPECT_GT(config_.pixel.i_dark, 0.3e-15);
+  EXPECT_LT(config_.pixel.i_dark, 3e-15);
+  const std::vector<double>& table = config_.pixel.transfer.current;
+  ASSERT_GE(table.size(), 13u);
+  write("lit.pgm", lone_pixel_pgm(255));
+  // Between the table's points, where log-log interpolation is all the model has: a third of the
+  // way into the first interval (the dark current's knee), one in the middle, the last.
+  const std::size_t n = table.size();
+  for (double iph : {table[0] * std::pow(table[1] / table[0], 1.0 / 3), std::sqrt(table[n / 2] * table[n / 2 + 1]),
+                     table[n - 2] * std::pow(table[n - 1] / table[n - 2], 2.0 / 3)}) {
+    const FiringMeasure ngspice = circuit(iph, 10, kShippedDeck);
+    ASSERT_TRUE(std::isfinite(ngspice.period)) << iph;
+    for (const char* fidelity : {"event", "cycle", "pixel_processes"}) {
+      const Outcome o = aesim("run --sensor pixel.toml --scene lit.pgm --truth truth.csv --set sim.fidelity=" +
+                              std::string(fidelity) + common_sets(iph) +
+                              " --duration " + num(ngspice.period * 9));
+      ASSERT_EQ(o.status, 0) << o.err;
+      const std::vector<double> t = truth_fires(slurp(dir_ / "truth.csv"));
+      ASSERT_GE(t.size(), 8u) << fidelity << " " << iph;
+      const double period = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+      EXPECT_NEAR(period / ngspice.period, 1, 0.01) << fidelity << " at " << iph << " A";
+    }
+  }
+}
+
+TEST_F(ShippedDeckTest, LightStepFiresWhenNgspiceFiresOverTenPeriods) {
+  // ngspice: the shipped deck with its photocurrent stepping from 2 pA to 5 pA mid-integration.
+  const double i1 = 2e-12, i2 = 5e-12;
+  const double p1 = config_.pixel.transfer.period_at(i1), p2 = config_.pixel.transfer.period_at(i2);
+  std::string deck = slurp(kShippedDeck);
+  const double first_guess = p1 * 1.5;  // from 0 V the first firing takes longer than a period
+  const double t_step = first_guess + 2.4 * p1;
+  const std::string source = "Iph vdd int {iph}";
+  ASSERT_NE(deck.find(source), std::string::npos);
+  deck.replace(deck.find(source), source.size(),
+               "Iph vdd int PWL(0 " + num(i1) + " " + num(t_step) + " " + num(i1) +
+                   " " + num(t_step + 1e-9) + " " + num(i2) + ")");
+  const std::string stepped = write("stepped.cir", deck);
+  const PixelDeck pixel = read_pixel_deck(stepped, "aesim_pixel", "int");
+  const FiringMeasure ngspice =
+      measure_firings(run_transient(pixel, 3.3, {i1, t_step + 9 * p2, p2 / 2000, std::nullopt}, dir_, "step"), 3.3);
+  ASSERT_GE(ngspice.fires.size(), 12u);
+  ASSERT_LT(ngspice.fires[1], t_step);
+
+  // aesim: pixel (0, 0) reset at ngspice's first firing plus the reset, i.e. aesim's t = 0 is
+  // ngspice's fires[0] + t_reset; two frames, 2 pA then 5 pA (i_max 5 pA, values 102/255 and 1).
+  const double offset = ngspice.fires[0] + config_.pixel.t_reset;
+  fs::create_directories(dir_ / "step");
+  write("step/frame_000.pgm", lone_pixel_pgm(102));
+  write("step/frame_001.pgm", lone_pixel_pgm(255));
+  const Outcome o = aesim("run --sensor pixel.toml --scene step --truth truth.csv --set scene.frame_rate=" +
+                          num(1.0 / (t_step - offset)) + common_sets(i2) + " --duration " + num(t_step + 9 * p2 - offset));
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::vector<double> model = truth_fires(slurp(dir_ / "truth.csv"));
+  ASSERT_GE(model.size(), 10u);
+  int after_step = 0;
+  for (std::size_t k = 0; k < 10; ++k) {
+    const double expected = ngspice.fires[k + 1], got = model[k] + offset;
+    const double local_period = expected < t_step ? p1 : p2;
+    after_step += expected > t_step ? 1 : 0;
+    EXPECT_NEAR(got, expected, 0.01 * local_period) << "firing " << k + 1;
+  }
+  EXPECT_GE(after_step, 5);
+}
+
+TEST_F(NgspiceTest, MonteCarloMeasuresTheSpreadOfAStatisticalCapacitor) {
+  // The known deck with its capacitor drawn by agauss: 5 % relative sigma of the threshold charge.
+  std::string deck = slurp(kIdealDeck);
+  const std::string cap = "Cint int gnd 100f";
+  ASSERT_NE(deck.find(cap), std::string::npos);
+  deck.replace(deck.find(cap), cap.size(), "Cint int gnd {agauss(100f, 5f, 1)}");
+  const PixelDeck pixel = read_pixel_deck(write("mc.cir", deck), "ideal_pixel", "int");
+  CalibrationOptions o;
+  o.i_low = 1e-12;
+  o.i_high = 1e-10;
+  o.points = 3;
+  o.mc = 40;
+  o.jobs = 2;
+  const Calibration c = calibrate_pixel(pixel, o);
+  ASSERT_TRUE(c.mismatch.has_value());
+  // 40 draws estimate a 5 % sigma within about +-1.2 % (its standard error 5 % / sqrt(78)).
+  EXPECT_NEAR(*c.mismatch, 0.05, 0.02);
+  // Seeds 1..N: the same runs, the same spread.
+  EXPECT_EQ(calibrate_pixel(pixel, o).mismatch, c.mismatch);
+}
+
+TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
+  const std::string ideal = slurp(kIdealDeck);
+  std::map<std::string, std::pair<std::string, std::string>> cases;  // name -> deck text, expected words
+  std::string syntax = ideal;
+  syntax.replace(syntax.find("Cint int gnd 100f"), 17, "Cint int gnd {100f");
+  cases["syntax"] = {syntax, "ngspice rejects it"};
+  cases["missing_subckt"] = {"* nothing here\n.end\n", "no subcircuit 'ideal_pixel'"};
+  cases["ports"] = {".subckt ideal_pixel vdd out gnd extra params: iph=1p\nR1 out gnd 1k\n.ends\n", "has 4 ports"};
+  cases["never_fires"] = {".subckt ideal_pixel vdd out gnd params: iph=1p\nR1 out gnd 1k\nI1 vdd out {iph}\n.ends\n",
+                          "never fires"};
+  for (const auto& [name, spec] : cases) {
+    write(name + ".cir", spec.first);
+    const Outcome o = aesim("calibrate " + name + ".cir --subckt ideal_pixel -o " + name +
+                            ".toml --currents 1pA:100pA --points 3");
+    EXPECT_EQ(o.status, 2) << name << ": " << o.err;
+    EXPECT_NE(o.err.find(spec.second), std::string::npos) << name << ": " << o.err;
+    // One line of error (after the banner, when the deck got as far as ngspice).
+    const std::string last = o.err.substr(o.err.rfind('\n', o.err.size() - 2) + 1);
+    EXPECT_EQ(last.rfind("aesim: ", 0), 0u) << name << ": " << o.err;
+    EXPECT_NE(last.find(spec.second), std::string::npos) << name << ": " << o.err;
+    EXPECT_FALSE(fs::exists(dir_ / (name + ".toml"))) << name;
+  }
+  // ngspice missing: PATH without it.
+  const Outcome o = aesim("calibrate '" + kIdealDeck + "' --subckt ideal_pixel -o x.toml", "PATH=/nonexistent ");
+  EXPECT_EQ(o.status, 2) << o.err;
+  EXPECT_NE(o.err.find("ngspice is not installed"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.toml"));
+  // Absurd options are refused before any ngspice runs.
+  for (const char* bad : {"--points 1", "--points 100000", "--currents 1nA:1fA", "--mc 1", "--vdd -1V"}) {
+    const Outcome b = aesim("calibrate '" + kIdealDeck + "' --subckt ideal_pixel -o y.toml " + bad);
+    EXPECT_EQ(b.status, 2) << bad << ": " << b.err;
+  }
+}
+
+TEST_F(NgspiceTest, SameDeckSameOptionsSameBytesAndTheChart) {
+  const std::string args = "calibrate '" + kIdealDeck + "' --subckt ideal_pixel --currents 1pA:10nA --points 5 -o ";
+  ASSERT_EQ(aesim(args + "a.toml --chart a.png -j 1").status, 0);
+  ASSERT_EQ(aesim(args + "b.toml -j 2").status, 0);
+  EXPECT_EQ(slurp(dir_ / "a.toml"), slurp(dir_ / "b.toml"));
+  EXPECT_GT(fs::file_size(dir_ / "a.png"), 1000u);
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "a.csv"));
+  EXPECT_EQ(slurp(dir_ / "a.png").substr(1, 3), "PNG");
+}
+
+}  // namespace
+}  // namespace aesim
