@@ -261,7 +261,7 @@ class ShippedDeckTest : public NgspiceTest {
     const PixelDeck deck = read_pixel_deck(deck_path, "aesim_pixel", "int");
     const double p = config_.pixel.transfer.period_at(iph);
     return measure_firings(
-        run_transient(deck, 3.3, {iph, p * periods, p / 2000, std::nullopt}, dir_, "reference"), 3.3);
+        run_transient(deck, 3.3, {iph, p * periods, p / 2000}, dir_, "reference"), 3.3);
   }
 
   std::string common_sets(double i_max) const {
@@ -317,7 +317,7 @@ TEST_F(ShippedDeckTest, LightStepFiresWhenNgspiceFiresOverTenPeriods) {
   const std::string stepped = write("stepped.cir", deck);
   const PixelDeck pixel = read_pixel_deck(stepped, "aesim_pixel", "int");
   const FiringMeasure ngspice =
-      measure_firings(run_transient(pixel, 3.3, {i1, t_step + 9 * p2, p2 / 2000, std::nullopt}, dir_, "step"), 3.3);
+      measure_firings(run_transient(pixel, 3.3, {i1, t_step + 9 * p2, p2 / 2000}, dir_, "step"), 3.3);
   ASSERT_GE(ngspice.fires.size(), 12u);
   ASSERT_LT(ngspice.fires[1], t_step);
 
@@ -342,13 +342,16 @@ TEST_F(ShippedDeckTest, LightStepFiresWhenNgspiceFiresOverTenPeriods) {
   EXPECT_GE(after_step, 5);
 }
 
-TEST_F(NgspiceTest, MonteCarloMeasuresTheSpreadOfAStatisticalCapacitor) {
-  // The known deck with its capacitor drawn by agauss: 5 % relative sigma of the threshold charge.
+TEST_F(NgspiceTest, MonteCarloMeasuresTheSpreadOfAStatisticalCapacitorAndTheTableStaysNominal) {
+  // The known deck with its capacitor drawn by agauss when aesim sets mc=1: 5 % relative sigma of
+  // the threshold charge in Monte Carlo runs, the nominal capacitor otherwise.
   std::string deck = slurp(kIdealDeck);
-  const std::string cap = "Cint int gnd 100f";
+  const std::string cap = "Cint int gnd 100f", params = "params: iph=1p";
   ASSERT_NE(deck.find(cap), std::string::npos);
-  deck.replace(deck.find(cap), cap.size(), "Cint int gnd {agauss(100f, 5f, 1)}");
+  deck.replace(deck.find(cap), cap.size(), "Cint int gnd {100f * (1 + mc * agauss(0, 0.05, 1))}");
+  deck.replace(deck.find(params), params.size(), "params: iph=1p mc=0");
   const PixelDeck pixel = read_pixel_deck(write("mc.cir", deck), "ideal_pixel", "int");
+  EXPECT_TRUE(pixel.mc_parameter);
   CalibrationOptions o;
   o.i_low = 1e-12;
   o.i_high = 1e-10;
@@ -356,6 +359,7 @@ TEST_F(NgspiceTest, MonteCarloMeasuresTheSpreadOfAStatisticalCapacitor) {
   o.mc = 40;
   o.jobs = 2;
   const Calibration c = calibrate_pixel(pixel, o);
+  EXPECT_NEAR(c.fit.charge / (100e-15 * 0.999), 1, 0.005);
   ASSERT_TRUE(c.mismatch.has_value());
   // 40 draws estimate a 5 % sigma within about +-1.2 % (its standard error 5 % / sqrt(78)).
   EXPECT_NEAR(*c.mismatch, 0.05, 0.02);

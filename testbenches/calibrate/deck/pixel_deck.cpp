@@ -149,6 +149,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   if (std::find(found->params.begin(), found->params.end(), "iph") == found->params.end()) {
     throw InputError(fmt::format("deck '{}': subcircuit '{}' has no parameter iph (params: iph=1p)", path, subckt));
   }
+  deck.mc_parameter = std::find(found->params.begin(), found->params.end(), "mc") != found->params.end();
   if (!probe_node.empty()) {
     for (const std::string& line : found->body) {
       const std::vector<std::string> t = tokens(line);

@@ -12,6 +12,9 @@ struct PixelDeck {
   std::string subckt;    // as the deck spells it
   std::string probe;     // the integration node when the subcircuit has one by that name, else empty
   std::string hash;      // FNV-1a 64 of the deck's bytes and its .include'd files', for provenance
+  // The subcircuit declares a parameter `mc`: aesim passes mc=1 in Monte Carlo runs and mc=0
+  // otherwise, so that one deck gives the nominal table and the statistical spread.
+  bool mc_parameter = false;
 };
 
 // Reads the deck and finds the subcircuit (in the deck or the files it .include's, one level),

@@ -73,10 +73,10 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
   // The deck comes after them, so its own .options win.
   return fmt::format(
       "* aesim calibrate: {} at iph = {:.6g} A\n"
-      ".options method=gear reltol=1e-4 abstol=1e-17 chgtol=1e-19 gmin=1e-18{}\n"
+      ".options method=gear reltol=1e-4 abstol=1e-17 chgtol=1e-19 gmin=1e-18 seed={}\n"
       ".include \"{}\"\n"
       "Vdd vdd 0 {:.12g}\n"
-      "Xpix vdd out 0 {} iph={:.12g}\n"
+      "Xpix vdd out 0 {} iph={:.12g}{}\n"
       ".control\n"
       "tran {:.6g} {:.12g} 0 {:.6g} uic\n"
       "set wr_singlescale\n"
@@ -86,8 +86,9 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "quit 0\n"
       ".endc\n"
       ".end\n",
-      deck.subckt, r.iph, r.seed ? fmt::format(" seed={}", *r.seed) : std::string(), deck.path, vdd, deck.subckt,
-      r.iph, r.t_max, r.t_stop, r.t_max, data_path, probe);
+      deck.subckt, r.iph, r.seed, deck.path, vdd, deck.subckt, r.iph,
+      deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), r.t_max, r.t_stop, r.t_max,
+      data_path, probe);
 }
 
 Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest& request, const fs::path& scratch,

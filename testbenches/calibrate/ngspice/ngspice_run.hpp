@@ -14,7 +14,8 @@ struct TransientRequest {
   double iph = 0;     // A
   double t_stop = 0;  // s
   double t_max = 0;   // s, ngspice's largest internal step
-  std::optional<unsigned> seed;  // Monte Carlo: ngspice's seed for agauss() and friends
+  unsigned seed = 1;             // ngspice's seed for agauss() and friends
+  bool monte_carlo = false;      // sets the deck's `mc` parameter, when it has one
 };
 
 // What a run records: the pixel's output, the supply's current (ngspice's sign: negative when the

@@ -47,7 +47,7 @@ struct PointRun {
   FiringMeasure measure;
 };
 
-PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, double current, std::optional<unsigned> seed,
+PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, double current, std::optional<unsigned> mc_seed,
                        double guess, const fs::path& scratch, const std::string& name) {
   PointRun r;
   r.point.current = current;
@@ -55,7 +55,8 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
   const auto wanted = static_cast<std::size_t>(o.firings + 2);
   double finer = 1;  // after ngspice gave up on a step, the largest step is cut tenfold, twice at most
   for (int run = 0; run < kMaxRuns; ++run) {
-    TransientRequest request{current, guess * (o.firings + 2.5), guess / kStepsPerPeriod / finer, seed};
+    TransientRequest request{current, guess * (o.firings + 2.5), guess / kStepsPerPeriod / finer,
+                             mc_seed.value_or(kTableSeed), mc_seed.has_value()};
     try {
       r.wave = run_transient(deck, o.vdd, request, scratch, name);
     } catch (const TransientAborted& e) {
@@ -139,7 +140,7 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
         [&](int k) {
           const std::size_t index = first + static_cast<std::size_t>(k);
           const double current = currents[static_cast<std::size_t>(k)];
-          runs[index] = measure_point(deck, o, current, kTableSeed, o.charge_guess / current, scratch.path(),
+          runs[index] = measure_point(deck, o, current, std::nullopt, o.charge_guess / current, scratch.path(),
                                       fmt::format("p{:03d}", index));
         },
         progress_bar(o.progress, static_cast<int>(currents.size()), what));
