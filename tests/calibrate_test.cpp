@@ -3,6 +3,7 @@
 // known by construction, the shipped deck against aesim runs at every exact rung, a light step
 // against ngspice's own transient, Monte Carlo, and the decks a user gets wrong.
 #include <algorithm>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -399,6 +400,35 @@ TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
     const Outcome b = aesim("calibrate '" + kIdealDeck + "' --subckt ideal_pixel -o y.toml " + bad);
     EXPECT_EQ(b.status, 2) << bad << ": " << b.err;
   }
+}
+
+TEST_F(NgspiceTest, ShellSyntaxInTheDeckPathIsOnlyAName) {
+  // The path reaches ngspice inside the generated testbench (.include "PATH") and as an argument;
+  // no shell sees it. What ngspice's .include line cannot carry (a quote, ';', ' $') is refused.
+  write("deck$(touch pwned)|`touch pwned2`&x.cir", slurp(kIdealDeck));
+  const Outcome o = aesim("calibrate 'deck$(touch pwned)|`touch pwned2`&x.cir' --subckt ideal_pixel -o p.toml "
+                          "--currents 1pA:10pA --points 3");
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "p.toml"));
+  for (const char* name : {"a\"b.cir", "a;touch pwned.cir", "a $ b.cir"}) {
+    write(name, slurp(kIdealDeck));
+    const Outcome refused = aesim(std::string("calibrate '") + name + "' --subckt ideal_pixel -o q.toml");
+    EXPECT_EQ(refused.status, 2) << name;
+    EXPECT_NE(refused.err.find("cannot carry"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir_ / "q.toml"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "pwned"));
+  EXPECT_FALSE(fs::exists(dir_ / "pwned2"));
+}
+
+TEST_F(NgspiceTest, CtrlCStopsItWithNoPresetAndNoScratchLeft) {
+  // Its own TMPDIR, where the command keeps its ngspice files: empty again after the signal.
+  fs::create_directories(dir_ / "tmp");
+  const Outcome o = aesim("calibrate '" + kIdealDeck + "' --subckt ideal_pixel -o p.toml --points 200 --mc 1000",
+                          "TMPDIR='" + (dir_ / "tmp").string() + "' timeout --preserve-status -s INT 2 ");
+  EXPECT_EQ(o.status, 128 + SIGINT) << o.err;
+  EXPECT_FALSE(fs::exists(dir_ / "p.toml"));
+  EXPECT_TRUE(fs::is_empty(dir_ / "tmp"));
 }
 
 TEST_F(NgspiceTest, SameDeckSameOptionsSameBytesAndTheChart) {

@@ -97,6 +97,28 @@ TEST(SizingReport, ConstraintsFrontsAndRecommendationOnAHandMadeTable) {
   EXPECT_NE(report.find("**b**"), std::string::npos);
 }
 
+TEST(SizingReport, WithNothingFeasibleNamesTheBindingConstraintAndTheClosestDesign) {
+  const std::vector<DesignPoint> points = {
+      point("p", 30e-6, 30, 0.01),  // power 200 % over
+      point("q", 20e-6, 24, 0.02),  // power 100 % over: the least negative worst margin
+      point("r", 40e-6, 17, 0.06),  // over on everything
+  };
+  const std::vector<Constraint> constraints = {parse_constraint("collision_fraction", "<= 0.05"),
+                                               parse_constraint("psnr_db", ">= 18"),
+                                               parse_constraint("power_w", "<= 10uW")};
+  const SizingAnalysis a = analyse_sizing(points, constraints);
+  EXPECT_EQ(a.recommended, -1);
+  EXPECT_EQ(a.closest, 1);
+  EXPECT_EQ(a.meeting, (std::vector<std::size_t>{2, 2, 0}));
+  ASSERT_EQ(a.closest_margins.size(), 3u);
+  EXPECT_NEAR(a.closest_margins[2], -1.0, 1e-12);
+  const std::string report = sizing_report(points, constraints, a);
+  EXPECT_NE(report.find("No design point meets every constraint."), std::string::npos);
+  EXPECT_NE(report.find("`power_w`: met by 0 of 3 designs"), std::string::npos);
+  EXPECT_NE(report.find("Closest: **q**"), std::string::npos);
+  EXPECT_NE(report.find("margin -100 % (violated)"), std::string::npos);
+}
+
 TEST(SizingReport, WorstCaseAcrossConditions) {
   const std::vector<DesignPoint> merged =
       worst_case_by_label({point("x", 5e-6, 30, 0.01), point("x", 7e-6, 22, 0.03), point("y", 1e-6, 40, 0.0)});

@@ -15,6 +15,7 @@
 #include "emulator/y4m.hpp"
 #include "event_files/event_file.hpp"
 #include "scene/netpbm.hpp"
+#include "deck/pixel_deck.hpp"
 #include "description/receiver_description.hpp"
 #include "plan/verification_plan.hpp"
 #include "spec/sweep_spec.hpp"
@@ -127,6 +128,13 @@ int receiver_toml(const std::uint8_t* data, std::size_t size) {
     const VerificationPlan p = make_plan(path);
     if (p.scenes.size() <= 4) plan_cycles(plan_cases(p, d, 1));
   });
+}
+
+int pixel_deck(const std::uint8_t* data, std::size_t size) {
+  // The deck is read as `aesim calibrate` reads it before ngspice sees it: the subcircuit, its
+  // ports and parameters, the probe node, the includes (relative to the scratch folder).
+  const std::string path = write_scratch("deck.cir", data, size);
+  return expect_result_or_input_error([&] { read_pixel_deck(path, "pixel", "int"); });
 }
 
 }  // namespace aesim::fuzz

@@ -16,6 +16,7 @@ int set_values(const std::uint8_t* data, std::size_t size);    // --set key=valu
 int sensor_toml(const std::uint8_t* data, std::size_t size);   // sensor presets and scene.toml
 int sweep_spec(const std::uint8_t* data, std::size_t size);    // sweep specs
 int receiver_toml(const std::uint8_t* data, std::size_t size);  // aesim verify's descriptions and plans
+int pixel_deck(const std::uint8_t* data, std::size_t size);    // aesim calibrate's SPICE decks
 
 struct Target {
   const char* name;
@@ -24,6 +25,7 @@ struct Target {
 inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
                                       {"aedat", aedat},           {"events_csv", events_csv},
                                       {"set_values", set_values}, {"sensor_toml", sensor_toml},
-                                      {"sweep_spec", sweep_spec}, {"receiver_toml", receiver_toml}};
+                                      {"sweep_spec", sweep_spec}, {"receiver_toml", receiver_toml},
+                                      {"pixel_deck", pixel_deck}};
 
 }  // namespace aesim::fuzz

@@ -19,6 +19,7 @@
 #include "errors/input_error.hpp"
 #include "files/scratch_folder.hpp"
 #include "measure/firing_measure.hpp"
+#include "output/temp_files.hpp"
 #include "ngspice/ngspice_run.hpp"
 
 namespace aesim {
@@ -59,6 +60,10 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
                              mc_seed.value_or(kTableSeed), mc_seed.has_value()};
     try {
       r.wave = run_transient(deck, o.vdd, request, scratch, name);
+    } catch (const InputError&) {
+      // A Ctrl-C reaches ngspice too, which then fails: the interruption, not the deck, is why.
+      if (interrupt_requested()) throw Interrupted(interrupt_requested());
+      throw;
     } catch (const TransientAborted& e) {
       if (finer >= 100) throw InputError(e.what());
       finer *= 10;
@@ -96,6 +101,7 @@ void run_parallel(int count, int jobs, const std::function<void(int)>& job, cons
   auto worker = [&] {
     for (int i = next++; i < count && !failed; i = next++) {
       try {
+        if (interrupt_requested()) throw Interrupted(interrupt_requested());
         job(i);
         std::lock_guard<std::mutex> g(lock);
         done(++finished);
@@ -128,6 +134,9 @@ std::function<void(int)> progress_bar(bool show, int total, const char* what) {
 
 Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) {
   const auto start = std::chrono::steady_clock::now();
+  // A signal stops the points politely: the scratch folder and its ngspice files are removed as
+  // the stack unwinds, and the command exits with 128 + the signal.
+  const Cooperative stop_politely;
   Calibration c;
   c.ngspice = ngspice_version();
   const ScratchFolder scratch(fs::temp_directory_path() / fmt::format("aesim-calibrate-{}", ::getpid()));
