@@ -251,6 +251,12 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     mean /= o.mc;
     for (double p : c.mc_periods) var += (p - c.fit.t_reset - mean) * (p - c.fit.t_reset - mean);
     c.mismatch = o.mc > 1 ? std::sqrt(var / (o.mc - 1)) / mean : 0.0;
+    // Identical runs differ only by the rounding of the mean: the deck has no statistics.
+    if (*c.mismatch < 1e-9) {
+      c.mismatch = 0.0;
+      std::fprintf(stderr, "aesim calibrate: warning: --mc: every run fired with the same period; the deck has no "
+                           "statistical functions (agauss, ...) or no `mc` parameter that switches them on\n");
+    }
   }
   c.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return c;
