@@ -26,6 +26,7 @@
 #include "pixel/transfer_curve.hpp"
 #include "process/child_process.hpp"
 #include "session/pixel_calibration.hpp"
+#include "support/csv_rows.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {
@@ -221,17 +222,8 @@ TEST_F(NgspiceTest, KnownDeckGivesItsThresholdChargeAndResetWithinOnePercent) {
 // Firing times of pixel (0, 0) from an `aesim run` truth file, in seconds.
 std::vector<double> truth_fires(const std::string& csv) {
   std::vector<double> t;
-  std::istringstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    std::string x, y, tile, t_us;
-    std::getline(row, x, ',');
-    std::getline(row, y, ',');
-    std::getline(row, tile, ',');
-    std::getline(row, t_us, ',');
-    if (x == "0" && y == "0") t.push_back(std::stod(t_us) * 1e-6);
+  for (const std::vector<std::string>& row : testing::csv_rows(csv)) {
+    if (row.size() >= 4 && row[0] == "0" && row[1] == "0") t.push_back(std::stod(row[3]) * 1e-6);
   }
   return t;
 }

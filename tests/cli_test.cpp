@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/netpbm.hpp"
+#include "support/csv_rows.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {
@@ -210,16 +211,8 @@ TEST_F(CliTest, CycleStampsAreTheLatchEdgesTickInBothFiles) {
     const auto stamp = static_cast<long long>(std::fabs(t_us - nearest) < 1e-6 ? nearest : std::floor(t_us));
     from_truth.insert({stamp, std::stoi(x), std::stoi(y), std::stoi(tile)});
   }
-  std::istringstream events(slurp(dir_ / "e.csv"));
-  std::getline(events, line);
-  while (std::getline(events, line)) {
-    std::istringstream row(line);
-    std::string t, x, y, tile;
-    std::getline(row, t, ',');
-    std::getline(row, x, ',');
-    std::getline(row, y, ',');
-    std::getline(row, tile, ',');
-    from_events.insert({std::stoll(t), std::stoi(x), std::stoi(y), std::stoi(tile)});
+  for (const std::vector<std::string>& row : testing::csv_rows(slurp(dir_ / "e.csv"))) {
+    from_events.insert({std::stoll(row.at(0)), std::stoi(row.at(1)), std::stoi(row.at(2)), std::stoi(row.at(3))});
   }
   ASSERT_GT(from_events.size(), 1000u);
   EXPECT_GT(on_edge, 0u);  // the stimulus holds the case that matters
