@@ -1,11 +1,13 @@
 // The paper's emulator and recogniser: behaviours on synthetic inputs, chaos statistics, Y4M,
 // and the rank-weighted templates.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
 
 #include <gtest/gtest.h>
 
+#include "bandwidth/image_bandwidth.hpp"
 #include "classify/template_classifier.hpp"
 #include "errors/input_error.hpp"
 #include "emulator/behaviours.hpp"
@@ -69,11 +71,12 @@ TEST(Behaviours, EdgeFiresOnlyAtTheStep) {
   EXPECT_DOUBLE_EQ(e.at(7, 2), 1.0);  // a full step is full scale
 }
 
-TEST(Emulator, IntensityFollowsEquationsOneAndThree) {
-  // Grey levels 255, 102 (P_max/P = 2.5 -> 3) and 0, f_max 10: 10 iterations; the bright pixel
-  // enters all of them, the grey one iterations 3, 6, 9, the black one never.
+TEST(Emulator, LiteralEquationThreeAsThePaperWritesIt) {
+  // Grey levels 255, 102 (P_max/P = 2.5 -> 3) and 0, f_max 10: 10 passes; the bright pixel
+  // enters all of them, the grey one passes 3, 6, 9, the black one never.
   EmulatorSettings s;
   s.f_max = 10;
+  s.spread = QueueSpread::Literal;
   const Image frame = make_image(3, 1, [](int x, int) { return x == 0 ? 1.0 : x == 1 ? 102 / 255.0 : 0.0; });
   const auto events = emulate({frame}, s);
   std::vector<std::uint32_t> order;
@@ -83,6 +86,49 @@ TEST(Emulator, IntensityFollowsEquationsOneAndThree) {
   EXPECT_NEAR(events[0].t, 0.5 / 13 / 25, 1e-15);
   EXPECT_NEAR(events[12].t, 12.5 / 13 / 25, 1e-15);
   EXPECT_TRUE(emulate({make_image(3, 1, [](int, int) { return 0.0; })}, s).empty());  // black frame
+}
+
+TEST(Emulator, EvenSpreadGivesEquationOneCountsSpreadThroughTheFrame) {
+  // The same frame: the grey pixel enters round(10 * 102 / 255) = round(4) = 4 times, at the
+  // passes where floor(4 n / 10) steps: 3, 5, 8, 10.
+  EmulatorSettings s;
+  s.f_max = 10;
+  const Image frame = make_image(3, 1, [](int x, int) { return x == 0 ? 1.0 : x == 1 ? 102 / 255.0 : 0.0; });
+  std::vector<std::uint32_t> order;
+  for (const EmulatedEvent& e : emulate({frame}, s)) order.push_back(e.x);
+  EXPECT_EQ(order, (std::vector<std::uint32_t>{0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1}));
+}
+
+// Entries per grey level 0..255 (one pixel each, with full scale present) at f_max 20.
+std::vector<int> counts_per_grey(QueueSpread spread) {
+  EmulatorSettings s;
+  s.f_max = 20;
+  s.spread = spread;
+  const Image ramp = make_image(16, 16, [](int x, int y) { return (y * 16 + x) / 255.0; });
+  std::vector<int> count(256, 0);
+  for (const EmulatedEvent& e : emulate({ramp}, s)) ++count[e.y * 16 + e.x];
+  return count;
+}
+
+TEST(Emulator, EveryGreyLevelEntersAsEquationOneSays) {
+  const std::vector<int> even = counts_per_grey(QueueSpread::Even);
+  for (int g = 0; g < 256; ++g) EXPECT_EQ(even[g], std::lround(20.0 * g / 255.0)) << "grey " << g;
+  // The literal reading can only give 20 / k: grey 170 enters 10 times, 171 enters 20, where
+  // eq. 1 says 13.3 and 13.4.
+  const std::vector<int> literal = counts_per_grey(QueueSpread::Literal);
+  EXPECT_EQ(literal[170], 10);
+  EXPECT_EQ(literal[171], 20);
+  // Of the 243 levels to which eq. 1 gives at least one entry, 81 end more than 20 % from it (the
+  // outside check's count).
+  int levels = 0, off = 0;
+  for (int g = 1; g < 256; ++g) {
+    const double eq1 = 20.0 * g / 255.0;
+    if (eq1 < 1) continue;
+    ++levels;
+    off += std::fabs(literal[g] - eq1) > 0.2 * eq1 ? 1 : 0;
+  }
+  EXPECT_EQ(levels, 243);
+  EXPECT_EQ(off, 81);
 }
 
 TEST(Emulator, ChaosProbabilitiesHoldStatistically) {
@@ -148,6 +194,22 @@ Template make_template(const char* name, std::vector<std::uint8_t> white, double
   return t;
 }
 
+TEST(PaperTable2, QvgaFrameAndItsEventsInMemoryAndOnA802154Radio) {
+  // QVGA at 16 bits: 320 x 240 x 2 bytes + the paper's 12 bytes of frame overhead = 153,612.
+  // On 127-byte packets with 8 bytes of overhead: 119 bytes each, 1291 packets, 163,940 bytes on
+  // air at 250 kbit/s = 5.24608 s. 400 events of 9 + 8 address bits: 850 bytes, 8 packets,
+  // (850 + 64) x 8 / 250e3 = 29.248 ms.
+  const std::vector<ImageCost> c = image_costs({320, 240, 16, 400, 12}, RadioModel{});
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].bytes, 153612);
+  EXPECT_EQ(c[0].packets, 1291);
+  EXPECT_NEAR(c[0].airtime_s, 5.24608, 1e-12);
+  EXPECT_EQ(c[1].bytes, 850);
+  EXPECT_EQ(c[1].packets, 8);
+  EXPECT_NEAR(c[1].airtime_s, 0.029248, 1e-12);
+  EXPECT_EQ(c[2].bytes, 320 * 240 * 2);
+}
+
 TEST(Classifier, RanksFixTheCInsideOFalseHit) {
   // A "C" that is part of an "O": plain counting scores both alike on every C event and can
   // never pick C. Ranks (O has 4 pixels, C 2: r_C = 2, r_O = 1) let C pull ahead.
@@ -170,6 +232,33 @@ TEST(Classifier, RanksFixTheCInsideOFalseHit) {
   std::vector<std::pair<double, double>> o_events;
   for (int i = 0; i < 50; ++i) o_events.emplace_back(i % 4, 0);
   EXPECT_EQ(classify(t, o_events, o).winner, -1);
+}
+
+TEST(Classifier, ContainmentIsFoundAndTheShippedHandSignsShowIt) {
+  // Three 4x1 templates: "in" (x = 1) inside "out" (x = 0..2), "apart" (x = 3) inside neither.
+  auto t = [](const char* name, std::vector<std::uint8_t> white) {
+    Template tpl;
+    tpl.name = name;
+    tpl.width = 4;
+    tpl.height = 1;
+    tpl.white = white;
+    tpl.white_count = static_cast<std::size_t>(std::count(white.begin(), white.end(), 1));
+    return tpl;
+  };
+  const std::vector<Template> ts = {t("in", {0, 1, 0, 0}), t("out", {1, 1, 1, 0}), t("apart", {0, 0, 0, 1})};
+  const std::vector<Containment> c = contained_templates(ts);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].inner, 0u);
+  EXPECT_EQ(c[0].outer, 1u);
+  EXPECT_DOUBLE_EQ(c[0].fraction, 1.0);
+  // The outside check's finding on the shipped hand signs: fist lies inside palm, point, rock and
+  // victory (entirely or almost).
+  const std::vector<Template> signs = load_templates(std::string(AESIM_SOURCE_DIR) + "/scenes/templates/hand_signs");
+  std::set<std::string> holding_fist;
+  for (const Containment& k : contained_templates(signs)) {
+    if (signs[k.inner].name == "fist") holding_fist.insert(signs[k.outer].name);
+  }
+  EXPECT_EQ(holding_fist, (std::set<std::string>{"palm", "point", "rock", "victory"}));
 }
 
 TEST(Classifier, RestartsOnOverflowAndOnTheEventBound) {

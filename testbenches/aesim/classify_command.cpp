@@ -1,4 +1,6 @@
+#include <cstdio>
 #include <string>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -23,7 +25,25 @@ int classify_command(ClassifyOptions opt) {
   opt.classifier.ranks = !opt.no_ranks;
 
   const std::vector<Template> templates = load_templates(opt.templates);
-  const EventRecording rec = load_events(opt.events);
+  std::vector<std::string> warnings;
+  if (opt.classifier.ranks) {
+    for (const Containment& c : contained_templates(templates)) {
+      warnings.push_back(fmt::format("template '{}' lies {:.0f} % inside '{}': under ranks '{}' ties it over every "
+                                     "full pass of events and can win only by their order",
+                                     templates[c.inner].name, 100 * c.fraction, templates[c.outer].name,
+                                     templates[c.outer].name));
+    }
+  }
+  for (const std::string& w : warnings) std::fprintf(stderr, "aesim classify: warning: %s\n", w.c_str());
+  const std::optional<ArraySize> size =
+      opt.size.empty() ? std::nullopt : std::optional<ArraySize>(parse_array_size(opt.size, "--size"));
+  const EventRecording rec = load_events(opt.events, size);
+  // The size scales events onto the templates: guessed from the events it would change the
+  // decision with the events that happened to fire (a CSV records no size).
+  if (!rec.size_recorded) {
+    throw InputError(fmt::format("event file '{}' records no array size (a CSV does not): give --size WIDTHxHEIGHT",
+                                 opt.events));
+  }
   // Events in template coordinates: pixel centres scaled from the recording's array.
   const double sx = static_cast<double>(templates.front().width) / std::max(1, rec.width);
   const double sy = static_cast<double>(templates.front().height) / std::max(1, rec.height);
@@ -45,6 +65,7 @@ int classify_command(ClassifyOptions opt) {
                         {"comparisons", r.comparisons},
                         {"ranks", opt.classifier.ranks},
                         {"estimated_time_s", seconds},
+                        {"warnings", warnings},
                         {"scores", nlohmann::json::object()}};
     for (std::size_t i = 0; i < templates.size(); ++i) {
       j["scores"][templates[i].name] = r.scores[i];

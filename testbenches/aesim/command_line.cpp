@@ -40,6 +40,7 @@ void add_recon(CLI::App& app, int& status) {
   cmd->add_option("--mode", opt->mode, "histogram (events per pixel) or interval (1 / time between a pixel's last two events)")
       ->capture_default_str();
   cmd->add_option("-o,--output", opt->output, "Output image (.png or .pgm)")->required();
+  cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT (an AEDAT header records it; a CSV does not)");
   cmd->callback([opt, &status] { status = recon_command(*opt); });
 }
 
@@ -125,6 +126,9 @@ void add_emulate(CLI::App& app, int& status) {
       ->capture_default_str();
   cmd->add_option("--size", opt->size, "Imager resolution WIDTHxHEIGHT (default: the input's)");
   cmd->add_option("--f-max", opt->f_max, "Events per frame of a full-scale (255) pixel")->capture_default_str();
+  cmd->add_option("--spread", opt->spread, "even: each pixel enters round(f_max * P) times per frame (eq. 1), spread "
+                                           "evenly; literal: eq. 3 as written (counts of N / k only)")
+      ->capture_default_str();
   cmd->add_option("--frame-rate", opt->frame_rate, "Frames per second for the timestamps (default: the input's, else 25)");
   cmd->add_option("--chaos-in", opt->chaos_in, "Probability that a random event enters after each event")->capture_default_str();
   cmd->add_option("--chaos-out", opt->chaos_out, "Probability that an event leaves the queue")->capture_default_str();
@@ -143,6 +147,7 @@ void add_classify(CLI::App& app, int& status) {
   CLI::App* cmd = app.add_subcommand("classify", "Recognise the subject of an event file with the paper's rank-weighted templates");
   cmd->add_option("EVENTS", opt->events, "Event file (.aedat or .csv)")->required();
   cmd->add_option("--templates", opt->templates, "Folder of binary .pgm templates (default scenes/templates/letters)");
+  cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT: needed for a CSV, which records none");
   cmd->add_option("--k", opt->classifier.k, "A winner leads the second score by at least K * r_max")->capture_default_str();
   cmd->add_option("--max-events", opt->classifier.max_events, "Restart after this many events without a decision")
       ->capture_default_str();
@@ -164,6 +169,12 @@ void add_report(CLI::App& app, int& status) {
   cmd->add_option("--height", opt->height)->capture_default_str();
   cmd->add_option("--bits", opt->bits, "Bits per pixel of the frame")->capture_default_str();
   cmd->add_option("--events", opt->events, "Events that carry the image")->capture_default_str();
+  cmd->add_option("--frame-overhead", opt->frame_overhead, "Bytes a frame carries beyond its pixels (the paper's 12)")
+      ->capture_default_str();
+  cmd->add_option("--bit-rate", opt->radio.bit_rate, "Radio bit rate, bit/s (IEEE 802.15.4: 250e3)")->capture_default_str();
+  cmd->add_option("--packet-bytes", opt->radio.packet_bytes, "Largest packet (802.15.4: 127)")->capture_default_str();
+  cmd->add_option("--packet-overhead", opt->radio.packet_overhead, "Bytes of each packet spent on headers (the paper's 8)")
+      ->capture_default_str();
   cmd->callback([opt, &status] { status = bandwidth_command(*opt); });
 }
 

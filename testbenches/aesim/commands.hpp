@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "bandwidth/image_bandwidth.hpp"
 #include "classify/template_classifier.hpp"
 
 namespace aesim {
@@ -11,10 +12,11 @@ namespace aesim {
 // knows CLI11), and the command itself, which returns the exit status.
 
 struct ClassifyOptions {
-  std::string events, templates, clock = "20MHz";
+  // The time estimate's defaults are the paper's: 100 cycles per template on a 57.6 MHz processor.
+  std::string events, templates, clock = "57.6MHz", size;
   ClassifierOptions classifier;
   bool no_ranks = false, json = false;
-  double cycles_per_template = 4;
+  double cycles_per_template = 100;
 };
 
 struct CompareOptions {
@@ -28,20 +30,22 @@ struct CompareOptions {
 };
 
 struct EmulateOptions {
-  std::string input, behaviour = "intensity", size, clip = "0,255", queue, out, recon;
+  std::string input, behaviour = "intensity", size, clip = "0,255", queue, out, recon, spread = "even";
   double threshold = 0, f_max = 20, frame_rate = 0, chaos_in = 0, chaos_out = 0, max_events = 1e8;
   long long events = 0;
   std::uint64_t seed = 1;
 };
 
 struct ReconOptions {
-  std::string events, output, window, mode = "histogram";
+  std::string events, output, window, mode = "histogram", size;
   long long count = -1;
 };
 
 struct BandwidthOptions {
   int width = 128, height = 96, bits = 8;
   long long events = 400;
+  int frame_overhead = 12;
+  RadioModel radio;
 };
 
 struct RunOptions {

@@ -13,6 +13,7 @@
 #include "emulator/emulator.hpp"
 #include "emulator/y4m.hpp"
 #include "event_files/aedat.hpp"
+#include "event_files/event_file.hpp"
 #include "output/atomic_file.hpp"
 #include "images/image_file.hpp"
 #include "recon/reconstruct.hpp"
@@ -39,9 +40,10 @@ int emulate_command(EmulateOptions opt) {
   }
   s.clip_low = low / 255.0;
   s.clip_high = high / 255.0;
-  if (!opt.size.empty() && (std::sscanf(opt.size.c_str(), "%dx%d", &s.width, &s.height) != 2 || s.width < 1 ||
-                            s.height < 1 || s.width > 4096 || s.height > 4096)) {
-    throw InputError(fmt::format("--size: expected WIDTHxHEIGHT up to 4096x4096 (got '{}')", opt.size));
+  if (!opt.size.empty()) {
+    const ArraySize size = parse_array_size(opt.size, "--size");
+    s.width = size.width;
+    s.height = size.height;
   }
   if (!(opt.f_max > 0 && opt.f_max <= 1e6)) throw InputError("--f-max: events per frame at full scale, from >0 to 1e6");
   check_probability(opt.chaos_in, "--chaos-in");
@@ -51,6 +53,10 @@ int emulate_command(EmulateOptions opt) {
   }
   if (!(opt.max_events >= 1 && opt.max_events <= 1e15)) throw InputError("--max-events: must be from 1 to 1e15");
   if (opt.events < 0) throw InputError("--events: must not be negative");
+  if (opt.spread != "even" && opt.spread != "literal") {
+    throw InputError(fmt::format("--spread: expected even or literal (got '{}')", opt.spread));
+  }
+  s.spread = opt.spread == "even" ? QueueSpread::Even : QueueSpread::Literal;
   s.f_max = opt.f_max;
   s.chaos_in = opt.chaos_in;
   s.chaos_out = opt.chaos_out;
@@ -106,8 +112,9 @@ int emulate_command(EmulateOptions opt) {
   }
   if (!opt.out.empty()) {
     std::vector<std::string> header = aedat_header(map, sensor_metadata(sensor.to_json()));
-    header.insert(header.begin() + 1, fmt::format("# aesim emulate: behaviour {}, f_max {} events/frame, {} frames at {} Hz",
-                                                  opt.behaviour, s.f_max, frames.size(), s.frame_rate));
+    header.insert(header.begin() + 1,
+                  fmt::format("# aesim emulate: behaviour {}, f_max {} events/frame ({} spread), {} frames at {} Hz",
+                              opt.behaviour, s.f_max, opt.spread, frames.size(), s.frame_rate));
     write_aedat(files.open(opt.out), header, aedat_records(stream, map, 1e-6));
   }
   if (!opt.recon.empty()) {

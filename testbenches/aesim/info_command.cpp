@@ -19,7 +19,8 @@ int info_command(const std::string& path) {
     if (e.tile < per_tile.size()) ++per_tile[e.tile];
     ghosts += (e.flags & kGhostEvent) ? 1 : 0;
   }
-  fmt::print("{}: {} events, array {}x{}, {} tiles\n", path, n, rec.width, rec.height, rec.tiles);
+  fmt::print("{}: {} events, array {}x{}{}, {} tiles\n", path, n, rec.width, rec.height,
+             rec.size_recorded ? "" : " (not recorded in the file: the span of its events)", rec.tiles);
   if (n > 0) {
     fmt::print("  first {:.6f} s, last {:.6f} s, span {}\n", rec.events.front().t, rec.events.back().t,
                format_si(span, "s"));

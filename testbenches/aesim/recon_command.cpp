@@ -1,3 +1,6 @@
+#include <cstdio>
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "commands.hpp"
@@ -20,7 +23,15 @@ int recon_command(const ReconOptions& opt) {
   if (!opt.window.empty() && window <= 0) throw InputError("--window: must be positive");
   check_output_paths({{"-o", opt.output}}, {opt.events});
 
-  const EventRecording rec = load_events(opt.events);
+  const std::optional<ArraySize> size =
+      opt.size.empty() ? std::nullopt : std::optional<ArraySize>(parse_array_size(opt.size, "--size"));
+  const EventRecording rec = load_events(opt.events, size);
+  if (!rec.size_recorded && rec.width > 0) {
+    // SPEC's `aesim recon EVENTS -o IMAGE` keeps working on a CSV, which records no size; the
+    // image then spans the events that fired, which may be smaller than the array.
+    std::fprintf(stderr, "aesim recon: warning: '%s' records no array size; the image spans its events (%dx%d); give "
+                         "--size WIDTHxHEIGHT for the array's\n", opt.events.c_str(), rec.width, rec.height);
+  }
   std::vector<AddressEvent> chosen = rec.events;
   if (opt.count > 0) chosen = first_events(rec.events, static_cast<std::size_t>(opt.count));
   if (!opt.window.empty()) chosen = first_window(rec.events, window);

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "array/address_map.hpp"
+#include "bandwidth/image_bandwidth.hpp"
 #include "errors/input_error.hpp"
 
 namespace aesim {
@@ -20,12 +21,21 @@ int bandwidth_command(const BandwidthOptions& o) {
   fmt::print("  events: {} events x ({} + {}) address bits = {:>12.0f} bits\n", o.events, xbits, ybits, event_bits);
   fmt::print("  ratio : the events take {:.2f} % of the frame ({:.1f}x fewer bits)\n", 100.0 * event_bits / frame_bits,
              event_bits > 0 ? frame_bits / event_bits : INFINITY);
-  fmt::print("\nMemory to hold it (Table 2 form)\n");
-  fmt::print("  {:<28} {:>12} {:>12}\n", "", "bits", "bytes");
-  fmt::print("  {:<28} {:>12.0f} {:>12.0f}\n", "frame buffer", frame_bits, std::ceil(frame_bits / 8));
-  fmt::print("  {:<28} {:>12.0f} {:>12.0f}\n", "event queue", event_bits, std::ceil(event_bits / 8));
-  fmt::print("  {:<28} {:>12.0f} {:>12.0f}\n", "event histogram (16-bit)", static_cast<double>(o.width) * o.height * 16,
-             static_cast<double>(o.width) * o.height * 2);
+  if (o.frame_overhead < 0 || o.frame_overhead > 1 << 20) throw InputError("--frame-overhead: 0 to 1 MiB");
+  if (!(o.radio.bit_rate > 0 && o.radio.bit_rate <= 1e12)) throw InputError("--bit-rate: from >0 to 1e12 bit/s");
+  if (o.radio.packet_bytes < 2 || o.radio.packet_bytes > 1 << 20) throw InputError("--packet-bytes: 2 to 1 MiB");
+  if (o.radio.packet_overhead < 0 || o.radio.packet_overhead >= o.radio.packet_bytes) {
+    throw InputError("--packet-overhead: from 0 to less than --packet-bytes");
+  }
+  fmt::print("\nMemory to hold it and time to send it (Table 2 form; frame overhead {} bytes; radio {} kbit/s, "
+             "packets of {} bytes with {} of overhead)\n",
+             o.frame_overhead, o.radio.bit_rate / 1e3, o.radio.packet_bytes, o.radio.packet_overhead);
+  fmt::print("  {:<28} {:>12} {:>12} {:>9} {:>12}\n", "", "bits", "bytes", "packets", "airtime");
+  for (const ImageCost& c : image_costs({o.width, o.height, o.bits, static_cast<double>(o.events), o.frame_overhead},
+                                        o.radio)) {
+    fmt::print("  {:<28} {:>12.0f} {:>12.0f} {:>9.0f} {:>10.4f} s\n", c.form, c.payload_bits, c.bytes, c.packets,
+               c.airtime_s);
+  }
   return 0;
 }
 

@@ -46,6 +46,20 @@ std::vector<Template> load_templates(const std::string& folder) {
   return out;
 }
 
+std::vector<Containment> contained_templates(const std::vector<Template>& templates, double threshold) {
+  std::vector<Containment> out;
+  for (std::size_t a = 0; a < templates.size(); ++a) {
+    for (std::size_t b = 0; b < templates.size(); ++b) {
+      if (a == b) continue;
+      std::size_t inside = 0;
+      for (std::size_t p = 0; p < templates[a].white.size(); ++p) inside += templates[a].white[p] && templates[b].white[p];
+      const double fraction = static_cast<double>(inside) / static_cast<double>(templates[a].white_count);
+      if (fraction >= threshold) out.push_back({a, b, fraction});
+    }
+  }
+  return out;
+}
+
 ClassifyResult classify(const std::vector<Template>& templates, const std::vector<std::pair<double, double>>& events,
                         const ClassifierOptions& o) {
   ClassifyResult r;

@@ -19,6 +19,17 @@ struct Template {
 // ranked among themselves. Throws InputError.
 std::vector<Template> load_templates(const std::string& folder);
 
+// A template whose white pixels lie (almost) all inside another's. Under ranks (r = b_max / b) a
+// full pass of events over the larger shape gives both b_max, so the larger ties the smaller
+// over every pass and can win only by the order of its events.
+struct Containment {
+  std::size_t inner = 0, outer = 0;  // template indices
+  double fraction = 0;               // of the inner template's white pixels inside the outer's
+};
+
+// Every pair where at least `threshold` of one template's white pixels are white in another.
+std::vector<Containment> contained_templates(const std::vector<Template>& templates, double threshold = 0.95);
+
 struct ClassifierOptions {
   double k = 20.0;  // the winner leads the second by at least k * r_max (20: every clean letter right)
   std::uint64_t max_events = 1000;  // restart when this many events gave no decision

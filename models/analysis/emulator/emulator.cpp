@@ -24,10 +24,10 @@ std::vector<EmulatedEvent> emulate(const std::vector<Image>& frames, const Emula
     const Image frame = clip_levels(resample_area(frames[k], w, h), s.clip_low, s.clip_high);
     std::vector<std::uint32_t> queue;
     switch (s.behaviour) {
-      case Behaviour::Intensity: queue = queue_order(intensity_map(frame, s.threshold).pixels, s.f_max, 1.0, &budget); break;
-      case Behaviour::Edge: queue = queue_order(edge_map(frame, s.threshold).pixels, s.f_max, 1.0, &budget); break;
+      case Behaviour::Intensity: queue = queue_order(intensity_map(frame, s.threshold).pixels, s.f_max, 1.0, &budget, s.spread); break;
+      case Behaviour::Edge: queue = queue_order(edge_map(frame, s.threshold).pixels, s.f_max, 1.0, &budget, s.spread); break;
       case Behaviour::Motion:
-        if (previous) queue = queue_order(motion_map(frame, *previous, s.threshold).pixels, s.f_max, 1.0, &budget);
+        if (previous) queue = queue_order(motion_map(frame, *previous, s.threshold).pixels, s.f_max, 1.0, &budget, s.spread);
         break;
       case Behaviour::Centroid:
         if (previous) {

@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "array/queue_model.hpp"
 #include "emulator/behaviours.hpp"
 #include "scene/image.hpp"
 
@@ -10,11 +11,12 @@ namespace aesim {
 // The source paper's frame-to-events emulator (aesim emulate).
 //
 // For each frame, at the imager's resolution (area resampling) and after grey-level clipping, the
-// behaviour gives a map P (0..1 of full scale 255). The frame's events follow eq. 1 and eq. 3:
-// with P_max the map's largest value, the frame has N = round(f_max * P_max) iterations
-// n = 1..N (f_max: events per frame of a full-scale pixel); pixel i enters the queue at iteration
-// n when n mod round(P_max / P_i) == 0, pixels scanned in raster order within an iteration;
-// P_i = 0 never enters. `centroid` instead gives one event per frame at the rounded centroid of
+// behaviour gives a map P (0..1 of full scale 255). The frame's events follow eq. 1 and eq. 3
+// (f_max: events per frame of a full-scale pixel), by `spread` (queue_model.hpp): Even (default),
+// pixel i enters round(f_max * P_i) times, spread evenly through the frame's passes; Literal, eq. 3
+// as written, N = round(f_max * P_max) passes and an entry at pass n when
+// n mod round(P_max / P_i) == 0. Pixels are scanned in raster order within a pass; P_i = 0 never
+// enters. `centroid` instead gives one event per frame at the rounded centroid of
 // the thresholded motion image. `motion` and `centroid` need a previous frame, so the first frame
 // gives none.
 //
@@ -33,6 +35,7 @@ struct EmulatorSettings {
   double chaos_in = 0, chaos_out = 0;
   std::uint64_t seed = 1;
   double max_events = 1e8;   // the work limit (--max-events), charged frame by frame before the work
+  QueueSpread spread = QueueSpread::Even;
 };
 
 struct EmulatedEvent {

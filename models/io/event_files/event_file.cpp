@@ -1,6 +1,7 @@
 #include "event_files/event_file.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -38,6 +39,7 @@ EventRecording from_aedat(const AedatFile& file, const std::string& path) {
   rec.width = map.cols();
   rec.height = map.rows();
   rec.tiles = map.tiles();
+  rec.size_recorded = true;
   rec.events.reserve(file.records.size());
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     const AedatRecord& r = file.records[i];
@@ -68,11 +70,42 @@ EventRecording from_csv(std::vector<AddressEvent> events, const std::string& pat
 
 }  // namespace
 
-EventRecording load_events(const std::string& path) {
+ArraySize parse_array_size(const std::string& text, const std::string& option) {
+  ArraySize s;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%c", &s.width, &s.height, &tail) != 2 || s.width < 1 || s.height < 1 ||
+      s.width > 4096 || s.height > 4096) {
+    throw InputError(fmt::format("{}: expected WIDTHxHEIGHT up to 4096x4096 (got '{}')", option, text));
+  }
+  return s;
+}
+
+EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".csv") return from_csv(read_events_csv(path), path);
-  if (ext == ".aedat" || ext == ".dat") return from_aedat(read_aedat(path), path);
-  throw InputError(fmt::format("event file '{}': unsupported format (use .aedat or .csv)", path));
+  EventRecording rec;
+  if (ext == ".csv") {
+    rec = from_csv(read_events_csv(path), path);
+  } else if (ext == ".aedat" || ext == ".dat") {
+    rec = from_aedat(read_aedat(path), path);
+  } else {
+    throw InputError(fmt::format("event file '{}': unsupported format (use .aedat or .csv)", path));
+  }
+  if (!size) return rec;
+  if (rec.size_recorded && (rec.width != size->width || rec.height != size->height)) {
+    throw InputError(fmt::format("--size {}x{}: event file '{}' records a {}x{} array", size->width, size->height, path,
+                                 rec.width, rec.height));
+  }
+  for (std::size_t i = 0; i < rec.events.size(); ++i) {
+    const AddressEvent& e = rec.events[i];
+    if (static_cast<int>(e.x) >= size->width || static_cast<int>(e.y) >= size->height) {
+      throw InputError(fmt::format("event file '{}': event {} at ({}, {}) lies outside --size {}x{}", path, i, e.x, e.y,
+                                   size->width, size->height));
+    }
+  }
+  rec.width = size->width;
+  rec.height = size->height;
+  rec.size_recorded = true;
+  return rec;
 }
 
 EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format) {

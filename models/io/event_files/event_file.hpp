@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -6,14 +7,25 @@
 
 namespace aesim {
 
+// An array's size as a user gives it: WIDTHxHEIGHT.
+struct ArraySize {
+  int width = 0, height = 0;
+};
+// Parses "64x64" (1 to 4096 each); throws InputError naming `option`.
+ArraySize parse_array_size(const std::string& text, const std::string& option);
+
 // Events read back from an AEDAT 2.0 or CSV file written by aesim, with the array size they
-// belong to (from the AEDAT header's sensor parameters, or the largest coordinates in a CSV).
+// belong to: the AEDAT header's sensor parameters, or the size given (--size). A CSV records no
+// size; without one given, the size is the span of its events and `size_recorded` is false.
 struct EventRecording {
   std::vector<AddressEvent> events;  // t in seconds
   int width = 0, height = 0, tiles = 0;
+  bool size_recorded = false;
 };
 
-EventRecording load_events(const std::string& path);
+// `size`, when given, is the array's: a CSV takes it (its events must lie within), an AEDAT
+// file's header must agree with it. Throws InputError naming the file.
+EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size = std::nullopt);
 
 // The same from a file's bytes; `label` names it in messages.
 enum class EventFormat { Aedat2, Csv };

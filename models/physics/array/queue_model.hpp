@@ -41,9 +41,19 @@ inline double queue_entry_time(double start, double length, std::size_t j, std::
   return start + (static_cast<double>(j) + 0.5) * (length / static_cast<double>(m));
 }
 
-// One frame's queue as pixel indices (y * width + x) in queue order: eq. 3 on normalised values.
+// How a frame's passes place each pixel's entries.
+//  - Literal: eq. 3 as the paper writes it: N = round(f_max * P_max * T) passes, pixel i enters at
+//    pass n when n mod round(P_max / P_i) == 0, so its count can only be N / k for a whole k (a
+//    grey level 170 of 255 enters 10 times in 20 passes, 171 enters 20; eq. 1 says 13.3 for both).
+//  - Even: eq. 1's count, rounded once, c_i = round(f_max * P_i * T), spread evenly through
+//    N = max c_i passes in the spirit of eq. 3: pixel i enters at pass n when floor(n c_i / N)
+//    steps, which is eq. 3's pattern whenever N / c_i is whole.
+// Within a pass, pixels enter in raster order.
+enum class QueueSpread { Literal, Even };
+
+// One frame's queue as pixel indices (y * width + x) in queue order, on normalised values.
 // With a budget, the frame's work is charged to it first.
 std::vector<std::uint32_t> queue_order(const std::vector<double>& values, double full_scale_rate, double frame_time,
-                                       QueueBudget* budget = nullptr);
+                                       QueueBudget* budget = nullptr, QueueSpread spread = QueueSpread::Literal);
 
 }  // namespace aesim

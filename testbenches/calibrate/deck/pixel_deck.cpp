@@ -107,7 +107,9 @@ std::optional<Subcircuit> find_subckt(const std::vector<std::string>& lines, con
         s.ports.push_back(t[k]);
       }
     }
-    for (std::size_t j = i + 1; j < lines.size() && ascii_lower(tokens(lines[j]).front()) != ".ends"; ++j) {
+    for (std::size_t j = i + 1; j < lines.size(); ++j) {
+      const std::vector<std::string> words = tokens(lines[j]);
+      if (!words.empty() && ascii_lower(words.front()) == ".ends") break;
       s.body.push_back(lines[j]);
     }
     return s;
