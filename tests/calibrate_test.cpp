@@ -360,6 +360,25 @@ TEST_F(NgspiceTest, MonteCarloMeasuresTheSpreadOfAStatisticalCapacitorAndTheTabl
   EXPECT_EQ(calibrate_pixel(pixel, o).mismatch, c.mismatch);
 }
 
+TEST_F(NgspiceTest, APixelThatFiresOnlyAboveItsLeakageIsTabledWhereItFires) {
+  // The known deck with 100 Gohm from the node to ground: at 1.5 V it leaks 15 pA, so below that
+  // the node never reaches the threshold. Nothing is asked twice, and the warning names the rest.
+  std::string deck = slurp(kIdealDeck);
+  const std::string cap = "Cint int gnd 100f";
+  deck.replace(deck.find(cap), cap.size(), cap + "\nRleak int gnd 100g");
+  write("leaky.cir", deck);
+  const Outcome o = aesim("calibrate leaky.cir --subckt ideal_pixel -o leaky.toml --currents 1pA:1nA --points 7");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.err.find("never fired (or never settled to a period) at 3 of"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("(1e-12, 3.16e-12, 1e-11 A)"), std::string::npos) << o.err;
+  SensorConfig c;
+  apply_toml_file(c, (dir_ / "leaky.toml").string(), "");
+  EXPECT_GT(c.pixel.transfer.current.front(), 15e-12);
+  // Fewer transients than the table's points and the silent ones could need were it re-asking.
+  const std::string preset = slurp(dir_ / "leaky.toml");
+  EXPECT_LT(std::count(preset.begin(), preset.end(), '\n'), 120) << preset;
+}
+
 TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
   const std::string ideal = slurp(kIdealDeck);
   std::map<std::string, std::pair<std::string, std::string>> cases;  // name -> deck text, expected words

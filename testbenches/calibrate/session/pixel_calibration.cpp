@@ -39,8 +39,11 @@ constexpr unsigned kTableSeed = 1;
 // midpoint is measured too; and the most points a table may grow to.
 constexpr double kInterpolationTolerance = 0.002;
 constexpr std::size_t kMaxTablePoints = 400;
-// Transients one point may take to find its period: each unfired run looks 30x further.
+// Transients one point may take to find its period: each unfired run looks 30x further, up to
+// periods of kLongestPeriod (a pixel firing less than once in 1000 s is dark for any sensor, and
+// ngspice's time steps collapse over simulated days: 59 s of ngspice for 2.5e7 s of a leaky node).
 constexpr int kMaxRuns = 6;
+constexpr double kLongestPeriod = 1000;
 
 struct PointRun {
   CalibrationPoint point;
@@ -55,9 +58,13 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
   r.point.period = r.point.pulse = r.point.comparator_delay = r.point.supply_charge = kUnmeasured;
   const auto wanted = static_cast<std::size_t>(o.firings + 2);
   double finer = 1;  // after ngspice gave up on a step, the largest step is cut tenfold, twice at most
+  // The first firing starts from ngspice's all-zero state, not from a reset, and may take longer
+  // than a period: once a run has seen it, the next runs last that long plus the periods.
+  double first_fire = 0;
   for (int run = 0; run < kMaxRuns; ++run) {
-    TransientRequest request{current, guess * (o.firings + 2.5), guess / kStepsPerPeriod / finer,
-                             mc_seed.value_or(kTableSeed), mc_seed.has_value()};
+    const double t_stop = first_fire > 0 ? first_fire + guess * (o.firings + 1.5) : guess * (o.firings + 2.5);
+    TransientRequest request{current, t_stop, guess / kStepsPerPeriod / finer, mc_seed.value_or(kTableSeed),
+                             mc_seed.has_value()};
     try {
       r.wave = run_transient(deck, o.vdd, request, scratch, name);
     } catch (const InputError&) {
@@ -74,7 +81,10 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
     ++r.point.runs;
     r.point.simulated += request.t_stop;
     const std::size_t fired = r.measure.fires.size();
-    if (fired >= wanted && r.measure.period > guess / 2 && r.measure.period < guess * 2) {
+    if (fired >= 1) first_fire = r.measure.fires.front();
+    const bool resolved = r.measure.period > guess / 2 && r.measure.period < guess * 2;
+    // The last run keeps what it measured if it saw at least two periods at the step it was sized for.
+    if ((fired >= wanted || (run + 1 == kMaxRuns && fired >= 3)) && resolved) {
       r.point.period = r.measure.period;
       r.point.pulse = r.measure.pulse;
       r.point.supply_charge = r.measure.supply_charge;
@@ -84,8 +94,10 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
       guess = r.measure.period;
     } else if (fired >= 1) {
       guess = request.t_stop / static_cast<double>(fired);
+    } else if (guess >= kLongestPeriod) {
+      break;
     } else {
-      guess *= 30;
+      guess = std::min(guess * 30, kLongestPeriod);
     }
   }
   return r;
@@ -192,6 +204,11 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     std::vector<double> midpoints;
     for (std::size_t k = 0; k + 1 < f.size(); ++k) {
       const double a = current[k], b = current[k + 1], m = std::sqrt(a * b);
+      // A current already measured between them (one that never fired) is not asked again.
+      const bool measured_between = std::any_of(runs.begin(), runs.end(), [&](const PointRun& r) {
+        return r.point.current > a && r.point.current < b;
+      });
+      if (measured_between) continue;
       // The table's own departure from the fit at the ends carries over to the midpoint.
       const double ends = std::sqrt(period[k] / fit.period(a) * period[k + 1] / fit.period(b));
       const double interpolated = std::sqrt(period[k] * period[k + 1]);
@@ -218,6 +235,17 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
       c.period.push_back(r.point.period);
     }
     c.points.push_back(r.point);
+  }
+  std::vector<double> silent;
+  for (const CalibrationPoint& p : c.points) {
+    if (!std::isfinite(p.period)) silent.push_back(p.current);
+  }
+  if (!silent.empty()) {
+    std::string list;
+    for (double i : silent) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", i);
+    std::fprintf(stderr, "aesim calibrate: warning: the pixel never fired (or never settled to a period) at %zu of %zu "
+                         "photocurrents (%s A); the table holds the other %zu\n",
+                 silent.size(), c.points.size(), list.c_str(), c.current.size());
   }
   c.fit = fit_pixel(c.current, c.period);
   std::vector<double> charge_periods, charges;
