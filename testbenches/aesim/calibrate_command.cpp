@@ -20,10 +20,6 @@
 namespace aesim {
 namespace {
 
-// The most transients one command may ask for (points and Monte Carlo runs), each a fraction of
-// a second to a few seconds: an hour of ngspice at worst.
-constexpr int kMaxTransients = 2000;
-
 CalibrationOptions parse_options(const CalibrateOptions& opt) {
   CalibrationOptions o;
   o.vdd = parse_si(opt.vdd, "V", "--vdd");
@@ -40,9 +36,6 @@ CalibrationOptions parse_options(const CalibrateOptions& opt) {
   if (opt.mc < 0 || opt.mc == 1 || opt.mc > 1000) throw InputError(fmt::format("--mc: {} is not 0 or from 2 to 1000", opt.mc));
   if (opt.firings < 2 || opt.firings > 100) throw InputError(fmt::format("--firings: {} is not from 2 to 100", opt.firings));
   if (opt.jobs < 0 || opt.jobs > 256) throw InputError(fmt::format("--jobs: {} is not from 0 (all cores) to 256", opt.jobs));
-  if (opt.points + opt.mc > kMaxTransients) {
-    throw InputError(fmt::format("--points and --mc ask for {} transients, more than {}", opt.points + opt.mc, kMaxTransients));
-  }
   o.points = opt.points;
   o.mc = opt.mc;
   o.firings = opt.firings;

@@ -89,7 +89,8 @@ void add_calibrate(CLI::App& app, int& status) {
   cmd->add_option("--vdd", opt->vdd, "Supply voltage; a firing is out rising through vdd/2")->capture_default_str();
   cmd->add_option("--currents", opt->currents, "Photocurrent range LOW:HIGH, points spaced logarithmically")
       ->capture_default_str();
-  cmd->add_option("--points", opt->points, "Photocurrents in the range")->capture_default_str();
+  cmd->add_option("--points", opt->points, "Photocurrents in the range (more are added where log-log interpolation "
+                                          "between them would miss by over 0.2 %)")->capture_default_str();
   cmd->add_option("--mc", opt->mc, "Monte Carlo runs (ngspice seeds 1..N) at the range's geometric middle: "
                                    "pixel.mismatch from the spread of periods")->capture_default_str();
   cmd->add_option("--chart", opt->chart, "Period against photocurrent: ngspice, calibrated model, ideal eq. 2 (.png)");

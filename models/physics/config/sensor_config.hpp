@@ -38,9 +38,11 @@ struct PixelParams {
   double threshold_charge() const { return c_int * dv_int; }
   // The current the pixel integrates at scene value v: i_dark + i_max * v (SPEC section 1), or
   // with a transfer table the current that fires with the table's period (transfer_curve.hpp).
-  double integrating_current(double v) const {
-    if (transfer.empty()) return i_dark + i_max * v;
-    return transfer.integrating_current(i_max * v, threshold_charge(), i_dark, t_reset);
+  double integrating_current(double v) const { return integrating_current_at(i_max * v); }
+  // The same for a photocurrent (A) rather than a scene value.
+  double integrating_current_at(double photocurrent) const {
+    if (transfer.empty()) return i_dark + photocurrent;
+    return transfer.integrating_current(photocurrent, threshold_charge(), i_dark, t_reset);
   }
 };
 

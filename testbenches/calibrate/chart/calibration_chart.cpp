@@ -14,9 +14,7 @@ namespace {
 
 // The period a pixel of these parameters fires with under constant photocurrent I.
 double model_period(const PixelParams& p, double photocurrent) {
-  const double current = p.transfer.empty() ? p.i_dark + photocurrent
-                                            : p.transfer.integrating_current(photocurrent, p.threshold_charge(),
-                                                                             p.i_dark, p.t_reset);
+  const double current = p.integrating_current_at(photocurrent);
   return current > 0 ? p.threshold_charge() / current + p.t_reset : NAN;
 }
 
