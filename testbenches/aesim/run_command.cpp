@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -87,21 +88,38 @@ int run_command(RunOptions opt) {
     for (const std::string& trace : rtl_traces) temps.push_back(files.adopt(trace));
     request.rtl_trace_path = [temps](int tile) { return temps[static_cast<std::size_t>(tile)]; };
   }
+  // The event files are written while the run goes (into temporary files, renamed by commit()).
+  const double tick = choose_rung(config, request).tick(config);
+  EventStreams writers;
+  std::unique_ptr<AedatWriter> aedat;
+  std::unique_ptr<EventsCsvWriter> csv;
+  std::unique_ptr<TruthCsvWriter> truth;
+  if (!opt.out.empty()) {
+    aedat = std::make_unique<AedatWriter>(files.open(opt.out), aedat_header(map, sensor_metadata(config.to_json())), map,
+                                          tick);
+    writers.add(*aedat);
+  }
+  if (!opt.csv.empty()) {
+    csv = std::make_unique<EventsCsvWriter>(files.open(opt.csv), tick);
+    writers.add(*csv);
+  }
+  if (!opt.truth.empty()) {
+    truth = std::make_unique<TruthCsvWriter>(files.open(opt.truth));
+    writers.add(*truth);
+  }
+  request.keep_events = aedat || csv;
+  request.stream = &writers;
   const SimulationResult result = simulate(config, photocurrents, request);
+  if (aedat) aedat->flush();
+  if (csv) csv->flush();
+  if (truth) truth->flush();
 
   const Image mean = mean_frame(scene, config.sim.duration);
   const nlohmann::json summary = make_summary(config, result.log, result.facts, &mean);
-  if (!opt.out.empty()) {
-    write_aedat(files.open(opt.out), aedat_header(map, sensor_metadata(config.to_json())),
-                aedat_records(result.log.events(), map, result.facts.tick_s));
-  }
-  if (!opt.csv.empty()) write_events_csv(files.open(opt.csv), result.log.events(), result.facts.tick_s);
   if (!opt.recon.empty()) {
-    write_image(files.open(opt.recon), opt.recon,
-                reconstruct(result.log.events(), map.cols(), map.rows(), ReconMode::Histogram));
+    write_image(files.open(opt.recon), opt.recon, histogram_image(result.log.output_per_pixel(), map.cols(), map.rows()));
   }
   if (!opt.summary.empty()) files.open(opt.summary) << summary.dump(2) << '\n';
-  if (!opt.truth.empty()) write_truth_csv(files.open(opt.truth), result.log.truth());
   if (!opt.vcd.empty()) result.vcd->write(files.open(opt.vcd));
   files.commit();
 

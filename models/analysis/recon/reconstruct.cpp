@@ -4,6 +4,25 @@
 #include <limits>
 
 namespace aesim {
+namespace {
+
+void normalise_to_peak(Image& img) {
+  const double peak = img.pixels.empty() ? 0.0 : *std::max_element(img.pixels.begin(), img.pixels.end());
+  if (peak > 0) {
+    for (double& v : img.pixels) v /= peak;
+  }
+}
+
+}  // namespace
+
+Image histogram_image(const std::vector<std::uint32_t>& counts, int width, int height) {
+  Image img;
+  img.width = width;
+  img.height = height;
+  img.pixels.assign(counts.begin(), counts.end());
+  normalise_to_peak(img);
+  return img;
+}
 
 Image reconstruct(const std::vector<AddressEvent>& events, int width, int height, ReconMode mode) {
   Image img;
@@ -40,10 +59,7 @@ Image reconstruct(const std::vector<AddressEvent>& events, int width, int height
       if (v == std::numeric_limits<double>::max()) v = finite_max > 0 ? finite_max : 1.0;
     }
   }
-  const double peak = *std::max_element(img.pixels.begin(), img.pixels.end());
-  if (peak > 0) {
-    for (double& v : img.pixels) v /= peak;
-  }
+  normalise_to_peak(img);
   return img;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "events/address_event.hpp"
@@ -16,6 +17,9 @@ enum class ReconMode { Histogram, Interval };
 //    pixel, but a lost event between them halves that pixel's estimate, and timestamps quantised
 //    to the receiver tick limit the brightest pixels. Pixels with fewer than two events are 0.
 Image reconstruct(const std::vector<AddressEvent>& events, int width, int height, ReconMode mode);
+
+// The Histogram image from events already counted per pixel (y * width + x), as a run counts them.
+Image histogram_image(const std::vector<std::uint32_t>& counts, int width, int height);
 
 // Which events to use: the first `count` events, or those within `window` seconds of the first.
 std::vector<AddressEvent> first_events(const std::vector<AddressEvent>& events, std::size_t count);

@@ -91,17 +91,13 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
       {"sensor", config.to_json()},
   };
   add_sizing(summary, config, log, facts);
-  if (scene) {
-    std::vector<AddressEvent> early;
-    for (const AddressEvent& e : log.events()) {
-      if (e.t <= config.analysis.window && !(e.flags & kGhostEvent)) early.push_back(e);
-    }
+  if (scene && !log.window_output_per_pixel().empty()) {
     Image truth = *scene;
     const double peak = *std::max_element(truth.pixels.begin(), truth.pixels.end());
     if (peak > 0) {
       for (double& v : truth.pixels) v /= peak;
     }
-    summary["psnr_db"] = psnr_db(reconstruct(early, scene->width, scene->height, ReconMode::Histogram), truth);
+    summary["psnr_db"] = psnr_db(histogram_image(log.window_output_per_pixel(), scene->width, scene->height), truth);
   }
   return summary;
 }

@@ -15,11 +15,14 @@
 namespace aesim {
 namespace {
 
-void put_be32(std::ostream& out, std::uint32_t v) {
-  const char bytes[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
-                         static_cast<char>(v)};
-  out.write(bytes, 4);
+void put_be32(char* p, std::uint32_t v) {
+  p[0] = static_cast<char>(v >> 24);
+  p[1] = static_cast<char>(v >> 16);
+  p[2] = static_cast<char>(v >> 8);
+  p[3] = static_cast<char>(v);
 }
+
+constexpr std::size_t kBufferBytes = std::size_t(1) << 16;
 
 std::uint32_t get_be32(const unsigned char* p) {
   return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
@@ -59,10 +62,42 @@ std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std:
 void write_aedat(std::ostream& out, const std::vector<std::string>& header,
                  const std::vector<AedatRecord>& records) {
   for (const std::string& line : header) out << line << "\r\n";
+  std::vector<char> buffer;
+  buffer.reserve(kBufferBytes);
   for (const AedatRecord& r : records) {
-    put_be32(out, r.address);
-    put_be32(out, static_cast<std::uint32_t>(r.timestamp_us));
+    buffer.resize(buffer.size() + 8);
+    put_be32(buffer.data() + buffer.size() - 8, r.address);
+    put_be32(buffer.data() + buffer.size() - 4, static_cast<std::uint32_t>(r.timestamp_us));
+    if (buffer.size() >= kBufferBytes) {
+      out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+      buffer.clear();
+    }
   }
+  out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+}
+
+AedatWriter::AedatWriter(std::ostream& out, const std::vector<std::string>& header, const AddressMap& map, double tick)
+    : out_(out), bus_bits_(static_cast<unsigned>(map.bus_bits())), tick_(tick) {
+  for (const std::string& line : header) out_ << line << "\r\n";
+  buffer_.reserve(kBufferBytes);
+}
+
+AedatWriter::~AedatWriter() { flush(); }
+
+void AedatWriter::events(const AddressEvent* first, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const AedatRecord r = aedat_record(first[i], bus_bits_, tick_);
+    const std::size_t at = buffer_.size();
+    buffer_.resize(at + 8);
+    put_be32(buffer_.data() + at, r.address);
+    put_be32(buffer_.data() + at + 4, static_cast<std::uint32_t>(r.timestamp_us));
+    if (buffer_.size() >= kBufferBytes) flush();
+  }
+}
+
+void AedatWriter::flush() {
+  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
 }
 
 AedatFile read_aedat(const std::string& path) {
@@ -117,19 +152,21 @@ std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, 
                                        double tick) {
   std::vector<AedatRecord> out;
   out.reserve(events.size());
-  for (const AddressEvent& e : events) {
-    const double t_us = static_cast<double>(timestamp_ticks(e.t, tick)) * (tick / 1e-6);
-    AedatRecord r;
-    r.address = (e.tile << map.bus_bits()) | e.bus_address;
-    const std::uint64_t stamp = timestamp_ticks(t_us * 1e-6, 1e-6);
-    if (stamp > 0x7FFFFFFFu) {
-      throw InputError(fmt::format("AEDAT 2.0 stamps are int32 microseconds: an event at {:.6g} s does not fit "
-                                   "(at most 2147 s)", e.t));
-    }
-    r.timestamp_us = static_cast<std::int32_t>(stamp);
-    out.push_back(r);
-  }
+  for (const AddressEvent& e : events) out.push_back(aedat_record(e, static_cast<unsigned>(map.bus_bits()), tick));
   return out;
+}
+
+AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick) {
+  const double t_us = static_cast<double>(timestamp_ticks(e.t, tick)) * (tick / 1e-6);
+  AedatRecord r;
+  r.address = (e.tile << bus_bits) | e.bus_address;
+  const std::uint64_t stamp = timestamp_ticks(t_us * 1e-6, 1e-6);
+  if (stamp > 0x7FFFFFFFu) {
+    throw InputError(fmt::format("AEDAT 2.0 stamps are int32 microseconds: an event at {:.6g} s does not fit "
+                                 "(at most 2147 s)", e.t));
+  }
+  r.timestamp_us = static_cast<std::int32_t>(stamp);
+  return r;
 }
 
 }  // namespace aesim

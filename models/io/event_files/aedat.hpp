@@ -7,6 +7,7 @@
 
 #include "array/address_map.hpp"
 #include "events/address_event.hpp"
+#include "events/event_stream.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -35,6 +36,25 @@ void write_aedat(std::ostream& out, const std::vector<std::string>& header,
 AedatFile read_aedat(const std::string& path);
 AedatFile decode_aedat(const std::string& data, const std::string& path);
 
+// Writes an AEDAT 2.0 file as a run streams its events: the header at once, then the records
+// packed big-endian through a buffer.
+class AedatWriter : public EventStream {
+ public:
+  AedatWriter(std::ostream& out, const std::vector<std::string>& header, const AddressMap& map, double tick);
+  ~AedatWriter() override;
+  void events(const AddressEvent* first, std::size_t count) override;
+  // Writes what the buffer holds; the destructor does it too.
+  void flush();
+
+ private:
+  std::ostream& out_;
+  unsigned bus_bits_;
+  double tick_;
+  std::vector<char> buffer_;
+};
+
+// The AEDAT record of a delivered event (timestamp in whole microseconds of receiver ticks).
+AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick);
 // The AEDAT records of delivered events (timestamps in whole microseconds of receiver ticks).
 std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, const AddressMap& map,
                                        double tick);

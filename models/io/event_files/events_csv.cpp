@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
@@ -15,18 +16,42 @@
 namespace aesim {
 
 void write_events_csv(std::ostream& out, const std::vector<AddressEvent>& events, double tick) {
-  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(tick / 1e-6) - 1e-9)));
-  std::string buffer = "t_us,x,y,tile,flags\n";
-  for (const AddressEvent& e : events) {
-    const double t_us = static_cast<double>(timestamp_ticks(e.t, tick)) * (tick / 1e-6);
-    fmt::format_to(std::back_inserter(buffer), "{:.{}f},{},{},{},{}\n", t_us, decimals, e.x, e.y, e.tile,
-                   static_cast<unsigned>(e.flags));
-    if (buffer.size() > (1u << 20)) {
-      out << buffer;
-      buffer.clear();
+  EventsCsvWriter writer(out, tick);
+  writer.events(events.data(), events.size());
+}
+
+EventsCsvWriter::EventsCsvWriter(std::ostream& out, double tick)
+    : out_(out), tick_(tick), decimals_(std::max(0, static_cast<int>(std::ceil(-std::log10(tick / 1e-6) - 1e-9)))) {
+  for (int i = 0; i < decimals_; ++i) scale_ *= 10;
+  const double units = tick / 1e-6 * static_cast<double>(scale_);
+  const double whole = std::nearbyint(units);
+  if (decimals_ <= 12 && whole >= 1 && std::fabs(units - whole) < 1e-9 * whole) step_ = static_cast<std::uint64_t>(whole);
+  buffer_ = "t_us,x,y,tile,flags\n";
+}
+
+EventsCsvWriter::~EventsCsvWriter() { flush(); }
+
+void EventsCsvWriter::events(const AddressEvent* first, std::size_t count) {
+  auto out = std::back_inserter(buffer_);
+  for (const AddressEvent* e = first; e != first + count; ++e) {
+    const std::uint64_t ticks = timestamp_ticks(e->t, tick_);
+    if (step_ == 0) {
+      const double t_us = static_cast<double>(ticks) * (tick_ / 1e-6);
+      fmt::format_to(out, FMT_COMPILE("{:.{}f}"), t_us, decimals_);
+    } else if (decimals_ == 0) {
+      fmt::format_to(out, FMT_COMPILE("{}"), ticks * step_);
+    } else {
+      const std::uint64_t v = ticks * step_;
+      fmt::format_to(out, FMT_COMPILE("{}.{:0{}}"), v / scale_, v % scale_, decimals_);
     }
+    fmt::format_to(out, FMT_COMPILE(",{},{},{},{}\n"), e->x, e->y, e->tile, static_cast<unsigned>(e->flags));
+    if (buffer_.size() > (1u << 16)) flush();
   }
-  out << buffer;
+}
+
+void EventsCsvWriter::flush() {
+  out_ << buffer_;
+  buffer_.clear();
 }
 
 std::vector<AddressEvent> read_events_csv(const std::string& path) {

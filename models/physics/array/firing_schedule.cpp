@@ -58,8 +58,8 @@ double FiringSchedule::wake_time(const Slot& p) const {
   return std::min(p.core.next_fire(), boundary);
 }
 
-bool FiringSchedule::next(AddressEvent& firing) {
-  while (!heap_.empty()) {
+bool FiringSchedule::next(AddressEvent& firing, double until) {
+  while (!heap_.empty() && heap_.top().t <= until) {
     const std::uint32_t slot = heap_.top().slot;
     Slot& p = pixels_[slot];
     const double t_fire = p.core.next_fire();

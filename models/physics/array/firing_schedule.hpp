@@ -23,7 +23,10 @@ class FiringSchedule {
                  const AddressMap& map, std::uint32_t tile);
 
   // The next firing at or before sim.duration; false when none remains.
-  bool next(AddressEvent& firing);
+  bool next(AddressEvent& firing) { return next(firing, t_end_); }
+  // The next firing at or before `until`; false when none remains that early (the schedule then
+  // stands at `until`: light changes up to it are applied).
+  bool next(AddressEvent& firing, double until);
 
   // A lit pixel's state: 72 bytes, plus 16 in the heap; with the 8-byte photocurrent, 96 bytes
   // per lit pixel.

@@ -10,6 +10,7 @@ void AlohaBus::request(const AddressEvent& firing) {
   // latest start seen so that order never matters.
   if (!cluster_.empty() && firing.t - latest_start_ >= tau_) close_cluster();
   latest_start_ = cluster_.empty() ? firing.t : std::max(latest_start_, firing.t);
+  earliest_ = cluster_.empty() ? firing.t : std::min(earliest_, firing.t);
   cluster_.push_back(firing);
 }
 

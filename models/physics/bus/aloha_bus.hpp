@@ -19,6 +19,7 @@ class AlohaBus : public EventBus {
 
   void request(const AddressEvent& firing) override;
   void finish() override { close_cluster(); }
+  double held_since() const override { return cluster_.empty() ? EventBus::held_since() : earliest_; }
 
  private:
   void close_cluster();
@@ -29,6 +30,7 @@ class AlohaBus : public EventBus {
   bool detect_;
   std::vector<AddressEvent> cluster_;
   double latest_start_ = 0;
+  double earliest_ = 0;  // of the open cluster
 };
 
 // bus.access=arbitrated: events take the bus one after the other in fire order, each for tau;

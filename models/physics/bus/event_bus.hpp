@@ -1,4 +1,6 @@
 #pragma once
+#include <limits>
+
 #include "events/address_event.hpp"
 
 namespace aesim {
@@ -12,6 +14,9 @@ class EventBus {
   virtual void request(const AddressEvent& firing) = 0;
   // After the run: settles what the bus still holds (an undecided collision cluster, a queue).
   virtual void finish() {}
+  // The earliest firing it still holds undecided (its outcome, and any output, come later), or
+  // infinity: what a streaming run must wait for before passing records on.
+  virtual double held_since() const { return std::numeric_limits<double>::infinity(); }
   // Mean duration of a bus transaction as this bus measured it (0 when it has none to measure).
   virtual double measured_tau() const { return 0; }
 };

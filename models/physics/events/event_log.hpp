@@ -1,29 +1,17 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "events/address_event.hpp"
+#include "events/event_merger.hpp"
+#include "events/event_stream.hpp"
+#include "events/latency_recorder.hpp"
+#include "events/truth_record.hpp"
 
 namespace aesim {
 
-// What became of a fired event.
-enum class Fate : std::uint8_t {
-  Delivered,  // reached the receiver output intact
-  Collided,   // lost in a collision the receiver detected and discarded
-  Absorbed,   // fired while Ack was high (cycle fidelity): withdrawn before the receiver could see it;
-              // a collision with the transaction in progress, counted and written as "collided"
-  Ghost,      // lost in a collision the receiver did not detect: it output the OR of the addresses
-  Dropped,    // lost for another reason (receiver FIFO full)
-  Pending,    // still waiting for the bus when the run ended (arbitrated bus past saturation)
-};
-const char* to_string(Fate fate);
-
-// Ground truth for one fired event (--truth).
-struct TruthRecord {
-  AddressEvent firing;  // firing.t is the fire time
-  Fate fate = Fate::Delivered;
-  double t_deliver = 0;  // when the receiver took it (Delivered only)
-};
+class MergePipeline;
 
 // Counters of SPEC section 5, per tile. `collided` counts fired events lost to collisions,
 // whether detected (Fate::Collided, Fate::Absorbed) or not (Fate::Ghost); `ghost` counts the wrong events the
@@ -36,25 +24,31 @@ struct TileCounters {
   }
 };
 
-struct LatencyStats {
-  double mean = 0, p99 = 0, max = 0;  // s, fire to delivery, over delivered events
+// What a run keeps of its records beyond counters.
+struct LogOutputs {
+  bool events = true;             // the receivers' output events
+  bool truth = false;             // a TruthRecord per fired event
+  EventStream* stream = nullptr;  // where they go; null: into the log's own collector (events(), truth())
 };
 
-// The record of a run, filled in by the bus models (fates) and the receivers (output). Each
-// tile's records are kept apart, so tiles may be simulated on separate threads (one thread per
-// tile at a time), and merged in time order by finish().
+// The record of a run, filled in by the bus models (fates) and the receivers (output). Each tile
+// records apart, so tiles may be simulated on separate threads (one thread per tile at a time).
+// Records are streamed, not hoarded: at each hand_over() the rung names a time before which no
+// tile will produce another record, and the records before it are merged in order (EventMerger)
+// on a background thread into the stream while the tiles go on. A run that keeps no events holds
+// counters only, so memory does not grow with the run's length.
 class EventLog {
  public:
-  EventLog(int tiles, bool keep_truth);
+  EventLog(int tiles, LogOutputs outputs);
+  EventLog(int tiles, bool keep_truth) : EventLog(tiles, LogOutputs{true, keep_truth, nullptr}) {}
+  EventLog(EventLog&&) noexcept;
+  EventLog& operator=(EventLog&&) noexcept;
+  ~EventLog();
 
-  // Counts firings per pixel (y * cols + x) in all and within [0, window]: the sizing metrics.
-  // Tiles on separate threads touch separate pixels.
-  void count_pixels(std::size_t pixels, std::uint32_t cols, double window) {
-    fired_per_pixel_.assign(pixels, 0);
-    window_per_pixel_.assign(pixels, 0);
-    cols_ = cols;
-    window_ = window;
-  }
+  // Counts firings per pixel (y * cols + x) in all and within [0, window], and output events per
+  // pixel (the histogram image) in all and, without ghosts, within the window (the sizing
+  // metrics). Tiles on separate threads touch separate pixels.
+  void count_pixels(std::size_t pixels, std::uint32_t cols, double window);
   void fired(const AddressEvent& firing) {
     Tile& tile = tiles_[firing.tile];
     ++tile.counters.fired;
@@ -67,38 +61,49 @@ class EventLog {
   }
   const std::vector<std::uint32_t>& fired_per_pixel() const { return fired_per_pixel_; }
   const std::vector<std::uint32_t>& window_per_pixel() const { return window_per_pixel_; }
+  // Output events per pixel, ghosts included; and real (non-ghost) ones within the window.
+  const std::vector<std::uint32_t>& output_per_pixel() const { return output_per_pixel_; }
+  const std::vector<std::uint32_t>& window_output_per_pixel() const { return window_output_per_pixel_; }
   // 1 bits of the addresses of every fired event: what the bus lines carried.
   std::uint64_t address_ones() const;
   // Every fired event is resolved exactly once, when its fate is known.
   void resolve(const AddressEvent& firing, Fate fate, double t_deliver = 0);
   // The receiver's output: a delivered event, or a ghost (flags & kGhostEvent).
   void output(const AddressEvent& e);
-  // Merges the tiles: outputs by (time, tile, address), truth by (fire time, tile, address), so
-  // files do not depend on the order in which simultaneous processes or threads ran.
+
+  // Called by a rung while none of its tiles runs: no tile will output an event, or resolve a
+  // firing, earlier than `before`. Passes those records on (in the background) and hands the
+  // tiles fresh buffers.
+  void hand_over(double before);
+  // Whether records (events or truth) are kept, so that their order across tiles matters.
+  bool keeps_records() const { return outputs_.events || outputs_.truth; }
+  // After the run: passes on everything left and waits until the stream has it all. Rethrows an
+  // error the stream raised.
   void finish();
 
-  const std::vector<AddressEvent>& events() const { return events_; }
-  const std::vector<TruthRecord>& truth() const { return truth_; }
+  // With LogOutputs::stream null, what the log collected (merged in order by finish()).
+  const std::vector<AddressEvent>& events() const { return collector_->events(); }
+  const std::vector<TruthRecord>& truth() const { return collector_->truth(); }
   std::vector<TileCounters> tiles() const;
   TileCounters totals() const;
-  LatencyStats latency() const;
+  LatencyStats latency() const { return latency_.stats(); }
 
  private:
   struct Tile {
     TileCounters counters;
     std::vector<AddressEvent> events;
     std::vector<TruthRecord> truth;
-    std::vector<double> latencies;  // waits longer than zero
-    std::uint64_t zero_latencies = 0;
+    LatencyRecorder latencies;
     std::uint64_t address_ones = 0;
   };
   std::vector<Tile> tiles_;
-  std::vector<AddressEvent> events_;
-  std::vector<TruthRecord> truth_;
-  std::vector<double> latencies_;
-  std::uint64_t zero_latencies_ = 0;
-  bool keep_truth_;
-  std::vector<std::uint32_t> fired_per_pixel_, window_per_pixel_;
+  LogOutputs outputs_;
+  std::unique_ptr<EventCollector> collector_;
+  std::unique_ptr<EventMerger> merger_;
+  std::unique_ptr<MergePipeline> pipeline_;
+  TileRecords spare_;  // the buffers the tiles get at the next hand-over
+  LatencyRecorder latency_;
+  std::vector<std::uint32_t> fired_per_pixel_, window_per_pixel_, output_per_pixel_, window_output_per_pixel_;
   std::uint32_t cols_ = 0;
   double window_ = 0;
 };

@@ -13,7 +13,7 @@ SimulationResult simulate(const ResolvedConfig& config, const Photocurrents& pho
   const auto wall_start = std::chrono::steady_clock::now();
 
   const AddressMap map(config.array);
-  SimulationResult result{EventLog(map.tiles(), request.keep_truth), {}, nullptr};
+  SimulationResult result{EventLog(map.tiles(), LogOutputs{request.keep_events, request.keep_truth, request.stream}), {}, nullptr};
   result.log.count_pixels(static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols()),
                           static_cast<std::uint32_t>(map.cols()), config.analysis.window);
   if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);

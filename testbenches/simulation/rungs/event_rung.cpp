@@ -1,17 +1,32 @@
 #include <algorithm>
-#include <atomic>
+#include <cmath>
+#include <memory>
 #include <thread>
 
 #include "array/firing_schedule.hpp"
 #include "rungs/event_level_buses.hpp"
 #include "rungs/rung.hpp"
+#include "threads/worker_pool.hpp"
 
 namespace aesim {
 namespace {
 
+int thread_count(const RungRun& run) {
+  int threads = run.config.sim.threads;
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::min(threads, run.map.tiles());
+}
+
 // sim.fidelity=event: the exact event-driven reference. Every tile's firings come out of its
 // FiringSchedule in time order, straight into its event-level bus, with no SystemC time (nothing
 // else observes them); tiles on up to sim.threads threads.
+//
+// A run that keeps only counters simulates each tile to the end on its own (one tile's state in
+// memory per thread). A run that keeps records advances all tiles together through time windows
+// of a set number of events and hands each window over to the log, which merges and writes it on
+// another thread while the tiles go on: memory holds the pixels and a window, not the run. The
+// default window (request.window_events, 64 Ki) is ~2 MB of buffers and a hand-over per few
+// milliseconds of work.
 class EventRung : public Rung {
  public:
   Fidelity fidelity() const override { return Fidelity::Event; }
@@ -22,23 +37,46 @@ class EventRung : public Rung {
   }
   void run(const RungRun& run, RunFacts& facts) const override {
     EventLevelBuses buses(run);
-    const int tiles = run.map.tiles();
-    int threads = run.config.sim.threads;
-    if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    threads = std::min(threads, tiles);
-    std::atomic<int> next_tile{0};
-    auto work = [&] {
-      for (int t = next_tile++; t < tiles; t = next_tile++) {
-        FiringSchedule schedule(run.config.pixel, run.config.sim, run.photocurrents, run.map, static_cast<std::uint32_t>(t));
-        EventBus& bus = buses[static_cast<std::size_t>(t)];
-        AddressEvent firing;
-        while (schedule.next(firing)) bus.request(firing);
-      }
+    WorkerPool pool(thread_count(run));
+    const std::size_t tiles = static_cast<std::size_t>(run.map.tiles());
+    auto schedule_of = [&](std::size_t t) {
+      return std::make_unique<FiringSchedule>(run.config.pixel, run.config.sim, run.photocurrents, run.map,
+                                              static_cast<std::uint32_t>(t));
     };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
-    work();
-    for (std::thread& th : pool) th.join();
+    if (!run.log.keeps_records()) {
+      pool.for_each(tiles, [&](std::size_t t) {
+        const auto schedule = schedule_of(t);
+        AddressEvent firing;
+        while (schedule->next(firing)) buses[t].request(firing);
+      });
+      buses.finish(run.config.bus, facts);
+      return;
+    }
+    std::vector<std::unique_ptr<FiringSchedule>> schedules(tiles);
+    pool.for_each(tiles, [&](std::size_t t) { schedules[t] = schedule_of(t); });
+    const double t_end = run.config.sim.duration;
+    // Starts small and grows at most 4x a window, so the first windows cost little whatever the
+    // light; the windows do not change the output (the merge is exact), only its pace.
+    double width = t_end * 1e-6;
+    std::uint64_t fired = 0;
+    for (double from = 0; from < t_end;) {
+      // A window never shrinks below one representable step, so the run always advances.
+      const double until = std::min(t_end, std::max(from + width, std::nextafter(from, t_end)));
+      pool.for_each(tiles, [&](std::size_t t) {
+        AddressEvent firing;
+        while (schedules[t]->next(firing, until)) buses[t].request(firing);
+      });
+      from = until;
+      if (from >= t_end) break;
+      // Every later firing comes after `until`; what a bus still holds is the earliest undecided.
+      double before = until;
+      for (std::size_t t = 0; t < tiles; ++t) before = std::min(before, buses[t].held_since());
+      run.log.hand_over(before);
+      const std::uint64_t now = run.log.totals().fired;
+      const double in_window = static_cast<double>(now - fired);
+      fired = now;
+      width *= std::clamp(std::max(run.request.window_events, 1.0) / std::max(in_window, 1.0), 0.25, 4.0);
+    }
     buses.finish(run.config.bus, facts);
   }
 };

@@ -3,13 +3,21 @@
 #include <functional>
 #include <string>
 
+#include "events/event_stream.hpp"
 #include "receiver/receiver_module.hpp"
 
 namespace aesim {
 
 // What a run must produce beyond events and counters.
 struct SimulationRequest {
+  bool keep_events = true;          // the output events (--out, --csv), not only their counts
   bool keep_truth = false;          // a TruthRecord per fired event (--truth)
+  // Where kept records go as the run makes them (the file writers); null: collected in the
+  // result's log (events(), truth()).
+  EventStream* stream = nullptr;
+  // Fired events per window of a streaming run (the event rung): the pace of hand-overs, never
+  // the output (tests vary it to show that).
+  double window_events = 65536;
   bool waveforms = false;           // bus waveforms (--vcd): needs a rung with wires
   double vcd_from = 0, vcd_to = 0;  // s, the VCD window
   // With the RTL receiver, also trace tile N's RTL internals (Verilator) to rtl_trace_path(N).
