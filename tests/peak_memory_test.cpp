@@ -1,0 +1,87 @@
+// Memory does not grow with the run's length: the allocator's peak over a run 100x longer is the
+// same, within the slack of buffer growth, whether the run streams its events or counts them.
+#include <gtest/gtest.h>
+
+#include "scene/photocurrents.hpp"
+#include "support/counting_allocator.hpp"
+#include "support/scenes.hpp"
+
+namespace aesim {
+namespace {
+
+// Checks order and counts what it is given, keeping nothing: a writer with no file.
+class CheckingStream : public EventStream {
+ public:
+  void events(const AddressEvent* first, std::size_t count) override {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (first[i].t < last_) ++out_of_order_;
+      last_ = first[i].t;
+    }
+    seen_ += count;
+  }
+  std::size_t seen_ = 0, out_of_order_ = 0;
+  double last_ = 0;
+};
+
+// 64x64 uniform full light on the aloha constants: 4096 pixels at 10 Hz, ~41,000 events/s.
+SensorConfig bright_sensor(double duration) {
+  SensorConfig c = testing::exact_sensor(64, 64, 32);
+  c.bus.access = BusAccess::Aloha;
+  c.bus.t_event = 100e-9;
+  c.pixel.initial = InitialState::Random;
+  c.sim.duration = duration;
+  return c;
+}
+
+struct Peak {
+  std::size_t bytes;
+  std::uint64_t events;
+};
+
+// A counting run keeps one tile's schedule per thread while it runs: on one thread, so which
+// tiles overlap in time does not change the peak.
+Peak peak_of(double duration, bool keep_events) {
+  SensorConfig c = bright_sensor(duration);
+  c.sim.threads = keep_events ? 2 : 1;
+  const Photocurrents p(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}), c.pixel);
+  CheckingStream stream;
+  SimulationRequest request;
+  request.keep_events = keep_events;
+  request.stream = &stream;
+  request.window_events = 4096;
+  const std::size_t before = testing::allocated_bytes();
+  testing::reset_peak();
+  std::uint64_t delivered = 0;
+  {
+    const SimulationResult r = simulate(c.resolved(), p, request);
+    delivered = r.log.totals().delivered;
+  }
+  EXPECT_EQ(stream.out_of_order_, 0u);
+  if (keep_events) {
+    EXPECT_EQ(stream.seen_, delivered);
+  }
+  return {testing::peak_allocated_bytes() - before, delivered};
+}
+
+TEST(PeakMemory, AStreamingRunDoesNotGrowWithItsLength) {
+  const Peak short_run = peak_of(0.5, true), long_run = peak_of(50.0, true);
+  ASSERT_GT(long_run.events, 90 * short_run.events);
+  // Held as records, the long run's events alone would take 32 bytes each (65 MB).
+  EXPECT_LT(long_run.bytes, short_run.bytes + (256u << 10))
+      << short_run.bytes << " bytes for " << short_run.events << " events, " << long_run.bytes << " for "
+      << long_run.events;
+}
+
+TEST(PeakMemory, ACountingRunDoesNotGrowWithItsLength) {
+  const Peak short_run = peak_of(0.1, false), long_run = peak_of(10.0, false);
+  ASSERT_GT(long_run.events, 90 * short_run.events);
+  EXPECT_LT(long_run.bytes, short_run.bytes + (64u << 10))
+      << short_run.bytes << " bytes for " << short_run.events << " events, " << long_run.bytes << " for "
+      << long_run.events;
+  std::printf("peak %zu bytes for %llu events, %zu for %llu\n", short_run.bytes,
+              static_cast<unsigned long long>(short_run.events), long_run.bytes,
+              static_cast<unsigned long long>(long_run.events));
+}
+
+}  // namespace
+}  // namespace aesim
