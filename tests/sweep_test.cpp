@@ -174,6 +174,33 @@ name = "slow"
   expect_same_results(whole, cut);
 }
 
+// Points run in forked children: one that fails (here, more work than sim.max_events allows)
+// stops the sweep with its own one-line reason and exit status, the points before it stay in the
+// journal, and no CSV is written.
+TEST_F(SweepTest, AFailingPointStopsTheSweepAndKeepsTheFinishedOnes) {
+  const std::string s = spec(R"(
+sensor = "aloha"
+duration = "1s"
+[set]
+"sim.fidelity" = "event"
+"sim.max_events" = 100000
+[[group]]
+name = "brightening"
+"pixel.i_max" = ["1pA", "2pA", "1nA"]
+)");
+  const testing::Outcome o = TempDirTest::aesim("sweep " + s + " -o out.csv --jobs 1");
+  const std::string& err = o.err;
+  EXPECT_EQ(o.status, 2) << err;
+  EXPECT_NE(err.find("point 3 failed: aesim: "), std::string::npos) << err;
+  EXPECT_NE(err.find("max_events"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "out.csv"));
+  std::ifstream journal(dir_ / "out.csv.partial");
+  std::string line;
+  int finished = 0;
+  while (std::getline(journal, line)) finished += line.rfind("{\"index\"", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(finished, 2);
+}
+
 TEST_F(SweepTest, UnderMpirunTheRanksShareTheSweepAndRankZeroWritesTheSameCsv) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun (openmpi-bin)";
   const std::string s = spec(R"(

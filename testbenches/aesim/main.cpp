@@ -1,46 +1,11 @@
 // The aesim program.
-#include <cstdio>
-#include <cstdlib>
-#include <string>
-#include <exception>
-#include <filesystem>
 #include <systemc>
 
-#include <fmt/format.h>
-
 #include "commands.hpp"
-#include "errors/input_error.hpp"
+#include "error_exit.hpp"
 #include "output/temp_files.hpp"
 
 int sc_main(int argc, char* argv[]) {
   aesim::install_signal_cleanup();
-  try {
-    return aesim::run_command_line(argc, argv);
-  } catch (const aesim::InputError& e) {
-    std::fprintf(stderr, "aesim: %s\n", e.what());
-    return 2;
-  } catch (const std::filesystem::filesystem_error& e) {
-    // Every path aesim looks up came from the user (or derives from one); the readers ask without
-    // exceptions, so this is a safety net that still gives one line and the input's status.
-    std::fprintf(stderr, "aesim: %s\n", e.what());
-    return 2;
-  } catch (const aesim::OutputError& e) {
-    std::fprintf(stderr, "aesim: %s\n", e.what());
-    return 1;
-  } catch (const aesim::Interrupted& e) {
-    std::fprintf(stderr, "aesim: interrupted (signal %d); no output written\n", e.signal);
-    return 128 + e.signal;
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "aesim: out of memory (a limit the checks before the run did not foresee)\n");
-    return 1;
-  } catch (const sc_core::sc_report& e) {
-    std::string what = e.what();
-    for (char& c : what) c = c == '\n' ? ' ' : c;
-    std::fprintf(stderr, "aesim: internal error: SystemC: %s\n", what.c_str());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "aesim: internal error: %s\n", e.what());
-    return 1;
-  }
+  return aesim::with_error_exit([&] { return aesim::run_command_line(argc, argv); });
 }
-

@@ -14,8 +14,10 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       sensor_(pixel_sensor(pixel)),
       t_end_(sim.duration),
       tile_(tile),
-      cols_(static_cast<std::uint32_t>(map.cols())) {
-  std::vector<Entry> entries;
+      cols_(static_cast<std::uint32_t>(map.cols())),
+      calendar_(0, 0) {
+  std::vector<WakeCalendar::Entry> entries;
+  std::vector<double> periods;
   const std::uint32_t tx = tile % static_cast<std::uint32_t>(map.tiles_per_row());
   const std::uint32_t ty = tile / static_cast<std::uint32_t>(map.tiles_per_row());
   const std::uint32_t x0 = tx * static_cast<std::uint32_t>(map.tile_cols());
@@ -30,8 +32,8 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       if (!(current > 0) && boundary == kNoBoundary) continue;  // dark for the whole run
       Slot p;
       SplitMix64 noise = shot_noise_stream(sim.seed, index);
-      p.core = IntegrateFire(sensor_, pixel_threshold(pixel, sim.seed, index), 0.0, current, initial_fraction(pixel, sim.seed, index),
-                             noise);
+      const double threshold = pixel_threshold(pixel, sim.seed, index);
+      p.core = IntegrateFire(sensor_, threshold, 0.0, current, initial_fraction(pixel, sim.seed, index), noise);
       p.next_boundary = boundary;
       p.x = static_cast<std::uint16_t>(x);
       p.y = static_cast<std::uint16_t>(y);
@@ -39,11 +41,21 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       const double t = wake_time(p);
       if (!(t <= t_end_)) continue;  // nothing happens to it within the run
       entries.push_back({t, p.bus_address, static_cast<std::uint32_t>(pixels_.size())});
+      if (current > 0) periods.push_back(threshold / current + sensor_.t_reset);
       pixels_.push_back(p);
       if (sensor_.shot_noise) shot_noise_.push_back(noise);
     }
   }
-  heap_.assign(std::move(entries));
+  // A year of twice the median period keeps the brighter half of the pixels, and most of their
+  // neighbours in brightness, in the buckets; the light of the first frame sets it.
+  double horizon = t_end_;
+  if (!periods.empty()) {
+    auto middle = periods.begin() + static_cast<std::ptrdiff_t>(periods.size() / 2);
+    std::nth_element(periods.begin(), middle, periods.end());
+    horizon = std::min(2 * *middle, t_end_);
+  }
+  calendar_ = WakeCalendar(pixels_.size(), horizon);
+  for (const WakeCalendar::Entry& e : entries) calendar_.push(e.slot, e.t, e.key);
 }
 
 std::uint32_t FiringSchedule::boundary_after(std::uint64_t boundary, std::size_t index) const {
@@ -59,8 +71,10 @@ double FiringSchedule::wake_time(const Slot& p) const {
 }
 
 bool FiringSchedule::next(AddressEvent& firing, double until) {
-  while (!heap_.empty() && heap_.top().t <= until) {
-    const std::uint32_t slot = heap_.top().slot;
+  WakeCalendar::Entry top;
+  while (calendar_.peek(top) && top.t <= until) {
+    calendar_.pop();
+    const std::uint32_t slot = top.slot;
     Slot& p = pixels_[slot];
     const double t_fire = p.core.next_fire();
     const double t_boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
@@ -79,11 +93,7 @@ bool FiringSchedule::next(AddressEvent& firing, double until) {
       p.next_boundary = boundary_after(p.next_boundary, index);
     }
     const double t_next = wake_time(p);
-    if (t_next <= t_end_) {
-      heap_.replace_top({t_next, heap_.top().key, slot});
-    } else {
-      heap_.pop();
-    }
+    if (t_next <= t_end_) calendar_.push(slot, t_next, top.key);
     if (fires) return true;
   }
   return false;

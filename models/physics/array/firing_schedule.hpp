@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "array/address_map.hpp"
-#include "containers/min_heap.hpp"
+#include "array/wake_calendar.hpp"
 #include "events/address_event.hpp"
 #include "config/sensor_config.hpp"
 #include "pixel/integrate_fire.hpp"
@@ -13,10 +13,10 @@ namespace aesim {
 
 // One tile's pixels in firing order, from one place: the exact event-driven model without a
 // SystemC process per pixel. Each pixel's next wake-up (its next firing, computed in closed form
-// by IntegrateFire, or the next frame boundary where its own light changes) sits in a 4-ary
-// min-heap keyed by (time, bus address), so firings come out in time order, ties in address
-// order. A pixel dark in every frame never gets a slot; a pixel whose next wake-up is past the
-// end of the run leaves the heap. Cost follows the events, not the pixels.
+// by IntegrateFire, or the next frame boundary where its own light changes) sits in a calendar
+// queue keyed by (time, bus address), so firings come out in time order, ties in address order.
+// A pixel dark in every frame never gets a slot; a pixel whose next wake-up is past the end of
+// the run leaves the queue. Cost follows the events, not the pixels.
 class FiringSchedule {
  public:
   FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& photocurrents,
@@ -28,8 +28,8 @@ class FiringSchedule {
   // stands at `until`: light changes up to it are applied).
   bool next(AddressEvent& firing, double until);
 
-  // A lit pixel's state: 72 bytes, plus 16 in the heap; with the 8-byte photocurrent, 96 bytes
-  // per lit pixel.
+  // A lit pixel's state: 72 bytes, plus 20 in the calendar; with the 8-byte photocurrent, 100
+  // bytes per lit pixel.
   struct Slot {
     IntegrateFire core;
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again
@@ -37,16 +37,6 @@ class FiringSchedule {
     std::uint32_t bus_address;    // within the tile
   };
   static constexpr std::uint32_t kNoBoundary = 0xFFFFFFFFu;
-  struct Entry {
-    double t;
-    std::uint32_t key;  // bus address: the order of simultaneous firings
-    std::uint32_t slot;
-  };
-  // Written with bitwise operators so the compiler selects with conditional moves: heap keys are
-  // random, and mispredicted branches were most of the cost.
-  struct Before {
-    bool operator()(const Entry& a, const Entry& b) const { return (a.t < b.t) | ((a.t == b.t) & (a.key < b.key)); }
-  };
 
  private:
   double wake_time(const Slot& p) const;
@@ -62,7 +52,7 @@ class FiringSchedule {
   std::vector<Slot> pixels_;
   std::vector<SplitMix64> shot_noise_;  // per pixel, only with pixel.shot_noise
   SplitMix64 no_noise_{0};              // never drawn from: without shot noise nothing is random
-  MinHeap<Entry, Before, 4> heap_;
+  WakeCalendar calendar_;
 };
 
 }  // namespace aesim

@@ -1,0 +1,84 @@
+#include "array/wake_calendar.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aesim {
+namespace {
+
+// Bucket numbers stay far below overflow whatever the times (a run is at most 1e6 s long).
+constexpr double kLastBucket = 4.0e18;
+
+}  // namespace
+
+WakeCalendar::WakeCalendar(std::size_t slots, double horizon)
+    : next_(slots, kNone), t_(slots, 0), key_(slots, 0) {
+  std::size_t buckets = 16;
+  while (buckets < slots && buckets < (std::size_t(1) << 22)) buckets *= 2;
+  head_.assign(buckets, kNone);
+  mask_ = buckets - 1;
+  const double width = horizon / static_cast<double>(buckets);
+  per_width_ = std::isfinite(width) && width > 0 ? 1.0 / width : 1.0;
+}
+
+std::int64_t WakeCalendar::bucket_of(double t) const {
+  const double b = std::floor(t * per_width_);
+  return b < kLastBucket ? static_cast<std::int64_t>(b) : static_cast<std::int64_t>(kLastBucket);
+}
+
+void WakeCalendar::push(std::uint32_t slot, double t, std::uint32_t key) {
+  const std::int64_t bucket = bucket_of(t);
+  if (bucket <= now_) {
+    // Due within the present bucket (a pixel brighter than a bucket is wide): in its sorted place.
+    const Entry e{t, key, slot};
+    present_.insert(std::upper_bound(present_.begin(), present_.end(), e, [](const Entry& a, const Entry& b) {
+                      return Before()(b, a);
+                    }),
+                    e);
+  } else if (bucket - now_ <= static_cast<std::int64_t>(mask_)) {
+    into_year({t, key, slot}, bucket);
+  } else {
+    far_.push({t, key, slot});
+  }
+}
+
+void WakeCalendar::into_year(const Entry& e, std::int64_t bucket) {
+  std::uint32_t& head = head_[static_cast<std::uint64_t>(bucket) & mask_];
+  next_[e.slot] = head;
+  t_[e.slot] = e.t;
+  key_[e.slot] = e.key;
+  head = e.slot;
+  ++in_year_;
+}
+
+bool WakeCalendar::peek(Entry& e) {
+  if (present_.empty() && !advance()) return false;
+  e = present_.back();
+  return true;
+}
+
+bool WakeCalendar::advance() {
+  while (present_.empty()) {
+    if (in_year_ == 0) {
+      if (far_.empty()) return false;
+      // Nothing within the year: jump to the far heap's first.
+      now_ = bucket_of(far_.top().t);
+    } else {
+      ++now_;
+    }
+    // The year moved on: what the far heap holds inside it joins the buckets.
+    while (!far_.empty() && bucket_of(far_.top().t) - now_ <= static_cast<std::int64_t>(mask_)) {
+      into_year(far_.top(), bucket_of(far_.top().t));
+      far_.pop();
+    }
+    std::uint32_t& head = head_[static_cast<std::uint64_t>(now_) & mask_];
+    for (std::uint32_t s = head; s != kNone; s = next_[s]) present_.push_back({t_[s], key_[s], s});
+    head = kNone;
+    in_year_ -= present_.size();
+    // Latest first, so the earliest pops from the back.
+    std::sort(present_.begin(), present_.end(), [](const Entry& a, const Entry& b) { return Before()(b, a); });
+  }
+  return true;
+}
+
+}  // namespace aesim

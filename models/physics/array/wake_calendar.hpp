@@ -1,0 +1,59 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "containers/min_heap.hpp"
+
+namespace aesim {
+
+// A tile's pixels ordered by their next wake-up (a firing or a change of light): a calendar queue.
+// Time is cut into buckets of equal width; a "year" of N buckets ahead of the present holds every
+// wake-up due within it, each bucket an unsorted list threaded through the pixels, and a bucket is
+// sorted only when it becomes the present, which costs little at the few entries a bucket holds.
+// Wake-ups beyond the year (dim pixels, pixels waiting for light) wait in a heap and join the
+// buckets as the year moves on, so they never crowd the hot buckets. Pushing and popping cost
+// O(1) for the bright pixels that make most events, against O(log n) for a heap.
+//
+// Entries come out in exactly the order of (time, key), as from a heap: buckets follow time
+// (floor(t / width) never decreases as t grows) and the present bucket is sorted by both.
+class WakeCalendar {
+ public:
+  struct Entry {
+    double t;
+    std::uint32_t key;   // orders simultaneous wake-ups (the bus address)
+    std::uint32_t slot;  // the pixel
+  };
+
+  // For `slots` pixels; `horizon` (s) is the year: wake-ups further ahead go to the heap. Buckets
+  // are a power of two near the number of pixels, so a year of pixels firing once each fills each
+  // bucket about once.
+  WakeCalendar(std::size_t slots, double horizon);
+
+  void push(std::uint32_t slot, double t, std::uint32_t key);
+  // The earliest entry, or false when none is left.
+  bool peek(Entry& e);
+  // Removes the entry peek() gave.
+  void pop() { present_.pop_back(); }
+
+ private:
+  struct Before {
+    bool operator()(const Entry& a, const Entry& b) const { return (a.t < b.t) | ((a.t == b.t) & (a.key < b.key)); }
+  };
+  std::int64_t bucket_of(double t) const;
+  void into_year(const Entry& e, std::int64_t bucket);
+  bool advance();
+
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> head_;  // per bucket: its first pixel, threaded through next_
+  std::vector<std::uint32_t> next_;  // per pixel
+  std::vector<double> t_;            // per pixel: its wake-up while it sits in a bucket
+  std::vector<std::uint32_t> key_;   // per pixel
+  std::uint64_t mask_;
+  double per_width_;             // 1 / bucket width
+  std::int64_t now_ = -1;        // the present bucket
+  std::size_t in_year_ = 0;      // entries in the buckets
+  std::vector<Entry> present_;   // the present bucket, sorted latest first
+  MinHeap<Entry, Before, 4> far_; // beyond the year
+};
+
+}  // namespace aesim
