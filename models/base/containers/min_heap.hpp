@@ -23,15 +23,6 @@ class MinHeap {
   bool empty() const { return items_.empty(); }
   std::size_t size() const { return items_.size(); }
   const T& top() const { return items_.front(); }
-  // The element that would come out after top(): the first of the root's children (size() >= 2).
-  const T& runner_up() const {
-    const std::size_t last = std::min<std::size_t>(D + 1, items_.size());
-    std::size_t best = 1;
-    for (std::size_t c = 2; c < last; ++c) {
-      if (before_(items_[c], items_[best])) best = c;
-    }
-    return items_[best];
-  }
   void reserve(std::size_t n) { items_.reserve(n); }
 
   // Builds the heap from `items` in O(n).

@@ -1,5 +1,6 @@
 #include "event_files/aedat.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -157,10 +158,15 @@ std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, 
 }
 
 AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick) {
-  const double t_us = static_cast<double>(timestamp_ticks(e.t, tick)) * (tick / 1e-6);
+  const std::uint64_t ticks = timestamp_ticks(e.t, tick);
+  const double us_per_tick = tick / 1e-6;
+  const double whole = std::nearbyint(us_per_tick);
+  // A tick of whole microseconds (1 us, the usual one) needs no second rounding.
+  const std::uint64_t stamp = whole >= 1 && us_per_tick == whole
+                                  ? ticks * static_cast<std::uint64_t>(whole)
+                                  : timestamp_ticks(static_cast<double>(ticks) * us_per_tick * 1e-6, 1e-6);
   AedatRecord r;
   r.address = (e.tile << bus_bits) | e.bus_address;
-  const std::uint64_t stamp = timestamp_ticks(t_us * 1e-6, 1e-6);
   if (stamp > 0x7FFFFFFFu) {
     throw InputError(fmt::format("AEDAT 2.0 stamps are int32 microseconds: an event at {:.6g} s does not fit "
                                  "(at most 2147 s)", e.t));

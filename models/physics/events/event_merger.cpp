@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "containers/min_heap.hpp"
 
 namespace aesim {
 namespace {
@@ -25,20 +24,20 @@ constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few p
 // Appends each tile's new records to those it holds, sorts them if needed (simultaneous SystemC
 // processes may have run in any order; a stable sort keeps production order among equal keys, as a
 // sort of the whole run would), and merges every tile's records earlier than `before` through a
-// heap of the tiles' heads into `chunk`, passing full chunks to `emit`.
+// winner tree of the tiles' heads into `chunk`, passing full chunks to `emit`.
 template <typename T, typename Emit>
 void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector<T>>& held, double before,
                   std::vector<T>& chunk, Emit emit) {
   auto less = [](const T& a, const T& b) { return key_of(a) < key_of(b); };
-  struct Head {
-    OrderKey key;
-    std::size_t tile, pos, end;
-  };
-  struct Before {
-    bool operator()(const Head& a, const Head& b) const { return a.key < b.key; }
-  };
-  std::vector<Head> heads;
-  for (std::size_t i = 0; i < held.size(); ++i) {
+  const std::size_t tiles = held.size();
+  std::vector<std::size_t> pos(tiles, 0), end(tiles, 0);
+  // A winner tree over the tiles' heads: a pop replays only the winner's path, one comparison a
+  // level, with no records moved (a heap compares twice a level and moves its entries).
+  std::size_t leaves = 1;
+  while (leaves < tiles) leaves *= 2;
+  std::vector<OrderKey> head(leaves, OrderKey{kNoLimit, ~std::uint64_t(0)});
+  std::size_t live = 0;
+  for (std::size_t i = 0; i < tiles; ++i) {
     std::vector<T>& h = held[i];
     std::vector<T>& in = incoming[i];
     if (h.empty()) {
@@ -49,40 +48,32 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
     }
     if (!std::is_sorted(h.begin(), h.end(), less)) std::stable_sort(h.begin(), h.end(), less);
     const auto cut = std::partition_point(h.begin(), h.end(), [before](const T& r) { return time_of(r) < before; });
-    const std::size_t end = static_cast<std::size_t>(cut - h.begin());
-    if (end > 0) heads.push_back({key_of(h[0]), i, 0, end});
-  }
-  MinHeap<Head, Before, 2> heap;
-  heap.assign(std::move(heads));
-  while (!heap.empty()) {
-    Head h = heap.top();
-    const std::vector<T>& part = held[h.tile];
-    // Runs of one tile between the other tiles' heads are copied without going back to the heap.
-    const OrderKey limit = heap.size() > 1 ? heap.runner_up().key : OrderKey{kNoLimit, 0};
-    do {
-      chunk.push_back(part[h.pos]);
-      if (chunk.size() == kChunk) {
-        emit(chunk);
-        chunk.clear();
-      }
-      ++h.pos;
-    } while (h.pos < h.end && key_of(part[h.pos]) < limit);
-    if (h.pos < h.end) {
-      h.key = key_of(part[h.pos]);
-      heap.replace_top(h);
-    } else {
-      heap.pop();
+    end[i] = static_cast<std::size_t>(cut - h.begin());
+    if (end[i] > 0) {
+      head[i] = key_of(h[0]);
+      live += end[i];
     }
+  }
+  std::vector<std::uint32_t> tree(2 * leaves);
+  for (std::size_t i = 0; i < leaves; ++i) tree[leaves + i] = static_cast<std::uint32_t>(i);
+  auto better = [&](std::uint32_t a, std::uint32_t b) { return head[b] < head[a] ? b : a; };
+  for (std::size_t n = leaves - 1; n >= 1; --n) tree[n] = better(tree[2 * n], tree[2 * n + 1]);
+  for (; live > 0; --live) {
+    const std::uint32_t w = tree[1];
+    const std::vector<T>& part = held[w];
+    chunk.push_back(part[pos[w]]);
+    if (chunk.size() == kChunk) {
+      emit(chunk);
+      chunk.clear();
+    }
+    head[w] = ++pos[w] < end[w] ? key_of(part[pos[w]]) : OrderKey{kNoLimit, ~std::uint64_t(0)};
+    for (std::size_t n = (leaves + w) / 2; n >= 1; n /= 2) tree[n] = better(tree[2 * n], tree[2 * n + 1]);
   }
   if (!chunk.empty()) {
     emit(chunk);
     chunk.clear();
   }
-  for (std::size_t i = 0; i < held.size(); ++i) {
-    std::vector<T>& h = held[i];
-    const auto cut = std::partition_point(h.begin(), h.end(), [before](const T& r) { return time_of(r) < before; });
-    h.erase(h.begin(), cut);
-  }
+  for (std::size_t i = 0; i < tiles; ++i) held[i].erase(held[i].begin(), held[i].begin() + static_cast<std::ptrdiff_t>(end[i]));
 }
 
 }  // namespace
