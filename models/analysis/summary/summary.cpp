@@ -91,7 +91,7 @@ nlohmann::json make_summary(const SensorConfig& config, const EventLog& log, con
       {"sensor", config.to_json()},
   };
   add_sizing(summary, config, log, facts);
-  if (scene && !log.window_output_per_pixel().empty()) {
+  if (scene && !log.fired_per_pixel().empty()) {
     Image truth = *scene;
     const double peak = *std::max_element(truth.pixels.begin(), truth.pixels.end());
     if (peak > 0) {

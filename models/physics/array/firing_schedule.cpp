@@ -75,6 +75,9 @@ bool FiringSchedule::next(AddressEvent& firing, double until) {
   while (calendar_.peek(top) && top.t <= until) {
     calendar_.pop();
     const std::uint32_t slot = top.slot;
+    // Large arrays stream through their pixels' state in time order: fetch the next pixel's record
+    // while this one is worked on.
+    if (const WakeCalendar::Entry* after = calendar_.following()) __builtin_prefetch(&pixels_[after->slot]);
     Slot& p = pixels_[slot];
     const double t_fire = p.core.next_fire();
     const double t_boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);

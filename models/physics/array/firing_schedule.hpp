@@ -28,8 +28,8 @@ class FiringSchedule {
   // stands at `until`: light changes up to it are applied).
   bool next(AddressEvent& firing, double until);
 
-  // A lit pixel's state: 72 bytes, plus 20 in the calendar; with the 8-byte photocurrent, 100
-  // bytes per lit pixel.
+  // A lit pixel's state: 72 bytes, plus 16 in the calendar and 4 per bucket (about one a
+  // pixel); with the 8-byte photocurrent, 100 bytes per lit pixel.
   struct Slot {
     IntegrateFire core;
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again

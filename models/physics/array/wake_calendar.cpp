@@ -12,7 +12,7 @@ constexpr double kLastBucket = 4.0e18;
 }  // namespace
 
 WakeCalendar::WakeCalendar(std::size_t slots, double horizon)
-    : next_(slots, kNone), t_(slots, 0), key_(slots, 0) {
+    : nodes_(slots, Node{0, 0, kNone}) {
   std::size_t buckets = 16;
   while (buckets < slots && buckets < (std::size_t(1) << 22)) buckets *= 2;
   head_.assign(buckets, kNone);
@@ -44,9 +44,7 @@ void WakeCalendar::push(std::uint32_t slot, double t, std::uint32_t key) {
 
 void WakeCalendar::into_year(const Entry& e, std::int64_t bucket) {
   std::uint32_t& head = head_[static_cast<std::uint64_t>(bucket) & mask_];
-  next_[e.slot] = head;
-  t_[e.slot] = e.t;
-  key_[e.slot] = e.key;
+  nodes_[e.slot] = Node{e.t, e.key, head};
   head = e.slot;
   ++in_year_;
 }
@@ -72,7 +70,10 @@ bool WakeCalendar::advance() {
       far_.pop();
     }
     std::uint32_t& head = head_[static_cast<std::uint64_t>(now_) & mask_];
-    for (std::uint32_t s = head; s != kNone; s = next_[s]) present_.push_back({t_[s], key_[s], s});
+    // The next bucket's first pixel is the next list to walk.
+    const std::uint32_t coming = head_[static_cast<std::uint64_t>(now_ + 1) & mask_];
+    if (coming != kNone) __builtin_prefetch(&nodes_[coming]);
+    for (std::uint32_t s = head; s != kNone; s = nodes_[s].next) present_.push_back({nodes_[s].t, nodes_[s].key, s});
     head = kNone;
     in_year_ -= present_.size();
     // Latest first, so the earliest pops from the back.

@@ -26,12 +26,12 @@ const char* to_string(Fate fate) {
 }
 
 EventLog::EventLog(int tiles, LogOutputs outputs)
-    : outputs_(outputs), collector_(std::make_unique<EventCollector>()), spare_(static_cast<std::size_t>(tiles)),
+    : outputs_(outputs), collector_(std::make_unique<EventCollector>()), filling_(static_cast<std::size_t>(tiles)),
       latency_(kExactLatencies) {
   const std::size_t n = static_cast<std::size_t>(tiles);
   tiles_.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    tiles_.push_back(Tile{{}, {}, {}, LatencyRecorder(std::max<std::size_t>(4096, kExactLatencies / n)), 0});
+    tiles_.push_back(Tile{{}, LatencyRecorder(std::max<std::size_t>(4096, kExactLatencies / n)), 0});
   }
   merger_ = std::make_unique<EventMerger>(n, outputs_.stream ? *outputs_.stream : *collector_);
 }
@@ -41,10 +41,7 @@ EventLog& EventLog::operator=(EventLog&&) noexcept = default;
 EventLog::~EventLog() = default;
 
 void EventLog::count_pixels(std::size_t pixels, std::uint32_t cols, double window) {
-  fired_per_pixel_.assign(pixels, 0);
-  window_per_pixel_.assign(pixels, 0);
-  output_per_pixel_.assign(pixels, 0);
-  window_output_per_pixel_.assign(pixels, 0);
+  pixels_.assign(pixels, PixelCounts{});
   cols_ = cols;
   window_ = window;
 }
@@ -59,7 +56,7 @@ void EventLog::resolve(const AddressEvent& firing, Fate fate, double t_deliver) 
     case Fate::Dropped: ++tile.counters.dropped; break;
     case Fate::Pending: ++tile.counters.pending; break;
   }
-  if (outputs_.truth) tile.truth.push_back({firing, fate, t_deliver});
+  if (outputs_.truth) filling_.truth[firing.tile].push_back({firing, fate, t_deliver});
 }
 
 void EventLog::output(const AddressEvent& e) {
@@ -67,22 +64,19 @@ void EventLog::output(const AddressEvent& e) {
   ++tile.counters.delivered;
   const bool ghost = (e.flags & kGhostEvent) != 0;
   if (ghost) ++tile.counters.ghost;
-  if (!output_per_pixel_.empty()) {
-    const std::size_t i = std::size_t(e.y) * cols_ + e.x;
-    ++output_per_pixel_[i];
-    if (!ghost && e.t <= window_) ++window_output_per_pixel_[i];
+  if (!pixels_.empty()) {
+    PixelCounts& p = pixels_[std::size_t(e.y) * cols_ + e.x];
+    ++p.output;
+    p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
   }
-  if (outputs_.events) tile.events.push_back(e);
+  if (outputs_.events) filling_.events[e.tile].push_back(e);
 }
 
 void EventLog::hand_over(double before) {
   if (!outputs_.events && !outputs_.truth) return;
-  for (std::size_t t = 0; t < tiles_.size(); ++t) {
-    tiles_[t].events.swap(spare_.events[t]);
-    tiles_[t].truth.swap(spare_.truth[t]);
-  }
   if (!pipeline_) pipeline_ = std::make_unique<MergePipeline>(*merger_, tiles_.size());
-  pipeline_->submit(spare_, before);
+  // The tiles get back the buffers of the batch before, emptied by its merge.
+  pipeline_->submit(filling_, before);
 }
 
 void EventLog::finish() {

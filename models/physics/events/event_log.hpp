@@ -13,6 +13,13 @@ namespace aesim {
 
 class MergePipeline;
 
+// Set bits of a word, without the library call __builtin_popcount becomes on a baseline x86-64.
+inline unsigned ones(std::uint32_t v) {
+  v = v - ((v >> 1) & 0x55555555u);
+  v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+  return (((v + (v >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
+}
+
 // Counters of SPEC section 5, per tile. `collided` counts fired events lost to collisions,
 // whether detected (Fate::Collided, Fate::Absorbed) or not (Fate::Ghost); `ghost` counts the wrong events the
 // receiver output for undetected collisions; `delivered` counts every output event, ghosts too.
@@ -52,18 +59,18 @@ class EventLog {
   void fired(const AddressEvent& firing) {
     Tile& tile = tiles_[firing.tile];
     ++tile.counters.fired;
-    tile.address_ones += static_cast<std::uint64_t>(__builtin_popcount(firing.bus_address));
-    if (!fired_per_pixel_.empty()) {
-      const std::size_t i = std::size_t(firing.y) * cols_ + firing.x;
-      ++fired_per_pixel_[i];
-      if (firing.t <= window_) ++window_per_pixel_[i];
+    tile.address_ones += static_cast<std::uint64_t>(ones(firing.bus_address));
+    if (!pixels_.empty()) {
+      PixelCounts& p = pixels_[std::size_t(firing.y) * cols_ + firing.x];
+      ++p.fired;
+      p.fired_in_window += firing.t <= window_ ? 1 : 0;
     }
   }
-  const std::vector<std::uint32_t>& fired_per_pixel() const { return fired_per_pixel_; }
-  const std::vector<std::uint32_t>& window_per_pixel() const { return window_per_pixel_; }
+  std::vector<std::uint32_t> fired_per_pixel() const { return per_pixel(&PixelCounts::fired); }
+  std::vector<std::uint32_t> window_per_pixel() const { return per_pixel(&PixelCounts::fired_in_window); }
   // Output events per pixel, ghosts included; and real (non-ghost) ones within the window.
-  const std::vector<std::uint32_t>& output_per_pixel() const { return output_per_pixel_; }
-  const std::vector<std::uint32_t>& window_output_per_pixel() const { return window_output_per_pixel_; }
+  std::vector<std::uint32_t> output_per_pixel() const { return per_pixel(&PixelCounts::output); }
+  std::vector<std::uint32_t> window_output_per_pixel() const { return per_pixel(&PixelCounts::output_in_window); }
   // 1 bits of the addresses of every fired event: what the bus lines carried.
   std::uint64_t address_ones() const;
   // Every fired event is resolved exactly once, when its fate is known.
@@ -91,8 +98,6 @@ class EventLog {
  private:
   struct Tile {
     TileCounters counters;
-    std::vector<AddressEvent> events;
-    std::vector<TruthRecord> truth;
     LatencyRecorder latencies;
     std::uint64_t address_ones = 0;
   };
@@ -101,9 +106,19 @@ class EventLog {
   std::unique_ptr<EventCollector> collector_;
   std::unique_ptr<EventMerger> merger_;
   std::unique_ptr<MergePipeline> pipeline_;
-  TileRecords spare_;  // the buffers the tiles get at the next hand-over
+  TileRecords filling_;  // the tiles' records since the last hand-over
   LatencyRecorder latency_;
-  std::vector<std::uint32_t> fired_per_pixel_, window_per_pixel_, output_per_pixel_, window_output_per_pixel_;
+  // A pixel's four counters side by side: one cache line touched per event, not four.
+  struct PixelCounts {
+    std::uint32_t fired = 0, fired_in_window = 0, output = 0, output_in_window = 0;
+  };
+  std::vector<std::uint32_t> per_pixel(std::uint32_t PixelCounts::*field) const {
+    std::vector<std::uint32_t> out;
+    out.reserve(pixels_.size());
+    for (const PixelCounts& p : pixels_) out.push_back(p.*field);
+    return out;
+  }
+  std::vector<PixelCounts> pixels_;
   std::uint32_t cols_ = 0;
   double window_ = 0;
 };

@@ -21,37 +21,53 @@ double time_of(const TruthRecord& r) { return r.firing.t; }
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
 
-// Appends each tile's new records to those it holds, sorts them if needed (simultaneous SystemC
-// processes may have run in any order; a stable sort keeps production order among equal keys, as a
-// sort of the whole run would), and merges every tile's records earlier than `before` through a
-// winner tree of the tiles' heads into `chunk`, passing full chunks to `emit`.
+// Merges every tile's records earlier than `before` through a winner tree of the tiles' heads into
+// `chunk`, passing full chunks to `emit`. A tile's records are those it held back last time
+// followed by its new ones; in the event rung both are in order and the new ones come later, so
+// they are read where they lie, and only what stays for the next window is copied (the tail past
+// `before`), which keeps the buffers to the two sets the tiles and the merge swap. Otherwise
+// (simultaneous SystemC processes may have run in any order) they are joined and sorted; a
+// stable sort keeps production order among equal keys, as a sort of the whole run would.
 template <typename T, typename Emit>
 void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector<T>>& held, double before,
                   std::vector<T>& chunk, Emit emit) {
   auto less = [](const T& a, const T& b) { return key_of(a) < key_of(b); };
+  auto early = [before](const T& r) { return time_of(r) < before; };
   const std::size_t tiles = held.size();
-  std::vector<std::size_t> pos(tiles, 0), end(tiles, 0);
+  // A tile's records to merge: [a, a_end) then [b, b_end).
+  struct Cursor {
+    const T *a, *a_end, *b, *b_end;
+    const T& next() { return a != a_end ? *a++ : *b++; }
+    bool done() const { return a == a_end && b == b_end; }
+    const T& peek() const { return a != a_end ? *a : *b; }
+  };
+  std::vector<Cursor> cursor(tiles);
+  std::vector<std::size_t> from_held(tiles, 0), from_new(tiles, 0);
   // A winner tree over the tiles' heads: a pop replays only the winner's path, one comparison a
   // level, with no records moved (a heap compares twice a level and moves its entries).
   std::size_t leaves = 1;
   while (leaves < tiles) leaves *= 2;
-  std::vector<OrderKey> head(leaves, OrderKey{kNoLimit, ~std::uint64_t(0)});
+  const OrderKey exhausted{kNoLimit, ~std::uint64_t(0)};
+  std::vector<OrderKey> head(leaves, exhausted);
   std::size_t live = 0;
   for (std::size_t i = 0; i < tiles; ++i) {
     std::vector<T>& h = held[i];
     std::vector<T>& in = incoming[i];
-    if (h.empty()) {
-      h.swap(in);
-    } else {
+    const bool in_order = std::is_sorted(in.begin(), in.end(), less) &&
+                          (h.empty() || in.empty() || !less(in.front(), h.back()));
+    if (!in_order) {
       h.insert(h.end(), in.begin(), in.end());
       in.clear();
+      std::stable_sort(h.begin(), h.end(), less);
     }
-    if (!std::is_sorted(h.begin(), h.end(), less)) std::stable_sort(h.begin(), h.end(), less);
-    const auto cut = std::partition_point(h.begin(), h.end(), [before](const T& r) { return time_of(r) < before; });
-    end[i] = static_cast<std::size_t>(cut - h.begin());
-    if (end[i] > 0) {
-      head[i] = key_of(h[0]);
-      live += end[i];
+    from_held[i] = static_cast<std::size_t>(std::partition_point(h.begin(), h.end(), early) - h.begin());
+    from_new[i] = from_held[i] < h.size()
+                      ? 0
+                      : static_cast<std::size_t>(std::partition_point(in.begin(), in.end(), early) - in.begin());
+    cursor[i] = {h.data(), h.data() + from_held[i], in.data(), in.data() + from_new[i]};
+    if (!cursor[i].done()) {
+      head[i] = key_of(cursor[i].peek());
+      live += from_held[i] + from_new[i];
     }
   }
   std::vector<std::uint32_t> tree(2 * leaves);
@@ -60,20 +76,27 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
   for (std::size_t n = leaves - 1; n >= 1; --n) tree[n] = better(tree[2 * n], tree[2 * n + 1]);
   for (; live > 0; --live) {
     const std::uint32_t w = tree[1];
-    const std::vector<T>& part = held[w];
-    chunk.push_back(part[pos[w]]);
+    Cursor& c = cursor[w];
+    chunk.push_back(c.next());
     if (chunk.size() == kChunk) {
       emit(chunk);
       chunk.clear();
     }
-    head[w] = ++pos[w] < end[w] ? key_of(part[pos[w]]) : OrderKey{kNoLimit, ~std::uint64_t(0)};
+    head[w] = c.done() ? exhausted : key_of(c.peek());
     for (std::size_t n = (leaves + w) / 2; n >= 1; n /= 2) tree[n] = better(tree[2 * n], tree[2 * n + 1]);
   }
   if (!chunk.empty()) {
     emit(chunk);
     chunk.clear();
   }
-  for (std::size_t i = 0; i < tiles; ++i) held[i].erase(held[i].begin(), held[i].begin() + static_cast<std::ptrdiff_t>(end[i]));
+  // What stays: the held records from the cut on, then the new ones from theirs.
+  for (std::size_t i = 0; i < tiles; ++i) {
+    std::vector<T>& h = held[i];
+    std::vector<T>& in = incoming[i];
+    h.erase(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(from_held[i]));
+    h.insert(h.end(), in.begin() + static_cast<std::ptrdiff_t>(from_new[i]), in.end());
+    in.clear();
+  }
 }
 
 }  // namespace

@@ -11,6 +11,10 @@
 namespace aesim {
 namespace {
 
+// Windows of a quarter of an event per pixel (64 Ki at least): a tile's pixels are touched in
+// batches while their state is in cache, for 8 bytes of buffered records per pixel.
+constexpr double kWindowEventsPerPixel = 0.25;
+
 int thread_count(const RungRun& run) {
   int threads = run.config.sim.threads;
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -24,9 +28,7 @@ int thread_count(const RungRun& run) {
 // A run that keeps only counters simulates each tile to the end on its own (one tile's state in
 // memory per thread). A run that keeps records advances all tiles together through time windows
 // of a set number of events and hands each window over to the log, which merges and writes it on
-// another thread while the tiles go on: memory holds the pixels and a window, not the run. The
-// default window (request.window_events, 64 Ki) is ~2 MB of buffers and a hand-over per few
-// milliseconds of work.
+// another thread while the tiles go on: memory holds the pixels and a window, not the run.
 class EventRung : public Rung {
  public:
   Fidelity fidelity() const override { return Fidelity::Event; }
@@ -55,6 +57,8 @@ class EventRung : public Rung {
     std::vector<std::unique_ptr<FiringSchedule>> schedules(tiles);
     pool.for_each(tiles, [&](std::size_t t) { schedules[t] = schedule_of(t); });
     const double t_end = run.config.sim.duration;
+    const double window_events = run.request.window_events > 0 ? run.request.window_events
+                                                               : std::max(65536.0, kWindowEventsPerPixel * static_cast<double>(run.map.rows()) * run.map.cols());
     // Starts small and grows at most 4x a window, so the first windows cost little whatever the
     // light; the windows do not change the output (the merge is exact), only its pace.
     double width = t_end * 1e-6;
@@ -75,7 +79,7 @@ class EventRung : public Rung {
       const std::uint64_t now = run.log.totals().fired;
       const double in_window = static_cast<double>(now - fired);
       fired = now;
-      width *= std::clamp(std::max(run.request.window_events, 1.0) / std::max(in_window, 1.0), 0.25, 4.0);
+      width *= std::clamp(std::max(window_events, 1.0) / std::max(in_window, 1.0), 0.25, 4.0);
     }
     buses.finish(run.config.bus, facts);
   }

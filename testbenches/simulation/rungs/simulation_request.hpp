@@ -16,8 +16,8 @@ struct SimulationRequest {
   // result's log (events(), truth()).
   EventStream* stream = nullptr;
   // Fired events per window of a streaming run (the event rung): the pace of hand-overs, never
-  // the output (tests vary it to show that).
-  double window_events = 65536;
+  // the output (tests vary it to show that). 0: chosen from the array (see event_rung.cpp).
+  double window_events = 0;
   bool waveforms = false;           // bus waveforms (--vcd): needs a rung with wires
   double vcd_from = 0, vcd_to = 0;  // s, the VCD window
   // With the RTL receiver, also trace tile N's RTL internals (Verilator) to rtl_trace_path(N).
