@@ -4,7 +4,7 @@
 
 #include "pixel/pixel_draws.hpp"
 
-static_assert(sizeof(aesim::FiringSchedule::Slot) <= 72, "pixel record grew");
+static_assert(sizeof(aesim::FiringSchedule::Slot) <= 64, "pixel record grew");
 
 namespace aesim {
 
@@ -16,12 +16,12 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       tile_(tile),
       cols_(static_cast<std::uint32_t>(map.cols())),
       calendar_(0, 0) {
+  x0_ = tile % static_cast<std::uint32_t>(map.tiles_per_row()) * static_cast<std::uint32_t>(map.tile_cols());
+  y0_ = tile / static_cast<std::uint32_t>(map.tiles_per_row()) * static_cast<std::uint32_t>(map.tile_rows());
+  xbits_ = static_cast<std::uint32_t>(map.xbits());
   std::vector<WakeCalendar::Entry> entries;
   std::vector<double> periods;
-  const std::uint32_t tx = tile % static_cast<std::uint32_t>(map.tiles_per_row());
-  const std::uint32_t ty = tile / static_cast<std::uint32_t>(map.tiles_per_row());
-  const std::uint32_t x0 = tx * static_cast<std::uint32_t>(map.tile_cols());
-  const std::uint32_t y0 = ty * static_cast<std::uint32_t>(map.tile_rows());
+  const std::uint32_t x0 = x0_, y0 = y0_;
   const std::uint32_t x1 = std::min<std::uint32_t>(x0 + map.tile_cols(), cols_);
   const std::uint32_t y1 = std::min<std::uint32_t>(y0 + map.tile_rows(), static_cast<std::uint32_t>(map.rows()));
   for (std::uint32_t y = y0; y < y1; ++y) {
@@ -35,8 +35,6 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       const double threshold = pixel_threshold(pixel, sim.seed, index);
       p.core = IntegrateFire(sensor_, threshold, 0.0, current, initial_fraction(pixel, sim.seed, index), noise);
       p.next_boundary = boundary;
-      p.x = static_cast<std::uint16_t>(x);
-      p.y = static_cast<std::uint16_t>(y);
       p.bus_address = map.bus_address({x, y});
       const double t = wake_time(p);
       if (!(t <= t_end_)) continue;  // nothing happens to it within the run
@@ -84,14 +82,14 @@ bool FiringSchedule::next(AddressEvent& firing, double until) {
     const bool fires = fires_first(t_fire, t_boundary);
     if (fires) {
       firing.t = t_fire;
-      firing.x = p.x;
-      firing.y = p.y;
+      firing.x = x_of(p);
+      firing.y = y_of(p);
       firing.tile = tile_;
       firing.bus_address = p.bus_address;
       firing.flags = kNormalEvent;
       p.core.fire(sensor_, rng(slot));
     } else {
-      const std::size_t index = std::size_t(p.y) * cols_ + p.x;
+      const std::size_t index = std::size_t(y_of(p)) * cols_ + x_of(p);
       p.core.set_current(sensor_, t_boundary, photocurrents_.current(p.next_boundary, index));
       p.next_boundary = boundary_after(p.next_boundary, index);
     }

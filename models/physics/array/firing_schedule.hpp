@@ -28,13 +28,13 @@ class FiringSchedule {
   // stands at `until`: light changes up to it are applied).
   bool next(AddressEvent& firing, double until);
 
-  // A lit pixel's state: 72 bytes, plus 16 in the calendar and 4 per bucket (about one a
-  // pixel); with the 8-byte photocurrent, 100 bytes per lit pixel.
+  // A lit pixel's state: 64 bytes (its coordinates follow from its bus address), plus 16 in the
+  // calendar and 4 per bucket (about one a pixel); with the 8-byte photocurrent, 92 bytes per lit
+  // pixel.
   struct Slot {
     IntegrateFire core;
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again
-    std::uint16_t x, y;           // array sides are at most 65535 pixels
-    std::uint32_t bus_address;    // within the tile
+    std::uint32_t bus_address;    // within the tile: (y_local << xbits) | x_local
   };
   static constexpr std::uint32_t kNoBoundary = 0xFFFFFFFFu;
 
@@ -46,6 +46,9 @@ class FiringSchedule {
   double t_end_;
   std::uint32_t tile_;
   std::uint32_t cols_;
+  std::uint32_t x0_ = 0, y0_ = 0, xbits_ = 0;  // the tile's origin and the address layout
+  std::uint32_t x_of(const Slot& p) const { return x0_ + (p.bus_address & ((1u << xbits_) - 1)); }
+  std::uint32_t y_of(const Slot& p) const { return y0_ + (p.bus_address >> xbits_); }
   SplitMix64& rng(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
   std::uint32_t boundary_after(std::uint64_t boundary, std::size_t index) const;
 
