@@ -8,7 +8,9 @@ namespace aesim {
 // One tile's bus, whatever its model: a firing pixel requests it with its address at the firing
 // time, in time order. Plain C++, so that the rungs without SystemC time (event, queue) drive it
 // directly; SystemC pixels reach it through a PixelBusPort.
-class EventBus {
+// Aligned to a cache line: the tiles' buses are written on every event, by as many threads as
+// tiles run at once, and must not share a line.
+class alignas(64) EventBus {
  public:
   virtual ~EventBus() = default;
   virtual void request(const AddressEvent& firing) = 0;

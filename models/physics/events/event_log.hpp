@@ -96,7 +96,9 @@ class EventLog {
   LatencyStats latency() const { return latency_.stats(); }
 
  private:
-  struct Tile {
+  // A cache line of its own: each tile's counters are written on every event by the thread
+  // running that tile.
+  struct alignas(64) Tile {
     TileCounters counters;
     LatencyRecorder latencies;
     std::uint64_t address_ones = 0;
