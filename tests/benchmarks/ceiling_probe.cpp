@@ -8,44 +8,49 @@
 namespace aesim {
 
 std::uint64_t ceiling_probe(const std::vector<double>& periods, const std::vector<double>& phases, double t_end) {
-  struct Entry {
-    double t;
-    std::uint32_t pixel;
-  };
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  const std::size_t pixels = periods.size();
   std::size_t buckets = 16;
-  while (buckets < periods.size()) buckets *= 2;
+  while (buckets < pixels) buckets *= 2;
   std::vector<double> sorted = periods;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-  const double width = 2 * sorted[sorted.size() / 2] / static_cast<double>(buckets);
-  std::vector<std::vector<Entry>> ring(buckets);
-  for (std::uint32_t i = 0; i < periods.size(); ++i) {
-    ring[static_cast<std::size_t>(phases[i] / width) & (buckets - 1)].push_back({phases[i], i});
-  }
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(pixels / 2), sorted.end());
+  const double per_width = static_cast<double>(buckets) / (2 * sorted[pixels / 2]);
+  // Intrusive lists: a bucket is its first pixel, a pixel names the next; nothing is allocated per
+  // event. A year of two median periods holds every pixel of a uniform scene.
+  std::vector<std::uint32_t> head(buckets, kNone), next(pixels, kNone);
+  std::vector<double> t(phases);
+  auto push = [&](std::uint32_t i) {
+    std::uint32_t& h = head[static_cast<std::size_t>(t[i] * per_width) & (buckets - 1)];
+    next[i] = h;
+    h = i;
+  };
+  for (std::uint32_t i = 0; i < pixels; ++i) push(i);
   std::vector<std::uint64_t> records;
   records.reserve(1 << 16);
   std::uint64_t events = 0;
-  const std::size_t last = static_cast<std::size_t>(t_end / width);
+  const std::size_t last = static_cast<std::size_t>(t_end * per_width);
   for (std::size_t now = 0; now <= last; ++now) {
-    std::vector<Entry>& bucket = ring[now & (buckets - 1)];
-    // Entries pushed back into this bucket are served in this pass too.
-    for (std::size_t k = 0; k < bucket.size();) {
-      const Entry e = bucket[k];
-      if (e.t >= static_cast<double>(now + 1) * width) {
-        ++k;  // a later year's entry
+    std::uint32_t& h = head[now & (buckets - 1)];
+    std::uint32_t later = kNone;  // a later year's pixels met in this bucket
+    while (h != kNone) {
+      const std::uint32_t i = h;
+      h = next[i];
+      if (static_cast<std::size_t>(t[i] * per_width) != now) {
+        next[i] = later;
+        later = i;
         continue;
       }
-      bucket[k] = bucket.back();
-      bucket.pop_back();
-      if (e.t > t_end) continue;
-      records.push_back((std::uint64_t(e.pixel) << 32) | static_cast<std::uint32_t>(e.t * 1e6));
+      if (t[i] > t_end) continue;
+      records.push_back((std::uint64_t(i) << 32) | static_cast<std::uint32_t>(t[i] * 1e6));
       if (records.size() == records.capacity()) {
         benchmark::DoNotOptimize(records.data());
         records.clear();
       }
       ++events;
-      const Entry again{e.t + periods[e.pixel], e.pixel};
-      ring[static_cast<std::size_t>(again.t / width) & (buckets - 1)].push_back(again);
+      t[i] += periods[i];
+      push(i);
     }
+    h = later;
   }
   benchmark::DoNotOptimize(records.data());
   return events;
