@@ -12,26 +12,13 @@
 #include "errors/input_error.hpp"
 #include "files/input_path.hpp"
 #include "limits/limits.hpp"
+#include "scene/photo_image.hpp"
+#include "scene/scene_file.hpp"
 
 namespace aesim {
 namespace {
 
 constexpr long long kMaxSide = 1 << 16;
-
-std::string slurp(const std::string& path) {
-  if (!is_input_file(path, "scene file")) {
-    throw InputError(fmt::format("scene file '{}' not found", path));
-  }
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size > kMaxInputFileBytes) {
-    throw InputError(fmt::format("scene file '{}': {} bytes, more than the {} MiB aesim reads", path, size,
-                                 kMaxInputFileBytes >> 20));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("scene file '{}' cannot be opened", path));
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 // Reads the whitespace- and comment-separated tokens of a Netpbm header.
 class HeaderReader {
@@ -105,8 +92,8 @@ std::string read_preamble(HeaderReader& header, const std::string& data, const c
 
 }  // namespace
 
-Image read_pgm(const std::string& path) { return decode_pgm(slurp(path), path); }
-Image read_pfm(const std::string& path) { return decode_pfm(slurp(path), path); }
+Image read_pgm(const std::string& path) { return decode_pgm(read_scene_file(path), path); }
+Image read_pfm(const std::string& path) { return decode_pfm(read_scene_file(path), path); }
 
 Image decode_pgm(const std::string& data, const std::string& path) {
   HeaderReader header(data, path);
@@ -199,7 +186,10 @@ Image read_image(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".pgm") return read_pgm(path);
   if (ext == ".pfm") return read_pfm(path);
-  throw InputError(fmt::format("scene file '{}': unsupported format (use .pgm or .pfm)", path));
+  if (ext == ".png") return decode_png(read_scene_file(path), path);
+  if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
+  throw InputError(
+      fmt::format("scene file '{}': unsupported format (use .pgm, .pfm, .png, .jpg or .jpeg)", path));
 }
 
 }  // namespace aesim

@@ -12,7 +12,7 @@ Image read_pfm(const std::string& path);
 // The same from the file's bytes; `path` names it in messages.
 Image decode_pgm(const std::string& data, const std::string& path);
 Image decode_pfm(const std::string& data, const std::string& path);
-// Chooses by extension: .pgm or .pfm.
+// Chooses by extension: .pgm, .pfm, .png, .jpg or .jpeg (scene/photo_image).
 Image read_image(const std::string& path);
 
 }  // namespace aesim

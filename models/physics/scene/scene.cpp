@@ -27,6 +27,12 @@ long long frame_number(const std::string& stem) {
   return std::stoll(digits);
 }
 
+// The image files a scene folder's frames may be (read_image's formats).
+bool is_scene_image(const fs::path& p) {
+  const std::string ext = p.extension().string();
+  return ext == ".pgm" || ext == ".pfm" || ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+}
+
 }  // namespace
 
 SceneFiles find_scene(const std::string& file_or_dir) {
@@ -50,13 +56,13 @@ SceneFiles find_scene(const std::string& file_or_dir) {
     std::error_code kind;
     if (!entry.is_regular_file(kind)) continue;
     if (p.filename() == "scene.toml") files.settings = p.string();
-    if (p.extension() != ".pgm" && p.extension() != ".pfm") continue;
+    if (!is_scene_image(p)) continue;
     const long long n = frame_number(p.stem().string());
     if (n < 0) throw InputError(fmt::format("scene folder '{}': frame '{}' has no number", file_or_dir, p.filename().string()));
     numbered.emplace_back(n, p.string());
   }
   if (numbered.empty()) {
-    throw InputError(fmt::format("scene folder '{}' has no numbered .pgm or .pfm frames", file_or_dir));
+    throw InputError(fmt::format("scene folder '{}' has no numbered .pgm, .pfm, .png, .jpg or .jpeg frames", file_or_dir));
   }
   std::sort(numbered.begin(), numbered.end());
   for (std::size_t i = 1; i < numbered.size(); ++i) {

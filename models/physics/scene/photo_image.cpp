@@ -1,0 +1,198 @@
+#include "scene/photo_image.hpp"
+
+#include <csetjmp>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include <fmt/format.h>
+#include <jpeglib.h>
+#include <png.h>
+
+#include "errors/input_error.hpp"
+#include "scene/scene_file.hpp"
+
+namespace aesim {
+namespace {
+
+// Rec. 709 luminance weights, for linear-light R, G, B.
+constexpr double kWr = 0.2126, kWg = 0.7152, kWb = 0.0722;
+
+// A decoding curve from code values (0..max) to linear light, as a table: at most 65,536 entries.
+std::vector<double> decoding_table(unsigned max_code, double exponent /* 0: sRGB */) {
+  std::vector<double> table(max_code + 1);
+  for (unsigned c = 0; c <= max_code; ++c) {
+    const double code = static_cast<double>(c) / max_code;
+    table[c] = exponent > 0 ? std::pow(code, exponent) : srgb_to_linear(code);
+  }
+  return table;
+}
+
+// Linear-light luminance of rows of 1 (grey) or 3 (RGB) channels of `T` codes.
+template <typename T>
+void to_luminance(const std::vector<T>& codes, int channels, const std::vector<double>& table, Image& img) {
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  img.pixels.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (channels == 1) {
+      img.pixels[i] = table[codes[i]];
+    } else {
+      const T* p = &codes[3 * i];
+      img.pixels[i] = kWr * table[p[0]] + kWg * table[p[1]] + kWb * table[p[2]];
+    }
+  }
+}
+
+// libpng reports through these; `message` is the decoder's reason for the one-line error.
+struct PngSource {
+  const std::string* data;
+  std::size_t pos;
+  char message[256];
+};
+
+void png_read_from(png_structp png, png_bytep out, png_size_t length) {
+  auto* src = static_cast<PngSource*>(png_get_io_ptr(png));
+  if (length > src->data->size() - src->pos) png_error(png, "file ends early (truncated)");
+  std::memcpy(out, src->data->data() + src->pos, length);
+  src->pos += length;
+}
+
+void png_fail(png_structp png, png_const_charp message) {
+  auto* src = static_cast<PngSource*>(png_get_error_ptr(png));
+  std::snprintf(src->message, sizeof src->message, "%s", message);
+  png_longjmp(png, 1);
+}
+
+void png_ignore_warning(png_structp, png_const_charp) {}
+
+// The JPEG counterpart: error_exit must not return, so it jumps back with libjpeg's message.
+struct JpegErrors {
+  jpeg_error_mgr mgr;
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX];
+};
+
+void jpeg_fail(j_common_ptr cinfo) {
+  auto* errors = reinterpret_cast<JpegErrors*>(cinfo->err);
+  (*cinfo->err->format_message)(cinfo, errors->message);
+  std::longjmp(errors->jump, 1);
+}
+
+void jpeg_ignore_message(j_common_ptr, int) {}
+
+}  // namespace
+
+double srgb_to_linear(double code) {
+  return code <= 0.04045 ? code / 12.92 : std::pow((code + 0.055) / 1.055, 2.4);
+}
+
+Image decode_png(const std::string& data, const std::string& path) {
+  if (data.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(data.data()), 0, 8) != 0) {
+    throw InputError(fmt::format("scene file '{}': not a PNG (no PNG signature)", path));
+  }
+  PngSource src{&data, 0, {}};
+  // Everything that owns memory is made before setjmp, so a longjmp out of libpng skips no
+  // destructor.
+  std::vector<unsigned char> bytes;
+  std::vector<png_bytep> rows;
+  Image img;
+  bool too_large = false;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &src, png_fail, png_ignore_warning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw std::bad_alloc();
+  }
+  // Set between setjmp and a possible longjmp: volatile, so they hold what was stored.
+  volatile int channels = 0, depth = 0;
+  volatile double exponent = 0;  // 0: sRGB
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw InputError(fmt::format("scene file '{}': PNG: {}", path, src.message));
+  }
+  png_set_read_fn(png, &src, png_read_from);
+  png_read_info(png, info);
+  const png_uint_32 width = png_get_image_width(png, info), height = png_get_image_height(png, info);
+  too_large = width > 65535 || height > 65535 ||
+              static_cast<unsigned long long>(width) * height > 16777216ULL;
+  if (!too_large) {
+    double gamma = 0;
+    if (!png_get_valid(png, info, PNG_INFO_sRGB) && png_get_gAMA(png, info, &gamma) && gamma > 0 &&
+        std::fabs(gamma - 1 / 2.2) > 0.01) {
+      exponent = 1 / gamma;
+    }
+    png_set_expand(png);  // palette to RGB, grey below 8 bits to 8, transparency to alpha
+    png_set_strip_alpha(png);
+    if (png_get_bit_depth(png, info) == 16) png_set_swap(png);  // native byte order for uint16
+    png_read_update_info(png, info);
+    channels = png_get_channels(png, info);
+    depth = png_get_bit_depth(png, info);
+    const std::size_t row_bytes = png_get_rowbytes(png, info);
+    bytes.resize(row_bytes * height);
+    rows.resize(height);
+    for (png_uint_32 y = 0; y < height; ++y) rows[y] = bytes.data() + y * row_bytes;
+    png_read_image(png, rows.data());
+    png_read_end(png, nullptr);
+  }
+  png_destroy_read_struct(&png, &info, nullptr);
+  check_scene_size(width, height, path);
+  if (channels != 1 && channels != 3) {
+    throw InputError(fmt::format("scene file '{}': PNG with {} channels after expansion", path, channels));
+  }
+  img.width = static_cast<int>(width);
+  img.height = static_cast<int>(height);
+  if (depth == 16) {
+    std::vector<std::uint16_t> codes(bytes.size() / 2);
+    std::memcpy(codes.data(), bytes.data(), codes.size() * 2);
+    to_luminance(codes, channels, decoding_table(65535, exponent), img);
+  } else {
+    to_luminance(bytes, channels, decoding_table(255, exponent), img);
+  }
+  return img;
+}
+
+Image decode_jpeg(const std::string& data, const std::string& path) {
+  jpeg_decompress_struct cinfo;
+  JpegErrors errors;
+  cinfo.err = jpeg_std_error(&errors.mgr);
+  errors.mgr.error_exit = jpeg_fail;
+  errors.mgr.emit_message = jpeg_ignore_message;
+  std::vector<unsigned char> bytes;
+  Image img;
+  int channels = 0;
+  bool too_large = false;
+  unsigned long width = 0, height = 0;
+  if (setjmp(errors.jump)) {
+    jpeg_destroy_decompress(&cinfo);
+    throw InputError(fmt::format("scene file '{}': JPEG: {}", path, errors.message));
+  }
+  jpeg_create_decompress(&cinfo);
+  jpeg_mem_src(&cinfo, reinterpret_cast<const unsigned char*>(data.data()), static_cast<unsigned long>(data.size()));
+  jpeg_read_header(&cinfo, TRUE);
+  width = cinfo.image_width;
+  height = cinfo.image_height;
+  too_large = width > 65535 || height > 65535 || static_cast<unsigned long long>(width) * height > 16777216ULL;
+  const bool cmyk = cinfo.jpeg_color_space == JCS_CMYK || cinfo.jpeg_color_space == JCS_YCCK;
+  if (!too_large && !cmyk) {
+    cinfo.out_color_space = cinfo.num_components == 1 ? JCS_GRAYSCALE : JCS_RGB;
+    jpeg_start_decompress(&cinfo);
+    channels = cinfo.output_components;
+    const std::size_t row_bytes = static_cast<std::size_t>(cinfo.output_width) * cinfo.output_components;
+    bytes.resize(row_bytes * cinfo.output_height);
+    while (cinfo.output_scanline < cinfo.output_height) {
+      JSAMPROW row = bytes.data() + cinfo.output_scanline * row_bytes;
+      jpeg_read_scanlines(&cinfo, &row, 1);
+    }
+    jpeg_finish_decompress(&cinfo);
+  }
+  jpeg_destroy_decompress(&cinfo);
+  if (cmyk) throw InputError(fmt::format("scene file '{}': CMYK JPEG (use a grey or RGB image)", path));
+  check_scene_size(static_cast<long long>(width), static_cast<long long>(height), path);
+  img.width = static_cast<int>(width);
+  img.height = static_cast<int>(height);
+  to_luminance(bytes, channels, decoding_table(255, 0), img);
+  return img;
+}
+
+}  // namespace aesim

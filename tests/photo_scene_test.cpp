@@ -1,0 +1,215 @@
+// PNG and JPEG scenes: code values decoded to linear light with the sRGB curve (or as the PNG's
+// gAMA says), colour reduced to Rec. 709 luminance, against values computed by hand from the
+// sRGB standard; malformed and oversized files refused in one line; PNG frame folders; and
+// `aesim run` on a PNG.
+#include <csetjmp>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <jpeglib.h>
+#include <png.h>
+#include <zlib.h>
+
+#include "errors/input_error.hpp"
+#include "scene/netpbm.hpp"
+#include "scene/photo_image.hpp"
+#include "scene/scene.hpp"
+#include "support/temp_dir_test.hpp"
+
+namespace aesim {
+namespace {
+
+// sRGB code -> linear light, from IEC 61966-2-1 by hand (not through the code under test).
+constexpr double kCode10 = 0.0030352698;   // 10/255/12.92
+constexpr double kCode128 = 0.2158605001;  // ((128/255 + 0.055)/1.055)^2.4
+constexpr double kCode200 = 0.5775804404;  // ((200/255 + 0.055)/1.055)^2.4
+
+struct PngSpec {
+  int width = 1, height = 1, color_type = PNG_COLOR_TYPE_GRAY, depth = 8;
+  std::vector<unsigned char> bytes;  // rows packed, 16-bit big-endian as PNG stores them
+  std::vector<png_color> palette;
+  double gamma = 0;  // a gAMA chunk when > 0
+};
+
+void append(png_structp png, png_bytep data, png_size_t n) {
+  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), n);
+}
+
+std::string encode_png(const PngSpec& s) {
+  std::string out;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  png_set_write_fn(png, &out, append, nullptr);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(s.width), static_cast<png_uint_32>(s.height), s.depth, s.color_type,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (!s.palette.empty()) png_set_PLTE(png, info, s.palette.data(), static_cast<int>(s.palette.size()));
+  if (s.gamma > 0) png_set_gAMA(png, info, s.gamma);
+  png_write_info(png, info);
+  const std::size_t row = s.bytes.size() / static_cast<std::size_t>(s.height);
+  for (int y = 0; y < s.height; ++y) png_write_row(png, s.bytes.data() + static_cast<std::size_t>(y) * row);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return out;
+}
+
+std::string encode_jpeg(int width, int height, int components, J_COLOR_SPACE space, const std::vector<unsigned char>& bytes) {
+  jpeg_compress_struct c;
+  jpeg_error_mgr err;
+  c.err = jpeg_std_error(&err);
+  jpeg_create_compress(&c);
+  unsigned char* buffer = nullptr;
+  unsigned long size = 0;
+  jpeg_mem_dest(&c, &buffer, &size);
+  c.image_width = static_cast<JDIMENSION>(width);
+  c.image_height = static_cast<JDIMENSION>(height);
+  c.input_components = components;
+  c.in_color_space = space;
+  jpeg_set_defaults(&c);
+  jpeg_set_quality(&c, 100, TRUE);
+  jpeg_start_compress(&c, TRUE);
+  while (c.next_scanline < c.image_height) {
+    JSAMPROW row = const_cast<unsigned char*>(bytes.data()) + c.next_scanline * static_cast<std::size_t>(width) * components;
+    jpeg_write_scanlines(&c, &row, 1);
+  }
+  jpeg_finish_compress(&c);
+  std::string out(reinterpret_cast<char*>(buffer), size);
+  jpeg_destroy_compress(&c);
+  std::free(buffer);
+  return out;
+}
+
+TEST(PhotoScene, GreyPngCodesDecodeWithTheSrgbCurve) {
+  PngSpec s;
+  s.width = 5;
+  s.bytes = {0, 10, 128, 200, 255};
+  const Image img = decode_png(encode_png(s), "grey.png");
+  ASSERT_EQ(img.width, 5);
+  EXPECT_DOUBLE_EQ(img.pixels[0], 0.0);
+  EXPECT_NEAR(img.pixels[1], kCode10, 1e-9);
+  EXPECT_NEAR(img.pixels[2], kCode128, 1e-9);
+  EXPECT_NEAR(img.pixels[3], kCode200, 1e-9);
+  EXPECT_DOUBLE_EQ(img.pixels[4], 1.0);
+}
+
+TEST(PhotoScene, SixteenBitPngUsesTheFullCodeRange) {
+  PngSpec s;
+  s.width = 2;
+  s.depth = 16;
+  s.bytes = {0xFF, 0xFF, 0x80, 0x00};  // 65535 and 32768
+  const Image img = decode_png(encode_png(s), "deep.png");
+  EXPECT_DOUBLE_EQ(img.pixels[0], 1.0);
+  EXPECT_NEAR(img.pixels[1], 0.2140482, 1e-6);  // ((32768/65535 + 0.055)/1.055)^2.4
+}
+
+TEST(PhotoScene, ColourBecomesLinearLuminance) {
+  PngSpec s;
+  s.width = 4;
+  s.color_type = PNG_COLOR_TYPE_RGB;
+  s.bytes = {255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+  const Image img = decode_png(encode_png(s), "rgb.png");
+  EXPECT_NEAR(img.pixels[0], 0.2126, 1e-12);
+  EXPECT_NEAR(img.pixels[1], 0.7152, 1e-12);
+  EXPECT_NEAR(img.pixels[2], 0.0722, 1e-12);
+  EXPECT_NEAR(img.pixels[3], kCode128, 1e-9);  // grey: the weights sum to 1
+
+  PngSpec alpha = s;  // alpha carries no light: ignored
+  alpha.width = 1;
+  alpha.color_type = PNG_COLOR_TYPE_RGB_ALPHA;
+  alpha.bytes = {255, 255, 255, 0};
+  EXPECT_DOUBLE_EQ(decode_png(encode_png(alpha), "rgba.png").pixels[0], 1.0);
+
+  PngSpec palette;
+  palette.width = 2;
+  palette.color_type = PNG_COLOR_TYPE_PALETTE;
+  palette.palette = {{0, 255, 0}, {128, 128, 128}};
+  palette.bytes = {0, 1};
+  const Image p = decode_png(encode_png(palette), "palette.png");
+  EXPECT_NEAR(p.pixels[0], 0.7152, 1e-12);
+  EXPECT_NEAR(p.pixels[1], kCode128, 1e-9);
+}
+
+TEST(PhotoScene, AGammaOfOneMeansLinearCodes) {
+  PngSpec s;
+  s.width = 2;
+  s.bytes = {128, 255};
+  s.gamma = 1.0;
+  const Image linear = decode_png(encode_png(s), "linear.png");
+  EXPECT_NEAR(linear.pixels[0], 128.0 / 255.0, 1e-12);
+  s.gamma = 1 / 2.2;  // the usual tag of an sRGB-like file: the sRGB curve
+  EXPECT_NEAR(decode_png(encode_png(s), "g22.png").pixels[0], kCode128, 1e-9);
+}
+
+TEST(PhotoScene, JpegDecodesWithinItsQuantisation) {
+  const std::string grey = encode_jpeg(16, 16, 1, JCS_GRAYSCALE, std::vector<unsigned char>(256, 128));
+  const Image g = decode_jpeg(grey, "grey.jpg");
+  ASSERT_EQ(g.width, 16);
+  for (double v : g.pixels) EXPECT_NEAR(v, kCode128, 0.0035);  // one code either side
+  std::vector<unsigned char> red;
+  for (int i = 0; i < 256; ++i) red.insert(red.end(), {255, 0, 0});
+  const Image r = decode_jpeg(encode_jpeg(16, 16, 3, JCS_RGB, red), "red.jpg");
+  for (double v : r.pixels) EXPECT_NEAR(v, 0.2126, 0.01);  // YCbCr rounding of a saturated colour
+}
+
+void expect_refused(const std::function<void()>& decode, const std::string& words) {
+  try {
+    decode();
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(words), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+TEST(PhotoScene, MalformedAndOversizedFilesAreOneLineErrors) {
+  PngSpec s;
+  s.width = 64;
+  s.height = 64;
+  s.bytes.assign(64 * 64, 77);
+  const std::string png = encode_png(s);
+  expect_refused([&] { decode_png(png.substr(0, png.size() / 2), "cut.png"); }, "cut.png': PNG:");
+  expect_refused([&] { decode_png("GIF89a....", "gif.png"); }, "not a PNG");
+  expect_refused([&] { decode_jpeg("not a jpeg at all", "bad.jpg"); }, "bad.jpg': JPEG:");
+  expect_refused([&] { decode_jpeg("", "empty.jpg"); }, "empty.jpg': JPEG:");
+  // A header that asks for 70000 x 70000 pixels (CRC fixed): refused before any row is read.
+  std::string huge = png;
+  const std::size_t ihdr = huge.find("IHDR");
+  for (int k = 0; k < 2; ++k) {
+    const unsigned v = 70000;
+    for (int b = 0; b < 4; ++b) huge[ihdr + 4 + 4 * k + b] = static_cast<char>(v >> (24 - 8 * b));
+  }
+  const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(huge.data() + ihdr), 17);
+  for (int b = 0; b < 4; ++b) huge[ihdr + 17 + b] = static_cast<char>(crc >> (24 - 8 * b));
+  expect_refused([&] { decode_png(huge, "huge.png"); }, "70000x70000 is more than");
+  std::vector<unsigned char> cmyk(4 * 64, 9);
+  expect_refused([&] { decode_jpeg(encode_jpeg(8, 8, 4, JCS_CMYK, cmyk), "cmyk.jpg"); }, "CMYK");
+}
+
+class PhotoFiles : public testing::TempDirTest {};
+
+TEST_F(PhotoFiles, PngFrameFoldersAndRunsWork) {
+  PngSpec s;
+  s.width = 32;
+  s.height = 32;
+  std::filesystem::create_directories(dir_ / "frames");
+  for (int f = 0; f < 3; ++f) {
+    s.bytes.assign(32 * 32, static_cast<unsigned char>(80 * f));
+    write("frames/frame_" + std::to_string(f) + ".png", encode_png(s));
+  }
+  const SceneFiles files = find_scene((dir_ / "frames").string());
+  ASSERT_EQ(files.frames.size(), 3u);
+  const Image second = read_image(files.frames[1]);
+  EXPECT_NEAR(second.pixels[0], 0.0802, 1e-4);  // code 80: ((80/255 + 0.055)/1.055)^2.4
+
+  s.bytes.assign(32 * 32, 255);
+  write("white.png", encode_png(s));
+  const testing::Outcome o = aesim("run --scene white.png --duration 0.2 --summary s.json --set sim.fidelity=event");
+  ASSERT_EQ(o.status, 0) << o.err;
+  // Full scale everywhere on the 64x64 aloha array: every pixel at f_max (10 Hz) for 0.2 s.
+  EXPECT_NE(testing::slurp(dir_ / "s.json").find("\"pixel_rate_max_hz\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aesim
