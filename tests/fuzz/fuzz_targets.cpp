@@ -15,6 +15,7 @@
 #include "emulator/y4m.hpp"
 #include "event_files/event_file.hpp"
 #include "scene/netpbm.hpp"
+#include "scene/photo_image.hpp"
 #include "deck/pixel_deck.hpp"
 #include "description/receiver_description.hpp"
 #include "plan/verification_plan.hpp"
@@ -41,6 +42,12 @@ int netpbm(const std::uint8_t* data, std::size_t size) {
   const std::string in = bytes(data, size);
   expect_result_or_input_error([&] { decode_pgm(in, "fuzz.pgm"); });
   return expect_result_or_input_error([&] { decode_pfm(in, "fuzz.pfm"); });
+}
+
+int photo(const std::uint8_t* data, std::size_t size) {
+  const std::string in = bytes(data, size);
+  expect_result_or_input_error([&] { decode_png(in, "fuzz.png"); });
+  return expect_result_or_input_error([&] { decode_jpeg(in, "fuzz.jpg"); });
 }
 
 int y4m(const std::uint8_t* data, std::size_t size) {
