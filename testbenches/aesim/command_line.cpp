@@ -19,6 +19,9 @@ void add_run(CLI::App& app, int& status) {
   cmd->add_option("--set", opt->sets, "Override a parameter: section.key=value with SI units, e.g. pixel.c_int=50fF")
       ->allow_extra_args(false);
   cmd->add_option("--out", opt->out, "Events as AEDAT 2.0");
+  cmd->add_option("--aedat-layout", opt->aedat_layout,
+                  "Address words of --out: aesim (default), dvs128 or davis (jAER's layouts, y = 0 at the bottom, "
+                  "polarity ON for a normal event and OFF for a ghost)");
   cmd->add_option("--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction image (.png or .pgm)");
   cmd->add_option("--vcd", opt->vcd, "Bus wires of every tile as a VCD file (needs sim.fidelity=cycle or auto)");

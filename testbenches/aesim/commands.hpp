@@ -56,6 +56,7 @@ struct RunOptions {
   std::string out, csv, recon, vcd, summary, truth;
   std::string vcd_from = "0s", vcd_to;
   std::string max_events;
+  std::string aedat_layout = "aesim";
 };
 
 struct SweepOptions {

@@ -63,6 +63,8 @@ int run_command(RunOptions opt) {
   }
 
   const AddressMap map(config.array);
+  const AedatLayout layout = parse_aedat_layout(opt.aedat_layout);
+  if (!opt.out.empty()) jaer_chip(layout, map);  // an array the chip cannot hold is refused before the run
   std::vector<std::string> rtl_traces;
   if (request.waveforms && fidelity == Fidelity::Cycle && config.receiver.model == ReceiverModel::Rtl) {
     const std::string stem = opt.vcd.size() > 4 && opt.vcd.substr(opt.vcd.size() - 4) == ".vcd"
@@ -95,8 +97,8 @@ int run_command(RunOptions opt) {
   std::unique_ptr<EventsCsvWriter> csv;
   std::unique_ptr<TruthCsvWriter> truth;
   if (!opt.out.empty()) {
-    aedat = std::make_unique<AedatWriter>(files.open(opt.out), aedat_header(map, sensor_metadata(config.to_json())), map,
-                                          tick);
+    aedat = std::make_unique<AedatWriter>(files.open(opt.out), aedat_header(map, sensor_metadata(config.to_json()), layout),
+                                          map, tick, layout);
     writers.add(*aedat);
   }
   if (!opt.csv.empty()) {
@@ -124,6 +126,12 @@ int run_command(RunOptions opt) {
   files.commit();
 
   const TileCounters total = result.log.totals();
+  if (aedat && layout != AedatLayout::Aesim && aedat->zero_stamps() > 0) {
+    std::fprintf(stderr,
+                 "aesim: warning: %llu events in %s are stamped 0 us; jAER's reader skips such an event (it reads the "
+                 "next one in its place); aesim's readers keep them\n",
+                 static_cast<unsigned long long>(aedat->zero_stamps()), opt.out.c_str());
+  }
   if (result.facts.empty_queue_frames > 0) {
     std::fprintf(stderr,
                  "aesim: warning: %llu lit frames are too short for the queue model's brightest pixel to fire once "

@@ -42,20 +42,30 @@ std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor)
   return flat;
 }
 
-std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor) {
+std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor,
+                                      AedatLayout layout) {
   std::vector<std::string> h = {
       "#!AER-DAT2.0",
       "# This is a raw AE data file created by aesim, the address-event imager simulator",
       "# Data format is int32 address, int32 timestamp (8 bytes total), repeated for each event",
       "# Timestamps tick is 1 us",
-      fmt::format("# Address layout: address = (tile << {}) | (y_local << {}) | x_local; "
-                  "tile = tile_row * {} + tile_col, numbered row-major from the top-left",
-                  map.bus_bits(), map.xbits(), map.tiles_per_row()),
-      fmt::format("# aesim.layout.bus_bits: {}", map.bus_bits()),
-      fmt::format("# aesim.layout.xbits: {}", map.xbits()),
-      fmt::format("# aesim.layout.ybits: {}", map.ybits()),
-      fmt::format("# aesim.layout.tiles: {}", map.tiles()),
   };
+  if (layout == AedatLayout::Aesim) {
+    h.push_back(fmt::format("# Address layout: address = (tile << {}) | (y_local << {}) | x_local; "
+                            "tile = tile_row * {} + tile_col, numbered row-major from the top-left",
+                            map.bus_bits(), map.xbits(), map.tiles_per_row()));
+  } else {
+    const JaerChip chip = jaer_chip(layout, map);
+    h.push_back(fmt::format("# AEChip: {}", chip.java_class));
+    h.push_back(fmt::format("# Address layout: jAER {} ({}x{}): the {}x{} array at the bottom-left, y = 0 at the "
+                            "bottom; polarity ON for a normal event, OFF for a ghost",
+                            to_string(layout), chip.width, chip.height, map.cols(), map.rows()));
+  }
+  h.push_back(fmt::format("# aesim.layout.kind: {}", to_string(layout)));
+  h.push_back(fmt::format("# aesim.layout.bus_bits: {}", map.bus_bits()));
+  h.push_back(fmt::format("# aesim.layout.xbits: {}", map.xbits()));
+  h.push_back(fmt::format("# aesim.layout.ybits: {}", map.ybits()));
+  h.push_back(fmt::format("# aesim.layout.tiles: {}", map.tiles()));
   for (const auto& [key, value] : sensor) h.push_back(fmt::format("# aesim.sensor.{}: {}", key, value));
   return h;
 }
@@ -77,8 +87,14 @@ void write_aedat(std::ostream& out, const std::vector<std::string>& header,
   out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
 }
 
-AedatWriter::AedatWriter(std::ostream& out, const std::vector<std::string>& header, const AddressMap& map, double tick)
-    : out_(out), bus_bits_(static_cast<unsigned>(map.bus_bits())), tick_(tick) {
+AedatWriter::AedatWriter(std::ostream& out, const std::vector<std::string>& header, const AddressMap& map, double tick,
+                         AedatLayout layout)
+    : out_(out),
+      bus_bits_(static_cast<unsigned>(map.bus_bits())),
+      tick_(tick),
+      layout_(layout),
+      chip_(jaer_chip(layout, map)),
+      rows_(map.rows()) {
   for (const std::string& line : header) out_ << line << "\r\n";
   buffer_.reserve(kBufferBytes);
 }
@@ -87,7 +103,9 @@ AedatWriter::~AedatWriter() { flush(); }
 
 void AedatWriter::events(const AddressEvent* first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
-    const AedatRecord r = aedat_record(first[i], bus_bits_, tick_);
+    AedatRecord r = aedat_record(first[i], bus_bits_, tick_);
+    if (layout_ != AedatLayout::Aesim) r.address = jaer_address(layout_, chip_, rows_, first[i]);
+    zero_stamps_ += r.timestamp_us == 0 ? 1 : 0;
     const std::size_t at = buffer_.size();
     buffer_.resize(at + 8);
     put_be32(buffer_.data() + at, r.address);

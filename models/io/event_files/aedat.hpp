@@ -7,6 +7,7 @@
 
 #include "array/address_map.hpp"
 #include "events/address_event.hpp"
+#include "event_files/aedat_layout.hpp"
 #include "events/event_stream.hpp"
 
 #include <nlohmann/json_fwd.hpp>
@@ -29,27 +30,36 @@ struct AedatFile {
 
 // Every sensor parameter as "section.key" -> text, for the header.
 std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor);
-// Header for events of `map` with `sensor` parameters (from sensor_metadata).
-std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor);
+// Header for events of `map` with `sensor` parameters (from sensor_metadata), in `layout` (a jAER
+// layout adds the "# AEChip:" line naming the chip jAER decodes the words as).
+std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor,
+                                      AedatLayout layout = AedatLayout::Aesim);
 void write_aedat(std::ostream& out, const std::vector<std::string>& header,
                  const std::vector<AedatRecord>& records);
 AedatFile read_aedat(const std::string& path);
 AedatFile decode_aedat(const std::string& data, const std::string& path);
 
 // Writes an AEDAT 2.0 file as a run streams its events: the header at once, then the records
-// packed big-endian through a buffer.
+// packed big-endian through a buffer, addresses in `layout`.
 class AedatWriter : public EventStream {
  public:
-  AedatWriter(std::ostream& out, const std::vector<std::string>& header, const AddressMap& map, double tick);
+  AedatWriter(std::ostream& out, const std::vector<std::string>& header, const AddressMap& map, double tick,
+              AedatLayout layout = AedatLayout::Aesim);
   ~AedatWriter() override;
   void events(const AddressEvent* first, std::size_t count) override;
   // Writes what the buffer holds; the destructor does it too.
   void flush();
+  // Events stamped 0 us (jAER's reader skips such an event: it reads the next one in its place).
+  std::uint64_t zero_stamps() const { return zero_stamps_; }
 
  private:
   std::ostream& out_;
   unsigned bus_bits_;
   double tick_;
+  AedatLayout layout_;
+  JaerChip chip_;
+  int rows_;
+  std::uint64_t zero_stamps_ = 0;
   std::vector<char> buffer_;
 };
 

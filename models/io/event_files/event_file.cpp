@@ -36,17 +36,35 @@ EventRecording from_aedat(const AedatFile& file, const std::string& path) {
   }
   const AddressMap map(sensor.array);
   EventRecording rec;
+  // A header of another layout than a reader knows, or an array its chip cannot hold, names the file.
+  try {
+    const auto kind = file.metadata.find("layout.kind");
+    if (kind != file.metadata.end()) jaer_chip(parse_aedat_layout(kind->second), map);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("event file '{}': header: {}", path, e.what()));
+  }
   rec.width = map.cols();
   rec.height = map.rows();
   rec.tiles = map.tiles();
   rec.size_recorded = true;
+  const auto kind = file.metadata.find("layout.kind");
+  const AedatLayout layout = kind == file.metadata.end() ? AedatLayout::Aesim : parse_aedat_layout(kind->second);
+  const JaerChip chip = jaer_chip(layout, map);
   rec.events.reserve(file.records.size());
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     const AedatRecord& r = file.records[i];
-    const auto p = map.decode(r.address);
+    std::optional<PixelAddress> p;
+    bool ghost = false;
+    if (layout == AedatLayout::Aesim) {
+      p = map.decode(r.address);
+    } else if (const auto j = decode_jaer_address(layout, chip, map.rows(), map.cols(), r.address)) {
+      p = j->pixel;
+      ghost = j->ghost;
+    }
     if (!p) throw InputError(fmt::format("event file '{}': event {} has address 0x{:x}, outside the array", path, i, r.address));
     AddressEvent e = map.event_at(*p);
     e.t = r.timestamp_us * 1e-6;
+    e.flags = ghost ? kGhostEvent : kNormalEvent;
     rec.events.push_back(e);
   }
   return rec;
