@@ -12,8 +12,6 @@ namespace aesim {
 // rises: the receiver cannot change state meanwhile, so no result differs. Before each rising
 // edge k it drives the external timestamp a free-running counter latches there, the ticks
 // completed by that edge, floor(k / prescale) mod 2^ts_width. Releases reset at t = 0.
-// A method process stepping through the edges (next_trigger), not a thread: no coroutine switch
-// per edge.
 class GatedClock : public sc_core::sc_module {
  public:
   GatedClock(const sc_core::sc_module_name& name, ReceiverSignals& s, sc_core::sc_time period, unsigned prescale,
@@ -24,10 +22,7 @@ class GatedClock : public sc_core::sc_module {
   const sc_core::sc_time& period() const { return period_; }
 
  private:
-  void step();
-  void schedule_rise(std::uint64_t k);
-
-  enum class Phase { Start, Stopped, BeforeRise, High };
+  void run();
 
   ReceiverSignals& s_;
   sc_core::sc_time period_;
@@ -35,7 +30,6 @@ class GatedClock : public sc_core::sc_module {
   std::uint64_t ts_mask_;
   sc_core::sc_time free_running_until_;
   std::uint64_t edges_ = 0;
-  Phase phase_ = Phase::Start;
 };
 
 }  // namespace aesim
