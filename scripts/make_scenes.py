@@ -114,14 +114,6 @@ def natural(n, seed=7):
     return values
 
 
-def rect(x0, y0, x1, y1):
-    return lambda u, v: x0 <= u < x1 and y0 <= v < y1
-
-
-def disc(cx, cy, r):
-    return lambda u, v: math.hypot(u - cx, v - cy) < r
-
-
 def union(*shapes):
     return lambda u, v: any(s(u, v) for s in shapes)
 
@@ -136,15 +128,39 @@ def finger(x, top, width=3.0, bottom=17, tilt=0.0):
     return inside
 
 
-PALM = rect(9, 15, 23, 29)
-FIST = union(rect(9, 13, 23, 28), disc(16, 14, 6.5))
+def rounded_rect(x0, y0, x1, y1, r):
+    """The rectangle [x0, x1) x [y0, y1) with corners rounded to radius r."""
+    def inside(u, v):
+        if not (x0 <= u < x1 and y0 <= v < y1):
+            return False
+        cx = min(max(u, x0 + r), x1 - r)
+        cy = min(max(v, y0 + r), y1 - r)
+        return math.hypot(u - cx, v - cy) <= r
+    return inside
+
+
+def side_finger(y, tip, knuckle, width=3.0):
+    """A finger pointing left, along row y, from `knuckle` out to a rounded tip at `tip`."""
+    return lambda u, v: (tip <= u < knuckle and abs(v - y) < width / 2) or math.hypot(u - tip, v - y) < width / 2
+
+
+# Six hand signs that the rank rule can tell apart. Under ranks (r = b_max / b) a template lying
+# almost wholly inside another ties it over every full pass of events, so no sign may be another
+# plus extra fingers: the fist is wider and squatter than every hand's body, the flat palm holds
+# its fingers together as one block, victory spreads its two fingers wider than that block, rock's
+# horns leave the body's edges wider still, point aims sideways from a tall narrow hand and the
+# thumbs-up hand lies on its side. Centred on their centroids no sign has more than 87 % of its
+# pixels inside another (`scripts/paper_table1` checks 10 distorted instances of each).
+HAND_BODY = rounded_rect(11, 15, 22, 27, 2.5)
 HAND_SIGNS = {
-    "fist": FIST,
-    "palm": union(PALM, finger(10.5, 6), finger(14, 3), finger(17.5, 4), finger(21, 8), finger(6, 13, tilt=0.6, bottom=24)),
-    "point": union(FIST, finger(14, 2, bottom=13)),
-    "victory": union(FIST, finger(12.5, 3, bottom=13, tilt=-0.25), finger(19.5, 3, bottom=13, tilt=0.25)),
-    "thumbs_up": union(rect(10, 14, 24, 28), finger(12, 2, width=4, bottom=14)),
-    "rock": union(FIST, finger(11, 3, bottom=13), finger(21, 5, bottom=13)),
+    "fist": rounded_rect(6, 12, 26, 25, 5),
+    "palm": union(rounded_rect(11, 15, 22, 28, 2), rounded_rect(11, 4, 22, 16, 1.5),
+                  finger(9, 14, tilt=0.9, bottom=24, width=3.2)),
+    "point": union(rounded_rect(16, 5, 26, 28, 3), side_finger(13, 1, 17, width=4.0)),
+    "victory": union(HAND_BODY, finger(14.5, 3, bottom=15, tilt=-0.45), finger(18.5, 3, bottom=15, tilt=0.45)),
+    "thumbs_up": union(rounded_rect(8, 16, 26, 27, 3), finger(11, 3, width=4.0, bottom=17)),
+    "rock": union(HAND_BODY, finger(12.5, 3, bottom=15, tilt=-0.7, width=3.4),
+                  finger(20.5, 4, bottom=15, tilt=0.7, width=3.4)),
 }
 
 

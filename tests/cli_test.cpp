@@ -295,6 +295,16 @@ TEST_F(CliTest, EmulateThenClassifyRecognisesTheLetter) {
   EXPECT_EQ(j["winner"], "O");
   EXPECT_GT(j["additions"].get<double>(), 0);
   EXPECT_TRUE(j["scores"].contains("Q"));
+  EXPECT_FALSE(j["centred_templates"].get<bool>());
+  // --center N centres the subject on its first N events and every template on its own centroid;
+  // the O is drawn centred, so the subject barely moves (less than a pixel).
+  const Outcome centred = aesim("classify o.aedat --center 1000 --json");
+  ASSERT_EQ(centred.status, 0) << centred.err;
+  const auto jc = nlohmann::json::parse(centred.out);
+  EXPECT_EQ(jc["winner"], "O");
+  EXPECT_TRUE(jc["centred_templates"].get<bool>());
+  EXPECT_LT(std::hypot(jc["shift"][0].get<double>(), jc["shift"][1].get<double>()), 1.0);
+  EXPECT_TRUE(nlohmann::json::parse(aesim("classify o.aedat --center-templates --json").out)["centred_templates"].get<bool>());
   const Outcome human = aesim("classify o.aedat --templates " + kScenes + "/templates/letters --clock 20MHz");
   EXPECT_NE(human.out.find("winner: O"), std::string::npos) << human.out;
   EXPECT_NE(human.out.find("cycles per template per event"), std::string::npos);

@@ -23,11 +23,12 @@ int classify_command(ClassifyOptions opt) {
   const double clock = parse_si(opt.clock, "Hz", "--clock");
   if (!(clock > 0)) throw InputError("--clock: must be positive");
   opt.classifier.ranks = !opt.no_ranks;
+  if (opt.classifier.center_events > 0) opt.classifier.center_templates = true;
 
   const std::vector<Template> templates = load_templates(opt.templates);
   std::vector<std::string> warnings;
   if (opt.classifier.ranks) {
-    for (const Containment& c : contained_templates(templates)) {
+    for (const Containment& c : contained_templates(templates, 0.95, opt.classifier.center_templates)) {
       warnings.push_back(fmt::format("template '{}' lies {:.0f} % inside '{}': under ranks '{}' ties it over every "
                                      "full pass of events and can win only by their order",
                                      templates[c.inner].name, 100 * c.fraction, templates[c.outer].name,
@@ -64,6 +65,8 @@ int classify_command(ClassifyOptions opt) {
                         {"additions", r.additions},
                         {"comparisons", r.comparisons},
                         {"ranks", opt.classifier.ranks},
+                        {"centred_templates", opt.classifier.center_templates},
+                        {"shift", {r.shift_x, r.shift_y}},
                         {"estimated_time_s", seconds},
                         {"warnings", warnings},
                         {"scores", nlohmann::json::object()}};

@@ -156,7 +156,10 @@ void add_classify(CLI::App& app, int& status) {
   cmd->add_option("--max-events", opt->classifier.max_events, "Restart after this many events without a decision")
       ->capture_default_str();
   cmd->add_option("--overflow", opt->classifier.overflow, "Restart when a score exceeds this")->capture_default_str();
-  cmd->add_option("--center", opt->classifier.center_events, "Centre the subject on the centroid of the first N events");
+  cmd->add_option("--center", opt->classifier.center_events,
+                  "Centre the subject on the centroid of the first N events, and each template on its own centroid");
+  cmd->add_flag("--center-templates", opt->classifier.center_templates,
+                "Centre each template on its own centroid only (for subjects centred before they became events)");
   cmd->add_flag("--no-ranks", opt->no_ranks, "Plain counting: every template adds 1");
   cmd->add_flag("--json", opt->json, "Machine-readable output");
   cmd->add_option("--cycles-per-template", opt->cycles_per_template, "For the time estimate")->capture_default_str();

@@ -34,6 +34,13 @@ std::vector<Template> load_templates(const std::string& folder) {
     for (double v : img.pixels) t.white.push_back(v > 0.5 ? 1 : 0);
     t.white_count = static_cast<std::size_t>(std::count(t.white.begin(), t.white.end(), 1));
     if (t.white_count == 0) throw InputError(fmt::format("template '{}' has no white pixel", f.string()));
+    for (std::size_t p = 0; p < t.white.size(); ++p) {
+      if (!t.white[p]) continue;
+      t.centroid_x += static_cast<double>(p % static_cast<std::size_t>(t.width));
+      t.centroid_y += static_cast<double>(p / static_cast<std::size_t>(t.width));
+    }
+    t.centroid_x /= static_cast<double>(t.white_count);
+    t.centroid_y /= static_cast<double>(t.white_count);
     if (!out.empty() && (t.width != out.front().width || t.height != out.front().height)) {
       throw InputError(fmt::format("template '{}' is {}x{}, the others {}x{}", f.string(), t.width, t.height,
                                    out.front().width, out.front().height));
@@ -46,14 +53,35 @@ std::vector<Template> load_templates(const std::string& folder) {
   return out;
 }
 
-std::vector<Containment> contained_templates(const std::vector<Template>& templates, double threshold) {
+Template centred_template(const Template& t) {
+  const long dx = std::lround(t.centroid_x - (t.width - 1) / 2.0), dy = std::lround(t.centroid_y - (t.height - 1) / 2.0);
+  Template c = t;
+  std::fill(c.white.begin(), c.white.end(), 0);
+  for (long y = 0; y < t.height; ++y) {
+    for (long x = 0; x < t.width; ++x) {
+      const long sx = x + dx, sy = y + dy;
+      if (sx >= 0 && sy >= 0 && sx < t.width && sy < t.height) {
+        c.white[static_cast<std::size_t>(y * t.width + x)] = t.white[static_cast<std::size_t>(sy * t.width + sx)];
+      }
+    }
+  }
+  c.white_count = static_cast<std::size_t>(std::count(c.white.begin(), c.white.end(), 1));
+  c.centroid_x -= static_cast<double>(dx);
+  c.centroid_y -= static_cast<double>(dy);
+  return c;
+}
+
+std::vector<Containment> contained_templates(const std::vector<Template>& given, double threshold, bool centred) {
+  std::vector<Template> templates;
+  for (const Template& t : given) templates.push_back(centred ? centred_template(t) : t);
   std::vector<Containment> out;
   for (std::size_t a = 0; a < templates.size(); ++a) {
     for (std::size_t b = 0; b < templates.size(); ++b) {
       if (a == b) continue;
       std::size_t inside = 0;
       for (std::size_t p = 0; p < templates[a].white.size(); ++p) inside += templates[a].white[p] && templates[b].white[p];
-      const double fraction = static_cast<double>(inside) / static_cast<double>(templates[a].white_count);
+      const double fraction =
+          templates[a].white_count ? static_cast<double>(inside) / static_cast<double>(templates[a].white_count) : 0.0;
       if (fraction >= threshold) out.push_back({a, b, fraction});
     }
   }
@@ -81,19 +109,25 @@ ClassifyResult classify(const std::vector<Template>& templates, const std::vecto
     r.shift_x = (w - 1) / 2.0 - sx / static_cast<double>(m);
     r.shift_y = (h - 1) / 2.0 - sy / static_cast<double>(m);
   }
+  // Where each template is read, relative to the (shifted) event.
+  std::vector<double> offset_x(n, 0.0), offset_y(n, 0.0);
+  if (o.center_templates) {
+    for (std::size_t i = 0; i < n; ++i) {
+      offset_x[i] = templates[i].centroid_x - (w - 1) / 2.0;
+      offset_y[i] = templates[i].centroid_y - (h - 1) / 2.0;
+    }
+  }
   std::vector<double> score(n, 0.0);
   std::uint64_t since_restart = 0;
   for (const auto& [ex, ey] : events) {
     ++r.events_used;
     ++since_restart;
-    const long x = std::lround(ex + r.shift_x), y = std::lround(ey + r.shift_y);
-    if (x >= 0 && y >= 0 && x < w && y < h) {
-      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-      for (std::size_t i = 0; i < n; ++i) {
-        if (templates[i].white[p]) {
-          score[i] += weight[i];
-          ++r.additions;
-        }
+    for (std::size_t i = 0; i < n; ++i) {
+      const long x = std::lround(ex + r.shift_x + offset_x[i]), y = std::lround(ey + r.shift_y + offset_y[i]);
+      if (x < 0 || y < 0 || x >= w || y >= h) continue;
+      if (templates[i].white[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]) {
+        score[i] += weight[i];
+        ++r.additions;
       }
     }
     // The best and the second best, then the lead test.

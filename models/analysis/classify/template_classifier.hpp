@@ -13,6 +13,7 @@ struct Template {
   std::vector<std::uint8_t> white;
   std::size_t white_count = 0;
   double rank = 1;
+  double centroid_x = 0, centroid_y = 0;  // of the white pixels
 };
 
 // Every .pgm in a folder (pixels above half scale are white), in name order, all of one size,
@@ -27,14 +28,23 @@ struct Containment {
   double fraction = 0;               // of the inner template's white pixels inside the outer's
 };
 
-// Every pair where at least `threshold` of one template's white pixels are white in another.
-std::vector<Containment> contained_templates(const std::vector<Template>& templates, double threshold = 0.95);
+// Every pair where at least `threshold` of one template's white pixels are white in another, the
+// templates as they are or each shifted (by whole pixels, rounded) to put its centroid at the centre.
+std::vector<Containment> contained_templates(const std::vector<Template>& templates, double threshold = 0.95,
+                                             bool centred = false);
+
+// The template moved so its centroid lies within half a pixel of the centre (white pixels shifted
+// out of the frame are dropped; the rank stays the unshifted template's).
+Template centred_template(const Template& t);
 
 struct ClassifierOptions {
   double k = 20.0;  // the winner leads the second by at least k * r_max (20: every clean letter right)
   std::uint64_t max_events = 1000;  // restart when this many events gave no decision
   double overflow = 65535;          // restart when a score exceeds this (a 16-bit accumulator)
   std::uint64_t center_events = 0;  // shift the subject so the centroid of the first N events is centred
+  // Compare each template as if shifted so its own centroid is at the centre: the subject, centred
+  // by center_events or before it became events, then meets every template on the same footing.
+  bool center_templates = false;
   bool ranks = true;                // false: every template adds 1 (plain counting)
 };
 
@@ -49,7 +59,8 @@ struct ClassifyResult {
 
 // The source paper's rank-weighted recogniser: each event at (x, y), in template coordinates,
 // adds r_i to every template i white there; after each event, if the best score leads the second
-// by at least k * r_max, the best template wins.
+// by at least k * r_max, the best template wins. With center_templates, template i is read at the
+// event's position plus (its centroid - the centre), to the nearest pixel.
 ClassifyResult classify(const std::vector<Template>& templates, const std::vector<std::pair<double, double>>& events,
                         const ClassifierOptions& options);
 
