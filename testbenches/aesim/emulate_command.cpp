@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "emulator/y4m.hpp"
 #include "event_files/aedat.hpp"
 #include "event_files/event_file.hpp"
+#include "event_files/event_writer.hpp"
 #include "output/atomic_file.hpp"
 #include "images/image_file.hpp"
 #include "recon/reconstruct.hpp"
@@ -89,6 +91,11 @@ int emulate_command(EmulateOptions opt) {
     opt.queue = "out/queue.txt";
     opt.out = "out/emulated.aedat";
   }
+  if (!opt.out.empty()) {
+    const EventFileFormat format = event_file_format(opt.out, "--out");
+    if (format == EventFileFormat::Csv) throw InputError(fmt::format("--out '{}': emulate writes no CSV; use --queue", opt.out));
+  }
+  parse_aedat4_compression(opt.aedat4_compression);
   check_output_paths({{"--queue", opt.queue}, {"--out", opt.out}, {"--recon", opt.recon}}, inputs);
 
   const std::vector<EmulatedEvent> events = emulate(frames, s);
@@ -111,11 +118,28 @@ int emulate_command(EmulateOptions opt) {
     files.open(opt.queue) << text;
   }
   if (!opt.out.empty()) {
-    std::vector<std::string> header = aedat_header(map, sensor_metadata(sensor.to_json()));
-    header.insert(header.begin() + 1,
-                  fmt::format("# aesim emulate: behaviour {}, f_max {} events/frame ({} spread), {} frames at {} Hz",
-                              opt.behaviour, s.f_max, opt.spread, frames.size(), s.frame_rate));
-    write_aedat(files.open(opt.out), header, aedat_records(stream, map, 1e-6));
+    // The header records what describes these events: the array (one tile), the emulator's
+    // settings and the span of time they cover, not a simulation's defaults.
+    EventFileSpec spec;
+    spec.array = sensor.array;
+    for (const auto& [key, value] : sensor_metadata(sensor.to_json())) {
+      if (key.rfind("array.", 0) == 0) spec.sensor[key] = value;
+    }
+    const double span = static_cast<double>(frames.size()) / s.frame_rate;
+    spec.sensor["emulate.behaviour"] = opt.behaviour;
+    spec.sensor["emulate.f_max"] = fmt::format("{}", s.f_max);
+    spec.sensor["emulate.spread"] = opt.spread;
+    spec.sensor["emulate.frames"] = fmt::format("{}", frames.size());
+    spec.sensor["emulate.frame_rate"] = fmt::format("{}Hz", s.frame_rate);
+    spec.sensor["emulate.duration"] = fmt::format("{}s", span);
+    spec.notes.push_back(fmt::format("# aesim emulate: behaviour {}, f_max {} events/frame ({} spread), {} frames at {} Hz",
+                                     opt.behaviour, s.f_max, opt.spread, frames.size(), s.frame_rate));
+    spec.tick = 1e-6;
+    spec.duration = span;
+    spec.compression = parse_aedat4_compression(opt.aedat4_compression);
+    std::unique_ptr<EventFileWriter> writer = open_event_writer(files, opt.out, spec);
+    writer->events(stream.data(), stream.size());
+    writer->finish();
   }
   if (!opt.recon.empty()) {
     const std::vector<AddressEvent> used =

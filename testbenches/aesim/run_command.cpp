@@ -14,6 +14,7 @@
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "event_files/aedat.hpp"
+#include "event_files/event_writer.hpp"
 #include "output/atomic_file.hpp"
 #include "event_files/events_csv.hpp"
 #include "images/image_file.hpp"
@@ -58,13 +59,23 @@ int run_command(RunOptions opt) {
       throw InputError(fmt::format("--recon '{}': use a .pgm or .png file name", opt.recon));
     }
   }
-  if (!opt.out.empty() && config.sim.duration > 2147.0) {
-    throw InputError("sim.duration: AEDAT 2.0 timestamps are int32 microseconds, so --out allows at most 2147 s");
-  }
-
   const AddressMap map(config.array);
   const AedatLayout layout = parse_aedat_layout(opt.aedat_layout);
-  if (!opt.out.empty()) jaer_chip(layout, map);  // an array the chip cannot hold is refused before the run
+  const Aedat4Compression compression = parse_aedat4_compression(opt.aedat4_compression);
+  if (!opt.out.empty()) {
+    const EventFileFormat format = event_file_format(opt.out, "--out");
+    if (format == EventFileFormat::Csv) throw InputError(fmt::format("--out '{}': write events CSV with --csv", opt.out));
+    if (format == EventFileFormat::Aedat2 && config.sim.duration > 2147.0) {
+      throw InputError("sim.duration: AEDAT 2.0 timestamps are int32 microseconds, so --out allows at most 2147 s");
+    }
+    if (format == EventFileFormat::Hdf5 && config.sim.duration > 4294.0) {
+      throw InputError("sim.duration: DSEC timestamps are uint32 microseconds, so an .h5 --out allows at most 4294 s");
+    }
+    if (layout != AedatLayout::Aesim && format != EventFileFormat::Aedat2) {
+      throw InputError(fmt::format("--aedat-layout {}: jAER's layouts are for AEDAT 2.0 (.aedat) files", opt.aedat_layout));
+    }
+    jaer_chip(layout, map);  // an array the chip cannot hold is refused before the run
+  }
   std::vector<std::string> rtl_traces;
   if (request.waveforms && fidelity == Fidelity::Cycle && config.receiver.model == ReceiverModel::Rtl) {
     const std::string stem = opt.vcd.size() > 4 && opt.vcd.substr(opt.vcd.size() - 4) == ".vcd"
@@ -93,13 +104,19 @@ int run_command(RunOptions opt) {
   // The event files are written while the run goes (into temporary files, renamed by commit()).
   const double tick = choose_rung(config, request).tick(config);
   EventStreams writers;
-  std::unique_ptr<AedatWriter> aedat;
+  std::unique_ptr<EventFileWriter> events;
   std::unique_ptr<EventsCsvWriter> csv;
   std::unique_ptr<TruthCsvWriter> truth;
   if (!opt.out.empty()) {
-    aedat = std::make_unique<AedatWriter>(files.open(opt.out), aedat_header(map, sensor_metadata(config.to_json()), layout),
-                                          map, tick, layout);
-    writers.add(*aedat);
+    EventFileSpec spec;
+    spec.array = config.array;
+    spec.sensor = sensor_metadata(config.to_json());
+    spec.tick = tick;
+    spec.duration = config.sim.duration;
+    spec.layout = layout;
+    spec.compression = compression;
+    events = open_event_writer(files, opt.out, spec);
+    writers.add(*events);
   }
   if (!opt.csv.empty()) {
     csv = std::make_unique<EventsCsvWriter>(files.open(opt.csv), tick);
@@ -109,10 +126,10 @@ int run_command(RunOptions opt) {
     truth = std::make_unique<TruthCsvWriter>(files.open(opt.truth));
     writers.add(*truth);
   }
-  request.keep_events = aedat || csv;
+  request.keep_events = events || csv;
   request.stream = &writers;
   const SimulationResult result = simulate(config, photocurrents, request);
-  if (aedat) aedat->flush();
+  if (events) events->finish();
   if (csv) csv->flush();
   if (truth) truth->flush();
 
@@ -126,11 +143,11 @@ int run_command(RunOptions opt) {
   files.commit();
 
   const TileCounters total = result.log.totals();
-  if (aedat && layout != AedatLayout::Aesim && aedat->zero_stamps() > 0) {
+  if (events && layout != AedatLayout::Aesim && events->zero_stamps() > 0) {
     std::fprintf(stderr,
                  "aesim: warning: %llu events in %s are stamped 0 us; jAER's reader skips such an event (it reads the "
                  "next one in its place); aesim's readers keep them\n",
-                 static_cast<unsigned long long>(aedat->zero_stamps()), opt.out.c_str());
+                 static_cast<unsigned long long>(events->zero_stamps()), opt.out.c_str());
   }
   if (result.facts.empty_queue_frames > 0) {
     std::fprintf(stderr,

@@ -8,7 +8,7 @@
 #include "array/address_map.hpp"
 #include "events/address_event.hpp"
 #include "event_files/aedat_layout.hpp"
-#include "events/event_stream.hpp"
+#include "event_files/event_writer.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -41,7 +41,7 @@ AedatFile decode_aedat(const std::string& data, const std::string& path);
 
 // Writes an AEDAT 2.0 file as a run streams its events: the header at once, then the records
 // packed big-endian through a buffer, addresses in `layout`.
-class AedatWriter : public EventStream {
+class AedatWriter : public EventFileWriter {
  public:
   AedatWriter(std::ostream& out, const std::vector<std::string>& header, const AddressMap& map, double tick,
               AedatLayout layout = AedatLayout::Aesim);
@@ -49,8 +49,9 @@ class AedatWriter : public EventStream {
   void events(const AddressEvent* first, std::size_t count) override;
   // Writes what the buffer holds; the destructor does it too.
   void flush();
+  void finish() override { flush(); }
   // Events stamped 0 us (jAER's reader skips such an event: it reads the next one in its place).
-  std::uint64_t zero_stamps() const { return zero_stamps_; }
+  std::uint64_t zero_stamps() const override { return zero_stamps_; }
 
  private:
   std::ostream& out_;

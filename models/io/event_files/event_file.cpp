@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -11,16 +14,22 @@
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "event_files/aedat.hpp"
+#include "event_files/aedat4.hpp"
+#include "event_files/dsec_h5.hpp"
+#include "event_files/event_writer.hpp"
 #include "event_files/events_csv.hpp"
+#include "event_files/npy_events.hpp"
+#include "files/input_path.hpp"
 
 namespace aesim {
 namespace {
 
-EventRecording from_aedat(const AedatFile& file, const std::string& path) {
+// The array an aesim-written file records in its sensor parameters ("array.rows" -> text ...).
+ArrayParams recorded_array(const std::map<std::string, std::string>& sensor_keys, const std::string& path) {
   SensorConfig sensor;
   for (const char* key : {"array.rows", "array.cols", "array.tile_rows", "array.tile_cols"}) {
-    const auto it = file.metadata.find(std::string("sensor.") + key);
-    if (it == file.metadata.end()) {
+    const auto it = sensor_keys.find(key);
+    if (it == sensor_keys.end()) {
       throw InputError(fmt::format("event file '{}': header has no aesim.sensor.{} (not written by aesim?)", path, key));
     }
     try {
@@ -34,7 +43,15 @@ EventRecording from_aedat(const AedatFile& file, const std::string& path) {
   } catch (const InputError& e) {
     throw InputError(fmt::format("event file '{}': header: {}", path, e.what()));
   }
-  const AddressMap map(sensor.array);
+  return sensor.array;
+}
+
+EventRecording from_aedat(const AedatFile& file, const std::string& path) {
+  std::map<std::string, std::string> sensor_keys;
+  for (const auto& [key, value] : file.metadata) {
+    if (key.rfind("sensor.", 0) == 0) sensor_keys[key.substr(7)] = value;
+  }
+  const AddressMap map(recorded_array(sensor_keys, path));
   EventRecording rec;
   // A header of another layout than a reader knows, or an array its chip cannot hold, names the file.
   try {
@@ -86,6 +103,71 @@ EventRecording from_csv(std::vector<AddressEvent> events, const std::string& pat
   return rec;
 }
 
+// Events of the polarity formats. A file aesim wrote records its array (and tiles), and polarity 0
+// is a ghost (SPEC section 5); so in a .npy, which cannot say who wrote it. In another recorder's
+// AEDAT 4.0 or HDF5 file polarity is a camera's ON/OFF and every event counts as a normal one;
+// the size is the file's (AEDAT 4.0's sizeX/sizeY) or, when it records none, the events' span.
+EventRecording from_polarity(const PolarityRecording& in, const std::string& path, bool npy = false) {
+  EventRecording rec;
+  rec.events.reserve(in.events.size());
+  std::int64_t last = 0;
+  const auto check_time = [&](std::size_t i, std::int64_t t) {
+    if (t < 0) throw InputError(fmt::format("event file '{}': event {} has a negative timestamp ({} us)", path, i, t));
+    if (t < last) throw InputError(fmt::format("event file '{}': timestamps decrease at event {}", path, i));
+    last = t;
+  };
+  if (in.sensor.count("array.rows")) {
+    const AddressMap map(recorded_array(in.sensor, path));
+    rec.width = map.cols();
+    rec.height = map.rows();
+    rec.tiles = map.tiles();
+    rec.size_recorded = true;
+    for (std::size_t i = 0; i < in.events.size(); ++i) {
+      const PolarityEvent& p = in.events[i];
+      check_time(i, p.t_us);
+      if (p.x >= rec.width || p.y >= rec.height) {
+        throw InputError(fmt::format("event file '{}': event {} at ({}, {}) lies outside its {}x{} array", path, i, p.x,
+                                     p.y, rec.width, rec.height));
+      }
+      AddressEvent e = map.event_at({static_cast<std::uint32_t>(p.x), static_cast<std::uint32_t>(p.y)});
+      e.t = static_cast<double>(p.t_us) * 1e-6;
+      e.flags = p.on ? kNormalEvent : kGhostEvent;
+      rec.events.push_back(e);
+    }
+    return rec;
+  }
+  std::vector<AddressEvent> events;
+  events.reserve(in.events.size());
+  for (std::size_t i = 0; i < in.events.size(); ++i) {
+    const PolarityEvent& p = in.events[i];
+    check_time(i, p.t_us);
+    AddressEvent e;
+    e.t = static_cast<double>(p.t_us) * 1e-6;
+    e.x = static_cast<std::uint32_t>(p.x);
+    e.y = static_cast<std::uint32_t>(p.y);
+    e.flags = npy && !p.on ? kGhostEvent : kNormalEvent;
+    events.push_back(e);
+  }
+  rec = from_csv(std::move(events), path);
+  if (in.width > 0 && in.height > 0) {
+    if (rec.width > in.width || rec.height > in.height) {
+      throw InputError(fmt::format("event file '{}': events reach ({}, {}), outside its {}x{} array", path,
+                                   rec.width - 1, rec.height - 1, in.width, in.height));
+    }
+    rec.width = in.width;
+    rec.height = in.height;
+    rec.tiles = 1;
+    rec.size_recorded = true;
+  }
+  return rec;
+}
+
+std::string read_whole(const std::string& path) {
+  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 }  // namespace
 
 ArraySize parse_array_size(const std::string& text, const std::string& option) {
@@ -101,12 +183,18 @@ ArraySize parse_array_size(const std::string& text, const std::string& option) {
 EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size) {
   const std::string ext = std::filesystem::path(path).extension().string();
   EventRecording rec;
-  if (ext == ".csv") {
-    rec = from_csv(read_events_csv(path), path);
-  } else if (ext == ".aedat" || ext == ".dat") {
-    rec = from_aedat(read_aedat(path), path);
-  } else {
-    throw InputError(fmt::format("event file '{}': unsupported format (use .aedat or .csv)", path));
+  EventFileFormat format;
+  try {
+    format = event_file_format(path, "event file");
+  } catch (const InputError&) {
+    throw InputError(fmt::format("event file '{}': unsupported format (use .aedat, .aedat4, .npy, .h5 or .csv)", path));
+  }
+  switch (format) {
+    case EventFileFormat::Csv: rec = from_csv(read_events_csv(path), path); break;
+    case EventFileFormat::Aedat2: rec = from_aedat(read_aedat(path), path); break;
+    case EventFileFormat::Aedat4: rec = from_polarity(decode_aedat4(read_whole(path), path), path); break;
+    case EventFileFormat::Npy: rec = from_polarity(decode_npy(read_whole(path), path), path, true); break;
+    case EventFileFormat::Hdf5: rec = from_polarity(read_dsec_h5(path), path); break;
   }
   if (!size) return rec;
   if (rec.size_recorded && (rec.width != size->width || rec.height != size->height)) {
@@ -128,6 +216,8 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
 
 EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format) {
   if (format == EventFormat::Aedat2) return from_aedat(decode_aedat(data, label), label);
+  if (format == EventFormat::Aedat4) return from_polarity(decode_aedat4(data, label), label);
+  if (format == EventFormat::Npy) return from_polarity(decode_npy(data, label), label, true);
   std::istringstream in(data);
   return from_csv(parse_events_csv(in, label), label);
 }

@@ -14,9 +14,10 @@ struct ArraySize {
 // Parses "64x64" (1 to 4096 each); throws InputError naming `option`.
 ArraySize parse_array_size(const std::string& text, const std::string& option);
 
-// Events read back from an AEDAT 2.0 or CSV file written by aesim, with the array size they
-// belong to: the AEDAT header's sensor parameters, or the size given (--size). A CSV records no
-// size; without one given, the size is the span of its events and `size_recorded` is false.
+// Events read back from an event file (AEDAT 2.0 or 4.0, .npy, .h5 or CSV, by extension), with the
+// array size they belong to: the sensor parameters aesim wrote into the file, the file's own size
+// (AEDAT 4.0's sizeX/sizeY), or the size given (--size). A CSV or a .npy records no size; without
+// one given, the size is the span of its events and `size_recorded` is false.
 struct EventRecording {
   std::vector<AddressEvent> events;  // t in seconds
   int width = 0, height = 0, tiles = 0;
@@ -28,7 +29,7 @@ struct EventRecording {
 EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size = std::nullopt);
 
 // The same from a file's bytes; `label` names it in messages.
-enum class EventFormat { Aedat2, Csv };
+enum class EventFormat { Aedat2, Aedat4, Npy, Csv };
 EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format);
 
 }  // namespace aesim

@@ -1,0 +1,302 @@
+#include "event_files/aedat4.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+
+#include <flatbuffers/flatbuffers.h>
+#include <fmt/format.h>
+#include <lz4frame.h>
+
+#include "IOHeader_generated.h"
+#include "errors/input_error.hpp"
+#include "event_files/event_stamps.hpp"
+#include "events_generated.h"
+
+namespace aesim {
+namespace {
+
+constexpr char kAedat4Magic[] = "#!AER-DAT4.0\r\n";
+constexpr std::size_t kAedat4MagicBytes = sizeof(kAedat4Magic) - 1;
+// DV's recorder writes packets of a few thousand events; so do we (64 KiB of events a packet).
+constexpr std::size_t kAedat4PacketEvents = 4096;
+// A malformed or hostile file cannot make the reader decompress without end.
+constexpr std::uint64_t kAedat4MaxPacketBytes = 1ULL << 28;
+constexpr std::uint64_t kAedat4MaxDecodedBytes = 1ULL << 33;
+
+void put_le32(std::ostream& out, std::uint32_t v) {
+  const char b[4] = {static_cast<char>(v), static_cast<char>(v >> 8), static_cast<char>(v >> 16),
+                     static_cast<char>(v >> 24)};
+  out.write(b, 4);
+}
+
+std::uint32_t get_le32(const unsigned char* p) {
+  return std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8) | (std::uint32_t(p[2]) << 16) | (std::uint32_t(p[3]) << 24);
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string xml_unescape(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] != '&') {
+      out += s[i];
+      continue;
+    }
+    static const std::pair<const char*, char> kEntities[] = {
+        {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''}};
+    bool known = false;
+    for (const auto& [name, c] : kEntities) {
+      if (s.compare(i, std::strlen(name), name) == 0) {
+        out += c;
+        i += std::strlen(name) - 1;
+        known = true;
+        break;
+      }
+    }
+    if (!known) out += '&';
+  }
+  return out;
+}
+
+std::string info_node(const EventFileSpec& spec) {
+  const std::string compression = spec.compression == Aedat4Compression::Lz4 ? "LZ4" : "NONE";
+  const std::string path = "/mainloop/aesim/outInfo/0/";
+  std::string xml = "<dv version=\"2.0\">\n <node name=\"outInfo\" path=\"/mainloop/aesim/outInfo/\">\n";
+  xml += fmt::format("  <node name=\"0\" path=\"{}\">\n", path);
+  xml += fmt::format("   <attr key=\"compression\" type=\"string\">{}</attr>\n", compression);
+  xml += "   <attr key=\"originalModuleName\" type=\"string\">aesim</attr>\n";
+  xml += "   <attr key=\"originalOutputName\" type=\"string\">events</attr>\n";
+  xml += "   <attr key=\"typeDescription\" type=\"string\">Array of events (polarity ON/OFF).</attr>\n";
+  xml += "   <attr key=\"typeIdentifier\" type=\"string\">EVTS</attr>\n";
+  xml += fmt::format("   <node name=\"info\" path=\"{}info/\">\n", path);
+  xml += fmt::format("    <attr key=\"sizeX\" type=\"int\">{}</attr>\n", spec.array.cols);
+  xml += fmt::format("    <attr key=\"sizeY\" type=\"int\">{}</attr>\n", spec.array.rows);
+  xml += "    <attr key=\"source\" type=\"string\">aesim</attr>\n";
+  xml += "    <attr key=\"tsOffset\" type=\"long\">0</attr>\n";
+  for (const auto& [key, value] : spec.sensor) {
+    xml += fmt::format("    <attr key=\"aesim.sensor.{}\" type=\"string\">{}</attr>\n", xml_escape(key),
+                       xml_escape(value));
+  }
+  xml += "   </node>\n  </node>\n </node>\n</dv>\n";
+  return xml;
+}
+
+// The attributes (key -> text) of the info node's <attr> elements, in document order.
+std::vector<std::pair<std::string, std::string>> xml_attrs(const std::string& xml) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::size_t pos = 0;
+  while ((pos = xml.find("<attr key=\"", pos)) != std::string::npos) {
+    const std::size_t key_begin = pos + 11;
+    const std::size_t key_end = xml.find('"', key_begin);
+    const std::size_t open_end = key_end == std::string::npos ? key_end : xml.find('>', key_end);
+    const std::size_t close = open_end == std::string::npos ? open_end : xml.find("</attr>", open_end);
+    if (close == std::string::npos) break;
+    out.emplace_back(xml_unescape(xml.substr(key_begin, key_end - key_begin)),
+                     xml_unescape(xml.substr(open_end + 1, close - open_end - 1)));
+    pos = close;
+  }
+  return out;
+}
+
+int parse_size(const std::string& text, const std::string& label, const char* key) {
+  try {
+    std::size_t used = 0;
+    const long v = std::stol(text, &used);
+    if (used == text.size() && v >= 1 && v <= 4096) return static_cast<int>(v);
+  } catch (const std::exception&) {
+  }
+  throw InputError(fmt::format("event file '{}': info node {} '{}' is not a size from 1 to 4096", label, key, text));
+}
+
+}  // namespace
+
+Aedat4Compression parse_aedat4_compression(const std::string& text) {
+  if (text == "lz4") return Aedat4Compression::Lz4;
+  if (text == "none") return Aedat4Compression::None;
+  throw InputError(fmt::format("--aedat4-compression: expected lz4 or none (got '{}')", text));
+}
+
+Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
+    : out_(out), tick_(spec.tick), compression_(spec.compression) {
+  out_.write(kAedat4Magic, static_cast<std::streamsize>(kAedat4MagicBytes));
+  flatbuffers::FlatBufferBuilder fbb;
+  const auto info = fbb.CreateString(info_node(spec));
+  const auto header = dv::CreateIOHeader(
+      fbb, compression_ == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE, -1, info);
+  dv::FinishSizePrefixedIOHeaderBuffer(fbb, header);
+  out_.write(reinterpret_cast<const char*>(fbb.GetBufferPointer()), static_cast<std::streamsize>(fbb.GetSize()));
+  pending_.reserve(kAedat4PacketEvents);
+}
+
+Aedat4Writer::~Aedat4Writer() = default;
+
+void Aedat4Writer::events(const AddressEvent* first, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const AddressEvent& e = first[i];
+    pending_.push_back({static_cast<std::int64_t>(stamp_us(e.t, tick_)), static_cast<std::int16_t>(e.x),
+                        static_cast<std::int16_t>(e.y), e.flags != kGhostEvent});
+    if (pending_.size() == kAedat4PacketEvents) write_packet();
+  }
+}
+
+void Aedat4Writer::write_packet() {
+  if (pending_.empty()) return;
+  flatbuffers::FlatBufferBuilder fbb(pending_.size() * sizeof(dv::Event) + 64);
+  std::vector<dv::Event> elements;
+  elements.reserve(pending_.size());
+  for (const Pending& p : pending_) elements.emplace_back(p.t_us, p.x, p.y, p.on);
+  const auto packet = dv::CreateEventPacket(fbb, fbb.CreateVectorOfStructs(elements));
+  dv::FinishSizePrefixedEventPacketBuffer(fbb, packet);
+  const char* body = reinterpret_cast<const char*>(fbb.GetBufferPointer());
+  std::size_t size = fbb.GetSize();
+  if (compression_ == Aedat4Compression::Lz4) {
+    LZ4F_preferences_t prefs;
+    std::memset(&prefs, 0, sizeof(prefs));
+    prefs.frameInfo.contentSize = size;
+    body_.resize(LZ4F_compressFrameBound(size, &prefs));
+    const std::size_t packed = LZ4F_compressFrame(body_.data(), body_.size(), body, size, &prefs);
+    if (LZ4F_isError(packed)) throw std::runtime_error(std::string("LZ4 compression failed: ") + LZ4F_getErrorName(packed));
+    body = body_.data();
+    size = packed;
+  }
+  put_le32(out_, 0);  // stream id
+  put_le32(out_, static_cast<std::uint32_t>(size));
+  out_.write(body, static_cast<std::streamsize>(size));
+  pending_.clear();
+}
+
+void Aedat4Writer::finish() { write_packet(); }
+
+PolarityRecording decode_aedat4(const std::string& data, const std::string& label) {
+  if (data.compare(0, kAedat4MagicBytes, kAedat4Magic) != 0) {
+    throw InputError(fmt::format("event file '{}': not AEDAT 4.0 (must start with #!AER-DAT4.0)", label));
+  }
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  std::size_t pos = kAedat4MagicBytes;
+  if (data.size() < pos + 4) throw InputError(fmt::format("event file '{}': truncated in the IOHeader", label));
+  const std::uint64_t header_size = get_le32(bytes + pos);
+  if (header_size > data.size() - pos - 4) throw InputError(fmt::format("event file '{}': truncated in the IOHeader", label));
+  {
+    flatbuffers::Verifier v(bytes + pos, header_size + 4);
+    if (!dv::VerifySizePrefixedIOHeaderBuffer(v)) {
+      throw InputError(fmt::format("event file '{}': the IOHeader is not a valid FlatBuffer", label));
+    }
+  }
+  const dv::IOHeader* header = dv::GetSizePrefixedIOHeader(bytes + pos);
+  const dv::CompressionType compression = header->compression();
+  if (compression != dv::CompressionType_NONE && compression != dv::CompressionType_LZ4 &&
+      compression != dv::CompressionType_LZ4_HIGH) {
+    throw InputError(fmt::format("event file '{}': compression {} is not supported (aesim reads none and LZ4)", label,
+                                 dv::EnumNameCompressionType(compression)));
+  }
+  const bool lz4 = compression != dv::CompressionType_NONE;
+  pos += 4 + header_size;
+
+  // The events stream: the first output node whose type is EVTS; its info gives the array size.
+  PolarityRecording rec;
+  long events_stream = -1;
+  const std::string xml = header->infoNode() ? header->infoNode()->str() : "";
+  for (std::size_t node = xml.find("<node name=\""); node != std::string::npos;
+       node = xml.find("<node name=\"", node + 1)) {
+    const std::size_t name_end = xml.find('"', node + 12);
+    if (name_end == std::string::npos) break;
+    const std::string name = xml.substr(node + 12, name_end - node - 12);
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos || name.size() > 9) continue;
+    // This stream's attributes run to the next sibling stream (or the end).
+    std::size_t next = xml.find("<node name=\"", name_end);
+    while (next != std::string::npos && xml.compare(next + 12, 4, "info") == 0) next = xml.find("<node name=\"", next + 1);
+    const auto attrs = xml_attrs(xml.substr(node, next == std::string::npos ? std::string::npos : next - node));
+    const bool evts = std::any_of(attrs.begin(), attrs.end(),
+                                  [](const auto& a) { return a.first == "typeIdentifier" && a.second == "EVTS"; });
+    if (!evts) continue;
+    events_stream = std::stol(name);
+    for (const auto& [key, value] : attrs) {
+      if (key == "sizeX") rec.width = parse_size(value, label, "sizeX");
+      if (key == "sizeY") rec.height = parse_size(value, label, "sizeY");
+      if (key.rfind("aesim.sensor.", 0) == 0) rec.sensor[key.substr(13)] = value;
+    }
+    break;
+  }
+  if (events_stream < 0) throw InputError(fmt::format("event file '{}': no stream of events (EVTS) in its header", label));
+
+  std::vector<char> plain;
+  std::uint64_t decoded = 0;
+  std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> dctx(nullptr, &LZ4F_freeDecompressionContext);
+  if (lz4) {
+    LZ4F_dctx* ctx = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) throw std::bad_alloc();
+    dctx.reset(ctx);
+  }
+  for (std::size_t packet = 0; pos < data.size(); ++packet) {
+    if (data.size() - pos < 8) throw InputError(fmt::format("event file '{}': packet {} is truncated", label, packet));
+    const std::int32_t stream = static_cast<std::int32_t>(get_le32(bytes + pos));
+    const std::uint64_t size = get_le32(bytes + pos + 4);
+    pos += 8;
+    if (size > data.size() - pos) throw InputError(fmt::format("event file '{}': packet {} is truncated", label, packet));
+    const char* body = data.data() + pos;
+    pos += size;
+    if (stream != events_stream) continue;
+    std::size_t body_size = size;
+    if (lz4) {
+      plain.clear();
+      LZ4F_resetDecompressionContext(dctx.get());
+      std::size_t in_at = 0;
+      for (;;) {
+        const std::size_t at = plain.size();
+        if (at >= kAedat4MaxPacketBytes) {
+          throw InputError(fmt::format("event file '{}': packet {} decompresses to more than {} bytes", label, packet,
+                                       kAedat4MaxPacketBytes));
+        }
+        plain.resize(std::max<std::size_t>(2 * at, 1 << 16));
+        std::size_t out_size = plain.size() - at, in_size = size - in_at;
+        const std::size_t hint = LZ4F_decompress(dctx.get(), plain.data() + at, &out_size, body + in_at, &in_size, nullptr);
+        if (LZ4F_isError(hint)) {
+          throw InputError(fmt::format("event file '{}': packet {}: LZ4: {}", label, packet, LZ4F_getErrorName(hint)));
+        }
+        in_at += in_size;
+        plain.resize(at + out_size);
+        if (hint == 0) break;
+        if (in_at == size && out_size == 0) {
+          throw InputError(fmt::format("event file '{}': packet {}: the LZ4 frame is truncated", label, packet));
+        }
+      }
+      body = plain.data();
+      body_size = plain.size();
+    }
+    decoded += body_size;
+    if (decoded > kAedat4MaxDecodedBytes) {
+      throw InputError(fmt::format("event file '{}': more than {} bytes of events", label, kAedat4MaxDecodedBytes));
+    }
+    flatbuffers::Verifier v(reinterpret_cast<const std::uint8_t*>(body), body_size);
+    if (!dv::VerifySizePrefixedEventPacketBuffer(v)) {
+      throw InputError(fmt::format("event file '{}': packet {} is not a valid EventPacket", label, packet));
+    }
+    const dv::EventPacket* p = dv::GetSizePrefixedEventPacket(body);
+    if (!p->elements()) continue;
+    for (const dv::Event* e : *p->elements()) {
+      PolarityEvent out;
+      out.t_us = e->timestamp();
+      out.x = e->x();
+      out.y = e->y();
+      out.on = e->polarity();
+      rec.events.push_back(out);
+    }
+  }
+  return rec;
+}
+
+}  // namespace aesim

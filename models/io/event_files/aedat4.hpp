@@ -1,0 +1,57 @@
+#pragma once
+#include <cstdint>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "event_files/event_writer.hpp"
+
+namespace aesim {
+
+// AEDAT 4.0, DV's format: "#!AER-DAT4.0\r\n", the size-prefixed FlatBuffer IOHeader (compression,
+// no data table, an XML info node naming one stream "events" of type EVTS with the array's sizeX
+// and sizeY and aesim's sensor parameters), then packets: int32 stream id, int32 body size, and
+// the body, a size-prefixed EventPacket FlatBuffer, as an LZ4 frame when compressed. x and y are
+// global (0, 0 top-left); polarity is 1 for a normal event and 0 for a ghost.
+class Aedat4Writer : public EventFileWriter {
+ public:
+  Aedat4Writer(std::ostream& out, const EventFileSpec& spec);
+  ~Aedat4Writer() override;
+  void events(const AddressEvent* first, std::size_t count) override;
+  void finish() override;
+
+ private:
+  void write_packet();
+  std::ostream& out_;
+  double tick_;
+  Aedat4Compression compression_;
+  struct Pending {
+    std::int64_t t_us;
+    std::int16_t x, y;
+    bool on;
+  };
+  std::vector<Pending> pending_;
+  std::vector<char> body_;
+};
+
+// A polarity event as the field's formats carry it.
+struct PolarityEvent {
+  std::int64_t t_us = 0;
+  std::int32_t x = 0, y = 0;
+  bool on = true;
+};
+
+// What an event file of the polarity formats (AEDAT 4.0, .npy, .h5) holds. width and height are 0
+// when the file records none; `sensor` holds aesim's parameters when aesim wrote it.
+struct PolarityRecording {
+  std::vector<PolarityEvent> events;
+  int width = 0, height = 0;
+  std::map<std::string, std::string> sensor;
+};
+
+// Reads the events stream (the first of type EVTS) of an AEDAT 4.0 file; other streams are skipped.
+// Throws InputError naming `label` on anything malformed.
+PolarityRecording decode_aedat4(const std::string& data, const std::string& label);
+
+}  // namespace aesim

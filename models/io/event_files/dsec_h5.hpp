@@ -1,0 +1,41 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "event_files/aedat4.hpp"
+#include "event_files/event_writer.hpp"
+
+namespace aesim {
+
+// HDF5 in the DSEC layout: /events/x and /events/y (uint16), /events/t (uint32, us after
+// /t_offset), /events/p (uint8: 1 for a normal event, 0 for a ghost), /t_offset (int64, us, 0
+// here) and /ms_to_idx (uint64: entry k is the index of the first event at or after k ms; one
+// entry per millisecond of the run and one past its end). Uncompressed, chunked, appended as the
+// run goes. aesim adds attributes DSEC does not have: /events width and height, and the sensor
+// parameters on the root as "aesim.sensor.KEY" strings. `path` is a file the writer owns.
+class DsecWriter : public EventFileWriter {
+ public:
+  DsecWriter(const std::string& path, const EventFileSpec& spec, double duration_s);
+  ~DsecWriter() override;
+  void events(const AddressEvent* first, std::size_t count) override;
+  void finish() override;
+
+ private:
+  void flush();
+  struct Handles;
+  Handles* h_;
+  std::string path_;
+  double tick_;
+  std::uint64_t ms_total_;
+  std::uint64_t written_ = 0, count_ = 0;
+  std::vector<std::uint16_t> x_, y_;
+  std::vector<std::uint32_t> t_;
+  std::vector<std::uint8_t> p_;
+  std::vector<std::uint64_t> ms_to_idx_;
+};
+
+// Reads /events/{x,y,t,p} (and /t_offset when present) of a DSEC-layout file. Throws InputError.
+PolarityRecording read_dsec_h5(const std::string& path);
+
+}  // namespace aesim

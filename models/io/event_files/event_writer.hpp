@@ -1,0 +1,51 @@
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "array/address_map.hpp"
+#include "event_files/aedat_layout.hpp"
+#include "events/event_stream.hpp"
+
+namespace aesim {
+
+class OutputFiles;
+
+// An event file being written as a run streams its events (in time order).
+class EventFileWriter : public EventStream {
+ public:
+  // Writes what is buffered and completes the file (counts, indices); the file is whole after it.
+  virtual void finish() = 0;
+  // Events stamped 0 us (only the jAER layouts of AEDAT 2.0 care: jAER's reader skips them).
+  virtual std::uint64_t zero_stamps() const { return 0; }
+};
+
+// The event file formats, chosen by the output's extension (SPEC section 5); a name without an
+// extension is AEDAT 2.0.
+enum class EventFileFormat { Aedat2, Aedat4, Npy, Hdf5, Csv };
+// Throws InputError naming `option` for an extension aesim does not write.
+EventFileFormat event_file_format(const std::string& path, const std::string& option);
+
+enum class Aedat4Compression { None, Lz4 };
+Aedat4Compression parse_aedat4_compression(const std::string& text);  // "none" | "lz4"
+
+// What every format records beside the events: the array (and its tiles), the sensor parameters
+// (sensor_metadata, "section.key" -> text), notes for a text header, the receiver's tick.
+struct EventFileSpec {
+  ArrayParams array;
+  std::map<std::string, std::string> sensor;
+  std::vector<std::string> notes;
+  double tick = 1e-6;
+  double duration = 0;  // s, the run's (the HDF5 index covers every millisecond of it)
+  AedatLayout layout = AedatLayout::Aesim;              // AEDAT 2.0 only
+  Aedat4Compression compression = Aedat4Compression::Lz4;  // AEDAT 4.0 only
+};
+
+// A writer for `path` (not .csv) in the format its extension names, writing to a temporary of
+// `files` that is renamed into place with the rest.
+std::unique_ptr<EventFileWriter> open_event_writer(OutputFiles& files, const std::string& path,
+                                                   const EventFileSpec& spec);
+
+}  // namespace aesim

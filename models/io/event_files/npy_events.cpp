@@ -1,0 +1,172 @@
+#include "event_files/npy_events.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "event_files/event_stamps.hpp"
+
+namespace aesim {
+namespace {
+
+constexpr char kNpyMagic[] = "\x93NUMPY";
+constexpr std::size_t kNpyRecordBytes = 13;
+constexpr std::size_t kNpyBufferBytes = std::size_t(1) << 16;
+// The header of format 1.0 is 10 bytes of preamble and a text padded to a multiple of 64 bytes.
+constexpr std::size_t kNpyHeaderBytes = 256;
+
+std::string header_text(std::uint64_t count) {
+  // The count is written in a fixed-width field so that finish() can overwrite it in place.
+  std::string text = fmt::format(
+      "{{'descr': [('x', '<i2'), ('y', '<i2'), ('t', '<i8'), ('p', '|b1')], 'fortran_order': False, "
+      "'shape': ({:20d},), }}",
+      count);
+  static_assert(kNpyHeaderBytes % 64 == 0, "NumPy aligns the data to 64 bytes");
+  if (text.size() > kNpyHeaderBytes - 10 - 1) throw std::logic_error(".npy header text too long");
+  text.resize(kNpyHeaderBytes - 10 - 1, ' ');
+  return text + '\n';
+}
+
+void put_le_bytes(char* p, std::uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) p[i] = static_cast<char>(v >> (8 * i));
+}
+
+std::uint64_t get_le_bytes(const unsigned char* p, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= std::uint64_t(p[i]) << (8 * i);
+  return v;
+}
+
+struct Field {
+  std::size_t offset = 0;
+  int bytes = 0;
+  bool is_signed = false, is_bool = false;
+};
+
+}  // namespace
+
+NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, std::ios::binary | std::ios::trunc), path_(path), tick_(tick) {
+  if (!out_) throw OutputError(fmt::format("cannot write '{}'", path));
+  const std::string text = header_text(0);
+  out_.write(kNpyMagic, 6);
+  const char version[4] = {1, 0, static_cast<char>(text.size() & 0xff), static_cast<char>(text.size() >> 8)};
+  out_.write(version, 4);
+  out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+  buffer_.reserve(kNpyBufferBytes + kNpyRecordBytes);
+}
+
+void NpyWriter::events(const AddressEvent* first, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const AddressEvent& e = first[i];
+    const std::size_t at = buffer_.size();
+    buffer_.resize(at + kNpyRecordBytes);
+    char* p = buffer_.data() + at;
+    put_le_bytes(p, e.x, 2);
+    put_le_bytes(p + 2, e.y, 2);
+    put_le_bytes(p + 4, stamp_us(e.t, tick_), 8);
+    p[12] = e.flags == kGhostEvent ? 0 : 1;
+    if (buffer_.size() >= kNpyBufferBytes) flush();
+  }
+  count_ += count;
+}
+
+void NpyWriter::flush() {
+  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+}
+
+void NpyWriter::finish() {
+  flush();
+  out_.seekp(10);
+  const std::string text = header_text(count_);
+  out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out_.close();
+  if (!out_) throw OutputError(fmt::format("writing '{}' failed", path_));
+}
+
+PolarityRecording decode_npy(const std::string& data, const std::string& label) {
+  const auto fail = [&](const std::string& why) { return InputError(fmt::format("event file '{}': {}", label, why)); };
+  if (data.size() < 10 || data.compare(0, 6, kNpyMagic, 6) != 0) throw fail("not a NumPy .npy file");
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  const int major = bytes[6];
+  std::size_t header_len = 0, at = 0;
+  if (major == 1) {
+    header_len = get_le_bytes(bytes + 8, 2);
+    at = 10;
+  } else if (major == 2 || major == 3) {
+    if (data.size() < 12) throw fail("truncated .npy header");
+    header_len = get_le_bytes(bytes + 8, 4);
+    at = 12;
+  } else {
+    throw fail(fmt::format(".npy format version {} is not supported", major));
+  }
+  if (header_len > data.size() - at) throw fail("truncated .npy header");
+  const std::string header = data.substr(at, header_len);
+  at += header_len;
+  if (header.find("'fortran_order': False") == std::string::npos) throw fail(".npy array in Fortran order is not supported");
+  // The structured dtype: ('name', 'type') pairs in the order they lie in a record.
+  const std::size_t descr = header.find("'descr':");
+  const std::size_t list_end = descr == std::string::npos ? descr : header.find(']', descr);
+  if (list_end == std::string::npos) throw fail("the .npy dtype is not a structured array of x, y, t, p");
+  std::map<std::string, Field> fields;
+  std::size_t record = 0;
+  for (std::size_t pos = header.find("('", descr); pos != std::string::npos && pos < list_end;
+       pos = header.find("('", pos + 1)) {
+    const std::size_t name_end = header.find('\'', pos + 2);
+    const std::size_t type_begin = name_end == std::string::npos ? name_end : header.find('\'', name_end + 1);
+    const std::size_t type_end = type_begin == std::string::npos ? type_begin : header.find('\'', type_begin + 1);
+    if (type_end == std::string::npos || type_end > list_end) throw fail("malformed .npy dtype");
+    const std::string name = header.substr(pos + 2, name_end - pos - 2);
+    const std::string type = header.substr(type_begin + 1, type_end - type_begin - 1);
+    Field f;
+    f.offset = record;
+    if (type.size() < 3 || (type[0] != '<' && type[0] != '|') || (type[1] != 'i' && type[1] != 'u' && type[1] != 'b') ||
+        type.size() > 3 || type[2] < '1' || type[2] > '8' || (type[2] != '1' && type[0] != '<')) {
+      throw fail(fmt::format("field '{}' has type '{}': aesim reads little-endian integers and bools", name, type));
+    }
+    f.bytes = type[2] - '0';
+    f.is_signed = type[1] == 'i';
+    f.is_bool = type[1] == 'b';
+    record += static_cast<std::size_t>(f.bytes);
+    fields[name] = f;
+  }
+  for (const char* name : {"x", "y", "t", "p"}) {
+    if (!fields.count(name)) throw fail(fmt::format("the .npy dtype has no field '{}' (tonic's x, y, t, p)", name));
+  }
+  const std::size_t shape = header.find("'shape': (");
+  if (shape == std::string::npos) throw fail("the .npy header has no shape");
+  unsigned long long n = 0;
+  char close = 0;
+  if (std::sscanf(header.c_str() + shape + 10, " %llu %c", &n, &close) != 2 || (close != ',' && close != ')')) {
+    throw fail("the .npy array is not one-dimensional");
+  }
+  if (close == ',' && header.compare(header.find(',', shape) + 1, 1, ")") != 0) {
+    throw fail("the .npy array is not one-dimensional");
+  }
+  if (record == 0 || n > (data.size() - at) / record) throw fail(fmt::format("truncated: {} records announced", n));
+  PolarityRecording rec;
+  rec.events.resize(n);
+  const auto value = [&](const unsigned char* r, const Field& f) -> std::int64_t {
+    const std::uint64_t raw = get_le_bytes(r + f.offset, f.bytes);
+    if (!f.is_signed || f.bytes == 8) return static_cast<std::int64_t>(raw);
+    const std::uint64_t sign = std::uint64_t(1) << (8 * f.bytes - 1);
+    return static_cast<std::int64_t>((raw ^ sign) - sign);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned char* r = bytes + at + i * record;
+    PolarityEvent& e = rec.events[i];
+    const std::int64_t x = value(r, fields["x"]), y = value(r, fields["y"]);
+    if (x < 0 || y < 0 || x >= 4096 || y >= 4096) throw fail(fmt::format("event {} at ({}, {}) is outside 4096x4096", i, x, y));
+    e.x = static_cast<std::int32_t>(x);
+    e.y = static_cast<std::int32_t>(y);
+    e.t_us = value(r, fields["t"]);
+    e.on = value(r, fields["p"]) != 0;
+  }
+  return rec;
+}
+
+}  // namespace aesim

@@ -1,0 +1,34 @@
+#pragma once
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "event_files/aedat4.hpp"
+#include "event_files/event_writer.hpp"
+
+namespace aesim {
+
+// NumPy .npy (format 1.0) holding a 1-D structured array with tonic's event dtype: x int16,
+// y int16, t int64 (us), p bool (1 for a normal event, 0 for a ghost), packed (13 bytes a record).
+// The record count is known only at the end, so the header reserves room for it and finish()
+// writes it: `path` is a file the writer owns (a temporary of OutputFiles).
+class NpyWriter : public EventFileWriter {
+ public:
+  NpyWriter(const std::string& path, double tick);
+  void events(const AddressEvent* first, std::size_t count) override;
+  void finish() override;
+
+ private:
+  void flush();
+  std::ofstream out_;
+  std::string path_;
+  double tick_;
+  std::uint64_t count_ = 0;
+  std::vector<char> buffer_;
+};
+
+// Reads a .npy structured array with fields x, y, t (integers) and p (bool or integer), in any
+// order and little-endian widths; the file records no array size. Throws InputError naming `label`.
+PolarityRecording decode_npy(const std::string& data, const std::string& label);
+
+}  // namespace aesim

@@ -1,0 +1,282 @@
+// The field's event files (SPEC section 5): AEDAT 4.0, NumPy .npy with tonic's dtype and HDF5 in
+// the DSEC layout, each checked at the byte level against its published layout and read back by
+// every command that reads events. (tests/python reads them with NumPy, h5py and FlatBuffers'
+// Python code: readers that are not aesim's.)
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+
+#include <flatbuffers/flatbuffers.h>
+#include <gtest/gtest.h>
+
+#include "IOHeader_generated.h"
+#include "errors/input_error.hpp"
+#include "event_files/aedat4.hpp"
+#include "event_files/event_file.hpp"
+#include "event_files/event_writer.hpp"
+#include "event_files/npy_events.hpp"
+#include "events_generated.h"
+#include "output/atomic_file.hpp"
+#include "support/temp_dir_test.hpp"
+
+namespace aesim {
+namespace {
+namespace fs = std::filesystem;
+
+class EventFormats : public testing::TempDirTest {
+ protected:
+  // Events of a 64x64 array in 32x32 tiles: times in whole microseconds, one ghost.
+  static std::vector<AddressEvent> sample(const AddressMap& map) {
+    const struct {
+      std::uint32_t x, y;
+      double t;
+      bool ghost;
+    } given[] = {{0, 0, 0.0, false}, {37, 2, 1e-6, false}, {5, 40, 2.5e-3, true}, {63, 63, 1.0, false}, {63, 63, 1.0, false}};
+    std::vector<AddressEvent> out;
+    for (const auto& g : given) {
+      AddressEvent e = map.event_at({g.x, g.y});
+      e.t = g.t;
+      e.flags = g.ghost ? kGhostEvent : kNormalEvent;
+      out.push_back(e);
+    }
+    return out;
+  }
+
+  std::string write(const std::string& name, const std::vector<AddressEvent>& events,
+                    Aedat4Compression compression = Aedat4Compression::Lz4) {
+    EventFileSpec spec;
+    spec.array = ArrayParams{};
+    spec.sensor = {{"array.rows", "64"}, {"array.cols", "64"}, {"array.tile_rows", "32"}, {"array.tile_cols", "32"},
+                   {"pixel.c_int", "1e-13"}};
+    spec.duration = 1.002;
+    spec.compression = compression;
+    const std::string path = (dir_ / name).string();
+    OutputFiles files;
+    auto writer = open_event_writer(files, path, spec);
+    writer->events(events.data(), events.size());
+    writer->finish();
+    files.commit();
+    return path;
+  }
+
+  static std::string slurp(const std::string& path) { return testing::slurp(path); }
+};
+
+TEST_F(EventFormats, EveryFormatReadsBackEventForEventWithItsArray) {
+  const AddressMap map{ArrayParams{}};
+  const std::vector<AddressEvent> events = sample(map);
+  for (const std::string name : {"e.aedat", "e.aedat2", "e.aedat4", "n.aedat4", "e.npy", "e.h5"}) {
+    const std::string path =
+        write(name, events, name[0] == 'n' ? Aedat4Compression::None : Aedat4Compression::Lz4);
+    const EventRecording rec = load_events(path);
+    ASSERT_EQ(rec.events.size(), events.size()) << name;
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      EXPECT_EQ(rec.events[i].x, events[i].x) << name << " event " << i;
+      EXPECT_EQ(rec.events[i].y, events[i].y) << name << " event " << i;
+      if (name != "e.npy") {  // a .npy records no tiles
+        EXPECT_EQ(rec.events[i].tile, events[i].tile) << name << " event " << i;
+        EXPECT_EQ(rec.events[i].bus_address, events[i].bus_address) << name << " event " << i;
+      }
+      EXPECT_DOUBLE_EQ(rec.events[i].t, events[i].t) << name << " event " << i;
+      // aesim's AEDAT 2.0 layout has no polarity bit: a ghost reads back as an event.
+      const bool aedat2 = name == "e.aedat" || name == "e.aedat2";
+      const std::uint8_t flags = aedat2 ? std::uint8_t{kNormalEvent} : events[i].flags;
+      EXPECT_EQ(rec.events[i].flags, flags) << name << " event " << i;
+    }
+    // .npy cannot carry the array (NumPy refuses extra header keys): the events' span stands in.
+    EXPECT_EQ(rec.size_recorded, name != "e.npy") << name;
+    EXPECT_EQ(rec.width, 64) << name;
+    EXPECT_EQ(rec.tiles, name == "e.npy" ? 1 : 4) << name;
+  }
+}
+
+TEST_F(EventFormats, NpyIsFormatOneWithTonicsPackedDtype) {
+  const AddressMap map{ArrayParams{}};
+  const std::string data = slurp(write("e.npy", sample(map)));
+  // 10 bytes of preamble and the header text make 256 (NumPy aligns data to 64); 13-byte records.
+  ASSERT_EQ(data.size(), 256u + 5 * 13);
+  EXPECT_EQ(data.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
+  EXPECT_EQ(static_cast<unsigned char>(data[8]) | (static_cast<unsigned char>(data[9]) << 8), 246);
+  const std::string header = data.substr(10, 246);
+  EXPECT_NE(header.find("'descr': [('x', '<i2'), ('y', '<i2'), ('t', '<i8'), ('p', '|b1')]"), std::string::npos);
+  EXPECT_NE(header.find("'fortran_order': False"), std::string::npos);
+  EXPECT_NE(header.find("5,)"), std::string::npos);
+  EXPECT_EQ(header.back(), '\n');
+  // Event 2: x = 5, y = 40, t = 2500 us, a ghost (p = 0), little-endian.
+  const std::string r = data.substr(256 + 2 * 13, 13);
+  EXPECT_EQ(r, std::string("\x05\x00\x28\x00\xc4\x09\x00\x00\x00\x00\x00\x00\x00", 13));
+  EXPECT_EQ(data[256 + 3 * 13 + 12], 1);  // event 3 is normal
+}
+
+TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
+  const AddressMap map{ArrayParams{}};
+  for (const Aedat4Compression c : {Aedat4Compression::None, Aedat4Compression::Lz4}) {
+    const std::string data = slurp(write("e.aedat4", sample(map), c));
+    ASSERT_EQ(data.compare(0, 14, "#!AER-DAT4.0\r\n"), 0);
+    const auto* b = reinterpret_cast<const std::uint8_t*>(data.data());
+    const std::uint32_t header_size = b[14] | (b[15] << 8) | (b[16] << 16) | (b[17] << 24);
+    // Size-prefixed: the size, the root offset, then the file identifier.
+    EXPECT_EQ(data.substr(22, 4), "IOHE");
+    const dv::IOHeader* h = dv::GetSizePrefixedIOHeader(b + 14);
+    EXPECT_EQ(h->compression(), c == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE);
+    EXPECT_EQ(h->dataTablePosition(), -1);
+    const std::string info = h->infoNode()->str();
+    EXPECT_NE(info.find("<attr key=\"typeIdentifier\" type=\"string\">EVTS</attr>"), std::string::npos);
+    EXPECT_NE(info.find("<attr key=\"sizeX\" type=\"int\">64</attr>"), std::string::npos);
+    EXPECT_NE(info.find("<attr key=\"aesim.sensor.pixel.c_int\" type=\"string\">1e-13</attr>"), std::string::npos);
+    // One packet: stream 0, its size, then the body to the end of the file.
+    const std::size_t at = 14 + 4 + header_size;
+    ASSERT_GE(data.size(), at + 8);
+    EXPECT_EQ(b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) | (b[at + 3] << 24), 0);
+    const std::uint32_t size = b[at + 4] | (b[at + 5] << 8) | (b[at + 6] << 16) | (b[at + 7] << 24);
+    EXPECT_EQ(data.size(), at + 8 + size);
+    if (c == Aedat4Compression::Lz4) {
+      EXPECT_EQ(data.substr(at + 8, 4), std::string("\x04\x22\x4d\x18", 4));  // an LZ4 frame
+    } else {
+      EXPECT_EQ(data.substr(at + 8 + 8, 4), "EVTS");
+      const dv::EventPacket* p = dv::GetSizePrefixedEventPacket(b + at + 8);
+      ASSERT_EQ(p->elements()->size(), 5u);
+      const dv::Event* e = p->elements()->Get(2);
+      EXPECT_EQ(e->timestamp(), 2500);
+      EXPECT_EQ(e->x(), 5);
+      EXPECT_EQ(e->y(), 40);
+      EXPECT_FALSE(e->polarity());
+      EXPECT_EQ(sizeof(dv::Event), 16u);
+    }
+  }
+}
+
+TEST_F(EventFormats, AnotherRecordersAedat4KeepsItsPolarityAsEvents) {
+  // A file as DV writes it for a 346x260 camera: no aesim parameters, an OFF event is a real OFF
+  // event (not a ghost), and a second stream of another type is skipped.
+  flatbuffers::FlatBufferBuilder fbb;
+  const std::string xml =
+      "<dv version=\"2.0\"><node name=\"outInfo\" path=\"/outInfo/\">"
+      "<node name=\"0\" path=\"/outInfo/0/\"><attr key=\"typeIdentifier\" type=\"string\">FRME</attr></node>"
+      "<node name=\"1\" path=\"/outInfo/1/\"><attr key=\"typeIdentifier\" type=\"string\">EVTS</attr>"
+      "<node name=\"info\" path=\"/outInfo/1/info/\"><attr key=\"sizeX\" type=\"int\">346</attr>"
+      "<attr key=\"sizeY\" type=\"int\">260</attr></node></node></node></dv>";
+  dv::FinishSizePrefixedIOHeaderBuffer(fbb, dv::CreateIOHeader(fbb, dv::CompressionType_NONE, -1, fbb.CreateString(xml)));
+  std::string file = "#!AER-DAT4.0\r\n" + std::string(reinterpret_cast<const char*>(fbb.GetBufferPointer()), fbb.GetSize());
+  const auto packet = [&](std::int32_t stream, const std::string& body) {
+    for (std::uint32_t v : {static_cast<std::uint32_t>(stream), static_cast<std::uint32_t>(body.size())}) {
+      for (int i = 0; i < 4; ++i) file += static_cast<char>(v >> (8 * i));
+    }
+    file += body;
+  };
+  packet(0, std::string(40, '\x7f'));  // a frame packet aesim does not decode
+  flatbuffers::FlatBufferBuilder events;
+  const std::vector<dv::Event> e = {dv::Event(10, 345, 259, false), dv::Event(20, 0, 0, true)};
+  dv::FinishSizePrefixedEventPacketBuffer(events, dv::CreateEventPacket(events, events.CreateVectorOfStructs(e)));
+  packet(1, std::string(reinterpret_cast<const char*>(events.GetBufferPointer()), events.GetSize()));
+  const EventRecording rec = decode_events(file, "dv.aedat4", EventFormat::Aedat4);
+  ASSERT_EQ(rec.events.size(), 2u);
+  EXPECT_EQ(rec.width, 346);
+  EXPECT_EQ(rec.height, 260);
+  EXPECT_TRUE(rec.size_recorded);
+  EXPECT_EQ(rec.events[0].x, 345u);
+  EXPECT_EQ(rec.events[0].flags, kNormalEvent);
+  EXPECT_DOUBLE_EQ(rec.events[1].t, 20e-6);
+}
+
+TEST_F(EventFormats, MalformedFilesAreOneLineErrorsNamingTheFile) {
+  const AddressMap map{ArrayParams{}};
+  const std::string aedat4 = slurp(write("e.aedat4", sample(map)));
+  const std::string npy = slurp(write("e.npy", sample(map)));
+  const auto refused = [](const std::string& data, EventFormat f, const std::string& words) {
+    try {
+      decode_events(data, "bad", f);
+      ADD_FAILURE() << "accepted: " << words;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("'bad'"), std::string::npos) << what;
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  };
+  refused(aedat4.substr(0, aedat4.size() - 3), EventFormat::Aedat4, "truncated");
+  refused(aedat4.substr(0, 20), EventFormat::Aedat4, "truncated in the IOHeader");
+  refused(std::string("#!AER-DAT4.0\r\n\x08\x00\x00\x00garbage!", 26), EventFormat::Aedat4, "not a valid FlatBuffer");
+  std::string corrupt = aedat4;
+  for (std::size_t i = corrupt.size() - 20; i < corrupt.size(); ++i) corrupt[i] = '\xff';
+  refused(corrupt, EventFormat::Aedat4, "packet 0");
+  refused("#!AER-DAT2.0\r\n", EventFormat::Aedat4, "not AEDAT 4.0");
+  refused(npy.substr(0, npy.size() - 1), EventFormat::Npy, "truncated");
+  std::string other_dtype = npy;
+  other_dtype.replace(other_dtype.find("('p', '|b1')"), 12, "('q', '|b1')");
+  refused(other_dtype, EventFormat::Npy, "no field 'p'");
+  std::string big_endian = npy;
+  big_endian.replace(big_endian.find("('t', '<i8')"), 12, "('t', '>i8')");
+  refused(big_endian, EventFormat::Npy, "little-endian");
+  refused("not numpy at all", EventFormat::Npy, "not a NumPy .npy file");
+  std::ofstream(dir_ / "fake.h5") << "not hdf5";
+  try {
+    load_events((dir_ / "fake.h5").string());
+    ADD_FAILURE() << "accepted a fake .h5";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not an HDF5 file"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(EventFormats, EveryCommandThatReadsEventsReadsEveryFormatItWrites) {
+  const std::string scene = std::string(AESIM_SOURCE_DIR) + "/scenes/letters/A.pgm";
+  std::map<std::string, std::string> recon;
+  for (const std::string out : {"e.aedat", "e.aedat4", "e.npy", "e.h5"}) {
+    const testing::Outcome run = aesim("run --scene " + scene + " --duration 300ms --out " + out);
+    ASSERT_EQ(run.status, 0) << run.err;
+    const std::string size = out == "e.npy" ? " --size 64x64" : "";
+    const testing::Outcome r = aesim("recon " + out + " -o " + out + ".pgm" + size);
+    ASSERT_EQ(r.status, 0) << out << ": " << r.err;
+    recon[out] = testing::slurp(dir_ / (out + ".pgm"));
+    const testing::Outcome info = aesim("info " + out);
+    ASSERT_EQ(info.status, 0) << out << ": " << info.err;
+    EXPECT_NE(info.out.find(out + ": "), std::string::npos) << info.out;
+    const testing::Outcome c = aesim("classify " + out + " --json" + size);
+    ASSERT_EQ(c.status, 0) << out << ": " << c.err;
+    EXPECT_NE(c.out.find("\"winner\": \"A\""), std::string::npos) << out << ": " << c.out;
+  }
+  for (const auto& [name, image] : recon) EXPECT_EQ(image, recon["e.aedat"]) << name;
+}
+
+TEST_F(EventFormats, BadOutputsAreRefusedBeforeTheRunAndLeaveNothing) {
+  const struct {
+    std::string args, words;
+  } cases[] = {{"--out e.txt", "unknown event file type"},
+               {"--out e.npy --aedat-layout dvs128", "AEDAT 2.0"},
+               {"--out e.aedat4 --aedat4-compression zip", "--aedat4-compression"},
+               {"--out e.csv", "--csv"},
+               {"--out e.h5 --set sim.duration=5000s", "4294 s"}};
+  for (const auto& c : cases) {
+    const testing::Outcome o = aesim("run --scene " + std::string(AESIM_SOURCE_DIR) + "/scenes/uniform.pgm " + c.args);
+    EXPECT_EQ(o.status, 2) << c.args;
+    EXPECT_NE(o.err.find(c.words), std::string::npos) << c.args << ": " << o.err;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 0) << c.args;
+  }
+}
+
+TEST_F(EventFormats, EmulatesHeaderDescribesItsEventsNotASimulation) {
+  // 24 frames at 10 Hz: the header says so, and carries no simulation defaults (sim.duration 1 s,
+  // scene.frame_rate 25 Hz) that the outside check found there.
+  const testing::Outcome o = aesim("emulate " + std::string(AESIM_SOURCE_DIR) + "/scenes/moving_disc --out m.aedat");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string data = testing::slurp(dir_ / "m.aedat");
+  const std::string header = data.substr(0, data.find("\r\n#!END") == std::string::npos ? 4000 : data.find("#!END"));
+  EXPECT_NE(header.find("# aesim.sensor.emulate.frames: 24\r\n"), std::string::npos);
+  EXPECT_NE(header.find("# aesim.sensor.emulate.frame_rate: 10Hz\r\n"), std::string::npos);
+  EXPECT_NE(header.find("# aesim.sensor.emulate.duration: 2.4s\r\n"), std::string::npos);
+  EXPECT_NE(header.find("# aesim.sensor.array.rows: 64\r\n"), std::string::npos);
+  EXPECT_EQ(header.find("sim.duration"), std::string::npos);
+  EXPECT_EQ(header.find("scene.frame_rate"), std::string::npos);
+  EXPECT_EQ(header.find("pixel."), std::string::npos);
+  // It still reads back, and as .h5 too.
+  EXPECT_EQ(aesim("info m.aedat").status, 0);
+  ASSERT_EQ(aesim("emulate " + std::string(AESIM_SOURCE_DIR) + "/scenes/moving_disc --out m.h5").status, 0);
+  const testing::Outcome info = aesim("info m.h5");
+  EXPECT_EQ(info.status, 0) << info.err;
+}
+
+}  // namespace
+}  // namespace aesim
