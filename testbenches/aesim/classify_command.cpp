@@ -14,7 +14,7 @@
 
 namespace aesim {
 
-int classify_command(ClassifyOptions opt) {
+nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* given) {
   if (opt.templates.empty()) opt.templates = data_dir() + "/scenes/templates/letters";
   if (!(opt.classifier.k > 0)) throw InputError("--k: must be positive");
   if (opt.classifier.max_events == 0) throw InputError("--max-events: must be at least 1");
@@ -35,15 +35,14 @@ int classify_command(ClassifyOptions opt) {
                                      templates[c.outer].name));
     }
   }
-  for (const std::string& w : warnings) std::fprintf(stderr, "aesim classify: warning: %s\n", w.c_str());
   const std::optional<ArraySize> size =
       opt.size.empty() ? std::nullopt : std::optional<ArraySize>(parse_array_size(opt.size, "--size"));
-  const EventRecording rec = load_events(opt.events, size);
+  const EventRecording rec = given ? *given : load_events(opt.events, size);
   // The size scales events onto the templates: guessed from the events it would change the
   // decision with the events that happened to fire (a CSV records no size).
   if (!rec.size_recorded) {
-    throw InputError(fmt::format("event file '{}' records no array size (a CSV does not): give --size WIDTHxHEIGHT",
-                                 opt.events));
+    throw InputError(fmt::format("event file '{}' records no array size (a CSV or .npy does not): give --size "
+                                 "WIDTHxHEIGHT", opt.events));
   }
   // Events in template coordinates: pixel centres scaled from the recording's array.
   const double sx = static_cast<double>(templates.front().width) / std::max(1, rec.width);
@@ -57,40 +56,55 @@ int classify_command(ClassifyOptions opt) {
   const double seconds = static_cast<double>(r.events_used) * static_cast<double>(templates.size()) *
                          opt.cycles_per_template / clock;
   const std::string winner = r.winner >= 0 ? templates[static_cast<std::size_t>(r.winner)].name : "";
+  nlohmann::json j = {{"winner", r.winner >= 0 ? nlohmann::json(winner) : nlohmann::json(nullptr)},
+                      {"events_used", r.events_used},
+                      {"events_available", events.size()},
+                      {"restarts", r.restarts},
+                      {"additions", r.additions},
+                      {"comparisons", r.comparisons},
+                      {"ranks", opt.classifier.ranks},
+                      {"centred_templates", opt.classifier.center_templates},
+                      {"shift", {r.shift_x, r.shift_y}},
+                      {"estimated_time_s", seconds},
+                      {"clock_hz", clock},
+                      {"cycles_per_template", opt.cycles_per_template},
+                      {"warnings", warnings},
+                      {"scores", nlohmann::json::object()},
+                      {"ranks_by_template", nlohmann::json::object()}};
+  for (std::size_t i = 0; i < templates.size(); ++i) {
+    j["scores"][templates[i].name] = r.scores[i];
+    j["ranks_by_template"][templates[i].name] = templates[i].rank;
+  }
+  return j;
+}
+
+int classify_command(ClassifyOptions opt) {
+  const nlohmann::json j = classify_recording(opt);
+  for (const auto& w : j["warnings"]) {
+    std::fprintf(stderr, "aesim classify: warning: %s\n", w.get<std::string>().c_str());
+  }
   if (opt.json) {
-    nlohmann::json j = {{"winner", r.winner >= 0 ? nlohmann::json(winner) : nlohmann::json(nullptr)},
-                        {"events_used", r.events_used},
-                        {"events_available", events.size()},
-                        {"restarts", r.restarts},
-                        {"additions", r.additions},
-                        {"comparisons", r.comparisons},
-                        {"ranks", opt.classifier.ranks},
-                        {"centred_templates", opt.classifier.center_templates},
-                        {"shift", {r.shift_x, r.shift_y}},
-                        {"estimated_time_s", seconds},
-                        {"warnings", warnings},
-                        {"scores", nlohmann::json::object()}};
-    for (std::size_t i = 0; i < templates.size(); ++i) {
-      j["scores"][templates[i].name] = r.scores[i];
-      j["ranks_by_template"][templates[i].name] = templates[i].rank;
-    }
     fmt::print("{}\n", j.dump(2));
     return 0;
   }
-  if (r.winner >= 0) {
-    fmt::print("winner: {} after {} of {} events ({} restarts)\n", winner, r.events_used, events.size(), r.restarts);
+  if (!j["winner"].is_null()) {
+    fmt::print("winner: {} after {} of {} events ({} restarts)\n", j["winner"].get<std::string>(),
+               j["events_used"].get<std::uint64_t>(), j["events_available"].get<std::uint64_t>(),
+               j["restarts"].get<std::uint64_t>());
   } else {
-    fmt::print("winner: none after {} events ({} restarts)\n", r.events_used, r.restarts);
+    fmt::print("winner: none after {} events ({} restarts)\n", j["events_used"].get<std::uint64_t>(),
+               j["restarts"].get<std::uint64_t>());
   }
   std::string scores;
-  for (std::size_t i = 0; i < templates.size(); ++i) {
-    scores += fmt::format("{}{} {:.2f} (rank {:.2f})", i ? ", " : "", templates[i].name, r.scores[i],
-                          opt.classifier.ranks ? templates[i].rank : 1.0);
+  for (const auto& [name, score] : j["scores"].items()) {
+    scores += fmt::format("{}{} {:.2f} (rank {:.2f})", scores.empty() ? "" : ", ", name, score.get<double>(),
+                          j["ranks"].get<bool>() ? j["ranks_by_template"][name].get<double>() : 1.0);
   }
   fmt::print("  scores: {}\n", scores);
-  fmt::print("  {} additions, {} comparisons\n", r.additions, r.comparisons);
-  fmt::print("  estimated {} on a {} processor at {} cycles per template per event\n", format_si(seconds, "s"),
-             format_si(clock, "Hz"), opt.cycles_per_template);
+  fmt::print("  {} additions, {} comparisons\n", j["additions"].get<std::uint64_t>(), j["comparisons"].get<std::uint64_t>());
+  fmt::print("  estimated {} on a {} processor at {} cycles per template per event\n",
+             format_si(j["estimated_time_s"].get<double>(), "s"), format_si(j["clock_hz"].get<double>(), "Hz"),
+             j["cycles_per_template"].get<double>());
   return 0;
 }
 

@@ -5,6 +5,10 @@
 
 #include "bandwidth/image_bandwidth.hpp"
 #include "classify/template_classifier.hpp"
+#include "emulator/emulator.hpp"
+#include "event_files/event_file.hpp"
+
+#include <nlohmann/json.hpp>
 
 namespace aesim {
 
@@ -18,6 +22,10 @@ struct ClassifyOptions {
   bool no_ranks = false, json = false;
   double cycles_per_template = 100;
 };
+
+// The recogniser's decision as `aesim classify --json` prints it, on the events given or else
+// the file the options name (the command and the Python module share it). Throws InputError.
+nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* given = nullptr);
 
 struct CompareOptions {
   std::string sensor = "aloha";
@@ -36,6 +44,16 @@ struct EmulateOptions {
   long long events = 0;
   std::uint64_t seed = 1;
 };
+
+// What the emulator made of its input: the settings the options resolve to, the frames, the events.
+struct EmulatedRun {
+  EmulatorSettings settings;
+  std::vector<Image> frames;
+  std::vector<EmulatedEvent> events;
+};
+// Checks the options and emulates the frames given, or else the input the options name (the
+// command and the Python module share it). Throws InputError.
+EmulatedRun emulate_frames(const EmulateOptions& opt, std::vector<Image> given = {});
 
 struct ReconOptions {
   std::string events, output, window, mode = "histogram", size;

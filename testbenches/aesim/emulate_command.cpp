@@ -31,8 +31,9 @@ void check_probability(double p, const char* name) {
 
 }  // namespace
 
-int emulate_command(EmulateOptions opt) {
-  EmulatorSettings s;
+EmulatedRun emulate_frames(const EmulateOptions& opt, std::vector<Image> given) {
+  EmulatedRun out;
+  EmulatorSettings& s = out.settings;
   s.behaviour = parse_behaviour(opt.behaviour);
   if (!(opt.threshold >= 0 && opt.threshold <= 255)) throw InputError("--threshold: a grey level from 0 to 255");
   s.threshold = opt.threshold / 255.0;
@@ -65,16 +66,16 @@ int emulate_command(EmulateOptions opt) {
   s.seed = opt.seed;
   s.max_events = opt.max_events;
 
-  std::vector<Image> frames;
-  std::vector<std::string> inputs = {opt.input};
+  std::vector<Image>& frames = out.frames;
   double rate = 25;
-  if (std::filesystem::path(opt.input).extension() == ".y4m") {
+  if (!given.empty()) {
+    frames = std::move(given);
+  } else if (std::filesystem::path(opt.input).extension() == ".y4m") {
     Y4mVideo video = read_y4m(opt.input);
     frames = std::move(video.frames);
     rate = video.frame_rate;
   } else {
     const SceneFiles files = find_scene(opt.input);
-    inputs.insert(inputs.end(), files.frames.begin(), files.frames.end());
     SensorConfig c;
     apply_scene_settings(files, c);
     rate = c.scene.frame_rate;
@@ -84,6 +85,17 @@ int emulate_command(EmulateOptions opt) {
   if (s.width == 0) {
     s.width = frames.front().width;
     s.height = frames.front().height;
+  }
+  out.events = emulate(frames, s);
+  return out;
+}
+
+int emulate_command(EmulateOptions opt) {
+  // Outputs are checked before the work, against every input file (a folder's frames too).
+  std::vector<std::string> inputs = {opt.input};
+  if (std::filesystem::path(opt.input).extension() != ".y4m") {
+    const SceneFiles files = find_scene(opt.input);
+    inputs.insert(inputs.end(), files.frames.begin(), files.frames.end());
   }
   if (!opt.recon.empty()) check_image_path(opt.recon);
   const bool no_outputs = opt.queue.empty() && opt.out.empty() && opt.recon.empty();
@@ -98,7 +110,10 @@ int emulate_command(EmulateOptions opt) {
   parse_aedat4_compression(opt.aedat4_compression);
   check_output_paths({{"--queue", opt.queue}, {"--out", opt.out}, {"--recon", opt.recon}}, inputs);
 
-  const std::vector<EmulatedEvent> events = emulate(frames, s);
+  const EmulatedRun run = emulate_frames(opt);
+  const EmulatorSettings& s = run.settings;
+  const std::vector<Image>& frames = run.frames;
+  const std::vector<EmulatedEvent>& events = run.events;
 
   // The imager as one tile, so the AEDAT address is (y << xbits) | x and aesim can read it back.
   SensorConfig sensor;

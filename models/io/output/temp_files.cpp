@@ -1,5 +1,7 @@
 #include "output/temp_files.hpp"
 
+#include "process/interrupt.hpp"
+
 #include <signal.h>
 #include <unistd.h>
 
@@ -34,11 +36,10 @@ struct Slot {
 };
 Slot g_slots[kSlots];
 volatile sig_atomic_t g_cooperative = 0;
-volatile sig_atomic_t g_interrupt = 0;
 
 void on_signal(int sig) {
   const int saved = errno;
-  g_interrupt = sig;
+  request_interrupt(sig);
   if (g_cooperative) {
     errno = saved;
     return;
@@ -108,6 +109,5 @@ void install_signal_cleanup() {
 
 Cooperative::Cooperative() { g_cooperative = 1; }
 Cooperative::~Cooperative() { g_cooperative = 0; }
-int interrupt_requested() { return g_interrupt; }
 
 }  // namespace aesim

@@ -1,6 +1,8 @@
 #pragma once
 #include <string>
 
+#include "process/interrupt.hpp"
+
 namespace aesim {
 
 // Temporary files and folders live beside their targets as `.NAME.aesim-tmp.HOST.PID`: hidden,
@@ -34,6 +36,5 @@ class Cooperative {
   Cooperative(const Cooperative&) = delete;
   Cooperative& operator=(const Cooperative&) = delete;
 };
-int interrupt_requested();  // the signal number, or 0
 
 }  // namespace aesim

@@ -108,10 +108,14 @@ std::vector<Image> read_frames(const SceneFiles& files) {
 }
 
 Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown) {
+  return load_scene(read_frames(files), array, shown);
+}
+
+Scene load_scene(const std::vector<Image>& frames, const ArrayParams& array, const SceneParams& shown) {
   Scene scene;
   scene.frame_period = 1.0 / shown.frame_rate;
   scene.loop = shown.loop;
-  for (const Image& img : read_frames(files)) {
+  for (const Image& img : frames) {
     scene.source_width = img.width;
     scene.source_height = img.height;
     scene.frames.push_back(resample_area(img, array.cols, array.rows));

@@ -43,6 +43,8 @@ std::vector<Image> read_frames(const SceneFiles& files);
 
 // The scene at the array's resolution (array.cols x array.rows, area resampling), shown as `shown` says.
 Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown);
+// The same from frames in memory (all of one size; the Python module's arrays).
+Scene load_scene(const std::vector<Image>& frames, const ArrayParams& array, const SceneParams& shown);
 
 // The frame shown from boundary k on (frame k starts at k * period): sequences loop, or hold
 // their last frame.

@@ -6,6 +6,8 @@
 #include "array/firing_schedule.hpp"
 #include "rungs/event_level_buses.hpp"
 #include "rungs/rung.hpp"
+#include "errors/input_error.hpp"
+#include "process/interrupt.hpp"
 #include "threads/worker_pool.hpp"
 
 namespace aesim {
@@ -75,6 +77,7 @@ class EventRung : public Rung {
       });
       from = until;
       if (from >= t_end) break;
+      if (const int sig = interrupt_requested()) throw Interrupted(sig);
       // Every later firing comes after `until`; what a bus still holds is the earliest undecided.
       double before = until;
       for (std::size_t t = 0; t < tiles; ++t) before = std::min(before, buses[t].held_since());
