@@ -62,6 +62,14 @@ int events_csv(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.csv", EventFormat::Csv); });
 }
 
+int aedat4(const std::uint8_t* data, std::size_t size) {
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat4", EventFormat::Aedat4); });
+}
+
+int npy(const std::uint8_t* data, std::size_t size) {
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.npy", EventFormat::Npy); });
+}
+
 int set_values(const std::uint8_t* data, std::size_t size) {
   std::vector<std::string> lines;
   std::istringstream in(bytes(data, size));

@@ -13,6 +13,8 @@ int photo(const std::uint8_t* data, std::size_t size);         // PNG and JPEG s
 int y4m(const std::uint8_t* data, std::size_t size);           // Y4M video for aesim emulate
 int aedat(const std::uint8_t* data, std::size_t size);         // AEDAT 2.0 event files
 int events_csv(const std::uint8_t* data, std::size_t size);    // event CSV files
+int aedat4(const std::uint8_t* data, std::size_t size);        // AEDAT 4.0 event files (FlatBuffers, LZ4)
+int npy(const std::uint8_t* data, std::size_t size);           // NumPy .npy event files
 int set_values(const std::uint8_t* data, std::size_t size);    // --set key=value lines with units
 int sensor_toml(const std::uint8_t* data, std::size_t size);   // sensor presets and scene.toml
 int sweep_spec(const std::uint8_t* data, std::size_t size);    // sweep specs
@@ -27,6 +29,7 @@ inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
                                       {"aedat", aedat},           {"events_csv", events_csv},
                                       {"set_values", set_values}, {"sensor_toml", sensor_toml},
                                       {"sweep_spec", sweep_spec}, {"receiver_toml", receiver_toml},
-                                      {"pixel_deck", pixel_deck}, {"photo", photo}};
+                                      {"pixel_deck", pixel_deck}, {"photo", photo},
+                                      {"aedat4", aedat4},         {"npy", npy}};
 
 }  // namespace aesim::fuzz

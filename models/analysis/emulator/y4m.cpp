@@ -9,22 +9,12 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
-#include "files/input_path.hpp"
+#include "files/input_file.hpp"
 #include "limits/limits.hpp"
 
 namespace aesim {
 
-Y4mVideo read_y4m(const std::string& path) {
-  if (!is_input_file(path, "video")) throw InputError(fmt::format("video '{}' not found", path));
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size > kMaxInputFileBytes) {
-    throw InputError(fmt::format("video '{}': {} bytes, more than the {} MiB aesim reads", path, size,
-                                 kMaxInputFileBytes >> 20));
-  }
-  std::ifstream in(path, std::ios::binary);
-  return decode_y4m(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
-}
+Y4mVideo read_y4m(const std::string& path) { return decode_y4m(read_input_file(path, "video"), path); }
 
 Y4mVideo decode_y4m(const std::string& data, const std::string& path) {
   auto fail = [&](const std::string& why) { throw InputError(fmt::format("video '{}': {}", path, why)); };

@@ -8,6 +8,7 @@ namespace aesim {
 constexpr long long kMaxArrayPixels = 1LL << 24;   // pixels in an array or an image: 4096 x 4096
 constexpr int kMaxTiles = 1 << 16;                 // tiles (each has its own bus and receiver)
 constexpr std::uintmax_t kMaxInputFileBytes = 1ULL << 28;  // 256 MiB: a scene image or frame
+constexpr std::uintmax_t kMaxEventFileBytes = 1ULL << 34;  // 16 GiB: an event file, read whole
 constexpr double kMaxFrameRate = 1e9;              // Hz, of any scene or video
 
 }  // namespace aesim

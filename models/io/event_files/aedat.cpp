@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "errors/input_error.hpp"
-#include "files/input_path.hpp"
+#include "files/input_file.hpp"
 #include "events/timestamps.hpp"
 
 namespace aesim {
@@ -120,9 +120,7 @@ void AedatWriter::flush() {
 }
 
 AedatFile read_aedat(const std::string& path) {
-  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
-  std::ifstream in(path, std::ios::binary);
-  return decode_aedat(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
+  return decode_aedat(read_input_file(path, "event file", kMaxEventFileBytes), path);
 }
 
 AedatFile decode_aedat(const std::string& data, const std::string& path) {

@@ -19,7 +19,7 @@
 #include "event_files/event_writer.hpp"
 #include "event_files/events_csv.hpp"
 #include "event_files/npy_events.hpp"
-#include "files/input_path.hpp"
+#include "files/input_file.hpp"
 
 namespace aesim {
 namespace {
@@ -162,11 +162,7 @@ EventRecording from_polarity(const PolarityRecording& in, const std::string& pat
   return rec;
 }
 
-std::string read_whole(const std::string& path) {
-  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+std::string read_whole(const std::string& path) { return read_input_file(path, "event file", kMaxEventFileBytes); }
 
 }  // namespace
 

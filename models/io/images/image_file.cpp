@@ -7,9 +7,7 @@
 #include <vector>
 
 #include <fmt/format.h>
-#ifdef AESIM_HAVE_PNG
 #include <png.h>
-#endif
 
 #include "errors/input_error.hpp"
 
@@ -24,7 +22,6 @@ std::vector<unsigned char> to_bytes(const Image& image) {
   return bytes;
 }
 
-#ifdef AESIM_HAVE_PNG
 void png_write_to_stream(png_structp png, png_bytep data, png_size_t length) {
   static_cast<std::ostream*>(png_get_io_ptr(png))->write(reinterpret_cast<const char*>(data),
                                                          static_cast<std::streamsize>(length));
@@ -49,29 +46,22 @@ void write_png(std::ostream& out, const Image& image) {
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
 }
-#endif
 
 }  // namespace
 
 void check_image_path(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".pgm") return;
-#ifdef AESIM_HAVE_PNG
   if (ext == ".png") return;
   throw InputError(fmt::format("image '{}': unsupported format (use .pgm or .png)", path));
-#else
-  throw InputError(fmt::format("image '{}': unsupported format (use .pgm; PNG needs libpng)", path));
-#endif
 }
 
 void write_image(std::ostream& out, const std::string& path_for_format, const Image& image) {
   check_image_path(path_for_format);
-#ifdef AESIM_HAVE_PNG
   if (std::filesystem::path(path_for_format).extension() == ".png") {
     write_png(out, image);
     return;
   }
-#endif
   const std::vector<unsigned char> bytes = to_bytes(image);
   out << "P5\n" << image.width << ' ' << image.height << "\n255\n";
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));

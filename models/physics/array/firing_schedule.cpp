@@ -21,11 +21,10 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
   xbits_ = static_cast<std::uint32_t>(map.xbits());
   std::vector<WakeCalendar::Entry> entries;
   std::vector<double> periods;
-  const std::uint32_t x0 = x0_, y0 = y0_;
-  const std::uint32_t x1 = std::min<std::uint32_t>(x0 + map.tile_cols(), cols_);
-  const std::uint32_t y1 = std::min<std::uint32_t>(y0 + map.tile_rows(), static_cast<std::uint32_t>(map.rows()));
-  for (std::uint32_t y = y0; y < y1; ++y) {
-    for (std::uint32_t x = x0; x < x1; ++x) {
+  const std::uint32_t x1 = std::min<std::uint32_t>(x0_ + map.tile_cols(), cols_);
+  const std::uint32_t y1 = std::min<std::uint32_t>(y0_ + map.tile_rows(), static_cast<std::uint32_t>(map.rows()));
+  for (std::uint32_t y = y0_; y < y1; ++y) {
+    for (std::uint32_t x = x0_; x < x1; ++x) {
       const std::uint32_t index = y * cols_ + x;
       const double current = photocurrents.current(0, index);
       const std::uint32_t boundary = boundary_after(0, index);

@@ -114,8 +114,7 @@ Image decode_png(const std::string& data, const std::string& path) {
   png_set_read_fn(png, &src, png_read_from);
   png_read_info(png, info);
   const png_uint_32 width = png_get_image_width(png, info), height = png_get_image_height(png, info);
-  too_large = width > 65535 || height > 65535 ||
-              static_cast<unsigned long long>(width) * height > 16777216ULL;
+  too_large = !scene_size_allowed(width, height);
   if (!too_large) {
     double gamma = 0;
     if (!png_get_valid(png, info, PNG_INFO_sRGB) && png_get_gAMA(png, info, &gamma) && gamma > 0 &&
@@ -172,7 +171,7 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   jpeg_read_header(&cinfo, TRUE);
   width = cinfo.image_width;
   height = cinfo.image_height;
-  too_large = width > 65535 || height > 65535 || static_cast<unsigned long long>(width) * height > 16777216ULL;
+  too_large = !scene_size_allowed(width, height);
   const bool cmyk = cinfo.jpeg_color_space == JCS_CMYK || cinfo.jpeg_color_space == JCS_YCCK;
   if (!too_large && !cmyk) {
     cinfo.out_color_space = cinfo.num_components == 1 ? JCS_GRAYSCALE : JCS_RGB;

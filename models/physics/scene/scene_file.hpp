@@ -10,5 +10,6 @@ std::string read_scene_file(const std::string& path);
 // Refuses an image larger than aesim reads (sides up to 65535, at most kMaxArrayPixels pixels),
 // before any memory is taken for it.
 void check_scene_size(long long width, long long height, const std::string& path);
+bool scene_size_allowed(long long width, long long height);  // the same test, as a value
 
 }  // namespace aesim

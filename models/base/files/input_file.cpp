@@ -1,0 +1,27 @@
+#include "files/input_file.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/input_path.hpp"
+
+namespace aesim {
+
+std::string read_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
+  if (!is_input_file(path, what)) throw InputError(fmt::format("{} '{}' not found", what, path));
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > max_bytes) {
+    throw InputError(fmt::format("{} '{}': {} bytes, more than the {} MiB aesim reads", what, path, size,
+                                 max_bytes >> 20));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{} '{}' cannot be opened", what, path));
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace aesim
