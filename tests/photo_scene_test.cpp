@@ -1,12 +1,13 @@
-// PNG and JPEG scenes: code values decoded to linear light with the sRGB curve (or as the PNG's
+// PNG, JPEG and OpenEXR scenes: code values decoded to linear light with the sRGB curve (or as the PNG's
 // gAMA says), colour reduced to Rec. 709 luminance, against values computed by hand from the
-// sRGB standard; malformed and oversized files refused in one line; PNG frame folders; and
-// `aesim run` on a PNG.
+// sRGB standard; OpenEXR taken as linear light; malformed and oversized files refused in one line;
+// PNG and EXR frame folders; and `aesim run` on a PNG and an EXR.
 #include <csetjmp>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include <ImfRgbaFile.h>
 #include <gtest/gtest.h>
 #include <jpeglib.h>
 #include <png.h>
@@ -209,6 +210,55 @@ TEST_F(PhotoFiles, PngFrameFoldersAndRunsWork) {
   ASSERT_EQ(o.status, 0) << o.err;
   // Full scale everywhere on the 64x64 aloha array: every pixel at f_max (10 Hz) for 0.2 s.
   EXPECT_NE(testing::slurp(dir_ / "s.json").find("\"pixel_rate_max_hz\""), std::string::npos);
+}
+
+// An OpenEXR file written by OpenEXR's own writer (half floats: 0.25, 1 and 20 are exact).
+void write_exr(const std::string& path, int width, int height, const std::vector<Imf::Rgba>& pixels,
+               Imf::RgbaChannels channels = Imf::WRITE_RGBA) {
+  Imf::RgbaOutputFile out(path.c_str(), width, height, channels);
+  out.setFrameBuffer(pixels.data(), 1, static_cast<std::size_t>(width));
+  out.writePixels(height);
+}
+
+TEST_F(PhotoFiles, OpenExrIsLinearLightAsItIs) {
+  // Grey 0.25, an HDR 20 (twenty times full scale), pure red, pure green, pure blue, black.
+  const std::vector<Imf::Rgba> px = {{0.25f, 0.25f, 0.25f, 1.0f}, {20.0f, 20.0f, 20.0f, 0.5f}, {1.0f, 0.0f, 0.0f, 1.0f},
+                                     {0.0f, 1.0f, 0.0f, 0.0f},    {0.0f, 0.0f, 1.0f, 1.0f},    {0.0f, 0.0f, 0.0f, 1.0f}};
+  write_exr((dir_ / "hdr.exr").string(), 3, 2, px);
+  const Image img = read_image((dir_ / "hdr.exr").string());
+  ASSERT_EQ(img.width, 3);
+  ASSERT_EQ(img.height, 2);
+  const std::vector<double> expected = {0.25, 20.0, 0.2126, 0.7152, 0.0722, 0.0};  // Rec. 709, alpha ignored
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(img.pixels[i], expected[i], 1e-9) << i;
+  // A luminance-only file: its Y as it is.
+  write_exr((dir_ / "y.exr").string(), 2, 1, {{0.5f, 0.5f, 0.5f, 1.0f}, {4.0f, 4.0f, 4.0f, 1.0f}}, Imf::WRITE_Y);
+  const Image y = read_image((dir_ / "y.exr").string());
+  EXPECT_NEAR(y.pixels[0], 0.5, 1e-3);
+  EXPECT_NEAR(y.pixels[1], 4.0, 4e-3);
+  // Negative light, a truncated file and a foreign one are one-line errors naming the file.
+  write_exr((dir_ / "neg.exr").string(), 1, 1, {{-1.0f, -1.0f, -1.0f, 1.0f}});
+  const std::string whole = testing::slurp(dir_ / "hdr.exr");
+  write("cut.exr", whole.substr(0, whole.size() / 2));
+  write("text.exr", "not an exr file at all");
+  for (const char* bad : {"neg.exr", "cut.exr", "text.exr"}) {
+    try {
+      read_image((dir_ / bad).string());
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(bad), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+  // A folder of EXR frames, and a run on an EXR scene.
+  std::filesystem::create_directories(dir_ / "frames");
+  for (int f = 0; f < 2; ++f) {
+    write_exr((dir_ / ("frames/f_" + std::to_string(f) + ".exr")).string(), 8, 8,
+              std::vector<Imf::Rgba>(64, Imf::Rgba(0.5f * f, 0.5f * f, 0.5f * f, 1.0f)));
+  }
+  EXPECT_EQ(find_scene((dir_ / "frames").string()).frames.size(), 2u);
+  const testing::Outcome o = aesim("run --scene hdr.exr --duration 0.1 --summary s.json");
+  EXPECT_EQ(o.status, 0) << o.err;
 }
 
 }  // namespace

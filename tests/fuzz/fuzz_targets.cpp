@@ -15,6 +15,7 @@
 #include "emulator/y4m.hpp"
 #include "event_files/event_file.hpp"
 #include "scene/netpbm.hpp"
+#include "scene/exr_image.hpp"
 #include "scene/photo_image.hpp"
 #include "deck/pixel_deck.hpp"
 #include "description/receiver_description.hpp"
@@ -48,6 +49,10 @@ int photo(const std::uint8_t* data, std::size_t size) {
   const std::string in = bytes(data, size);
   expect_result_or_input_error([&] { decode_png(in, "fuzz.png"); });
   return expect_result_or_input_error([&] { decode_jpeg(in, "fuzz.jpg"); });
+}
+
+int exr(const std::uint8_t* data, std::size_t size) {
+  return expect_result_or_input_error([&] { decode_exr(bytes(data, size), "fuzz.exr"); });
 }
 
 int y4m(const std::uint8_t* data, std::size_t size) {

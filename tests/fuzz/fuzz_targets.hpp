@@ -10,6 +10,7 @@ namespace aesim::fuzz {
 
 int netpbm(const std::uint8_t* data, std::size_t size);        // PGM and PFM scenes
 int photo(const std::uint8_t* data, std::size_t size);         // PNG and JPEG scenes
+int exr(const std::uint8_t* data, std::size_t size);           // OpenEXR scenes
 int y4m(const std::uint8_t* data, std::size_t size);           // Y4M video for aesim emulate
 int aedat(const std::uint8_t* data, std::size_t size);         // AEDAT 2.0 event files
 int events_csv(const std::uint8_t* data, std::size_t size);    // event CSV files
@@ -30,6 +31,7 @@ inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
                                       {"set_values", set_values}, {"sensor_toml", sensor_toml},
                                       {"sweep_spec", sweep_spec}, {"receiver_toml", receiver_toml},
                                       {"pixel_deck", pixel_deck}, {"photo", photo},
-                                      {"aedat4", aedat4},         {"npy", npy}};
+                                      {"aedat4", aedat4},         {"npy", npy},
+                                      {"exr", exr}};
 
 }  // namespace aesim::fuzz

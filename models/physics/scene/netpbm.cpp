@@ -12,6 +12,7 @@
 #include "errors/input_error.hpp"
 #include "files/input_path.hpp"
 #include "limits/limits.hpp"
+#include "scene/exr_image.hpp"
 #include "scene/photo_image.hpp"
 #include "scene/scene_file.hpp"
 
@@ -188,8 +189,9 @@ Image read_image(const std::string& path) {
   if (ext == ".pfm") return read_pfm(path);
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
+  if (ext == ".exr") return decode_exr(read_scene_file(path), path);
   throw InputError(
-      fmt::format("scene file '{}': unsupported format (use .pgm, .pfm, .png, .jpg or .jpeg)", path));
+      fmt::format("scene file '{}': unsupported format (use .pgm, .pfm, .png, .jpg, .jpeg or .exr)", path));
 }
 
 }  // namespace aesim
