@@ -63,6 +63,11 @@ class EventFormats : public testing::TempDirTest {
   }
 
   static std::string slurp(const std::string& path) { return testing::slurp(path); }
+  static std::vector<std::uint64_t> aligned(const std::string& bytes) {
+    std::vector<std::uint64_t> words((bytes.size() + 7) / 8);
+    std::memcpy(words.data(), bytes.data(), bytes.size());
+    return words;
+  }
 };
 
 TEST_F(EventFormats, EveryFormatReadsBackEventForEventWithItsArray) {
@@ -120,7 +125,9 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
     const std::uint32_t header_size = b[14] | (b[15] << 8) | (b[16] << 16) | (b[17] << 24);
     // Size-prefixed: the size, the root offset, then the file identifier.
     EXPECT_EQ(data.substr(22, 4), "IOHE");
-    const dv::IOHeader* h = dv::GetSizePrefixedIOHeader(b + 14);
+    // FlatBuffers reads in place and needs its buffers aligned: read copies.
+    const std::vector<std::uint64_t> header_copy = aligned(data.substr(14, 4 + header_size));
+    const dv::IOHeader* h = dv::GetSizePrefixedIOHeader(header_copy.data());
     EXPECT_EQ(h->compression(), c == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE);
     EXPECT_EQ(h->dataTablePosition(), -1);
     const std::string info = h->infoNode()->str();
@@ -137,7 +144,8 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
       EXPECT_EQ(data.substr(at + 8, 4), std::string("\x04\x22\x4d\x18", 4));  // an LZ4 frame
     } else {
       EXPECT_EQ(data.substr(at + 8 + 8, 4), "EVTS");
-      const dv::EventPacket* p = dv::GetSizePrefixedEventPacket(b + at + 8);
+      const std::vector<std::uint64_t> packet_copy = aligned(data.substr(at + 8, size));
+      const dv::EventPacket* p = dv::GetSizePrefixedEventPacket(packet_copy.data());
       ASSERT_EQ(p->elements()->size(), 5u);
       const dv::Event* e = p->elements()->Get(2);
       EXPECT_EQ(e->timestamp(), 2500);

@@ -155,6 +155,13 @@ def test_ctrl_c_interrupts_a_long_run():
         aesim.run(scene=np.ones((256, 256)), duration="100s", set={"array.rows": 256, "array.cols": 256},
                   max_events="1e10")
     assert time.monotonic() - started < 10
+    # A run of the cycle rung (SystemC) stops too, between slices of its simulated time.
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    started = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        aesim.run(scene=os.path.join(SCENES, "natural.pgm"), duration="200s", set={"sim.fidelity": "cycle"})
+    assert time.monotonic() - started < 10
     # Python's own handler is back, and the next call runs.
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
     assert len(aesim.run(duration="50ms").events) > 0

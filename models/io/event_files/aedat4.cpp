@@ -112,6 +112,21 @@ std::vector<std::pair<std::string, std::string>> xml_attrs(const std::string& xm
   return out;
 }
 
+// FlatBuffers reads its scalars in place and needs them aligned; in a file they lie wherever the
+// previous bytes end (the IOHeader starts at byte 14), so each buffer is read from a copy.
+class AlignedCopy {
+ public:
+  AlignedCopy(const char* data, std::size_t size) : words_((size + 7) / 8), size_(size) {
+    if (size > 0) std::memcpy(words_.data(), data, size);
+  }
+  const std::uint8_t* data() const { return reinterpret_cast<const std::uint8_t*>(words_.data()); }
+  std::size_t size() const { return size_; }
+
+ private:
+  std::vector<std::uint64_t> words_;
+  std::size_t size_;
+};
+
 int parse_size(const std::string& text, const std::string& label, const char* key) {
   try {
     std::size_t used = 0;
@@ -190,13 +205,14 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
   if (data.size() < pos + 4) throw InputError(fmt::format("event file '{}': truncated in the IOHeader", label));
   const std::uint64_t header_size = get_le32(bytes + pos);
   if (header_size > data.size() - pos - 4) throw InputError(fmt::format("event file '{}': truncated in the IOHeader", label));
+  const AlignedCopy header_bytes(data.data() + pos, header_size + 4);
   {
-    flatbuffers::Verifier v(bytes + pos, header_size + 4);
+    flatbuffers::Verifier v(header_bytes.data(), header_bytes.size());
     if (!dv::VerifySizePrefixedIOHeaderBuffer(v)) {
       throw InputError(fmt::format("event file '{}': the IOHeader is not a valid FlatBuffer", label));
     }
   }
-  const dv::IOHeader* header = dv::GetSizePrefixedIOHeader(bytes + pos);
+  const dv::IOHeader* header = dv::GetSizePrefixedIOHeader(header_bytes.data());
   const dv::CompressionType compression = header->compression();
   if (compression != dv::CompressionType_NONE && compression != dv::CompressionType_LZ4 &&
       compression != dv::CompressionType_LZ4_HIGH) {
@@ -281,11 +297,12 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
     if (decoded > kAedat4MaxDecodedBytes) {
       throw InputError(fmt::format("event file '{}': more than {} bytes of events", label, kAedat4MaxDecodedBytes));
     }
-    flatbuffers::Verifier v(reinterpret_cast<const std::uint8_t*>(body), body_size);
+    const AlignedCopy aligned(body, body_size);
+    flatbuffers::Verifier v(aligned.data(), aligned.size());
     if (!dv::VerifySizePrefixedEventPacketBuffer(v)) {
       throw InputError(fmt::format("event file '{}': packet {} is not a valid EventPacket", label, packet));
     }
-    const dv::EventPacket* p = dv::GetSizePrefixedEventPacket(body);
+    const dv::EventPacket* p = dv::GetSizePrefixedEventPacket(aligned.data());
     if (!p->elements()) continue;
     for (const dv::Event* e : *p->elements()) {
       PolarityEvent out;

@@ -1,6 +1,10 @@
 #include "kernel/systemc_kernel.hpp"
 
+#include <algorithm>
 #include <atomic>
+
+#include "errors/input_error.hpp"
+#include "process/interrupt.hpp"
 
 namespace aesim {
 namespace {
@@ -23,6 +27,16 @@ ScopedKernel::~ScopedKernel() {
   sc_core::sc_curr_simcontext = previous_;
   sc_core::sc_default_global_context = previous_;
   delete mine_;
+}
+
+void run_until_starved(double duration) {
+  const sc_core::sc_time slice(std::max(1e-3, duration / 100), sc_core::SC_SEC);
+  do {
+    // A slice stops at its last event (so the run ends where sc_start() would); when the next
+    // activity lies beyond a slice, the slice reaches it, so every call makes progress.
+    sc_core::sc_start(std::max(slice, sc_core::sc_time_to_pending_activity()), sc_core::SC_EXIT_ON_STARVATION);
+    if (const int sig = interrupt_requested()) throw Interrupted(sig);
+  } while (sc_core::sc_pending_activity());
 }
 
 }  // namespace aesim

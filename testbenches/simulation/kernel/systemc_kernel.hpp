@@ -28,4 +28,11 @@ class ScopedKernel {
   sc_core::sc_simcontext* mine_;
 };
 
+// Runs the current kernel until nothing is left to do, as sc_start() does (the same events in the
+// same order, the same end time), but in slices of simulated time (1 ms, or a hundredth of
+// `duration` if longer, or up to the next activity if that is further), so that a request to stop
+// (interrupt_requested: Ctrl-C in the Python module) ends the run within a slice by throwing
+// Interrupted.
+void run_until_starved(double duration);
+
 }  // namespace aesim

@@ -81,7 +81,7 @@ class CycleRung : public Rung {
     CycleArray array("imager", run, cycle_options(run));
     // The driver stops past sim.duration and receivers stop their clocks when idle, so the kernel
     // starves exactly when the run (and any last handshake) is done.
-    sc_core::sc_start();
+    run_until_starved(run.config.sim.duration);
     double tau_sum = 0;
     int measured = 0;
     for (const auto& tile : array.tiles()) {

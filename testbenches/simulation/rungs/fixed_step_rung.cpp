@@ -21,7 +21,7 @@ class FixedStepRung : public Rung {
     const ScopedKernel kernel;  // first, so the modules are gone before their context
     EventLevelBuses buses(run);
     FixedStepArray array("fixed_step", run.config.pixel, run.config.sim, run.photocurrents, run.map, buses.pointers());
-    sc_core::sc_start();
+    run_until_starved(run.config.sim.duration);
     buses.finish(run.config.bus, facts);
     facts.multi_fire_steps = array.multi_fire_steps();
   }

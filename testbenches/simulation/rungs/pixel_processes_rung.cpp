@@ -54,7 +54,7 @@ class PixelProcessesRung : public Rung {
     EventLevelBuses buses(run);
     PixelArray array("imager", run, buses);
     // Every pixel stops scheduling itself past sim.duration, so the kernel starves when done.
-    sc_core::sc_start();
+    run_until_starved(run.config.sim.duration);
     buses.finish(run.config.bus, facts);
   }
 };
