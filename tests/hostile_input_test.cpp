@@ -253,7 +253,9 @@ TEST_F(HostileInputTest, AnInterruptedSweepKeepsOnlyItsJournalAndTheResumeLeaves
   fs::remove(dir_ / "err.txt");
   EXPECT_NE(err.find("interrupted"), std::string::npos) << err;
   EXPECT_EQ(listing(), (std::set<std::string>{"slow.toml", "u.pgm", "r.csv.partial"})) << err;
-  const Outcome o = bounded("sweep slow.toml -o r.csv");
+  // Three cycle-fidelity points of 10 s: ~15 s each under the sanitizers alone, twice that beside
+  // the suite's ngspice tests on 2 cores; the limit only catches a hang.
+  const Outcome o = bounded("sweep slow.toml -o r.csv", 240);
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_NE(o.err.find("resuming"), std::string::npos) << o.err;
   EXPECT_EQ(listing(), (std::set<std::string>{"slow.toml", "u.pgm", "r.csv"}));
