@@ -5,6 +5,7 @@
 #include <exception>
 
 #include <ImfArray.h>
+#include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfRgbaFile.h>
 #include <fmt/format.h>
@@ -40,6 +41,14 @@ class MemoryStream : public Imf::IStream {
 }  // namespace
 
 Image decode_exr(const std::string& data, const std::string& path) {
+  // OpenEXR checks every header against these before it allocates for the image (line offset
+  // tables, buffers): a small file cannot make it ask for more than aesim would read.
+  static const bool limited = [] {
+    Imf::Header::setMaxImageSize(65535, 65535);
+    Imf::Header::setMaxTileSize(4096, 4096);
+    return true;
+  }();
+  (void)limited;
   try {
     MemoryStream stream(data, path);
     Imf::RgbaInputFile file(stream);
