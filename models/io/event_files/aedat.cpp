@@ -11,7 +11,7 @@
 
 #include "errors/input_error.hpp"
 #include "files/input_file.hpp"
-#include "events/timestamps.hpp"
+#include "event_files/event_stamps.hpp"
 
 namespace aesim {
 namespace {
@@ -174,13 +174,7 @@ std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, 
 }
 
 AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick) {
-  const std::uint64_t ticks = timestamp_ticks(e.t, tick);
-  const double us_per_tick = tick / 1e-6;
-  const double whole = std::nearbyint(us_per_tick);
-  // A tick of whole microseconds (1 us, the usual one) needs no second rounding.
-  const std::uint64_t stamp = whole >= 1 && us_per_tick == whole
-                                  ? ticks * static_cast<std::uint64_t>(whole)
-                                  : timestamp_ticks(static_cast<double>(ticks) * us_per_tick * 1e-6, 1e-6);
+  const std::uint64_t stamp = stamp_us(e.t, tick);
   AedatRecord r;
   r.address = (e.tile << bus_bits) | e.bus_address;
   if (stamp > 0x7FFFFFFFu) {

@@ -105,30 +105,25 @@ struct DsecWriter::Handles {
 };
 
 DsecWriter::DsecWriter(const std::string& path, const EventFileSpec& spec, double duration_s)
-    : h_(new Handles), path_(path), tick_(spec.tick), ms_total_(static_cast<std::uint64_t>(std::ceil(duration_s * 1e3))) {
+    : h_(std::make_unique<Handles>()), path_(path), tick_(spec.tick), ms_total_(static_cast<std::uint64_t>(std::ceil(duration_s * 1e3))) {
   quiet_hdf5();
-  try {
-    h_->file = checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                       fmt::format("cannot create HDF5 file '{}'", path));
-    h_->events = checked(H5Gcreate2(h_->file.get(), "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                         "HDF5: cannot create /events");
-    h_->x = extendable(h_->events.get(), "x", H5T_STD_U16LE);
-    h_->y = extendable(h_->events.get(), "y", H5T_STD_U16LE);
-    h_->t = extendable(h_->events.get(), "t", H5T_STD_U32LE);
-    h_->p = extendable(h_->events.get(), "p", H5T_STD_U8LE);
-    int_attribute(h_->events.get(), "width", spec.array.cols);
-    int_attribute(h_->events.get(), "height", spec.array.rows);
-    for (const auto& [key, value] : spec.sensor) string_attribute(h_->file.get(), "aesim.sensor." + key, value);
-  } catch (...) {
-    delete h_;
-    throw;
-  }
+  h_->file = checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                     fmt::format("cannot create HDF5 file '{}'", path));
+  h_->events = checked(H5Gcreate2(h_->file.get(), "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                       "HDF5: cannot create /events");
+  h_->x = extendable(h_->events.get(), "x", H5T_STD_U16LE);
+  h_->y = extendable(h_->events.get(), "y", H5T_STD_U16LE);
+  h_->t = extendable(h_->events.get(), "t", H5T_STD_U32LE);
+  h_->p = extendable(h_->events.get(), "p", H5T_STD_U8LE);
+  int_attribute(h_->events.get(), "width", spec.array.cols);
+  int_attribute(h_->events.get(), "height", spec.array.rows);
+  for (const auto& [key, value] : spec.sensor) string_attribute(h_->file.get(), "aesim.sensor." + key, value);
   for (auto* v : {&x_, &y_}) v->reserve(kDsecChunk);
   t_.reserve(kDsecChunk);
   p_.reserve(kDsecChunk);
 }
 
-DsecWriter::~DsecWriter() { delete h_; }
+DsecWriter::~DsecWriter() = default;
 
 void DsecWriter::events(const AddressEvent* first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
@@ -179,8 +174,7 @@ void DsecWriter::finish() {
   const long long zero = 0;
   H5Dwrite(offset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &zero);
   if (H5Fflush(h_->file.get(), H5F_SCOPE_GLOBAL) < 0) throw OutputError(fmt::format("HDF5: flushing '{}' failed", path_));
-  delete h_;
-  h_ = new Handles;
+  h_ = std::make_unique<Handles>();  // the file is closed and complete
 }
 
 namespace {

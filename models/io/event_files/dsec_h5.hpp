@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ class DsecWriter : public EventFileWriter {
  private:
   void flush();
   struct Handles;
-  Handles* h_;
+  std::unique_ptr<Handles> h_;
   std::string path_;
   double tick_;
   std::uint64_t ms_total_;
