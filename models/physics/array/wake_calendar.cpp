@@ -4,13 +4,6 @@
 #include <cmath>
 
 namespace aesim {
-namespace {
-
-// Bucket numbers stay far below overflow whatever the times (a run is at most 1e6 s long).
-constexpr double kLastBucket = 4.0e18;
-
-}  // namespace
-
 WakeCalendar::WakeCalendar(std::size_t slots, double horizon)
     : nodes_(slots, Node{0, 0, kNone}) {
   std::size_t buckets = 16;
@@ -21,38 +14,16 @@ WakeCalendar::WakeCalendar(std::size_t slots, double horizon)
   per_width_ = std::isfinite(width) && width > 0 ? 1.0 / width : 1.0;
 }
 
-std::int64_t WakeCalendar::bucket_of(double t) const {
-  const double b = std::floor(t * per_width_);
-  return b < kLastBucket ? static_cast<std::int64_t>(b) : static_cast<std::int64_t>(kLastBucket);
-}
-
-void WakeCalendar::push(std::uint32_t slot, double t, std::uint32_t key) {
-  const std::int64_t bucket = bucket_of(t);
+void WakeCalendar::push_outside_year(const Entry& e, std::int64_t bucket) {
   if (bucket <= now_) {
     // Due within the present bucket (a pixel brighter than a bucket is wide): in its sorted place.
-    const Entry e{t, key, slot};
     present_.insert(std::upper_bound(present_.begin(), present_.end(), e, [](const Entry& a, const Entry& b) {
                       return Before()(b, a);
                     }),
                     e);
-  } else if (bucket - now_ <= static_cast<std::int64_t>(mask_)) {
-    into_year({t, key, slot}, bucket);
   } else {
-    far_.push({t, key, slot});
+    far_.push(e);
   }
-}
-
-void WakeCalendar::into_year(const Entry& e, std::int64_t bucket) {
-  std::uint32_t& head = head_[static_cast<std::uint64_t>(bucket) & mask_];
-  nodes_[e.slot] = Node{e.t, e.key, head};
-  head = e.slot;
-  ++in_year_;
-}
-
-bool WakeCalendar::peek(Entry& e) {
-  if (present_.empty() && !advance()) return false;
-  e = present_.back();
-  return true;
 }
 
 bool WakeCalendar::advance() {
@@ -76,8 +47,18 @@ bool WakeCalendar::advance() {
     for (std::uint32_t s = head; s != kNone; s = nodes_[s].next) present_.push_back({nodes_[s].t, nodes_[s].key, s});
     head = kNone;
     in_year_ -= present_.size();
-    // Latest first, so the earliest pops from the back.
-    std::sort(present_.begin(), present_.end(), [](const Entry& a, const Entry& b) { return Before()(b, a); });
+    // Latest first, so the earliest pops from the back. A bucket holds a pixel or two, where an
+    // insertion sort in place beats std::sort's call.
+    if (present_.size() > 16) {
+      std::sort(present_.begin(), present_.end(), [](const Entry& a, const Entry& b) { return Before()(b, a); });
+    } else {
+      for (std::size_t i = 1; i < present_.size(); ++i) {
+        const Entry e = present_[i];
+        std::size_t j = i;
+        for (; j > 0 && Before()(present_[j - 1], e); --j) present_[j] = present_[j - 1];
+        present_[j] = e;
+      }
+    }
   }
   return true;
 }

@@ -29,9 +29,20 @@ class WakeCalendar {
   // bucket about once.
   WakeCalendar(std::size_t slots, double horizon);
 
-  void push(std::uint32_t slot, double t, std::uint32_t key);
+  void push(std::uint32_t slot, double t, std::uint32_t key) {
+    const std::int64_t bucket = bucket_of(t);
+    if (bucket > now_ && bucket - now_ <= static_cast<std::int64_t>(mask_)) {
+      into_year({t, key, slot}, bucket);
+    } else {
+      push_outside_year({t, key, slot}, bucket);
+    }
+  }
   // The earliest entry, or false when none is left.
-  bool peek(Entry& e);
+  bool peek(Entry& e) {
+    if (present_.empty() && !advance()) return false;
+    e = present_.back();
+    return true;
+  }
   // Removes the entry peek() gave.
   void pop() { present_.pop_back(); }
   // The entry after the one peek() gave, when the present bucket holds it (for prefetching).
@@ -41,9 +52,23 @@ class WakeCalendar {
   struct Before {
     bool operator()(const Entry& a, const Entry& b) const { return (a.t < b.t) | ((a.t == b.t) & (a.key < b.key)); }
   };
-  std::int64_t bucket_of(double t) const;
-  void into_year(const Entry& e, std::int64_t bucket);
+  // Wake-up times are never negative, so truncation is the floor (std::floor is a library call on
+  // a baseline x86-64, and this runs twice an event).
+  std::int64_t bucket_of(double t) const {
+    const double b = t * per_width_;
+    return b < kLastBucket ? static_cast<std::int64_t>(b) : static_cast<std::int64_t>(kLastBucket);
+  }
+  void into_year(const Entry& e, std::int64_t bucket) {
+    std::uint32_t& head = head_[static_cast<std::uint64_t>(bucket) & mask_];
+    nodes_[e.slot] = Node{e.t, e.key, head};
+    head = e.slot;
+    ++in_year_;
+  }
+  void push_outside_year(const Entry& e, std::int64_t bucket);
   bool advance();
+
+  // Bucket numbers stay far below overflow whatever the times (a run is at most 1e6 s long).
+  static constexpr double kLastBucket = 4.0e18;
 
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   // A pixel while it sits in a bucket: its wake-up and key, and the next pixel of the bucket; one

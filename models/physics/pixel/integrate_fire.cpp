@@ -12,9 +12,6 @@ double draw_target(const IntegrateFire::Sensor& s, double threshold, SplitMix64&
   return kElectronCharge * gamma(rng);
 }
 
-// Re-anchor before the cycle count could overflow (a pixel firing for 2^30 cycles).
-constexpr std::uint32_t kMaxCycles = 1u << 30;
-
 }  // namespace
 
 IntegrateFire::IntegrateFire(const Sensor& sensor, double threshold, double t0, double current,
@@ -24,17 +21,6 @@ IntegrateFire::IntegrateFire(const Sensor& sensor, double threshold, double t0, 
   update_next_fire(sensor);
 }
 
-void IntegrateFire::update_next_fire(const Sensor& sensor) {
-  if (!(current_ > 0)) {
-    next_fire_ = kNever;
-    return;
-  }
-  const double first = anchor_t_ + (target_ - anchor_q_) / current_;
-  next_fire_ = cycles_ == 0
-                   ? first
-                   : first + static_cast<double>(cycles_) * (target_ / current_ + sensor.t_reset);
-}
-
 double IntegrateFire::reset_end_of_last_cycle(const Sensor& sensor) const {
   // Only meaningful when cycles_ > 0: the previous firing's time plus the reset.
   const double period = target_ / current_ + sensor.t_reset;
@@ -42,17 +28,11 @@ double IntegrateFire::reset_end_of_last_cycle(const Sensor& sensor) const {
          sensor.t_reset;
 }
 
-void IntegrateFire::fire(const Sensor& sensor, SplitMix64& rng) {
-  if (sensor.shot_noise || cycles_ >= kMaxCycles) {
-    // Each integration has its own random target, so re-anchor after every firing.
-    anchor_t_ = next_fire_ + sensor.t_reset;
-    anchor_q_ = 0;
-    cycles_ = 0;
-    target_ = draw_target(sensor, threshold_, rng);
-  } else {
-    ++cycles_;
-  }
-  update_next_fire(sensor);
+void IntegrateFire::start_new_integration(const Sensor& sensor, SplitMix64& rng) {
+  anchor_t_ = next_fire_ + sensor.t_reset;
+  anchor_q_ = 0;
+  cycles_ = 0;
+  target_ = draw_target(sensor, threshold_, rng);
 }
 
 double IntegrateFire::charge_at(const Sensor& sensor, double t) const {

@@ -46,15 +46,34 @@ class IntegrateFire {
   // Time of the next firing, or kNever when the current is zero.
   double next_fire() const { return next_fire_; }
   // Consumes the firing at next_fire(): the pixel enters reset and starts a new integration.
-  void fire(const Sensor& sensor, SplitMix64& rng);
+  void fire(const Sensor& sensor, SplitMix64& rng) {
+    if (sensor.shot_noise || cycles_ >= kMaxCycles) {
+      start_new_integration(sensor, rng);
+    } else {
+      ++cycles_;
+    }
+    update_next_fire(sensor);
+  }
   // The current changes at time t (last firing <= t <= next_fire()); collected charge carries over.
   void set_current(const Sensor& sensor, double t, double current);
   // Charge collected at time t (zero during reset); t within [last firing, next_fire()].
   double charge_at(const Sensor& sensor, double t) const;
 
  private:
+  // Re-anchor before the cycle count could overflow (a pixel firing for 2^30 cycles).
+  static constexpr std::uint32_t kMaxCycles = 1u << 30;
+
   double reset_end_of_last_cycle(const Sensor& sensor) const;
-  void update_next_fire(const Sensor& sensor);
+  // Re-anchors after the firing at next_fire() (each shot-noise integration has its own target).
+  void start_new_integration(const Sensor& sensor, SplitMix64& rng);
+  void update_next_fire(const Sensor& sensor) {
+    if (!(current_ > 0)) {
+      next_fire_ = kNever;
+      return;
+    }
+    const double first = anchor_t_ + (target_ - anchor_q_) / current_;
+    next_fire_ = cycles_ == 0 ? first : first + static_cast<double>(cycles_) * (target_ / current_ + sensor.t_reset);
+  }
 
   double threshold_ = 0;  // C
   double target_ = 0;     // charge to collect in this integration
