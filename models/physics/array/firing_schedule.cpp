@@ -62,14 +62,10 @@ std::uint32_t FiringSchedule::boundary_after(std::uint64_t boundary, std::size_t
                                                                                    : static_cast<std::uint32_t>(b);
 }
 
-double FiringSchedule::wake_time(const Slot& p) const {
-  const double boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
-  return std::min(p.core.next_fire(), boundary);
-}
-
-bool FiringSchedule::next(AddressEvent& firing, double until) {
+std::size_t FiringSchedule::fill(AddressEvent* out, std::size_t capacity, double until) {
+  std::size_t filled = 0;
   WakeCalendar::Entry top;
-  while (calendar_.peek(top) && top.t <= until) {
+  while (filled < capacity && calendar_.peek(top) && top.t <= until) {
     calendar_.pop();
     const std::uint32_t slot = top.slot;
     // Large arrays stream through their pixels' state in time order: fetch the next pixel's record
@@ -80,6 +76,7 @@ bool FiringSchedule::next(AddressEvent& firing, double until) {
     const double t_boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
     const bool fires = fires_first(t_fire, t_boundary);
     if (fires) {
+      AddressEvent& firing = out[filled++];
       firing.t = t_fire;
       firing.x = x_of(p);
       firing.y = y_of(p);
@@ -94,9 +91,8 @@ bool FiringSchedule::next(AddressEvent& firing, double until) {
     }
     const double t_next = wake_time(p);
     if (t_next <= t_end_) calendar_.push(slot, t_next, top.key);
-    if (fires) return true;
   }
-  return false;
+  return filled;
 }
 
 }  // namespace aesim

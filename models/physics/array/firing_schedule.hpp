@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -23,10 +24,14 @@ class FiringSchedule {
                  const AddressMap& map, std::uint32_t tile);
 
   // The next firing at or before sim.duration; false when none remains.
-  bool next(AddressEvent& firing) { return next(firing, t_end_); }
+  bool next(AddressEvent& firing) { return fill(&firing, 1, t_end_) == 1; }
   // The next firing at or before `until`; false when none remains that early (the schedule then
   // stands at `until`: light changes up to it are applied).
-  bool next(AddressEvent& firing, double until);
+  bool next(AddressEvent& firing, double until) { return fill(&firing, 1, until) == 1; }
+  // The next firings at or before `until`, up to `capacity` of them, into `out` in order; fewer
+  // than `capacity` when none remains that early (as next()). A batch costs one call, not one an
+  // event.
+  std::size_t fill(AddressEvent* out, std::size_t capacity, double until);
 
   // A lit pixel's state: 64 bytes (its coordinates follow from its bus address), plus 16 in the
   // calendar and 4 per bucket (about one a pixel); with the 8-byte photocurrent, 92 bytes per lit
@@ -39,7 +44,10 @@ class FiringSchedule {
   static constexpr std::uint32_t kNoBoundary = 0xFFFFFFFFu;
 
  private:
-  double wake_time(const Slot& p) const;
+  double wake_time(const Slot& p) const {
+    const double boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
+    return std::min(p.core.next_fire(), boundary);
+  }
 
   const Photocurrents& photocurrents_;
   IntegrateFire::Sensor sensor_;

@@ -44,7 +44,16 @@ bool WakeCalendar::advance() {
     // The next bucket's first pixel is the next list to walk.
     const std::uint32_t coming = head_[static_cast<std::uint64_t>(now_ + 1) & mask_];
     if (coming != kNone) __builtin_prefetch(&nodes_[coming]);
-    for (std::uint32_t s = head; s != kNone; s = nodes_[s].next) present_.push_back({nodes_[s].t, nodes_[s].key, s});
+    // Field by field: an Entry built on the stack and copied whole stalled on store forwarding
+    // (two 8-byte stores read back as one 16-byte load), a third of the walk.
+    for (std::uint32_t s = head; s != kNone;) {
+      const Node& node = nodes_[s];
+      Entry& e = present_.emplace_back();
+      e.t = node.t;
+      e.key = node.key;
+      e.slot = s;
+      s = node.next;
+    }
     head = kNone;
     in_year_ -= present_.size();
     // Latest first, so the earliest pops from the back. A bucket holds a pixel or two, where an

@@ -4,14 +4,19 @@
 
 namespace aesim {
 
-void AlohaBus::request(const AddressEvent& firing) {
-  log_.fired(firing);
-  // Pixels firing within the same picosecond may arrive in either order; compare against the
-  // latest start seen so that order never matters.
-  if (!cluster_.empty() && firing.t - latest_start_ >= tau_) close_cluster();
-  latest_start_ = cluster_.empty() ? firing.t : std::max(latest_start_, firing.t);
-  earliest_ = cluster_.empty() ? firing.t : std::min(earliest_, firing.t);
-  cluster_.push_back(firing);
+void AlohaBus::request(const AddressEvent& firing) { request_all(&firing, 1); }
+
+void AlohaBus::request_all(const AddressEvent* firings, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const AddressEvent& firing = firings[i];
+    log_.fired(firing);
+    // Pixels firing within the same picosecond may arrive in either order; compare against the
+    // latest start seen so that order never matters.
+    if (!cluster_.empty() && firing.t - latest_start_ >= tau_) close_cluster();
+    latest_start_ = cluster_.empty() ? firing.t : std::max(latest_start_, firing.t);
+    earliest_ = cluster_.empty() ? firing.t : std::min(earliest_, firing.t);
+    cluster_.push_back(firing);
+  }
 }
 
 void AlohaBus::close_cluster() {
@@ -39,18 +44,23 @@ void AlohaBus::close_cluster() {
   cluster_.clear();
 }
 
-void ArbitratedBus::request(const AddressEvent& firing) {
-  log_.fired(firing);
-  const double start = std::max(firing.t, free_at_);
-  free_at_ = start + tau_;
-  if (start > t_end_) {
-    log_.resolve(firing, Fate::Pending);
-    return;
+void ArbitratedBus::request(const AddressEvent& firing) { request_all(&firing, 1); }
+
+void ArbitratedBus::request_all(const AddressEvent* firings, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const AddressEvent& firing = firings[i];
+    log_.fired(firing);
+    const double start = std::max(firing.t, free_at_);
+    free_at_ = start + tau_;
+    if (start > t_end_) {
+      log_.resolve(firing, Fate::Pending);
+      continue;
+    }
+    log_.resolve(firing, Fate::Delivered, start);
+    AddressEvent delivered = firing;
+    delivered.t = start;
+    log_.output(delivered);
   }
-  log_.resolve(firing, Fate::Delivered, start);
-  AddressEvent delivered = firing;
-  delivered.t = start;
-  log_.output(delivered);
 }
 
 }  // namespace aesim

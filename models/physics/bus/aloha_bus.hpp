@@ -12,12 +12,13 @@ namespace aesim {
 // (t - tau, t + tau). Events closer than tau chain into a cluster that is lost whole. With
 // contention detection the receiver discards the cluster; without it, the receiver latches the
 // bitwise OR of the cluster's addresses once, at the cluster's first start: one ghost event.
-class AlohaBus : public EventBus {
+class AlohaBus final : public EventBus {
  public:
   AlohaBus(EventLog& log, const AddressMap& map, double tau, bool contention_detect)
       : log_(log), map_(map), tau_(tau), detect_(contention_detect) {}
 
   void request(const AddressEvent& firing) override;
+  void request_all(const AddressEvent* firings, std::size_t n) override;
   void finish() override { close_cluster(); }
   double held_since() const override { return cluster_.empty() ? EventBus::held_since() : earliest_; }
 
@@ -36,12 +37,13 @@ class AlohaBus : public EventBus {
 // bus.access=arbitrated: events take the bus one after the other in fire order, each for tau;
 // none is lost, each waits its turn. Delivery time is when its turn starts. Events whose turn
 // would start after the end of the run are counted as pending, not delivered.
-class ArbitratedBus : public EventBus {
+class ArbitratedBus final : public EventBus {
  public:
   ArbitratedBus(EventLog& log, double tau, double t_end)
       : log_(log), tau_(tau), t_end_(t_end) {}
 
   void request(const AddressEvent& firing) override;
+  void request_all(const AddressEvent* firings, std::size_t n) override;
 
  private:
   EventLog& log_;

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <limits>
 
 #include "events/address_event.hpp"
@@ -14,6 +15,11 @@ class alignas(64) EventBus {
  public:
   virtual ~EventBus() = default;
   virtual void request(const AddressEvent& firing) = 0;
+  // Several firings in time order, as request() one after the other: one call a batch for the
+  // event rung's hot loop (the buses below run their request() inline).
+  virtual void request_all(const AddressEvent* firings, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) request(firings[i]);
+  }
   // After the run: settles what the bus still holds (an undecided collision cluster, a queue).
   virtual void finish() {}
   // The earliest firing it still holds undecided (its outcome, and any output, come later), or

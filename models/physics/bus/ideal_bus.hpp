@@ -5,13 +5,16 @@
 namespace aesim {
 
 // bus.access=ideal: infinite bandwidth, no loss, no delay. Isolates pixel physics.
-class IdealBus : public EventBus {
+class IdealBus final : public EventBus {
  public:
   explicit IdealBus(EventLog& log) : log_(log) {}
   void request(const AddressEvent& firing) override {
     log_.fired(firing);
     log_.resolve(firing, Fate::Delivered, firing.t);
     log_.output(firing);
+  }
+  void request_all(const AddressEvent* firings, std::size_t n) override {
+    for (std::size_t i = 0; i < n; ++i) IdealBus::request(firings[i]);
   }
 
  private:

@@ -46,32 +46,6 @@ void EventLog::count_pixels(std::size_t pixels, std::uint32_t cols, double windo
   window_ = window;
 }
 
-void EventLog::resolve(const AddressEvent& firing, Fate fate, double t_deliver) {
-  Tile& tile = tiles_[firing.tile];
-  switch (fate) {
-    case Fate::Delivered: tile.latencies.add(t_deliver - firing.t); break;
-    case Fate::Collided:
-    case Fate::Absorbed:
-    case Fate::Ghost: ++tile.counters.collided; break;
-    case Fate::Dropped: ++tile.counters.dropped; break;
-    case Fate::Pending: ++tile.counters.pending; break;
-  }
-  if (outputs_.truth) filling_.truth[firing.tile].push_back({firing, fate, t_deliver});
-}
-
-void EventLog::output(const AddressEvent& e) {
-  Tile& tile = tiles_[e.tile];
-  ++tile.counters.delivered;
-  const bool ghost = (e.flags & kGhostEvent) != 0;
-  if (ghost) ++tile.counters.ghost;
-  if (!pixels_.empty()) {
-    PixelCounts& p = pixels_[std::size_t(e.y) * cols_ + e.x];
-    ++p.output;
-    p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
-  }
-  if (outputs_.events) filling_.events[e.tile].push_back(e);
-}
-
 void EventLog::hand_over(double before) {
   if (!outputs_.events && !outputs_.truth) return;
   if (!pipeline_) pipeline_ = std::make_unique<MergePipeline>(*merger_, tiles_.size());

@@ -74,9 +74,31 @@ class EventLog {
   // 1 bits of the addresses of every fired event: what the bus lines carried.
   std::uint64_t address_ones() const;
   // Every fired event is resolved exactly once, when its fate is known.
-  void resolve(const AddressEvent& firing, Fate fate, double t_deliver = 0);
+  void resolve(const AddressEvent& firing, Fate fate, double t_deliver = 0) {
+    Tile& tile = tiles_[firing.tile];
+    switch (fate) {
+      case Fate::Delivered: tile.latencies.add(t_deliver - firing.t); break;
+      case Fate::Collided:
+      case Fate::Absorbed:
+      case Fate::Ghost: ++tile.counters.collided; break;
+      case Fate::Dropped: ++tile.counters.dropped; break;
+      case Fate::Pending: ++tile.counters.pending; break;
+    }
+    if (outputs_.truth) filling_.truth[firing.tile].push_back({firing, fate, t_deliver});
+  }
   // The receiver's output: a delivered event, or a ghost (flags & kGhostEvent).
-  void output(const AddressEvent& e);
+  void output(const AddressEvent& e) {
+    Tile& tile = tiles_[e.tile];
+    ++tile.counters.delivered;
+    const bool ghost = (e.flags & kGhostEvent) != 0;
+    if (ghost) ++tile.counters.ghost;
+    if (!pixels_.empty()) {
+      PixelCounts& p = pixels_[std::size_t(e.y) * cols_ + e.x];
+      ++p.output;
+      p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
+    }
+    if (outputs_.events) filling_.events[e.tile].push_back(e);
+  }
 
   // Called by a rung while none of its tiles runs: no tile will output an event, or resolve a
   // firing, earlier than `before`. Passes those records on (in the background) and hands the
