@@ -171,10 +171,13 @@ BENCHMARK(BM_CycleLetterA_Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Reference, ReceiverModel::Reference)
     ->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Rtl, ReceiverModel::Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_QcifCeilingProbe)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+// Rates per wall second (UseRealTime): writing AEDAT and the second tile thread work beside the
+// benchmark's own thread, whose CPU time alone would flatter them.
+BENCHMARK(BM_QcifCeilingProbe)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false)
+    ->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_QcifPixelProcesses)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace

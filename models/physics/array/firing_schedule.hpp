@@ -36,7 +36,7 @@ class FiringSchedule {
   // A lit pixel's state: 64 bytes (its coordinates follow from its bus address), plus 16 in the
   // calendar and 4 per bucket (about one a pixel); with the 8-byte photocurrent, 92 bytes per lit
   // pixel.
-  struct alignas(64) Slot {
+  struct Slot {
     IntegrateFire core;
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again
     std::uint32_t bus_address;    // within the tile: (y_local << xbits) | x_local
