@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "events/timestamps.hpp"
+#include "random/splitmix64.hpp"
 #include "scene/photocurrents.hpp"
 #include "support/scenes.hpp"
 #include "run/imager_simulation.hpp"
@@ -181,6 +183,28 @@ TEST(Seeds, SameSeedSameEventsOtherSeedOtherEvents) {
   };
   EXPECT_EQ(run(7), run(7));
   EXPECT_NE(run(7), run(8));
+}
+
+// timestamp_ticks rounds without the library (it runs once an event in the writers); the library's
+// nearbyint and floor are the reference, on hand-picked edges and on random times over the range.
+TEST(Timestamps, TicksEqualTheLibrarysRoundingEverywhere) {
+  auto reference = [](double t, double tick) {
+    const double ticks = t / tick;
+    const double nearest = std::nearbyint(ticks);
+    return static_cast<std::uint64_t>(std::fabs(ticks - nearest) < 1e-6 ? nearest : std::floor(ticks));
+  };
+  const double two52 = 4503599627370496.0;
+  std::vector<std::pair<double, double>> cases = {
+      {0.0, 1e-6}, {-0.0, 1e-6}, {0.1, 1e-6}, {0.3, 1e-6}, {2.5e-6, 1e-6}, {3.5e-6, 1e-6}, {0.9999999e-6, 1e-6},
+      {1.0000001e-6, 1e-6}, {two52 - 0.5, 1.0}, {two52 - 1.5, 1.0}, {two52, 1.0}, {two52 + 2, 1.0},
+      {9.1e18, 1.0}, {1e6, 1e-12}, {123.456789, 1e-9}};
+  for (int k = 1; k <= 1000; ++k) cases.push_back({k * 0.1, 1e-6});  // 0.1 s is 99999.99999999999 us
+  SplitMix64 rng(7);
+  for (int i = 0; i < 100000; ++i) {
+    const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    cases.push_back({u * std::pow(10.0, static_cast<double>(rng() % 13)), 1e-6});
+  }
+  for (const auto& [t, tick] : cases) EXPECT_EQ(timestamp_ticks(t, tick), reference(t, tick)) << t << " s at " << tick;
 }
 
 }  // namespace

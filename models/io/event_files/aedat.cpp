@@ -96,7 +96,7 @@ AedatWriter::AedatWriter(std::ostream& out, const std::vector<std::string>& head
       chip_(jaer_chip(layout, map)),
       rows_(map.rows()) {
   for (const std::string& line : header) out_ << line << "\r\n";
-  buffer_.reserve(kBufferBytes);
+  buffer_.resize(kBufferBytes);
 }
 
 AedatWriter::~AedatWriter() { flush(); }
@@ -106,17 +106,18 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
     AedatRecord r = aedat_record(first[i], bus_bits_, tick_);
     if (layout_ != AedatLayout::Aesim) r.address = jaer_address(layout_, chip_, rows_, first[i]);
     zero_stamps_ += r.timestamp_us == 0 ? 1 : 0;
-    const std::size_t at = buffer_.size();
-    buffer_.resize(at + 8);
-    put_be32(buffer_.data() + at, r.address);
-    put_be32(buffer_.data() + at + 4, static_cast<std::uint32_t>(r.timestamp_us));
-    if (buffer_.size() >= kBufferBytes) flush();
+    // Packed into a buffer of fixed size (growing a vector by 8 bytes an event cost a fifth of
+    // the writing).
+    put_be32(buffer_.data() + used_, r.address);
+    put_be32(buffer_.data() + used_ + 4, static_cast<std::uint32_t>(r.timestamp_us));
+    used_ += 8;
+    if (used_ == buffer_.size()) flush();
   }
 }
 
 void AedatWriter::flush() {
-  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-  buffer_.clear();
+  out_.write(buffer_.data(), static_cast<std::streamsize>(used_));
+  used_ = 0;
 }
 
 AedatFile read_aedat(const std::string& path) {

@@ -61,7 +61,8 @@ class AedatWriter : public EventFileWriter {
   JaerChip chip_;
   int rows_;
   std::uint64_t zero_stamps_ = 0;
-  std::vector<char> buffer_;
+  std::vector<char> buffer_;  // kBufferBytes, a multiple of the 8-byte record
+  std::size_t used_ = 0;
 };
 
 // The AEDAT record of a delivered event (timestamp in whole microseconds of receiver ticks).

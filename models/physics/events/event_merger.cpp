@@ -1,8 +1,8 @@
 #include "events/event_merger.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
-
 
 namespace aesim {
 namespace {
@@ -20,6 +20,7 @@ double time_of(const TruthRecord& r) { return r.firing.t; }
 
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
+constexpr std::size_t kAhead = 8;      // records prefetched ahead in each tile's buffer
 
 // Merges every tile's records earlier than `before` through a winner tree of the tiles' heads into
 // `chunk`, passing full chunks to `emit`. A tile's records are those it held back last time
@@ -37,14 +38,23 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
   // A tile's records to merge: [a, a_end) then [b, b_end).
   struct Cursor {
     const T *a, *a_end, *b, *b_end;
-    const T& next() { return a != a_end ? *a++ : *b++; }
+    // The records were written on the tiles' core and wait in the shared cache: with many tiles
+    // interleaved, the hardware prefetcher loses track of them, so each read asks for the
+    // records a few lines ahead of it.
+    const T& next() {
+      const T*& p = a != a_end ? a : b;
+      __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(p) + kAhead * sizeof(T)));
+      return *p++;
+    }
     bool done() const { return a == a_end && b == b_end; }
     const T& peek() const { return a != a_end ? *a : *b; }
   };
   std::vector<Cursor> cursor(tiles);
   std::vector<std::size_t> from_held(tiles, 0), from_new(tiles, 0);
-  // A winner tree over the tiles' heads: a pop replays only the winner's path, one comparison a
-  // level, with no records moved (a heap compares twice a level and moves its entries).
+  // A tree of losers over the tiles' heads: each inner node keeps the tile that lost the match
+  // there, so a pop replays only the winner's path, one comparison (and one key read) a level,
+  // with no records moved (a heap compares twice a level and moves its entries; a tree of
+  // winners reads both children).
   std::size_t leaves = 1;
   while (leaves < tiles) leaves *= 2;
   const OrderKey exhausted{kNoLimit, ~std::uint64_t(0)};
@@ -70,12 +80,16 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
       live += from_held[i] + from_new[i];
     }
   }
-  std::vector<std::uint32_t> tree(2 * leaves);
-  for (std::size_t i = 0; i < leaves; ++i) tree[leaves + i] = static_cast<std::uint32_t>(i);
-  auto better = [&](std::uint32_t a, std::uint32_t b) { return head[b] < head[a] ? b : a; };
-  for (std::size_t n = leaves - 1; n >= 1; --n) tree[n] = better(tree[2 * n], tree[2 * n + 1]);
+  std::vector<std::uint32_t> winner(2 * leaves), loser(leaves);
+  for (std::size_t i = 0; i < leaves; ++i) winner[leaves + i] = static_cast<std::uint32_t>(i);
+  for (std::size_t n = leaves - 1; n >= 1; --n) {
+    const std::uint32_t l = winner[2 * n], r = winner[2 * n + 1];
+    const bool right_wins = head[r] < head[l];
+    winner[n] = right_wins ? r : l;
+    loser[n] = right_wins ? l : r;
+  }
+  std::uint32_t w = winner[1];
   for (; live > 0; --live) {
-    const std::uint32_t w = tree[1];
     Cursor& c = cursor[w];
     chunk.push_back(c.next());
     if (chunk.size() == kChunk) {
@@ -83,7 +97,13 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
       chunk.clear();
     }
     head[w] = c.done() ? exhausted : key_of(c.peek());
-    for (std::size_t n = (leaves + w) / 2; n >= 1; n /= 2) tree[n] = better(tree[2 * n], tree[2 * n + 1]);
+    // Branch-free: which side wins is as good as random.
+    for (std::size_t n = (leaves + w) / 2; n >= 1; n /= 2) {
+      const std::uint32_t l = loser[n];
+      const bool swap = head[l] < head[w];
+      loser[n] = swap ? w : l;
+      w = swap ? l : w;
+    }
   }
   if (!chunk.empty()) {
     emit(chunk);
