@@ -29,15 +29,15 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       const double current = photocurrents.current(0, index);
       const std::uint32_t boundary = boundary_after(0, index);
       if (!(current > 0) && boundary == kNoBoundary) continue;  // dark for the whole run
-      Slot p;
       SplitMix64 noise = shot_noise_stream(sim.seed, index);
       const double threshold = pixel_threshold(pixel, sim.seed, index);
-      p.core = IntegrateFire(sensor_, threshold, 0.0, current, initial_fraction(pixel, sim.seed, index), noise);
+      Slot p;
+      static_cast<IntegrateFire&>(p) =
+          IntegrateFire(sensor_, threshold, 0.0, current, initial_fraction(pixel, sim.seed, index), noise);
       p.next_boundary = boundary;
-      p.bus_address = map.bus_address({x, y});
       const double t = wake_time(p);
       if (!(t <= t_end_)) continue;  // nothing happens to it within the run
-      entries.push_back({t, p.bus_address, static_cast<std::uint32_t>(pixels_.size())});
+      entries.push_back({t, map.bus_address({x, y}), static_cast<std::uint32_t>(pixels_.size())});
       if (current > 0) periods.push_back(threshold / current + sensor_.t_reset);
       pixels_.push_back(p);
       if (sensor_.shot_noise) shot_noise_.push_back(noise);
@@ -72,21 +72,21 @@ std::size_t FiringSchedule::fill(AddressEvent* out, std::size_t capacity, double
     // while this one is worked on.
     if (const WakeCalendar::Entry* after = calendar_.following()) __builtin_prefetch(&pixels_[after->slot]);
     Slot& p = pixels_[slot];
-    const double t_fire = p.core.next_fire();
+    const double t_fire = p.next_fire();
     const double t_boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
     const bool fires = fires_first(t_fire, t_boundary);
     if (fires) {
       AddressEvent& firing = out[filled++];
       firing.t = t_fire;
-      firing.x = x_of(p);
-      firing.y = y_of(p);
+      firing.x = x_of(top.key);
+      firing.y = y_of(top.key);
       firing.tile = tile_;
-      firing.bus_address = p.bus_address;
+      firing.bus_address = top.key;
       firing.flags = kNormalEvent;
-      p.core.fire(sensor_, rng(slot));
+      p.fire(sensor_, rng(slot));
     } else {
-      const std::size_t index = std::size_t(y_of(p)) * cols_ + x_of(p);
-      p.core.set_current(sensor_, t_boundary, photocurrents_.current(p.next_boundary, index));
+      const std::size_t index = std::size_t(y_of(top.key)) * cols_ + x_of(top.key);
+      p.set_current(sensor_, t_boundary, photocurrents_.current(p.next_boundary, index));
       p.next_boundary = boundary_after(p.next_boundary, index);
     }
     const double t_next = wake_time(p);

@@ -33,20 +33,19 @@ class FiringSchedule {
   // event.
   std::size_t fill(AddressEvent* out, std::size_t capacity, double until);
 
-  // A lit pixel's state: 64 bytes (its coordinates follow from its bus address), plus 16 in the
-  // calendar and 4 per bucket (about one a pixel); with the 8-byte photocurrent, 92 bytes per lit
-  // pixel.
-  struct Slot {
-    IntegrateFire core;
+  // A lit pixel's state: 64 bytes, plus 16 in the calendar and 4 per bucket (about one a pixel);
+  // with the 8-byte photocurrent, 92 bytes per lit pixel. Its bus address is its key in the
+  // calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
+  // in IntegrateFire's tail padding.
+  struct Slot : IntegrateFire {
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again
-    std::uint32_t bus_address;    // within the tile: (y_local << xbits) | x_local
   };
   static constexpr std::uint32_t kNoBoundary = 0xFFFFFFFFu;
 
  private:
   double wake_time(const Slot& p) const {
     const double boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
-    return std::min(p.core.next_fire(), boundary);
+    return std::min(p.next_fire(), boundary);
   }
 
   const Photocurrents& photocurrents_;
@@ -55,8 +54,9 @@ class FiringSchedule {
   std::uint32_t tile_;
   std::uint32_t cols_;
   std::uint32_t x0_ = 0, y0_ = 0, xbits_ = 0;  // the tile's origin and the address layout
-  std::uint32_t x_of(const Slot& p) const { return x0_ + (p.bus_address & ((1u << xbits_) - 1)); }
-  std::uint32_t y_of(const Slot& p) const { return y0_ + (p.bus_address >> xbits_); }
+  // From a bus address within the tile: (y_local << xbits) | x_local.
+  std::uint32_t x_of(std::uint32_t bus_address) const { return x0_ + (bus_address & ((1u << xbits_) - 1)); }
+  std::uint32_t y_of(std::uint32_t bus_address) const { return y0_ + (bus_address >> xbits_); }
   SplitMix64& rng(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
   std::uint32_t boundary_after(std::uint64_t boundary, std::size_t index) const;
 

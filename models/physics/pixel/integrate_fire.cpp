@@ -18,18 +18,16 @@ IntegrateFire::IntegrateFire(const Sensor& sensor, double threshold, double t0, 
                              double initial_fraction, SplitMix64& rng)
     : threshold_(threshold), target_(draw_target(sensor, threshold, rng)), current_(current), anchor_t_(t0) {
   anchor_q_ = std::clamp(initial_fraction, 0.0, 1.0) * target_;
-  update_next_fire(sensor);
+  anchored(sensor);
 }
 
 double IntegrateFire::reset_end_of_last_cycle(const Sensor& sensor) const {
   // Only meaningful when cycles_ > 0: the previous firing's time plus the reset.
-  const double period = target_ / current_ + sensor.t_reset;
-  return anchor_t_ + (target_ - anchor_q_) / current_ + static_cast<double>(cycles_ - 1) * period +
-         sensor.t_reset;
+  return first_ + static_cast<double>(cycles_ - 1) * period_ + sensor.t_reset;
 }
 
 void IntegrateFire::start_new_integration(const Sensor& sensor, SplitMix64& rng) {
-  anchor_t_ = next_fire_ + sensor.t_reset;
+  anchor_t_ = next_fire() + sensor.t_reset;
   anchor_q_ = 0;
   cycles_ = 0;
   target_ = draw_target(sensor, threshold_, rng);
@@ -54,7 +52,7 @@ void IntegrateFire::set_current(const Sensor& sensor, double t, double current) 
   anchor_q_ = q;
   cycles_ = 0;
   current_ = current;
-  update_next_fire(sensor);
+  anchored(sensor);
 }
 
 }  // namespace aesim

@@ -24,7 +24,8 @@ inline constexpr double kNever = std::numeric_limits<double>::infinity();
 // anchor, so firing times do not accumulate rounding error over long runs.
 //
 // What all pixels of a sensor share (reset time, shot noise) is passed in, not stored, so that a
-// pixel's state is 56 bytes: a megapixel array schedules in well under 100 bytes per pixel.
+// pixel's state is 60 bytes (64 with padding, which a derived class may fill): a megapixel array
+// schedules in well under 100 bytes per pixel.
 // When a pixel's next firing and its next change of light fall at the same time, the firing comes
 // first: the charge reached threshold under the old light. Every rung orders the two by this.
 inline bool fires_first(double t_fire, double t_light_change) { return t_fire <= t_light_change; }
@@ -43,16 +44,17 @@ class IntegrateFire {
   IntegrateFire(const Sensor& sensor, double threshold, double t0, double current, double initial_fraction,
                 SplitMix64& rng);
 
-  // Time of the next firing, or kNever when the current is zero.
-  double next_fire() const { return next_fire_; }
+  // Time of the next firing, or kNever when the current is zero: one multiply-add from the
+  // anchor (the branch keeps 0 * an overflowed period from making a NaN).
+  double next_fire() const { return cycles_ == 0 ? first_ : first_ + static_cast<double>(cycles_) * period_; }
   // Consumes the firing at next_fire(): the pixel enters reset and starts a new integration.
   void fire(const Sensor& sensor, SplitMix64& rng) {
     if (sensor.shot_noise || cycles_ >= kMaxCycles) {
       start_new_integration(sensor, rng);
+      anchored(sensor);
     } else {
       ++cycles_;
     }
-    update_next_fire(sensor);
   }
   // The current changes at time t (last firing <= t <= next_fire()); collected charge carries over.
   void set_current(const Sensor& sensor, double t, double current);
@@ -66,13 +68,16 @@ class IntegrateFire {
   double reset_end_of_last_cycle(const Sensor& sensor) const;
   // Re-anchors after the firing at next_fire() (each shot-noise integration has its own target).
   void start_new_integration(const Sensor& sensor, SplitMix64& rng);
-  void update_next_fire(const Sensor& sensor) {
+  // The anchor, target or current changed: the first firing after the anchor and the period
+  // from then on, the only divisions, once until the next change.
+  void anchored(const Sensor& sensor) {
     if (!(current_ > 0)) {
-      next_fire_ = kNever;
+      first_ = kNever;
+      period_ = 0;
       return;
     }
-    const double first = anchor_t_ + (target_ - anchor_q_) / current_;
-    next_fire_ = cycles_ == 0 ? first : first + static_cast<double>(cycles_) * (target_ / current_ + sensor.t_reset);
+    first_ = anchor_t_ + (target_ - anchor_q_) / current_;
+    period_ = target_ / current_ + sensor.t_reset;
   }
 
   double threshold_ = 0;  // C
@@ -80,7 +85,8 @@ class IntegrateFire {
   double current_ = 0;    // A
   double anchor_t_ = 0;   // integration started (or resumed) at this time...
   double anchor_q_ = 0;   // ...holding this charge
-  double next_fire_ = kNever;
+  double first_ = kNever;  // the first firing after the anchor
+  double period_ = 0;      // s, from one firing to the next at this current (with the reset)
   std::uint32_t cycles_ = 0;  // firings since the anchor (constant current, no shot noise)
 };
 
