@@ -22,11 +22,11 @@ constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
 constexpr std::size_t kAhead = 8;      // records prefetched ahead in each tile's buffer
 
-// Merges every tile's records earlier than `before` through a winner tree of the tiles' heads into
-// `chunk`, passing full chunks to `emit`. A tile's records are those it held back last time
-// followed by its new ones; in the event rung both are in order and the new ones come later, so
-// they are read where they lie, and only what stays for the next window is copied (the tail past
-// `before`), which keeps the buffers to the two sets the tiles and the merge swap. Otherwise
+// Merges every tile's records earlier than `before` through a tree of losers over the tiles'
+// heads into `chunk`, passing full chunks to `emit`. A tile's records are those it held back last
+// time followed by its new ones; in the event rung both are in order and the new ones come later,
+// so they are read where they lie, and only what stays for the next window is copied (the tail
+// past `before`), which keeps the buffers to the two sets the tiles and the merge swap. Otherwise
 // (simultaneous SystemC processes may have run in any order) they are joined and sorted; a
 // stable sort keeps production order among equal keys, as a sort of the whole run would.
 template <typename T, typename Emit>
