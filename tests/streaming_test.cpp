@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "event_files/events_csv.hpp"
+#include "array/address_map.hpp"
+#include "events/event_merger.hpp"
 #include "events/latency_recorder.hpp"
 #include "events/timestamps.hpp"
 #include "scene/photocurrents.hpp"
@@ -97,6 +99,35 @@ class FailingStream : public EventStream {
  private:
   std::size_t seen_ = 0;
 };
+
+TEST(Streaming, BufferedEventsKeepEveryFieldAtTheLimitsOfTheArray) {
+  // The widest bus address a valid array can give: 65535 columns need 16 bits, 256 rows 8, and
+  // 65535 x 256 is within the 2^24 pixels an array may have.
+  ArrayParams array;
+  array.cols = 65535;
+  array.rows = 256;
+  array.tile_cols = 65535;
+  array.tile_rows = 256;
+  const AddressMap map(array);
+  ASSERT_LE(map.bus_bits(), 25);
+  const std::uint32_t widest = map.bus_address({65534, 255});
+  for (const std::uint8_t flags : {std::uint8_t(kNormalEvent), std::uint8_t(kGhostEvent)}) {
+    AddressEvent e;
+    e.t = 1234.5678901234567;
+    e.x = 65534;
+    e.y = 255;
+    e.tile = 7;
+    e.bus_address = widest;
+    e.flags = flags;
+    const AddressEvent back = TileEvent::of(e).in_tile(7);
+    EXPECT_EQ(back.t, e.t);
+    EXPECT_EQ(back.x, e.x);
+    EXPECT_EQ(back.y, e.y);
+    EXPECT_EQ(back.tile, e.tile);
+    EXPECT_EQ(back.bus_address, e.bus_address);
+    EXPECT_EQ(back.flags, e.flags);
+  }
+}
 
 TEST(Streaming, AWriterErrorEndsTheRun) {
   const SensorConfig c = busy_sensor();

@@ -97,7 +97,7 @@ class EventLog {
       ++p.output;
       p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
     }
-    if (outputs_.events) filling_.events[e.tile].push_back(e);
+    if (outputs_.events) filling_.events[e.tile].push_back(TileEvent::of(e));
   }
 
   // Called by a rung while none of its tiles runs: no tile will output an event, or resolve a

@@ -14,9 +14,15 @@ struct OrderKey {
   bool operator<(const OrderKey& o) const { return (t < o.t) | ((t == o.t) & (rest < o.rest)); }
 };
 OrderKey key_of(const AddressEvent& e) { return {e.t, (std::uint64_t(e.tile) << 32) | e.bus_address}; }
-OrderKey key_of(const TruthRecord& r) { return key_of(r.firing); }
-double time_of(const AddressEvent& e) { return e.t; }
+// A buffered record of tile `tile` (TruthRecords name their tile themselves).
+OrderKey key_of(const TileEvent& e, std::uint32_t tile) {
+  return {e.t, (std::uint64_t(tile) << 32) | (e.address_ghost & ~TileEvent::kGhostBit)};
+}
+OrderKey key_of(const TruthRecord& r, std::uint32_t) { return key_of(r.firing); }
+double time_of(const TileEvent& e) { return e.t; }
 double time_of(const TruthRecord& r) { return r.firing.t; }
+AddressEvent in_tile(const TileEvent& e, std::uint32_t tile) { return e.in_tile(tile); }
+const TruthRecord& in_tile(const TruthRecord& r, std::uint32_t) { return r; }
 
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
@@ -29,10 +35,11 @@ constexpr std::size_t kAhead = 8;      // records prefetched ahead in each tile'
 // past `before`), which keeps the buffers to the two sets the tiles and the merge swap. Otherwise
 // (simultaneous SystemC processes may have run in any order) they are joined and sorted; a
 // stable sort keeps production order among equal keys, as a sort of the whole run would.
-template <typename T, typename Emit>
+template <typename T, typename Out, typename Emit>
 void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector<T>>& held, double before,
-                  std::vector<T>& chunk, Emit emit) {
-  auto less = [](const T& a, const T& b) { return key_of(a) < key_of(b); };
+                  std::vector<Out>& chunk, Emit emit) {
+  // Within one tile's records (the tile part of the key is the same).
+  auto less = [](const T& a, const T& b) { return key_of(a, 0) < key_of(b, 0); };
   auto early = [before](const T& r) { return time_of(r) < before; };
   const std::size_t tiles = held.size();
   // A tile's records to merge: [a, a_end) then [b, b_end).
@@ -76,7 +83,7 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
                       : static_cast<std::size_t>(std::partition_point(in.begin(), in.end(), early) - in.begin());
     cursor[i] = {h.data(), h.data() + from_held[i], in.data(), in.data() + from_new[i]};
     if (!cursor[i].done()) {
-      head[i] = key_of(cursor[i].peek());
+      head[i] = key_of(cursor[i].peek(), static_cast<std::uint32_t>(i));
       live += from_held[i] + from_new[i];
     }
   }
@@ -91,12 +98,12 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
   std::uint32_t w = winner[1];
   for (; live > 0; --live) {
     Cursor& c = cursor[w];
-    chunk.push_back(c.next());
+    chunk.push_back(in_tile(c.next(), w));
     if (chunk.size() == kChunk) {
       emit(chunk);
       chunk.clear();
     }
-    head[w] = c.done() ? exhausted : key_of(c.peek());
+    head[w] = c.done() ? exhausted : key_of(c.peek(), w);
     // Branch-free: which side wins is as good as random.
     for (std::size_t n = (leaves + w) / 2; n >= 1; n /= 2) {
       const std::uint32_t l = loser[n];

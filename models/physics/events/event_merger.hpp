@@ -1,15 +1,45 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "events/event_stream.hpp"
 
 namespace aesim {
 
+// A receiver's output event while it waits in its tile's buffer for the merge: half an
+// AddressEvent, since the window buffers are what a streaming run holds beside its pixels. The
+// tile is the buffer's; x and y fit 16 bits (an array is at most 65535 a side); a bus address
+// within a tile fits 25 bits (at most 2^24 pixels an array, so ceil(log2 cols) + ceil(log2 rows)
+// <= 25), which leaves the top bit for the ghost flag, the only flag there is.
+struct TileEvent {
+  double t;
+  std::uint16_t x, y;
+  std::uint32_t address_ghost;
+
+  static constexpr std::uint32_t kGhostBit = 0x80000000u;
+  static TileEvent of(const AddressEvent& e) {
+    return {e.t, static_cast<std::uint16_t>(e.x), static_cast<std::uint16_t>(e.y),
+            e.bus_address | ((e.flags & kGhostEvent) ? kGhostBit : 0u)};
+  }
+  AddressEvent in_tile(std::uint32_t tile) const {
+    AddressEvent e;
+    e.t = t;
+    e.x = x;
+    e.y = y;
+    e.tile = tile;
+    e.bus_address = address_ghost & ~kGhostBit;
+    e.flags = (address_ghost & kGhostBit) ? kGhostEvent : kNormalEvent;
+    return e;
+  }
+};
+
+static_assert(sizeof(TileEvent) == 16, "a buffered event grew");
+
 // Each tile's records since the last hand-over, in the order the tile produced them.
 struct TileRecords {
   explicit TileRecords(std::size_t tiles = 0) : events(tiles), truth(tiles) {}
-  std::vector<std::vector<AddressEvent>> events;
+  std::vector<std::vector<TileEvent>> events;
   std::vector<std::vector<TruthRecord>> truth;
 };
 
@@ -27,7 +57,7 @@ class EventMerger {
   void merge(TileRecords& batch, double before);
 
  private:
-  std::vector<std::vector<AddressEvent>> events_;  // held: not yet earlier than a `before`
+  std::vector<std::vector<TileEvent>> events_;  // held: not yet earlier than a `before`
   std::vector<std::vector<TruthRecord>> truth_;
   std::vector<AddressEvent> event_chunk_;
   std::vector<TruthRecord> truth_chunk_;
