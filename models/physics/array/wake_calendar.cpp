@@ -4,6 +4,7 @@
 #include <cmath>
 
 namespace aesim {
+
 WakeCalendar::WakeCalendar(std::size_t slots, double horizon)
     : nodes_(slots, Node{0, 0, kNone}) {
   std::size_t buckets = 16;
