@@ -24,7 +24,6 @@ class AlohaBus final : public EventBus {
 
  private:
   void close_cluster();
-  void lose_cluster();  // two or more: all lost, one ghost without contention detection
 
   EventLog& log_;
   const AddressMap& map_;
