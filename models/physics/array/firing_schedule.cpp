@@ -65,7 +65,8 @@ std::uint32_t FiringSchedule::boundary_after(std::uint64_t boundary, std::size_t
 std::size_t FiringSchedule::fill(AddressEvent* out, std::size_t capacity, double until) {
   std::size_t filled = 0;
   WakeCalendar::Entry top;
-  while (filled < capacity && calendar_.peek(top) && top.t <= until) {
+  const auto time_of = [this](std::uint32_t slot) { return wake_time(pixels_[slot]); };
+  while (filled < capacity && calendar_.peek(top, time_of) && top.t <= until) {
     calendar_.pop();
     const std::uint32_t slot = top.slot;
     // Large arrays stream through their pixels' state in time order: fetch the next pixel's record

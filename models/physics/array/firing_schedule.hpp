@@ -33,8 +33,8 @@ class FiringSchedule {
   // event.
   std::size_t fill(AddressEvent* out, std::size_t capacity, double until);
 
-  // A lit pixel's state: 64 bytes, plus 16 in the calendar and 4 per bucket (about one a pixel);
-  // with the 8-byte photocurrent, 92 bytes per lit pixel. Its bus address is its key in the
+  // A lit pixel's state: 64 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel);
+  // with the 8-byte photocurrent, 84 bytes per lit pixel. Its bus address is its key in the
   // calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
   // in IntegrateFire's tail padding.
   struct Slot : IntegrateFire {

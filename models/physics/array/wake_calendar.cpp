@@ -6,7 +6,7 @@
 namespace aesim {
 
 WakeCalendar::WakeCalendar(std::size_t slots, double horizon)
-    : nodes_(slots, Node{0, 0, kNone}) {
+    : nodes_(slots, Node{0, kNone}) {
   std::size_t buckets = 16;
   while (buckets < slots && buckets < (std::size_t(1) << 22)) buckets *= 2;
   head_.assign(buckets, kNone);
@@ -27,50 +27,38 @@ void WakeCalendar::push_outside_year(const Entry& e, std::int64_t bucket) {
   }
 }
 
-bool WakeCalendar::advance() {
-  while (present_.empty()) {
-    if (in_year_ == 0) {
-      if (far_.empty()) return false;
-      // Nothing within the year: jump to the far heap's first.
-      now_ = bucket_of(far_.top().t);
-    } else {
-      ++now_;
-    }
-    // The year moved on: what the far heap holds inside it joins the buckets.
-    while (!far_.empty() && bucket_of(far_.top().t) - now_ <= static_cast<std::int64_t>(mask_)) {
-      into_year(far_.top(), bucket_of(far_.top().t));
-      far_.pop();
-    }
-    std::uint32_t& head = head_[static_cast<std::uint64_t>(now_) & mask_];
-    // The next bucket's first pixel is the next list to walk.
-    const std::uint32_t coming = head_[static_cast<std::uint64_t>(now_ + 1) & mask_];
-    if (coming != kNone) __builtin_prefetch(&nodes_[coming]);
-    // Field by field: an Entry built on the stack and copied whole stalled on store forwarding
-    // (two 8-byte stores read back as one 16-byte load), a third of the walk.
-    for (std::uint32_t s = head; s != kNone;) {
-      const Node& node = nodes_[s];
-      Entry& e = present_.emplace_back();
-      e.t = node.t;
-      e.key = node.key;
-      e.slot = s;
-      s = node.next;
-    }
-    head = kNone;
-    in_year_ -= present_.size();
-    // Latest first, so the earliest pops from the back. A bucket holds a pixel or two, where an
-    // insertion sort in place beats std::sort's call.
-    if (present_.size() > 16) {
-      std::sort(present_.begin(), present_.end(), [](const Entry& a, const Entry& b) { return Before()(b, a); });
-    } else {
-      for (std::size_t i = 1; i < present_.size(); ++i) {
-        const Entry e = present_[i];
-        std::size_t j = i;
-        for (; j > 0 && Before()(present_[j - 1], e); --j) present_[j] = present_[j - 1];
-        present_[j] = e;
-      }
+bool WakeCalendar::next_bucket() {
+  if (in_year_ == 0) {
+    if (far_.empty()) return false;
+    // Nothing within the year: jump to the far heap's first.
+    now_ = bucket_of(far_.top().t);
+  } else {
+    ++now_;
+  }
+  // The year moved on: what the far heap holds inside it joins the buckets.
+  while (!far_.empty() && bucket_of(far_.top().t) - now_ <= static_cast<std::int64_t>(mask_)) {
+    into_year(far_.top(), bucket_of(far_.top().t));
+    far_.pop();
+  }
+  // The next bucket's first pixel is the next list to walk.
+  const std::uint32_t coming = head_[static_cast<std::uint64_t>(now_ + 1) & mask_];
+  if (coming != kNone) __builtin_prefetch(&nodes_[coming]);
+  return true;
+}
+
+void WakeCalendar::sort_present() {
+  // Latest first, so the earliest pops from the back. A bucket holds a pixel or two, where an
+  // insertion sort in place beats std::sort's call.
+  if (present_.size() > 16) {
+    std::sort(present_.begin(), present_.end(), [](const Entry& a, const Entry& b) { return Before()(b, a); });
+  } else {
+    for (std::size_t i = 1; i < present_.size(); ++i) {
+      const Entry e = present_[i];
+      std::size_t j = i;
+      for (; j > 0 && Before()(present_[j - 1], e); --j) present_[j] = present_[j - 1];
+      present_[j] = e;
     }
   }
-  return true;
 }
 
 }  // namespace aesim

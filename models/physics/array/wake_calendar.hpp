@@ -16,6 +16,10 @@ namespace aesim {
 //
 // Entries come out in exactly the order of (time, key), as from a heap: buckets follow time
 // (floor(t / width) never decreases as t grows) and the present bucket is sorted by both.
+//
+// A pixel waiting in a bucket costs 8 bytes: its key and the next pixel of the bucket. Its time is
+// not stored twice: the owner's `time_of(slot)` gives it back when the bucket becomes the present
+// (it must return exactly the time pushed; the pixel's record is read then, just before it fires).
 class WakeCalendar {
  public:
   struct Entry {
@@ -38,8 +42,9 @@ class WakeCalendar {
     }
   }
   // The earliest entry, or false when none is left.
-  bool peek(Entry& e) {
-    if (present_.empty() && !advance()) return false;
+  template <typename TimeOf>
+  bool peek(Entry& e, const TimeOf& time_of) {
+    if (present_.empty() && !advance(time_of)) return false;
     e = present_.back();
     return true;
   }
@@ -60,21 +65,44 @@ class WakeCalendar {
   }
   void into_year(const Entry& e, std::int64_t bucket) {
     std::uint32_t& head = head_[static_cast<std::uint64_t>(bucket) & mask_];
-    nodes_[e.slot] = Node{e.t, e.key, head};
+    nodes_[e.slot] = Node{e.key, head};
     head = e.slot;
     ++in_year_;
   }
   void push_outside_year(const Entry& e, std::int64_t bucket);
-  bool advance();
+  // Moves to the next bucket that holds anything; false when none is left.
+  template <typename TimeOf>
+  bool advance(const TimeOf& time_of) {
+    while (present_.empty()) {
+      if (!next_bucket()) return false;
+      std::uint32_t& head = head_[static_cast<std::uint64_t>(now_) & mask_];
+      // Field by field: an Entry built on the stack and copied whole stalled on store forwarding
+      // (two 8-byte stores read back as one 16-byte load).
+      for (std::uint32_t s = head; s != kNone;) {
+        const Node& node = nodes_[s];
+        Entry& e = present_.emplace_back();
+        e.t = time_of(s);
+        e.key = node.key;
+        e.slot = s;
+        s = node.next;
+      }
+      head = kNone;
+      in_year_ -= present_.size();
+      sort_present();
+    }
+    return true;
+  }
+  // Steps the present to the next bucket (jumping to the far heap's first when the year is
+  // empty), bringing what the far heap holds inside the new year into the buckets.
+  bool next_bucket();
+  void sort_present();
 
   // Bucket numbers stay far below overflow whatever the times (a run is at most 1e6 s long).
   static constexpr double kLastBucket = 4.0e18;
 
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-  // A pixel while it sits in a bucket: its wake-up and key, and the next pixel of the bucket; one
-  // cache line reached per pixel.
+  // A pixel while it sits in a bucket: its key and the next pixel of the bucket.
   struct Node {
-    double t;
     std::uint32_t key;
     std::uint32_t next;
   };
