@@ -14,12 +14,14 @@
 namespace aesim {
 namespace {
 
-// Windows of a quarter of an event per pixel, 256 Ki at least: each tile works through a batch of
+// Windows of an eighth of an event per pixel, 256 Ki at least: each tile works through a batch of
 // events while its pixels' state is in cache (at 64 Ki, QCIF tiles took ~2 events a pixel a
-// window and writing AEDAT ran at 0.7 of counting; at 256 Ki, at par), for 8 MB of records in each
-// of the two buffer sets, or 8 bytes a pixel on large arrays.
+// window and writing AEDAT ran at 0.7 of counting; at 256 Ki, at par), for 4 MB of records in each
+// of the two buffer sets, or 2 bytes a pixel on large arrays, up to twice that as the per-tile
+// vectors grow by doubling (growing them by a quarter fragmented the heap: 100 MB more at
+// 2048x2048). A quarter of an event per pixel ran no faster at 2048x2048 and held 35 MB more.
 constexpr double kMinWindowEvents = 262144;
-constexpr double kWindowEventsPerPixel = 0.25;
+constexpr double kWindowEventsPerPixel = 0.125;
 
 // Firings pass from a tile's schedule to its bus a batch at a time (8 KiB, in L1).
 using FiringBatch = std::array<AddressEvent, 256>;
