@@ -83,9 +83,8 @@ int compare_command(CompareOptions opt) {
       base.set(setting.first, setting.second);
     }
     const ResolvedConfig resolved = base.resolved();
-    const Scene scene = load_scene(files, resolved.array, resolved.scene);
-    const Photocurrents photocurrents(scene, resolved.pixel);
-    const Image mean = mean_frame(scene, resolved.sim.duration);
+    const Photocurrents photocurrents(load_scene(files, resolved.array, resolved.scene), resolved.pixel);
+    const Image mean = mean_frame(photocurrents.scene(), resolved.sim.duration);
 
     SensorConfig ref_config = base;
     ref_config.sim.fidelity = Fidelity::Event;

@@ -92,8 +92,8 @@ int run_command(RunOptions opt) {
   inputs.push_back(opt.sensor);
   check_output_paths(outputs, inputs);
 
-  const Scene scene = load_scene(scene_files, config.array, config.scene);
-  const Photocurrents photocurrents(scene, config.pixel);
+  const Photocurrents photocurrents(load_scene(scene_files, config.array, config.scene), config.pixel);
+  const Scene& scene = photocurrents.scene();
   OutputFiles files;
   if (!rtl_traces.empty()) {
     // Verilator writes these during the run; they are renamed into place with the rest.

@@ -201,11 +201,11 @@ py::object py_run(const std::string& sensor, const py::object& scene, const py::
   request.stream = &collected;
   const Rung& rung = choose_rung(config, request);
   const double tick = rung.tick(config);
-  const Scene shown = frames.empty() ? load_scene(files, config.array, config.scene)
-                                     : load_scene(frames, config.array, config.scene);
-  const Photocurrents photocurrents(shown, config.pixel);
+  const Photocurrents photocurrents(frames.empty() ? load_scene(files, config.array, config.scene)
+                                                  : load_scene(frames, config.array, config.scene),
+                                   config.pixel);
   const SimulationResult result = without_gil([&] { return simulate(config, photocurrents, request); });
-  const Image mean = mean_frame(shown, config.sim.duration);
+  const Image mean = mean_frame(photocurrents.scene(), config.sim.duration);
   const nlohmann::json summary = make_summary(config, result.log, result.facts, &mean);
 
   // t is the receiver's stamp (whole ticks), as in the event files.

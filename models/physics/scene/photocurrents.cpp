@@ -1,23 +1,31 @@
 #include "scene/photocurrents.hpp"
 
+#include <utility>
+
 namespace aesim {
 
-Photocurrents::Photocurrents(const Scene& scene, const PixelParams& pixel)
-    : pixels_(scene.frames.front().pixels.size()), period_(scene.frame_period), loop_(scene.loop) {
-  currents_.reserve(pixels_ * scene.frames.size());
-  for (const Image& frame : scene.frames) {
-    for (double v : frame.pixels) currents_.push_back(pixel.integrating_current(v));
+Photocurrents::Photocurrents(Scene scene, PixelParams pixel)
+    : scene_(std::move(scene)),
+      pixel_(std::move(pixel)),
+      pixels_(scene_.frames.front().pixels.size()),
+      period_(scene_.frame_period) {
+  if (scene_.frames.size() < 2) return;
+  currents_.reserve(pixels_ * scene_.frames.size());
+  for (const Image& frame : scene_.frames) {
+    for (double v : frame.pixels) currents_.push_back(pixel_.integrating_current(v));
   }
 }
 
-std::size_t Photocurrents::frame_at(std::uint64_t boundary) const { return frame_index(boundary, frames(), loop_); }
+std::size_t Photocurrents::frame_at(std::uint64_t boundary) const {
+  return frame_index(boundary, frames(), scene_.loop);
+}
 
 std::uint64_t Photocurrents::next_change(std::uint64_t boundary, std::size_t pixel) const {
   const std::size_t n = frames();
   if (n < 2) return kNoChange;
   const double now = current(boundary, pixel);
   // A held sequence changes only up to its last frame; a looped one repeats within n frames.
-  const std::uint64_t last = loop_ ? boundary + n : static_cast<std::uint64_t>(n - 1);
+  const std::uint64_t last = scene_.loop ? boundary + n : static_cast<std::uint64_t>(n - 1);
   for (std::uint64_t b = boundary + 1; b <= last; ++b) {
     if (current(b, pixel) != now) return b;
   }

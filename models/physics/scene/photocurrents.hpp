@@ -11,20 +11,27 @@ namespace aesim {
 // The current every pixel integrates in every frame: I = i_dark + i_max * v (SPEC section 1), or
 // with pixel.transfer the current that fires with the table's period (pixel/transfer_curve.hpp).
 // Frame k starts at boundary k (time k * frame_period); boundary 0 is t = 0.
+//
+// It keeps the scene (a run's summary needs its mean after the run). A still scene's currents
+// are worked out from it when asked, a pixel's once or twice a run, rather than held beside it (at
+// 2048x2048 a second copy was 34 MB of a 500 MB budget); a sequence's are tabulated, since
+// next_change() compares frames.
 class Photocurrents {
  public:
   static constexpr std::uint64_t kNoChange = std::numeric_limits<std::uint64_t>::max();
 
-  Photocurrents(const Scene& scene, const PixelParams& pixel);
+  Photocurrents(Scene scene, PixelParams pixel);
 
+  const Scene& scene() const { return scene_; }
   std::size_t pixels() const { return pixels_; }
-  std::size_t frames() const { return currents_.size() / pixels_; }
+  std::size_t frames() const { return scene_.frames.size(); }
   double frame_period() const { return period_; }
-  bool loops() const { return loop_; }
+  bool loops() const { return scene_.loop; }
   double boundary_time(std::uint64_t boundary) const { return static_cast<double>(boundary) * period_; }
   // Which frame is shown after `boundary`: sequences loop or hold their last frame.
   std::size_t frame_at(std::uint64_t boundary) const;
   double current(std::uint64_t boundary, std::size_t pixel) const {
+    if (currents_.empty()) return pixel_.integrating_current(scene_.frames.front().pixels[pixel]);
     return currents_[frame_at(boundary) * pixels_ + pixel];
   }
   // The first boundary after `boundary` at which this pixel's current changes, or kNoChange.
@@ -32,10 +39,11 @@ class Photocurrents {
   std::uint64_t next_change(std::uint64_t boundary, std::size_t pixel) const;
 
  private:
+  Scene scene_;
+  PixelParams pixel_;
   std::size_t pixels_;
   double period_;
-  bool loop_;
-  std::vector<double> currents_;
+  std::vector<double> currents_;  // frame by frame; empty for a still scene
 };
 
 }  // namespace aesim
