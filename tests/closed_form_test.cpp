@@ -123,6 +123,31 @@ TEST(ClosedForm, LoopedSequenceRepeats) {
   expect_times(times, {0.1, 0.2, 0.3, 0.73, 0.83, 0.93});
 }
 
+TEST(Light, StillSceneCurrentsAreWorkedOutAsASequencesAreTabulated) {
+  // A still scene's currents are computed when asked, a sequence's tabulated up front: the same
+  // pixel response either way, with the linear response and with a measured period table (whose
+  // interpolation is where a difference would show).
+  SensorConfig c = exact_sensor(8, 8, 8);
+  c.pixel.i_dark = 3e-15;
+  const Image img = make_image(8, 8, [](int x, int y) { return (x * 8 + y) / 63.0 * 1.7; });
+  const Image dark = make_image(8, 8, [](int, int) { return 0.0; });
+  for (const bool table : {false, true}) {
+    if (table) c.pixel.transfer = TransferCurve{{1e-15, 1e-13, 1e-11}, {110.0, 1.3, 0.011}, 0, -1};
+    const Photocurrents still(make_scene({img}), c.pixel);
+    const Photocurrents sequence(make_scene({img, dark}, 0.5, false), c.pixel);
+    ASSERT_EQ(still.frames(), 1u);
+    for (std::size_t i = 0; i < 64; ++i) {
+      const double expected = c.pixel.integrating_current(img.pixels[i]);
+      EXPECT_EQ(still.current(0, i), expected) << "pixel " << i << (table ? " with the table" : "");
+      EXPECT_EQ(still.current(7, i), expected) << "a still scene has no later frame";
+      EXPECT_EQ(sequence.current(0, i), expected);
+      EXPECT_EQ(sequence.current(1, i), c.pixel.integrating_current(0.0));
+      EXPECT_EQ(still.next_change(0, i), Photocurrents::kNoChange);
+    }
+    EXPECT_EQ(still.scene().frames.front().pixels, img.pixels);
+  }
+}
+
 TEST(Mismatch, SpreadOfPeriodsMatchesTheParameter) {
   SensorConfig c = exact_sensor(64, 64, 32);
   c.pixel.mismatch = 0.05;

@@ -20,7 +20,7 @@ IntegrateFire make(double current, double t_reset, double fraction = 0.0) {
 }
 
 std::vector<double> fire_until(IntegrateFire& p, double t_reset, double t_end) {
-  SplitMix64 rng(1);
+  IntegrateFire::ShotNoise rng;  // no shot noise: untouched
   std::vector<double> times;
   while (p.next_fire() <= t_end) {
     times.push_back(p.next_fire());
@@ -47,7 +47,7 @@ TEST(IntegrateFire, CurrentChangeMidIntegrationCarriesChargeOver) {
   // half takes 0.1 s, so the next firing is at 0.35, then every 0.2 s.
   IntegrateFire p = make(1e-12, 0.0);
   const IntegrateFire::Sensor s = sensor(0.0);
-  SplitMix64 rng(1);
+  IntegrateFire::ShotNoise rng;
   EXPECT_NEAR(p.next_fire(), 0.1, 1e-15);
   p.fire(s, rng);
   EXPECT_NEAR(p.next_fire(), 0.2, 1e-15);
@@ -64,7 +64,7 @@ TEST(IntegrateFire, CurrentChangeDuringResetStartsFromZeroAfterReset) {
   // charge: 0.5 pA needs 0.2 s, so the next firing is at 0.42.
   IntegrateFire p = make(1e-12, 0.01);
   const IntegrateFire::Sensor s = sensor(0.01);
-  SplitMix64 rng(1);
+  IntegrateFire::ShotNoise rng;
   p.fire(s, rng);
   EXPECT_NEAR(p.next_fire(), 0.21, 1e-15);
   p.fire(s, rng);
@@ -93,7 +93,7 @@ TEST(IntegrateFire, TinyCurrentsGiveHugeFiniteTimesNotNaN) {
     const double t = p.next_fire();
     EXPECT_FALSE(std::isnan(t)) << current;
     EXPECT_GT(t, 1e15) << current;
-    SplitMix64 rng(1);
+    IntegrateFire::ShotNoise rng;
     p.fire(sensor(1e-6), rng);
     EXPECT_FALSE(std::isnan(p.next_fire())) << current;
   }
@@ -105,15 +105,15 @@ TEST(IntegrateFire, ShotNoiseIntegrationTimesFollowTheGammaLaw) {
   const double threshold = electrons * kElectronCharge;
   const double current = 1e-15;
   const double scale = kElectronCharge / current;
-  SplitMix64 rng(42);
+  IntegrateFire::ShotNoise noise{SplitMix64(42), threshold};
   const IntegrateFire::Sensor noisy{0.0, true};
-  IntegrateFire p(noisy, threshold, 0.0, current, 0.0, rng);
+  IntegrateFire p(noisy, threshold, 0.0, current, 0.0, noise.rng);
   const int n = 20000;
   double previous = 0, sum = 0, sum2 = 0;
   for (int i = 0; i < n; ++i) {
     const double dt = p.next_fire() - previous;
     previous = p.next_fire();
-    p.fire(noisy, rng);
+    p.fire(noisy, noise);
     sum += dt;
     sum2 += dt * dt;
   }

@@ -4,7 +4,7 @@
 
 #include "pixel/pixel_draws.hpp"
 
-static_assert(sizeof(aesim::FiringSchedule::Slot) <= 64, "pixel record grew");
+static_assert(sizeof(aesim::FiringSchedule::Slot) <= 56, "pixel record grew");
 
 namespace aesim {
 
@@ -40,7 +40,7 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       entries.push_back({t, map.bus_address({x, y}), static_cast<std::uint32_t>(pixels_.size())});
       if (current > 0) periods.push_back(threshold / current + sensor_.t_reset);
       pixels_.push_back(p);
-      if (sensor_.shot_noise) shot_noise_.push_back(noise);
+      if (sensor_.shot_noise) shot_noise_.push_back({noise, threshold});
     }
   }
   // A year of twice the median period keeps the brighter half of the pixels, and most of their
@@ -84,7 +84,7 @@ std::size_t FiringSchedule::fill(AddressEvent* out, std::size_t capacity, double
       firing.tile = tile_;
       firing.bus_address = top.key;
       firing.flags = kNormalEvent;
-      p.fire(sensor_, rng(slot));
+      p.fire(sensor_, noise(slot));
     } else {
       const std::size_t index = std::size_t(y_of(top.key)) * cols_ + x_of(top.key);
       p.set_current(sensor_, t_boundary, photocurrents_.current(p.next_boundary, index));

@@ -33,8 +33,8 @@ class FiringSchedule {
   // event.
   std::size_t fill(AddressEvent* out, std::size_t capacity, double until);
 
-  // A lit pixel's state: 64 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel);
-  // with the 8-byte photocurrent, 84 bytes per lit pixel. Its bus address is its key in the
+  // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
+  // 68 bytes per lit pixel (a still scene's photocurrents are not held; see Photocurrents). Its bus address is its key in the
   // calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
   // in IntegrateFire's tail padding.
   struct Slot : IntegrateFire {
@@ -57,12 +57,12 @@ class FiringSchedule {
   // From a bus address within the tile: (y_local << xbits) | x_local.
   std::uint32_t x_of(std::uint32_t bus_address) const { return x0_ + (bus_address & ((1u << xbits_) - 1)); }
   std::uint32_t y_of(std::uint32_t bus_address) const { return y0_ + (bus_address >> xbits_); }
-  SplitMix64& rng(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
+  IntegrateFire::ShotNoise& noise(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
   std::uint32_t boundary_after(std::uint64_t boundary, std::size_t index) const;
 
   std::vector<Slot> pixels_;
-  std::vector<SplitMix64> shot_noise_;  // per pixel, only with pixel.shot_noise
-  SplitMix64 no_noise_{0};              // never drawn from: without shot noise nothing is random
+  std::vector<IntegrateFire::ShotNoise> shot_noise_;  // per pixel, only with pixel.shot_noise
+  IntegrateFire::ShotNoise no_noise_;                 // untouched: without shot noise nothing is random
   WakeCalendar calendar_;
 };
 

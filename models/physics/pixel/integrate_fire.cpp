@@ -16,7 +16,7 @@ double draw_target(const IntegrateFire::Sensor& s, double threshold, SplitMix64&
 
 IntegrateFire::IntegrateFire(const Sensor& sensor, double threshold, double t0, double current,
                              double initial_fraction, SplitMix64& rng)
-    : threshold_(threshold), target_(draw_target(sensor, threshold, rng)), current_(current), anchor_t_(t0) {
+    : target_(draw_target(sensor, threshold, rng)), current_(current), anchor_t_(t0) {
   anchor_q_ = std::clamp(initial_fraction, 0.0, 1.0) * target_;
   anchored(sensor);
 }
@@ -26,11 +26,12 @@ double IntegrateFire::reset_end_of_last_cycle(const Sensor& sensor) const {
   return first_ + static_cast<double>(cycles_ - 1) * period_ + sensor.t_reset;
 }
 
-void IntegrateFire::start_new_integration(const Sensor& sensor, SplitMix64& rng) {
+void IntegrateFire::start_new_integration(const Sensor& sensor, ShotNoise& noise) {
   anchor_t_ = next_fire() + sensor.t_reset;
   anchor_q_ = 0;
   cycles_ = 0;
-  target_ = draw_target(sensor, threshold_, rng);
+  // Without shot noise every target is the threshold, the one the pixel was made with.
+  if (sensor.shot_noise) target_ = draw_target(sensor, noise.threshold, noise.rng);
 }
 
 double IntegrateFire::charge_at(const Sensor& sensor, double t) const {

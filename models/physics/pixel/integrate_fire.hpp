@@ -23,9 +23,10 @@ inline constexpr double kNever = std::numeric_limits<double>::infinity();
 // With constant current the k-th firing after an anchor is computed in closed form from the
 // anchor, so firing times do not accumulate rounding error over long runs.
 //
-// What all pixels of a sensor share (reset time, shot noise) is passed in, not stored, so that a
-// pixel's state is 60 bytes (64 with padding, which a derived class may fill): a megapixel array
-// schedules in well under 100 bytes per pixel.
+// What all pixels of a sensor share (reset time, shot noise) is passed in, not stored, and so is
+// what only shot noise needs (the pixel's threshold charge and random stream), so that a pixel's
+// state is 52 bytes (56 with padding, which a derived class may fill): a megapixel array schedules
+// in well under 100 bytes per pixel.
 // When a pixel's next firing and its next change of light fall at the same time, the firing comes
 // first: the charge reached threshold under the old light. Every rung orders the two by this.
 inline bool fires_first(double t_fire, double t_light_change) { return t_fire <= t_light_change; }
@@ -35,6 +36,12 @@ class IntegrateFire {
   struct Sensor {
     double t_reset = 0;  // s
     bool shot_noise = false;
+  };
+  // With shot noise, what each new integration's target is drawn from: the pixel's threshold
+  // charge (with mismatch) and its own random stream. Untouched without shot noise.
+  struct ShotNoise {
+    SplitMix64 rng{0};
+    double threshold = 0;  // C
   };
 
   IntegrateFire() = default;
@@ -48,9 +55,9 @@ class IntegrateFire {
   // anchor (the branch keeps 0 * an overflowed period from making a NaN).
   double next_fire() const { return cycles_ == 0 ? first_ : first_ + static_cast<double>(cycles_) * period_; }
   // Consumes the firing at next_fire(): the pixel enters reset and starts a new integration.
-  void fire(const Sensor& sensor, SplitMix64& rng) {
+  void fire(const Sensor& sensor, ShotNoise& noise) {
     if (sensor.shot_noise || cycles_ >= kMaxCycles) {
-      start_new_integration(sensor, rng);
+      start_new_integration(sensor, noise);
       anchored(sensor);
     } else {
       ++cycles_;
@@ -67,7 +74,7 @@ class IntegrateFire {
 
   double reset_end_of_last_cycle(const Sensor& sensor) const;
   // Re-anchors after the firing at next_fire() (each shot-noise integration has its own target).
-  void start_new_integration(const Sensor& sensor, SplitMix64& rng);
+  void start_new_integration(const Sensor& sensor, ShotNoise& noise);
   // The anchor, target or current changed: the first firing after the anchor and the period
   // from then on, the only divisions, once until the next change.
   void anchored(const Sensor& sensor) {
@@ -80,11 +87,12 @@ class IntegrateFire {
     period_ = target_ / current_ + sensor.t_reset;
   }
 
-  double threshold_ = 0;  // C
-  double target_ = 0;     // charge to collect in this integration
+  double target_ = 0;     // C, charge to collect in this integration (the threshold without shot noise)
   double current_ = 0;    // A
   double anchor_t_ = 0;   // integration started (or resumed) at this time...
   double anchor_q_ = 0;   // ...holding this charge
+  // What every firing reads, side by side at the end, where a derived class's field joins them
+  // in the padding: one cache line reached in most records.
   double first_ = kNever;  // the first firing after the anchor
   double period_ = 0;      // s, from one firing to the next at this current (with the reset)
   std::uint32_t cycles_ = 0;  // firings since the anchor (constant current, no shot noise)

@@ -11,10 +11,10 @@ PixelProcess::PixelProcess(const sc_core::sc_module_name& name, const PixelParam
       index_(index),
       identity_(identity),
       t_end_(sim.duration),
-      rng_(shot_noise_stream(sim.seed, index)),
+      noise_{shot_noise_stream(sim.seed, index), pixel_threshold(pixel, sim.seed, index)},
       sensor_(pixel_sensor(pixel)),
-      core_(sensor_, pixel_threshold(pixel, sim.seed, index), 0.0, photocurrents.current(0, index),
-            initial_fraction(pixel, sim.seed, index), rng_),
+      core_(sensor_, noise_.threshold, 0.0, photocurrents.current(0, index), initial_fraction(pixel, sim.seed, index),
+            noise_.rng),
       next_boundary_(photocurrents.next_change(0, index)) {
   SC_METHOD(step);
 }
@@ -26,7 +26,7 @@ void PixelProcess::step() {
     AddressEvent e = identity_;
     e.t = core_.next_fire();
     bus->request(e);
-    core_.fire(sensor_, rng_);
+    core_.fire(sensor_, noise_);
   } else {
     core_.set_current(sensor_, photocurrents_.boundary_time(next_boundary_),
                       photocurrents_.current(next_boundary_, index_));

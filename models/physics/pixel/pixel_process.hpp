@@ -27,7 +27,7 @@ class PixelProcess : public sc_core::sc_module {
   std::size_t index_;
   AddressEvent identity_;
   double t_end_;
-  SplitMix64 rng_;
+  IntegrateFire::ShotNoise noise_;
   IntegrateFire::Sensor sensor_;
   IntegrateFire core_;
   std::uint64_t next_boundary_;
