@@ -258,3 +258,74 @@ TEST(CycleFidelity, AtLowLoadDeliversExactlyWhatTheEventFidelityDelivers) {
 
 }  // namespace
 }  // namespace aesim
+
+namespace aesim {
+namespace {
+
+// The reference receiver runs as one process per clock edge (ReferenceClockDomain); as a module
+// on a clock wire with the sink and stream monitor beside it (what a Verilated receiver gets), it
+// must give the same run: every output event, every fate and delivery time, every clock edge.
+struct DomainCase {
+  const char* name;
+  const char* scene;
+  double clock_hz;
+  FullPolicy policy;
+  int fifo_depth;
+  unsigned ready_every;  // the consumer is ready one cycle in this many
+  bool contention_detect;
+  bool free_running;
+};
+
+class ClockDomain : public ::testing::TestWithParam<DomainCase> {};
+
+TEST_P(ClockDomain, OneProcessPerEdgeEqualsTheReceiverOnAClockWire) {
+  const DomainCase& k = GetParam();
+  SensorConfig c = load_sensor("aloha");
+  c.sim.fidelity = Fidelity::Cycle;
+  c.sim.duration = k.free_running ? 0.05 : 0.5;
+  c.receiver.clock = k.clock_hz;
+  c.receiver.full_policy = k.policy;
+  c.receiver.fifo_depth = k.fifo_depth;
+  c.bus.contention_detect = k.contention_detect;
+  const Photocurrents photocurrents(
+      load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/" + k.scene), c.array, c.scene), c.pixel);
+  SimulationRequest request = testing::with_truth();
+  const unsigned every = k.ready_every;
+  if (every > 1) request.cycle.sink_ready = [every](std::uint64_t cycle) { return cycle % every == 0; };
+  request.cycle.free_running_clock = k.free_running;
+  const SimulationResult domain = simulate(c.resolved(), photocurrents, request);
+  request.cycle.receiver = reference_receiver_factory();
+  const SimulationResult wired = simulate(c.resolved(), photocurrents, request);
+
+  EXPECT_EQ(domain.facts.receiver_clock_edges, wired.facts.receiver_clock_edges);
+  EXPECT_EQ(domain.facts.protocol_violations, 0u);
+  EXPECT_EQ(wired.facts.protocol_violations, 0u);
+  EXPECT_EQ(domain.facts.tau_s, wired.facts.tau_s);
+  ASSERT_GT(domain.log.events().size(), 100u);
+  ASSERT_EQ(domain.log.events().size(), wired.log.events().size());
+  for (std::size_t i = 0; i < domain.log.events().size(); ++i) {
+    const AddressEvent& a = domain.log.events()[i];
+    const AddressEvent& b = wired.log.events()[i];
+    ASSERT_TRUE(a.t == b.t && a.bus_address == b.bus_address && a.tile == b.tile && a.flags == b.flags) << i;
+  }
+  ASSERT_EQ(domain.log.truth().size(), wired.log.truth().size());
+  for (std::size_t i = 0; i < domain.log.truth().size(); ++i) {
+    ASSERT_EQ(domain.log.truth()[i].fate, wired.log.truth()[i].fate) << i;
+    ASSERT_EQ(domain.log.truth()[i].t_deliver, wired.log.truth()[i].t_deliver) << i;
+  }
+  const TileCounters t = domain.log.totals();
+  if (every > 1 && k.policy == FullPolicy::Drop) EXPECT_GT(t.dropped, 100u) << "the FIFO really filled";
+  if (!k.contention_detect) EXPECT_GT(t.ghost, 10u) << "collisions went undetected";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Receivers, ClockDomain,
+    ::testing::Values(DomainCase{"letter", "letters/A.pgm", 50e6, FullPolicy::Drop, 16, 1, true, false},
+                      DomainCase{"slow_consumer_drops", "natural.pgm", 1e6, FullPolicy::Drop, 2, 400, true, false},
+                      DomainCase{"slow_consumer_holds", "natural.pgm", 1e6, FullPolicy::Hold, 1, 400, true, false},
+                      DomainCase{"ghosts", "checkerboard.pgm", 1e6, FullPolicy::Drop, 16, 1, false, false},
+                      DomainCase{"free_running", "gradient.pgm", 5e6, FullPolicy::Hold, 4, 3, true, true}),
+    [](const ::testing::TestParamInfo<DomainCase>& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace aesim

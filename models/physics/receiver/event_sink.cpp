@@ -2,15 +2,8 @@
 
 namespace aesim {
 
-EventSink::EventSink(const sc_core::sc_module_name& name, ReceiverSignals& s, std::uint32_t tile,
-                     const AddressMap& map, double tick, int ts_width, EventLog& log)
-    : sc_module(name),
-      s_(s),
-      tile_(tile),
-      map_(map),
-      tick_(tick),
-      ts_modulus_(ts_width >= 64 ? 0 : (1ULL << ts_width)),
-      log_(log) {
+EventSink::EventSink(const sc_core::sc_module_name& name, ReceiverSignals& s, StreamConsumer consumer)
+    : sc_module(name), s_(s), consumer_(std::move(consumer)) {
   s_.evt_ready.write(true);
   SC_METHOD(on_clock);
   sensitive << s_.clk.posedge_event();
@@ -18,22 +11,8 @@ EventSink::EventSink(const sc_core::sc_module_name& name, ReceiverSignals& s, st
 }
 
 void EventSink::on_clock() {
-  if (s_.evt_valid.read() && s_.evt_ready.read()) {
-    const std::uint64_t ts = s_.evt_ts.read();
-    if (ts < last_ts_) ++wraps_;
-    last_ts_ = ts;
-    AddressEvent e;
-    e.t = static_cast<double>(ts + wraps_ * ts_modulus_) * tick_;
-    e.tile = tile_;
-    e.bus_address = s_.evt_addr.read();
-    const PixelAddress p = map_.locate(tile_, e.bus_address);
-    e.x = p.x;
-    e.y = p.y;
-    e.flags = s_.evt_flags.read() ? kGhostEvent : kNormalEvent;
-    log_.output(e);
-  }
-  ++cycle_;
-  s_.evt_ready.write(ready_ ? ready_(cycle_) : true);
+  s_.evt_ready.write(consumer_.edge(s_.evt_valid.read(), s_.evt_ready.read(), s_.evt_ts.read(), s_.evt_addr.read(),
+                                    s_.evt_flags.read()));
 }
 
 }  // namespace aesim

@@ -8,33 +8,18 @@ StreamMonitor::StreamMonitor(const sc_core::sc_module_name& name, ReceiverSignal
   dont_initialize();
 }
 
-void StreamMonitor::on_rise() {
-  if (pending_) violations_ += broken();
-  pending_ = false;
-  if (!s_.rst_n.read()) {
-    taken_ = 0;
-    stalled_ = false;
-    return;
-  }
-  pending_ = true;
-  // The values before this edge: a beat offered and not taken must be offered again, unchanged.
-  if (s_.evt_valid.read() && s_.evt_ready.read()) ++taken_;
-  stalled_ = s_.evt_valid.read() && !s_.evt_ready.read();
-  held_ts_ = s_.evt_ts.read();
-  held_addr_ = s_.evt_addr.read();
-  held_flags_ = s_.evt_flags.read();
-}
-
-unsigned StreamMonitor::broken() const {
-  if (!s_.rst_n.read()) return 0;
-  unsigned n = 0;
-  if (stalled_ && (!s_.evt_valid.read() || s_.evt_ts.read() != held_ts_ || s_.evt_addr.read() != held_addr_ ||
-                   s_.evt_flags.read() != held_flags_)) {
-    ++n;
-  }
-  if (s_.events.read() != taken_ + s_.fifo_count.read()) ++n;
-  if (s_.fifo_count.read() > s_.fifo_limit.read()) ++n;
-  return n;
+StreamView StreamMonitor::view() const {
+  StreamView v;
+  v.rst_n = s_.rst_n.read();
+  v.valid = s_.evt_valid.read();
+  v.ready = s_.evt_ready.read();
+  v.flags = s_.evt_flags.read();
+  v.ts = s_.evt_ts.read();
+  v.addr = s_.evt_addr.read();
+  v.events = s_.events.read();
+  v.fifo_count = s_.fifo_count.read();
+  v.fifo_limit = s_.fifo_limit.read();
+  return v;
 }
 
 }  // namespace aesim

@@ -15,17 +15,24 @@ sc_core::sc_time receiver_clock_period(const ReceiverParams& receiver) {
 CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
                      const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options)
     : sc_module(name),
-      clock_("clock", s_, receiver_clock_period(config.receiver), receiver_prescale(config.receiver), kReceiverTsWidth,
-             options.free_running_clock ? sc_core::sc_time(config.sim.duration, sc_core::SC_SEC)
-                                        : sc_core::SC_ZERO_TIME),
-      receiver_((options.receiver ? options.receiver : reference_receiver_factory())(
-          "receiver", tile, s_, receiver_model_config(config.receiver, config.bus.contention_detect, options))),
-      sink_("sink", s_, tile, map, receiver_tick(config.receiver), kReceiverTsWidth, log),
       monitor_("monitor", fmt::format("tile{}", tile), map.bus_bits(), vcd),
-      stream_monitor_("stream_monitor", s_),
       bus_("bus", s_, receiver_clock_period(config.receiver), config.bus.contention_detect, log) {
-  if (options.sink_ready) sink_.set_ready_pattern(options.sink_ready);
   const ReceiverCycleModel::Config rc = receiver_model_config(config.receiver, config.bus.contention_detect, options);
+  const sc_core::sc_time period = receiver_clock_period(config.receiver);
+  const sc_core::sc_time free_running_until =
+      options.free_running_clock ? sc_core::sc_time(config.sim.duration, sc_core::SC_SEC) : sc_core::SC_ZERO_TIME;
+  StreamConsumer consumer(tile, map, receiver_tick(config.receiver), kReceiverTsWidth, log);
+  if (options.sink_ready) consumer.set_ready_pattern(options.sink_ready);
+  if (!options.receiver) {
+    domain_ = std::make_unique<ReferenceClockDomain>(
+        "receiver", s_, ReferenceClockDomain::Clock{period, rc.prescale, kReceiverTsWidth, free_running_until}, rc,
+        std::move(consumer));
+  } else {
+    clock_ = std::make_unique<GatedClock>("clock", s_, period, rc.prescale, kReceiverTsWidth, free_running_until);
+    receiver_ = options.receiver("receiver", tile, s_, rc);
+    sink_ = std::make_unique<EventSink>("sink", s_, std::move(consumer));
+    stream_monitor_ = std::make_unique<StreamMonitor>("stream_monitor", s_);
+  }
   s_.prescale.write(rc.prescale);
   s_.fifo_limit.write(rc.fifo_limit);
   s_.discard_collisions.write(rc.discard_collisions);
@@ -38,10 +45,12 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
 
 CycleTile::Stats CycleTile::stats() const {
   Stats s;
-  s.protocol_violations = monitor_.violations() + stream_monitor_.violations();
-  s.clock_edges = clock_.edges();
-  s.scoreboard_beats = receiver_->scoreboard_beats();
-  s.scoreboard_mismatches = receiver_->scoreboard_mismatches();
+  s.protocol_violations = monitor_.violations() + (domain_ ? domain_->violations() : stream_monitor_->violations());
+  s.clock_edges = domain_ ? domain_->edges() : clock_->edges();
+  if (receiver_) {
+    s.scoreboard_beats = receiver_->scoreboard_beats();
+    s.scoreboard_mismatches = receiver_->scoreboard_mismatches();
+  }
   s.measured_tau = bus_.measured_tau();
   return s;
 }

@@ -10,6 +10,7 @@
 #include "receiver/event_sink.hpp"
 #include "receiver/gated_clock.hpp"
 #include "receiver/receiver_module.hpp"
+#include "receiver/reference_clock_domain.hpp"
 #include "receiver/receiver_signals.hpp"
 #include "receiver/stream_monitor.hpp"
 #include "waveform/vcd_recorder.hpp"
@@ -17,9 +18,13 @@
 namespace aesim {
 
 // One tile at the cycle fidelity, as it would be on the chip: its wires, the pixel side of the
-// ALOHA bus driving them, the receiver (reference model or RTL, from the options' factory) with
-// its gated clock, the consumer of the receiver's event stream, and the monitors that check the
-// handshake and the stream. Firings enter through bus().
+// ALOHA bus driving them, the receiver with its gated clock, the consumer of the receiver's event
+// stream, and the monitors that check the handshake and the stream. Firings enter through bus().
+//
+// The reference receiver (no factory in the options) runs as one process per clock edge
+// (ReferenceClockDomain); a receiver from a factory (the Verilated RTL, a variant under test, or
+// the reference model as a module) gets a clock wire and its own processes beside the sink and
+// the stream monitor. Both give the same records.
 class CycleTile : public sc_core::sc_module {
  public:
   CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
@@ -38,11 +43,12 @@ class CycleTile : public sc_core::sc_module {
 
  private:
   ReceiverSignals s_;
-  GatedClock clock_;
+  std::unique_ptr<ReferenceClockDomain> domain_;  // the reference receiver's clock domain, or
+  std::unique_ptr<GatedClock> clock_;             // a factory's receiver with its clock wire,
   std::unique_ptr<ReceiverModule> receiver_;
-  EventSink sink_;
+  std::unique_ptr<EventSink> sink_;               // sink and stream monitor
+  std::unique_ptr<StreamMonitor> stream_monitor_;
   HandshakeMonitor monitor_;
-  StreamMonitor stream_monitor_;
   ClockedAlohaBus bus_;
 };
 

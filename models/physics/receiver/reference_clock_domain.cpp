@@ -1,0 +1,82 @@
+#include "receiver/reference_clock_domain.hpp"
+
+#include <algorithm>
+
+namespace aesim {
+
+ReferenceClockDomain::ReferenceClockDomain(const sc_core::sc_module_name& name, ReceiverSignals& s,
+                                           const Clock& clock, const ReceiverCycleModel::Config& config,
+                                           StreamConsumer consumer)
+    : sc_module(name),
+      s_(s),
+      clock_(clock),
+      period_ps_(clock.period.value()),
+      ts_mask_(clock.ts_width >= 64 ? ~0ULL : (1ULL << clock.ts_width) - 1),
+      fifo_limit_(config.fifo_limit),
+      model_(config),
+      out_(model_.outputs()),
+      consumer_(std::move(consumer)) {
+  clock_.prescale = std::max(1u, clock_.prescale);
+  SC_METHOD(on_wake);
+}
+
+void ReferenceClockDomain::on_wake() {
+  const sc_core::sc_time now = sc_core::sc_time_stamp();
+  if (running_) {
+    rising_edge();
+    // GatedClock stops at the falling edge when the receiver is idle with Req low. An idle
+    // receiver holds Ack low, so Req cannot fall before then; if it rises before the next rising
+    // edge, that edge comes next either way: so stopping now, until Req rises, gives the same
+    // edges.
+    const bool may_stop =
+        out_.idle && !s_.req.read() && now + sc_core::sc_time::from_value(period_ps_ / 2) >= clock_.free_running_until;
+    if (!may_stop) {
+      ++k_;
+      next_trigger(clock_.period);
+      return;
+    }
+    running_ = false;
+  } else if (s_.req.read() || now < clock_.free_running_until) {
+    // Started (at t = 0 with a free-running clock) or restarted by Req: the first edge strictly
+    // after now.
+    running_ = true;
+    k_ = now.value() / period_ps_ + 1;
+    next_trigger(sc_core::sc_time::from_value(k_ * period_ps_) - now);
+    return;
+  }
+  next_trigger(s_.req.posedge_event());
+}
+
+void ReferenceClockDomain::rising_edge() {
+  ++edges_;
+  // Everything latched here sees the values held before the edge.
+  const StreamView before = view();
+  rules_.edge(before);
+  const bool ready = ready_;
+  ready_ = consumer_.edge(before.valid, before.ready, before.ts, before.addr, before.flags);
+  ReceiverCycleModel::Inputs in;
+  in.req = s_.req.read();
+  in.addr = s_.addr.read();
+  in.contention = s_.contention.read();
+  in.ready = ready;
+  in.ts = (k_ / clock_.prescale) & ts_mask_;
+  model_.clock(in);
+  out_ = model_.outputs();
+  s_.overflows.write(static_cast<std::uint32_t>(out_.overflows));
+  s_.ack.write(out_.ack);
+}
+
+StreamView ReferenceClockDomain::view() const {
+  StreamView v;
+  v.valid = out_.valid;
+  v.ready = ready_;
+  v.flags = out_.beat.flags;
+  v.ts = static_cast<std::uint32_t>(out_.beat.ts);
+  v.addr = out_.beat.addr;
+  v.events = static_cast<std::uint32_t>(out_.events);
+  v.fifo_count = out_.fifo_count;
+  v.fifo_limit = fifo_limit_;
+  return v;
+}
+
+}  // namespace aesim

@@ -1,0 +1,58 @@
+#pragma once
+#include <cstdint>
+#include <systemc>
+
+#include "receiver/receiver_cycle_model.hpp"
+#include "receiver/receiver_signals.hpp"
+#include "receiver/stream_consumer.hpp"
+#include "receiver/stream_rules.hpp"
+
+namespace aesim {
+
+// The reference receiver's whole clock domain as one process: the gated clock, the receiver
+// (ReceiverCycleModel), the consumer of its event stream and the stream's rules, stepped together
+// once per rising edge. A tile with the reference receiver needs nothing else on its clock: its
+// outputs toward the bus (Ack, and the overflow count the bus reads when Ack rises) are the only
+// wires it drives. A Verilated receiver has a clock wire and ports, and its tile keeps GatedClock,
+// EventSink and StreamMonitor as separate processes on those wires (receiver/receiver_module).
+//
+// The same edges as GatedClock (rising at k * period, stopped while the receiver is idle with Req
+// low, the next edge after Req rises), the same values latched at each edge, so the same results
+// (a test runs both and compares every record): with one process activation per edge instead of a
+// clock thread's two wake-ups, a clock wire toggling twice and four processes on its edge.
+class ReferenceClockDomain : public sc_core::sc_module {
+ public:
+  struct Clock {
+    sc_core::sc_time period;
+    unsigned prescale = 1;
+    int ts_width = 32;
+    sc_core::sc_time free_running_until = sc_core::SC_ZERO_TIME;
+  };
+  ReferenceClockDomain(const sc_core::sc_module_name& name, ReceiverSignals& s, const Clock& clock,
+                       const ReceiverCycleModel::Config& config, StreamConsumer consumer);
+  SC_HAS_PROCESS(ReferenceClockDomain);
+
+  std::uint64_t edges() const { return edges_; }
+  std::uint64_t violations() const { return rules_.violations(view()); }
+
+ private:
+  void on_wake();
+  void rising_edge();
+  // The stream and status outputs held now (after the last edge).
+  StreamView view() const;
+
+  ReceiverSignals& s_;
+  Clock clock_;
+  std::uint64_t period_ps_, ts_mask_;
+  std::uint32_t fifo_limit_;
+  ReceiverCycleModel model_;
+  ReceiverCycleModel::Outputs out_;
+  bool ready_ = true;  // the consumer's ready, held since the last edge
+  StreamConsumer consumer_;
+  StreamRules rules_;
+  bool running_ = false;
+  std::uint64_t k_ = 0;  // the rising edge the clock waits for: at k_ * period
+  std::uint64_t edges_ = 0;
+};
+
+}  // namespace aesim
