@@ -14,12 +14,16 @@ ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const PixelP
                                const Photocurrents& photocurrents, const AddressMap& map, std::vector<EventBus*> buses)
     : sc_module(name), buses_(std::move(buses)) {
   std::vector<Head> heads;
+  next_ps_.assign(static_cast<std::size_t>(map.tiles()), kNone);
   for (int t = 0; t < map.tiles(); ++t) {
     schedules_.push_back(
         std::make_unique<FiringSchedule>(pixel, sim, photocurrents, map, static_cast<std::uint32_t>(t)));
     Head h;
     h.tile = static_cast<std::size_t>(t);
-    if (schedules_.back()->next(h.firing)) heads.push_back(h);
+    if (schedules_.back()->next(h.firing)) {
+      heads.push_back(h);
+      next_ps_[h.tile] = at_ps(h.firing);
+    }
   }
   heads_.assign(std::move(heads));
   SC_THREAD(run);
@@ -28,12 +32,14 @@ ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const PixelP
 void ScheduleDriver::run() {
   while (!heads_.empty()) {
     Head h = heads_.top();
-    const sc_core::sc_time at(h.firing.t, sc_core::SC_SEC);
+    const sc_core::sc_time at = sc_core::sc_time::from_value(at_ps(h.firing));
     if (at > sc_core::sc_time_stamp()) wait(at - sc_core::sc_time_stamp());
     buses_[h.tile]->request(h.firing);
     if (schedules_[h.tile]->next(h.firing)) {
+      next_ps_[h.tile] = at_ps(h.firing);
       heads_.replace_top(h);
     } else {
+      next_ps_[h.tile] = kNone;
       heads_.pop();
     }
   }

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <systemc>
 #include <vector>
@@ -18,8 +19,16 @@ class ScheduleDriver : public sc_core::sc_module {
                  const Photocurrents& photocurrents, const AddressMap& map, std::vector<EventBus*> buses);
   SC_HAS_PROCESS(ScheduleDriver);
 
+  // When (ps, as the bus sees it) tile `tile`'s next firing drives its wires; ~0 when none is left.
+  std::uint64_t next_firing_ps(std::size_t tile) const { return next_ps_[tile]; }
+
  private:
   void run();
+  static constexpr std::uint64_t kNone = ~std::uint64_t(0);
+  // The firing's time on SystemC's grid (rounded to the resolution, as sc_time rounds).
+  static std::uint64_t at_ps(const AddressEvent& firing) {
+    return sc_core::sc_time(firing.t, sc_core::SC_SEC).value();
+  }
 
   struct Head {
     AddressEvent firing;
@@ -32,6 +41,7 @@ class ScheduleDriver : public sc_core::sc_module {
   std::vector<std::unique_ptr<FiringSchedule>> schedules_;
   std::vector<EventBus*> buses_;
   MinHeap<Head, Before, 2> heads_;  // each tile's next firing
+  std::vector<std::uint64_t> next_ps_;  // per tile, its next firing's time in ps
 };
 
 }  // namespace aesim

@@ -34,6 +34,8 @@ class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
 
   void request(const AddressEvent& firing) override;
   double measured_tau() const override;
+  // Firings that fell on a clock edge and join the wires 1 ps later.
+  bool joins_pending() const { return !deferred_.empty(); }
 
  private:
   void apply_deferred();

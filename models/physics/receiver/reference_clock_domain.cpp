@@ -21,33 +21,59 @@ ReferenceClockDomain::ReferenceClockDomain(const sc_core::sc_module_name& name, 
 }
 
 void ReferenceClockDomain::on_wake() {
-  const sc_core::sc_time now = sc_core::sc_time_stamp();
-  if (running_) {
-    rising_edge();
-    // GatedClock stops at the falling edge when the receiver is idle with Req low. An idle
-    // receiver holds Ack low, so Req cannot fall before then; if it rises before the next rising
-    // edge, that edge comes next either way: so stopping now, until Req rises, gives the same
-    // edges.
-    const bool may_stop =
-        out_.idle && !s_.req.read() && now + sc_core::sc_time::from_value(period_ps_ / 2) >= clock_.free_running_until;
-    if (!may_stop) {
-      ++k_;
-      next_trigger(clock_.period);
+  const std::uint64_t now = sc_core::sc_time_stamp().value();
+  bool ack_moves = false;
+  if (!running_) {
+    if (!s_.req.read() && now >= clock_.free_running_until.value()) {
+      next_trigger(s_.req.posedge_event());
       return;
     }
-    running_ = false;
-  } else if (s_.req.read() || now < clock_.free_running_until) {
     // Started (at t = 0 with a free-running clock) or restarted by Req: the first edge strictly
-    // after now.
+    // after now comes next.
     running_ = true;
-    k_ = now.value() / period_ps_ + 1;
-    next_trigger(sc_core::sc_time::from_value(k_ * period_ps_) - now);
-    return;
+    k_ = now / period_ps_ + 1;
+  } else {
+    // Woken at edge k_: stepped now, unless it was stepped ahead and only its outputs wait for
+    // their time.
+    if (!stepped_ahead_) step_edge();
+    stepped_ahead_ = false;
+    ack_moves = out_.ack != s_.ack.read();
+    s_.overflows.write(static_cast<std::uint32_t>(out_.overflows));
+    s_.ack.write(out_.ack);
+    if (stops_after_edge()) return;
+    ++k_;
   }
-  next_trigger(s_.req.posedge_event());
+  // The wires stay as they are until the tile's next firing joins them, or the bus reacts to a
+  // change of Ack (now, when Ack moved at this edge): the edges before then are stepped here,
+  // without the kernel, up to the first one whose outputs the bus must see at their time.
+  const std::uint64_t horizon = wires_hold_until_ && !ack_moves ? wires_hold_until_() : now;
+  while (k_ * period_ps_ <= horizon) {
+    const bool ack = out_.ack;
+    const std::uint64_t overflows = out_.overflows;
+    step_edge();
+    if (out_.ack != ack || out_.overflows != overflows) {
+      stepped_ahead_ = true;
+      break;
+    }
+    if (stops_after_edge()) return;
+    ++k_;
+  }
+  next_trigger(sc_core::sc_time::from_value(k_ * period_ps_ - now));
 }
 
-void ReferenceClockDomain::rising_edge() {
+bool ReferenceClockDomain::stops_after_edge() {
+  // GatedClock stops at the falling edge when the receiver is idle with Req low. An idle receiver
+  // holds Ack low, so Req cannot fall before then; if it rises before the next rising edge, that
+  // edge comes next either way: so stopping at once, until Req rises, gives the same edges.
+  if (!out_.idle || s_.req.read() || k_ * period_ps_ + period_ps_ / 2 < clock_.free_running_until.value()) {
+    return false;
+  }
+  running_ = false;
+  next_trigger(s_.req.posedge_event());
+  return true;
+}
+
+void ReferenceClockDomain::step_edge() {
   ++edges_;
   // Everything latched here sees the values held before the edge.
   const StreamView before = view();
@@ -62,8 +88,6 @@ void ReferenceClockDomain::rising_edge() {
   in.ts = (k_ / clock_.prescale) & ts_mask_;
   model_.clock(in);
   out_ = model_.outputs();
-  s_.overflows.write(static_cast<std::uint32_t>(out_.overflows));
-  s_.ack.write(out_.ack);
 }
 
 StreamView ReferenceClockDomain::view() const {

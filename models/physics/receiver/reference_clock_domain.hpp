@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <systemc>
 
 #include "receiver/receiver_cycle_model.hpp"
@@ -33,11 +34,19 @@ class ReferenceClockDomain : public sc_core::sc_module {
   SC_HAS_PROCESS(ReferenceClockDomain);
 
   std::uint64_t edges() const { return edges_; }
+  // Tells the domain until when (ps) the bus wires cannot change but by its own Ack: the tile's
+  // next firing. Then the edges before it are stepped in one activation, the kernel woken only
+  // where Ack or the overflow count changes (the bus must see those at their edge) and after the
+  // firing. Without it, one activation per edge.
+  void set_wires_hold_until(std::function<std::uint64_t()> until) { wires_hold_until_ = std::move(until); }
   std::uint64_t violations() const { return rules_.violations(view()); }
 
  private:
   void on_wake();
-  void rising_edge();
+  // Edge k_: the stream's rules, the consumer and the receiver latch what was held before it.
+  void step_edge();
+  // After edge k_: whether the clock stops there (then waiting for Req to rise).
+  bool stops_after_edge();
   // The stream and status outputs held now (after the last edge).
   StreamView view() const;
 
@@ -50,7 +59,9 @@ class ReferenceClockDomain : public sc_core::sc_module {
   bool ready_ = true;  // the consumer's ready, held since the last edge
   StreamConsumer consumer_;
   StreamRules rules_;
+  std::function<std::uint64_t()> wires_hold_until_;
   bool running_ = false;
+  bool stepped_ahead_ = false;  // edge k_ is stepped; its outputs are driven when the kernel reaches it
   std::uint64_t k_ = 0;  // the rising edge the clock waits for: at k_ * period
   std::uint64_t edges_ = 0;
 };

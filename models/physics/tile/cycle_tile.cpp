@@ -43,6 +43,14 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
   monitor_.addr(s_.addr);
 }
 
+void CycleTile::set_next_firing(std::function<std::uint64_t()> next_firing_ps) {
+  if (!domain_) return;
+  domain_->set_wires_hold_until([this, next = std::move(next_firing_ps)] {
+    // A firing that fell on this edge joins 1 ps after it.
+    return bus_.joins_pending() ? sc_core::sc_time_stamp().value() + 1 : next();
+  });
+}
+
 CycleTile::Stats CycleTile::stats() const {
   Stats s;
   s.protocol_violations = monitor_.violations() + (domain_ ? domain_->violations() : stream_monitor_->violations());

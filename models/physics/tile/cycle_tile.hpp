@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <systemc>
 
@@ -31,6 +32,9 @@ class CycleTile : public sc_core::sc_module {
             const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options);
 
   EventBus& bus() { return bus_; }
+  // Gives the reference receiver's clock domain the time (ps) of this tile's next firing, from
+  // whatever drives the bus, so that it steps the edges before it in one activation.
+  void set_next_firing(std::function<std::uint64_t()> next_firing_ps);
 
   // What the tile saw: handshake and stream rule breaks, receiver clock edges simulated, the
   // co-simulation scoreboard's compared beats and mismatches (RTL receivers only), and the mean

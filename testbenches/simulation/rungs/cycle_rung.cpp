@@ -27,6 +27,9 @@ class CycleArray : public sc_core::sc_module {
       buses.push_back(&tiles_.back()->bus());
     }
     driver_ = std::make_unique<ScheduleDriver>("schedule", run.config.pixel, run.config.sim, run.photocurrents, run.map, std::move(buses));
+    for (std::size_t t = 0; t < tiles_.size(); ++t) {
+      tiles_[t]->set_next_firing([driver = driver_.get(), t] { return driver->next_firing_ps(t); });
+    }
   }
   const std::vector<std::unique_ptr<CycleTile>>& tiles() const { return tiles_; }
 
