@@ -19,9 +19,9 @@ namespace aesim {
 //
 // The same edges as GatedClock (rising at k * period, stopped while the receiver is idle with Req
 // low, the next edge after Req rises), the same values latched at each edge, so the same results
-// (a test runs both and compares every record): with at most one process activation per edge (several edges per
-// activation with set_wires_hold_until) instead of a
-// clock thread's two wake-ups, a clock wire toggling twice and four processes on its edge.
+// (a test runs both and compares every record): with at most one process activation per edge
+// (several edges an activation with set_wires_hold_until) instead of a clock thread's two
+// wake-ups, a clock wire toggling twice and four processes on its edge.
 class ReferenceClockDomain : public sc_core::sc_module {
  public:
   struct Clock {
