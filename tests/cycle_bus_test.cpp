@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bus/pixel_bus_if.hpp"
-#include "bus/handshake_monitor.hpp"
+#include "bus/clocked_aloha_bus.hpp"
+#include "bus/handshake_rules.hpp"
 #include "scene/photocurrents.hpp"
 #include "tile/cycle_tile.hpp"
 #include "summary/summary.hpp"
@@ -137,36 +138,50 @@ TEST(CycleBus, FiringAfterAckFallsStartsItsOwnTransaction) {
   EXPECT_NEAR(r.log.truth()[1].t_deliver - r.log.truth()[1].firing.t, 3.5 * kPeriod, 1e-15);
 }
 
-TEST(HandshakeMonitor, CountsBrokenRules) {
-  // A driver that raises Ack with no Req, and drops Req before any Ack: both must be caught.
+TEST(HandshakeRules, CountsEachBrokenRuleOnce) {
+  HandshakeRules rules;
+  rules.req_changed(true, false);   // a transaction, by the rules
+  rules.ack_changed(true, true);
+  rules.req_changed(false, true);
+  rules.ack_changed(false, false);
+  EXPECT_EQ(rules.violations(), 0u);
+  rules.ack_changed(true, false);   // Ack with no Req
+  rules.req_changed(true, true);    // Req rising while Ack is high
+  rules.ack_changed(false, true);   // Ack falling while Req is high
+  rules.req_changed(false, false);  // Req dropped before any Ack
+  EXPECT_EQ(rules.violations(), 4u);
+}
+
+TEST(CycleBus, CountsAnAckThatRisesWithNoReq) {
+  // A broken receiver raises and drops Ack with no pixel requesting; then a pixel fires and gets
+  // no answer. The bus sees every change of Ack and counts the one that broke the handshake, and
+  // the firing it could not finish stays undecided.
   const ScopedKernel kernel;
-  sc_core::sc_signal<bool> req, ack, contention;
-  sc_core::sc_signal<std::uint32_t> addr;
-  HandshakeMonitor monitor("monitor", "tile0", 10, nullptr);
-  monitor.req(req);
-  monitor.ack(ack);
-  monitor.contention(contention);
-  monitor.addr(addr);
+  EventLog log(1, true);
+  ReceiverSignals wires;
+  ClockedAlohaBus bus("bus", wires, sc_core::sc_time(20, sc_core::SC_NS), true, log);
   struct Bad : sc_core::sc_module {
-    sc_core::sc_signal<bool>&r, &a;
-    Bad(const sc_core::sc_module_name& n, sc_core::sc_signal<bool>& r_, sc_core::sc_signal<bool>& a_)
-        : sc_module(n), r(r_), a(a_) {
+    sc_core::sc_signal<bool>& ack;
+    EventBus& bus;
+    Bad(const sc_core::sc_module_name& n, sc_core::sc_signal<bool>& a, EventBus& b) : sc_module(n), ack(a), bus(b) {
       SC_THREAD(run);
     }
     SC_HAS_PROCESS(Bad);
     void run() {
       wait(10, sc_core::SC_NS);
-      a.write(true);  // Ack without Req
+      ack.write(true);
       wait(10, sc_core::SC_NS);
-      a.write(false);
-      wait(10, sc_core::SC_NS);
-      r.write(true);
-      wait(10, sc_core::SC_NS);
-      r.write(false);  // Req dropped before any Ack
+      ack.write(false);
+      wait(15, sc_core::SC_NS);
+      AddressEvent firing;
+      firing.t = sc_core::sc_time_stamp().to_seconds();
+      bus.request(firing);
     }
-  } bad("bad", req, ack);
+  } bad("bad", wires.ack, bus);
   sc_core::sc_start();
-  EXPECT_EQ(monitor.violations(), 2u);
+  EXPECT_EQ(bus.handshake_violations(), 1u);
+  EXPECT_TRUE(wires.req.read());
+  EXPECT_EQ(bus.measured_tau(), 0.0);
 }
 
 SimulationResult run_scene(SensorConfig c, const Image& img) {
@@ -314,8 +329,12 @@ TEST_P(ClockDomain, OneProcessPerEdgeEqualsTheReceiverOnAClockWire) {
     ASSERT_EQ(domain.log.truth()[i].t_deliver, wired.log.truth()[i].t_deliver) << i;
   }
   const TileCounters t = domain.log.totals();
-  if (every > 1 && k.policy == FullPolicy::Drop) EXPECT_GT(t.dropped, 100u) << "the FIFO really filled";
-  if (!k.contention_detect) EXPECT_GT(t.ghost, 10u) << "collisions went undetected";
+  if (every > 1 && k.policy == FullPolicy::Drop) {
+    EXPECT_GT(t.dropped, 100u) << "the FIFO really filled";
+  }
+  if (!k.contention_detect) {
+    EXPECT_GT(t.ghost, 10u) << "collisions went undetected";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -12,7 +12,8 @@ bool ScheduleDriver::Before::operator()(const Head& a, const Head& b) const {
 
 ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const PixelParams& pixel, const SimParams& sim,
                                const Photocurrents& photocurrents, const AddressMap& map, std::vector<EventBus*> buses)
-    : sc_module(name), buses_(std::move(buses)) {
+    : sc_module(name), ticks_per_s_(static_cast<double>(sc_core::sc_time(1.0, sc_core::SC_SEC).value())),
+      buses_(std::move(buses)) {
   std::vector<Head> heads;
   next_ps_.assign(static_cast<std::size_t>(map.tiles()), kNone);
   for (int t = 0; t < map.tiles(); ++t) {
@@ -35,7 +36,7 @@ ScheduleDriver::ScheduleDriver(const sc_core::sc_module_name& name, const PixelP
 void ScheduleDriver::run() {
   while (!heads_.empty()) {
     Head h = heads_.top();
-    const sc_core::sc_time at = sc_core::sc_time::from_value(at_ps(h.firing));
+    const sc_core::sc_time at = sc_core::sc_time::from_value(next_ps_[h.tile]);
     if (at > sc_core::sc_time_stamp()) {
       next_trigger(at - sc_core::sc_time_stamp());
       return;

@@ -14,6 +14,7 @@ ClockedAlohaBus::ClockedAlohaBus(const sc_core::sc_module_name& name, ReceiverSi
 }
 
 void ClockedAlohaBus::drive() {
+  if (lines_.req() != s_.req.read()) rules_.req_changed(lines_.req(), s_.ack.read());
   s_.addr.write(lines_.addr());
   s_.req.write(lines_.req());
   s_.contention.write(lines_.contention());
@@ -48,10 +49,14 @@ void ClockedAlohaBus::join(const AddressEvent& firing) {
 
 void ClockedAlohaBus::on_ack() {
   const sc_core::sc_time now = sc_core::sc_time_stamp();
+  rules_.ack_changed(s_.ack.read(), s_.req.read());
   if (!s_.ack.read()) {
-    busy_time_ += (now - transaction_start_).to_seconds();
-    ++transactions_;
-    in_transaction_ = false;
+    // An Ack that rose with no Req (a broken receiver) ends no transaction.
+    if (in_transaction_) {
+      busy_time_ += (now - transaction_start_).to_seconds();
+      ++transactions_;
+      in_transaction_ = false;
+    }
     return;
   }
   // The receiver latched at this edge: every driver on the wires then was seen. It may have

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bus/event_bus.hpp"
+#include "bus/handshake_rules.hpp"
 #include "bus/wired_or_lines.hpp"
 #include "events/event_log.hpp"
 #include "receiver/receiver_signals.hpp"
@@ -25,7 +26,8 @@ namespace aesim {
 // (Fate::Collided with contention detection, Fate::Ghost without). A pixel that fires while Ack is
 // already high sees Ack at once and withdraws before the synchronizer can register it
 // (Fate::Absorbed). An event the receiver latches but cannot store (FIFO full, drop policy) is
-// Fate::Dropped. The transaction time tau (Req rise to Ack fall) is measured.
+// Fate::Dropped. The transaction time tau (Req rise to Ack fall) is measured, and the handshake's
+// rules checked on every change of Req and Ack (HandshakeRules).
 class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
  public:
   ClockedAlohaBus(const sc_core::sc_module_name& name, ReceiverSignals& wires, sc_core::sc_time clock_period,
@@ -36,6 +38,7 @@ class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
   double measured_tau() const override;
   // Firings that fell on a clock edge and join the wires 1 ps later.
   bool joins_pending() const { return !deferred_.empty(); }
+  std::uint64_t handshake_violations() const { return rules_.violations(); }
 
  private:
   void apply_deferred();
@@ -48,6 +51,7 @@ class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
   bool detect_;
   EventLog& log_;
   WiredOrLines<AddressEvent> lines_;  // the firings driving the wires
+  HandshakeRules rules_;
   std::vector<AddressEvent> deferred_;
   sc_core::sc_event deferred_event_;
   sc_core::sc_time transaction_start_;

@@ -13,7 +13,8 @@ void ReceiverCycleModel::reset() {
   s1_ = s2_ = s3_ = acking_ = false;
   divider_ = ts_ = 0;
   events_ = collisions_ = overflows_ = 0;
-  fifo_.clear();
+  head_ = count_ = 0;
+  update_outputs();
 }
 
 void ReceiverCycleModel::clock(const Inputs& in) {
@@ -26,7 +27,7 @@ void ReceiverCycleModel::clock(const Inputs& in) {
   const bool tick_ends = divider_ + 1 >= prescale;
   const std::uint64_t ts_next = tick_ends ? (ts_ + 1) & mask(config_.ts_width) : ts_;
   const std::uint64_t ts_now = config_.ts_external ? (in.ts & mask(config_.ts_width)) : ts_next;
-  const std::size_t count = fifo_.size();
+  const std::size_t count = count_;
   const bool full = count >= config_.fifo_limit || count >= config_.capacity;
   const bool pop = count > 0 && in.ready;
   const std::uint32_t addr = in.addr & static_cast<std::uint32_t>(mask(config_.addr_width));
@@ -54,8 +55,15 @@ void ReceiverCycleModel::clock(const Inputs& in) {
     acking_ = false;
   }
 
-  if (pop) fifo_.pop_front();
-  if (push) fifo_.push_back({ts_now, addr, in.contention});
+  if (pop) {
+    head_ = head_ + 1 == ring_.size() ? 0 : head_ + 1;
+    --count_;
+  }
+  if (push) {
+    const std::size_t tail = (head_ + count_) % ring_.size();
+    ring_[tail] = {ts_now, addr, in.contention};
+    ++count_;
+  }
 
   divider_ = tick_ends ? 0 : divider_ + 1;
   ts_ = ts_next;
@@ -65,19 +73,7 @@ void ReceiverCycleModel::clock(const Inputs& in) {
   events_ &= 0xFFFFFFFFULL;
   collisions_ &= 0xFFFFFFFFULL;
   overflows_ &= 0xFFFFFFFFULL;
-}
-
-ReceiverCycleModel::Outputs ReceiverCycleModel::outputs() const {
-  Outputs o;
-  o.ack = acking_;
-  o.valid = !fifo_.empty();
-  if (o.valid) o.beat = fifo_.front();
-  o.events = events_;
-  o.collisions = collisions_;
-  o.overflows = overflows_;
-  o.fifo_count = static_cast<unsigned>(fifo_.size());
-  o.idle = !acking_ && !s1_ && !s2_ && !s3_ && fifo_.empty();
-  return o;
+  update_outputs();
 }
 
 }  // namespace aesim

@@ -1,6 +1,7 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
-#include <deque>
+#include <vector>
 
 namespace aesim {
 
@@ -41,11 +42,14 @@ class ReceiverCycleModel {
     bool idle = true;
   };
 
-  explicit ReceiverCycleModel(const Config& config) : config_(config) {}
+  explicit ReceiverCycleModel(const Config& config)
+      : config_(config), ring_(std::max(1u, std::min(config.fifo_limit, config.capacity))) {}
 
   void reset();
   void clock(const Inputs& in);
-  Outputs outputs() const;
+  // The register outputs after the last edge (kept up to date by clock() and reset(), so that a
+  // caller reading them after every edge copies nothing).
+  const Outputs& outputs() const { return out_; }
 
  private:
   Config config_;
@@ -53,7 +57,27 @@ class ReceiverCycleModel {
   bool acking_ = false;
   std::uint64_t divider_ = 0, ts_ = 0;
   std::uint64_t events_ = 0, collisions_ = 0, overflows_ = 0;
-  std::deque<Beat> fifo_;
+  // The FIFO as a ring: it never holds more than min(fifo_limit, capacity) words (a write needs
+  // room below both), so that is its size.
+  std::vector<Beat> ring_;
+  unsigned head_ = 0, count_ = 0;
+  Outputs out_;  // what the registers above show
+  // In the header, so that clock() passes the counters it just wrote in registers: read back from
+  // memory as a pair, they stalled on store forwarding.
+  void update_outputs() {
+    out_.ack = acking_;
+    out_.valid = count_ != 0;
+    const Beat none;
+    const Beat& beat = out_.valid ? ring_[head_] : none;
+    out_.beat.ts = beat.ts;
+    out_.beat.addr = beat.addr;
+    out_.beat.flags = beat.flags;
+    out_.events = events_;
+    out_.collisions = collisions_;
+    out_.overflows = overflows_;
+    out_.fifo_count = count_;
+    out_.idle = !acking_ && !s1_ && !s2_ && !s3_ && count_ == 0;
+  }
 };
 
 }  // namespace aesim

@@ -13,8 +13,8 @@ ReferenceClockDomain::ReferenceClockDomain(const sc_core::sc_module_name& name, 
       period_ps_(clock.period.value()),
       ts_mask_(clock.ts_width >= 64 ? ~0ULL : (1ULL << clock.ts_width) - 1),
       fifo_limit_(config.fifo_limit),
+      ts_external_(config.ts_external),
       model_(config),
-      out_(model_.outputs()),
       consumer_(std::move(consumer)) {
   clock_.prescale = std::max(1u, clock_.prescale);
   SC_METHOD(on_wake);
@@ -22,7 +22,7 @@ ReferenceClockDomain::ReferenceClockDomain(const sc_core::sc_module_name& name, 
 
 void ReferenceClockDomain::on_wake() {
   const std::uint64_t now = sc_core::sc_time_stamp().value();
-  bool ack_moves = false;
+  bool ack_rises = false;
   if (!running_) {
     if (!s_.req.read() && now >= clock_.free_running_until.value()) {
       next_trigger(s_.req.posedge_event());
@@ -37,21 +37,22 @@ void ReferenceClockDomain::on_wake() {
     // their time.
     if (!stepped_ahead_) step_edge();
     stepped_ahead_ = false;
-    ack_moves = out_.ack != s_.ack.read();
-    s_.overflows.write(static_cast<std::uint32_t>(out_.overflows));
-    s_.ack.write(out_.ack);
+    ack_rises = out().ack && !s_.ack.read();
+    s_.overflows.write(static_cast<std::uint32_t>(out().overflows));
+    s_.ack.write(out().ack);
     if (stops_after_edge()) return;
     ++k_;
   }
-  // The wires stay as they are until the tile's next firing joins them, or the bus reacts to a
-  // change of Ack (now, when Ack moved at this edge): the edges before then are stepped here,
-  // without the kernel, up to the first one whose outputs the bus must see at their time.
-  const std::uint64_t horizon = wires_hold_until_ && !ack_moves ? wires_hold_until_() : now;
+  // The wires stay as they are until the tile's next firing joins them, or the bus answers Ack
+  // rising (now, when Ack rose at this edge) by releasing them; its answer to Ack falling changes
+  // no wire. The edges before then are stepped here, without the kernel, up to the first one
+  // whose outputs the bus must see at their time.
+  const std::uint64_t horizon = wires_hold_until_ && !ack_rises ? wires_hold_until_() : now;
   while (k_ * period_ps_ <= horizon) {
-    const bool ack = out_.ack;
-    const std::uint64_t overflows = out_.overflows;
+    const bool ack = out().ack;
+    const std::uint64_t overflows = out().overflows;
     step_edge();
-    if (out_.ack != ack || out_.overflows != overflows) {
+    if (out().ack != ack || out().overflows != overflows) {
       stepped_ahead_ = true;
       break;
     }
@@ -65,7 +66,7 @@ bool ReferenceClockDomain::stops_after_edge() {
   // GatedClock stops at the falling edge when the receiver is idle with Req low. An idle receiver
   // holds Ack low, so Req cannot fall before then; if it rises before the next rising edge, that
   // edge comes next either way: so stopping at once, until Req rises, gives the same edges.
-  if (!out_.idle || s_.req.read() || k_ * period_ps_ + period_ps_ / 2 < clock_.free_running_until.value()) {
+  if (!out().idle || s_.req.read() || k_ * period_ps_ + period_ps_ / 2 < clock_.free_running_until.value()) {
     return false;
   }
   running_ = false;
@@ -85,20 +86,20 @@ void ReferenceClockDomain::step_edge() {
   in.addr = s_.addr.read();
   in.contention = s_.contention.read();
   in.ready = ready;
-  in.ts = (k_ / clock_.prescale) & ts_mask_;
+  // Only an external timestamp is read: the division would cost more than the rest of the edge.
+  if (ts_external_) in.ts = (k_ / clock_.prescale) & ts_mask_;
   model_.clock(in);
-  out_ = model_.outputs();
 }
 
 StreamView ReferenceClockDomain::view() const {
   StreamView v;
-  v.valid = out_.valid;
+  v.valid = out().valid;
   v.ready = ready_;
-  v.flags = out_.beat.flags;
-  v.ts = static_cast<std::uint32_t>(out_.beat.ts);
-  v.addr = out_.beat.addr;
-  v.events = static_cast<std::uint32_t>(out_.events);
-  v.fifo_count = out_.fifo_count;
+  v.flags = out().beat.flags;
+  v.ts = static_cast<std::uint32_t>(out().beat.ts);
+  v.addr = out().beat.addr;
+  v.events = static_cast<std::uint32_t>(out().events);
+  v.fifo_count = out().fifo_count;
   v.fifo_limit = fifo_limit_;
   return v;
 }

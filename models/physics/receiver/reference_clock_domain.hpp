@@ -35,10 +35,11 @@ class ReferenceClockDomain : public sc_core::sc_module {
   SC_HAS_PROCESS(ReferenceClockDomain);
 
   std::uint64_t edges() const { return edges_; }
-  // Tells the domain until when (ps) the bus wires cannot change but by its own Ack: the tile's
-  // next firing. Then the edges before it are stepped in one activation, the kernel woken only
-  // where Ack or the overflow count changes (the bus must see those at their edge) and after the
-  // firing. Without it, one activation per edge.
+  // Tells the domain until when (ps) the bus wires cannot change but in answer to Ack rising: the
+  // tile's next firing (the bus, ClockedAlohaBus, releases the wires when Ack rises and changes
+  // none when it falls). Then the edges before it are stepped in one activation, the kernel woken
+  // only where Ack or the overflow count changes (the bus must see those at their edge) and after
+  // the firing. Without it, one activation per edge.
   void set_wires_hold_until(std::function<std::uint64_t()> until) { wires_hold_until_ = std::move(until); }
   std::uint64_t violations() const { return rules_.violations(view()); }
 
@@ -50,13 +51,14 @@ class ReferenceClockDomain : public sc_core::sc_module {
   bool stops_after_edge();
   // The stream and status outputs held now (after the last edge).
   StreamView view() const;
+  const ReceiverCycleModel::Outputs& out() const { return model_.outputs(); }
 
   ReceiverSignals& s_;
   Clock clock_;
   std::uint64_t period_ps_, ts_mask_;
   std::uint32_t fifo_limit_;
+  bool ts_external_;
   ReceiverCycleModel model_;
-  ReceiverCycleModel::Outputs out_;
   bool ready_ = true;  // the consumer's ready, held since the last edge
   StreamConsumer consumer_;
   StreamRules rules_;

@@ -15,7 +15,8 @@ sc_core::sc_time receiver_clock_period(const ReceiverParams& receiver) {
 CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
                      const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options)
     : sc_module(name),
-      monitor_("monitor", fmt::format("tile{}", tile), map.bus_bits(), vcd),
+      waveform_(vcd ? std::make_unique<BusWaveform>("waveform", fmt::format("tile{}", tile), map.bus_bits(), *vcd)
+                    : nullptr),
       bus_("bus", s_, receiver_clock_period(config.receiver), config.bus.contention_detect, log) {
   const ReceiverCycleModel::Config rc = receiver_model_config(config.receiver, config.bus.contention_detect, options);
   const sc_core::sc_time period = receiver_clock_period(config.receiver);
@@ -37,10 +38,12 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
   s_.fifo_limit.write(rc.fifo_limit);
   s_.discard_collisions.write(rc.discard_collisions);
   s_.ts_external.write(rc.ts_external);
-  monitor_.req(s_.req);
-  monitor_.ack(s_.ack);
-  monitor_.contention(s_.contention);
-  monitor_.addr(s_.addr);
+  if (waveform_) {
+    waveform_->req(s_.req);
+    waveform_->ack(s_.ack);
+    waveform_->contention(s_.contention);
+    waveform_->addr(s_.addr);
+  }
 }
 
 void CycleTile::set_next_firing(std::function<std::uint64_t()> next_firing_ps) {
@@ -53,7 +56,7 @@ void CycleTile::set_next_firing(std::function<std::uint64_t()> next_firing_ps) {
 
 CycleTile::Stats CycleTile::stats() const {
   Stats s;
-  s.protocol_violations = monitor_.violations() + (domain_ ? domain_->violations() : stream_monitor_->violations());
+  s.protocol_violations = bus_.handshake_violations() + (domain_ ? domain_->violations() : stream_monitor_->violations());
   s.clock_edges = domain_ ? domain_->edges() : clock_->edges();
   if (receiver_) {
     s.scoreboard_beats = receiver_->scoreboard_beats();

@@ -6,7 +6,7 @@
 
 #include "array/address_map.hpp"
 #include "bus/clocked_aloha_bus.hpp"
-#include "bus/handshake_monitor.hpp"
+#include "bus/bus_waveform.hpp"
 #include "events/event_log.hpp"
 #include "receiver/event_sink.hpp"
 #include "receiver/gated_clock.hpp"
@@ -19,8 +19,9 @@
 namespace aesim {
 
 // One tile at the cycle fidelity, as it would be on the chip: its wires, the pixel side of the
-// ALOHA bus driving them, the receiver with its gated clock, the consumer of the receiver's event
-// stream, and the monitors that check the handshake and the stream. Firings enter through bus().
+// ALOHA bus driving them (which checks the handshake), the receiver with its gated clock, the
+// consumer of the receiver's event stream and the stream's rules, and with a VCD the recorder of
+// the wires. Firings enter through bus().
 //
 // The reference receiver (no factory in the options) runs as one process per clock edge
 // (ReferenceClockDomain); a receiver from a factory (the Verilated RTL, a variant under test, or
@@ -52,7 +53,7 @@ class CycleTile : public sc_core::sc_module {
   std::unique_ptr<ReceiverModule> receiver_;
   std::unique_ptr<EventSink> sink_;               // sink and stream monitor
   std::unique_ptr<StreamMonitor> stream_monitor_;
-  HandshakeMonitor monitor_;
+  std::unique_ptr<BusWaveform> waveform_;  // with a VCD only
   ClockedAlohaBus bus_;
 };
 
