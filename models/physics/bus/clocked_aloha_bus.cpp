@@ -64,9 +64,9 @@ void ClockedAlohaBus::on_ack() {
   const bool dropped = s_.overflows.read() != overflows_seen_;
   overflows_seen_ = s_.overflows.read();
   const Fate lost = dropped ? Fate::Dropped : detect_ ? Fate::Collided : Fate::Ghost;
-  const std::vector<AddressEvent> seen = lines_.release();
-  for (const AddressEvent& firing : seen) {
-    if (seen.size() == 1 && !dropped) log_.resolve(firing, Fate::Delivered, now.to_seconds());
+  lines_.release(seen_);
+  for (const AddressEvent& firing : seen_) {
+    if (seen_.size() == 1 && !dropped) log_.resolve(firing, Fate::Delivered, now.to_seconds());
     else log_.resolve(firing, lost);
   }
   drive();

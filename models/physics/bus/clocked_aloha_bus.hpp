@@ -51,6 +51,7 @@ class ClockedAlohaBus : public sc_core::sc_module, public EventBus {
   bool detect_;
   EventLog& log_;
   WiredOrLines<AddressEvent> lines_;  // the firings driving the wires
+  std::vector<AddressEvent> seen_;    // those the last Ack released
   HandshakeRules rules_;
   std::vector<AddressEvent> deferred_;
   sc_core::sc_event deferred_event_;

@@ -20,12 +20,13 @@ class WiredOrLines {
     addr_ |= address;
     return true;
   }
-  // Ack rose: every pixel driving was seen and lets go. Returns them.
-  std::vector<Driver> release() {
-    std::vector<Driver> out;
-    out.swap(drivers_);
+  // Ack rose: every pixel driving was seen and lets go. They are swapped into `seen` (whatever it
+  // held is dropped), whose storage the lines keep for the next drivers: no allocation a
+  // transaction.
+  void release(std::vector<Driver>& seen) {
+    seen.clear();
+    seen.swap(drivers_);
     addr_ = 0;
-    return out;
   }
   bool req() const { return !drivers_.empty(); }
   std::uint32_t addr() const { return addr_; }

@@ -9,6 +9,14 @@ std::uint64_t mask(int width) { return width >= 64 ? ~0ULL : (1ULL << width) - 1
 
 }  // namespace
 
+ReceiverCycleModel::ReceiverCycleModel(const Config& config)
+    : config_(config),
+      ts_mask_(mask(config.ts_width)),
+      addr_mask_(static_cast<std::uint32_t>(mask(config.addr_width))),
+      prescale_(std::max(1u, config.prescale)),
+      limit_(std::min(config.fifo_limit, config.capacity)),
+      ring_(std::max(1u, limit_)) {}
+
 void ReceiverCycleModel::reset() {
   s1_ = s2_ = s3_ = acking_ = false;
   divider_ = ts_ = 0;
@@ -23,14 +31,13 @@ void ReceiverCycleModel::clock(const Inputs& in) {
   const bool req_high = s2_ && s3_;
   const bool req_low = !s2_ && !s3_;
   // The stamp is the counter's value after this edge: the ticks completed by the latch edge.
-  const unsigned prescale = std::max(1u, config_.prescale);
-  const bool tick_ends = divider_ + 1 >= prescale;
-  const std::uint64_t ts_next = tick_ends ? (ts_ + 1) & mask(config_.ts_width) : ts_;
-  const std::uint64_t ts_now = config_.ts_external ? (in.ts & mask(config_.ts_width)) : ts_next;
+  const bool tick_ends = divider_ + 1 >= prescale_;
+  const std::uint64_t ts_next = tick_ends ? (ts_ + 1) & ts_mask_ : ts_;
+  const std::uint64_t ts_now = config_.ts_external ? (in.ts & ts_mask_) : ts_next;
   const std::size_t count = count_;
-  const bool full = count >= config_.fifo_limit || count >= config_.capacity;
+  const bool full = count >= limit_;
   const bool pop = count > 0 && in.ready;
-  const std::uint32_t addr = in.addr & static_cast<std::uint32_t>(mask(config_.addr_width));
+  const std::uint32_t addr = in.addr & addr_mask_;
 
   bool push = false;
   if (!acking_) {

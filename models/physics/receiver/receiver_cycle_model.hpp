@@ -42,8 +42,7 @@ class ReceiverCycleModel {
     bool idle = true;
   };
 
-  explicit ReceiverCycleModel(const Config& config)
-      : config_(config), ring_(std::max(1u, std::min(config.fifo_limit, config.capacity))) {}
+  explicit ReceiverCycleModel(const Config& config);
 
   void reset();
   void clock(const Inputs& in);
@@ -53,12 +52,16 @@ class ReceiverCycleModel {
 
  private:
   Config config_;
+  std::uint64_t ts_mask_;
+  std::uint32_t addr_mask_;
+  unsigned prescale_;  // at least 1
+  unsigned limit_;     // words that make the FIFO full: fifo_limit or capacity, the smaller
   bool s1_ = false, s2_ = false, s3_ = false;  // the Req synchronizer's three flops
   bool acking_ = false;
   std::uint64_t divider_ = 0, ts_ = 0;
   std::uint64_t events_ = 0, collisions_ = 0, overflows_ = 0;
-  // The FIFO as a ring: it never holds more than min(fifo_limit, capacity) words (a write needs
-  // room below both), so that is its size.
+  // The FIFO as a ring: it never holds more than limit_ words (a write needs room below it), so
+  // that is its size.
   std::vector<Beat> ring_;
   unsigned head_ = 0, count_ = 0;
   Outputs out_;  // what the registers above show

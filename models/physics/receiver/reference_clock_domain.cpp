@@ -22,7 +22,8 @@ ReferenceClockDomain::ReferenceClockDomain(const sc_core::sc_module_name& name, 
 
 void ReferenceClockDomain::on_wake() {
   const std::uint64_t now = sc_core::sc_time_stamp().value();
-  bool ack_rises = false;
+  // The kernel has moved on since the last activation: the wires show what the bus did.
+  released_ = false;
   if (!running_) {
     if (!s_.req.read() && now >= clock_.free_running_until.value()) {
       next_trigger(s_.req.posedge_event());
@@ -37,17 +38,16 @@ void ReferenceClockDomain::on_wake() {
     // their time.
     if (!stepped_ahead_) step_edge();
     stepped_ahead_ = false;
-    ack_rises = out().ack && !s_.ack.read();
+    released_ = out().ack && !s_.ack.read();
     s_.overflows.write(static_cast<std::uint32_t>(out().overflows));
     s_.ack.write(out().ack);
     if (stops_after_edge()) return;
     ++k_;
   }
-  // The wires stay as they are until the tile's next firing joins them, or the bus answers Ack
-  // rising (now, when Ack rose at this edge) by releasing them; its answer to Ack falling changes
-  // no wire. The edges before then are stepped here, without the kernel, up to the first one
-  // whose outputs the bus must see at their time.
-  const std::uint64_t horizon = wires_hold_until_ && !ack_rises ? wires_hold_until_() : now;
+  // The wires stay as they are (released, when Ack rose at this edge) until the tile's next
+  // firing joins them: the edges before then are stepped here, without the kernel, up to the
+  // first one whose outputs the bus must see at their time.
+  const std::uint64_t horizon = wires_hold_until_ ? wires_hold_until_() : now;
   while (k_ * period_ps_ <= horizon) {
     const bool ack = out().ack;
     const std::uint64_t overflows = out().overflows;
@@ -66,7 +66,7 @@ bool ReferenceClockDomain::stops_after_edge() {
   // GatedClock stops at the falling edge when the receiver is idle with Req low. An idle receiver
   // holds Ack low, so Req cannot fall before then; if it rises before the next rising edge, that
   // edge comes next either way: so stopping at once, until Req rises, gives the same edges.
-  if (!out().idle || s_.req.read() || k_ * period_ps_ + period_ps_ / 2 < clock_.free_running_until.value()) {
+  if (!out().idle || req() || k_ * period_ps_ + period_ps_ / 2 < clock_.free_running_until.value()) {
     return false;
   }
   running_ = false;
@@ -82,9 +82,9 @@ void ReferenceClockDomain::step_edge() {
   const bool ready = ready_;
   ready_ = consumer_.edge(before.valid, before.ready, before.ts, before.addr, before.flags);
   ReceiverCycleModel::Inputs in;
-  in.req = s_.req.read();
-  in.addr = s_.addr.read();
-  in.contention = s_.contention.read();
+  in.req = req();
+  in.addr = released_ ? 0 : s_.addr.read();
+  in.contention = !released_ && s_.contention.read();
   in.ready = ready;
   // Only an external timestamp is read: the division would cost more than the rest of the edge.
   if (ts_external_) in.ts = (k_ / clock_.prescale) & ts_mask_;

@@ -35,11 +35,12 @@ class ReferenceClockDomain : public sc_core::sc_module {
   SC_HAS_PROCESS(ReferenceClockDomain);
 
   std::uint64_t edges() const { return edges_; }
-  // Tells the domain until when (ps) the bus wires cannot change but in answer to Ack rising: the
-  // tile's next firing (the bus, ClockedAlohaBus, releases the wires when Ack rises and changes
-  // none when it falls). Then the edges before it are stepped in one activation, the kernel woken
-  // only where Ack or the overflow count changes (the bus must see those at their edge) and after
-  // the firing. Without it, one activation per edge.
+  // Tells the domain until when (ps) the bus wires cannot change but in answer to Ack: the tile's
+  // next firing. The bus (ClockedAlohaBus) answers Ack rising by releasing every wire (each pixel
+  // driving lets go; one firing while Ack is high withdraws) and Ack falling by changing none.
+  // Then the edges before the firing are stepped in one activation, the kernel woken only where
+  // Ack or the overflow count changes (the bus must see those at their edge) and after the
+  // firing. Without it, one activation per edge.
   void set_wires_hold_until(std::function<std::uint64_t()> until) { wires_hold_until_ = std::move(until); }
   std::uint64_t violations() const { return rules_.violations(view()); }
 
@@ -52,6 +53,9 @@ class ReferenceClockDomain : public sc_core::sc_module {
   // The stream and status outputs held now (after the last edge).
   StreamView view() const;
   const ReceiverCycleModel::Outputs& out() const { return model_.outputs(); }
+  // Req as the next edge sees it: low once Ack has risen, though the bus lets go only in the
+  // delta cycle after this activation.
+  bool req() const { return !released_ && s_.req.read(); }
 
   ReceiverSignals& s_;
   Clock clock_;
@@ -64,6 +68,7 @@ class ReferenceClockDomain : public sc_core::sc_module {
   StreamRules rules_;
   std::function<std::uint64_t()> wires_hold_until_;
   bool running_ = false;
+  bool released_ = false;  // Ack rose at the edge this activation wrote: the bus releases the wires
   bool stepped_ahead_ = false;  // edge k_ is stepped; its outputs are driven when the kernel reaches it
   std::uint64_t k_ = 0;  // the rising edge the clock waits for: at k_ * period
   std::uint64_t edges_ = 0;

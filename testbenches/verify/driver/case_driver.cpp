@@ -45,7 +45,7 @@ class BusSide {
   }
   void ack_changed(bool ack, std::uint64_t t, std::uint64_t edges_done) {
     if (ack) {
-      lines_.release();
+      lines_.release(released_);
       drive(t, edges_done);
     } else if (queued_ && !waiting_.empty() && !lines_.req()) {
       lines_.join(waiting_.front(), waiting_.front(), false);
@@ -85,6 +85,7 @@ class BusSide {
   TransactionScoreboard* sb_;
   std::vector<WaveRecord>* wave_;
   WiredOrLines<std::uint32_t> lines_;  // the pixels driving, by address
+  std::vector<std::uint32_t> released_;  // those the last Ack released (storage reused)
   std::deque<std::uint32_t> waiting_;
   bool glitch_ = false;
   std::uint32_t glitch_addr_ = 0;
