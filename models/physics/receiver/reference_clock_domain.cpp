@@ -20,6 +20,49 @@ ReferenceClockDomain::ReferenceClockDomain(const sc_core::sc_module_name& name, 
   SC_METHOD(on_wake);
 }
 
+// Defined before on_wake, inline: they run at every edge.
+inline StreamView ReferenceClockDomain::view() const {
+  StreamView v;
+  v.valid = out().valid;
+  v.ready = ready_;
+  v.flags = out().beat.flags;
+  v.ts = static_cast<std::uint32_t>(out().beat.ts);
+  v.addr = out().beat.addr;
+  v.events = static_cast<std::uint32_t>(out().events);
+  v.fifo_count = out().fifo_count;
+  v.fifo_limit = fifo_limit_;
+  return v;
+}
+
+inline bool ReferenceClockDomain::stops_after_edge() {
+  // GatedClock stops at the falling edge when the receiver is idle with Req low. An idle receiver
+  // holds Ack low, so Req cannot fall before then; if it rises before the next rising edge, that
+  // edge comes next either way: so stopping at once, until Req rises, gives the same edges.
+  if (!out().idle || req() || k_ * period_ps_ + period_ps_ / 2 < clock_.free_running_until.value()) {
+    return false;
+  }
+  running_ = false;
+  next_trigger(s_.req.posedge_event());
+  return true;
+}
+
+inline void ReferenceClockDomain::step_edge() {
+  ++edges_;
+  // Everything latched here sees the values held before the edge.
+  const StreamView before = view();
+  rules_.edge(before);
+  const bool ready = ready_;
+  ready_ = consumer_.edge(before.valid, before.ready, before.ts, before.addr, before.flags);
+  ReceiverCycleModel::Inputs in;
+  in.req = req();
+  in.addr = released_ ? 0 : s_.addr.read();
+  in.contention = !released_ && s_.contention.read();
+  in.ready = ready;
+  // Only an external timestamp is read: the division would cost more than the rest of the edge.
+  if (ts_external_) in.ts = (k_ / clock_.prescale) & ts_mask_;
+  model_.clock(in);
+}
+
 void ReferenceClockDomain::on_wake() {
   const std::uint64_t now = sc_core::sc_time_stamp().value();
   // The kernel has moved on since the last activation: the wires show what the bus did.
@@ -62,46 +105,6 @@ void ReferenceClockDomain::on_wake() {
   next_trigger(sc_core::sc_time::from_value(k_ * period_ps_ - now));
 }
 
-bool ReferenceClockDomain::stops_after_edge() {
-  // GatedClock stops at the falling edge when the receiver is idle with Req low. An idle receiver
-  // holds Ack low, so Req cannot fall before then; if it rises before the next rising edge, that
-  // edge comes next either way: so stopping at once, until Req rises, gives the same edges.
-  if (!out().idle || req() || k_ * period_ps_ + period_ps_ / 2 < clock_.free_running_until.value()) {
-    return false;
-  }
-  running_ = false;
-  next_trigger(s_.req.posedge_event());
-  return true;
-}
-
-void ReferenceClockDomain::step_edge() {
-  ++edges_;
-  // Everything latched here sees the values held before the edge.
-  const StreamView before = view();
-  rules_.edge(before);
-  const bool ready = ready_;
-  ready_ = consumer_.edge(before.valid, before.ready, before.ts, before.addr, before.flags);
-  ReceiverCycleModel::Inputs in;
-  in.req = req();
-  in.addr = released_ ? 0 : s_.addr.read();
-  in.contention = !released_ && s_.contention.read();
-  in.ready = ready;
-  // Only an external timestamp is read: the division would cost more than the rest of the edge.
-  if (ts_external_) in.ts = (k_ / clock_.prescale) & ts_mask_;
-  model_.clock(in);
-}
-
-StreamView ReferenceClockDomain::view() const {
-  StreamView v;
-  v.valid = out().valid;
-  v.ready = ready_;
-  v.flags = out().beat.flags;
-  v.ts = static_cast<std::uint32_t>(out().beat.ts);
-  v.addr = out().beat.addr;
-  v.events = static_cast<std::uint32_t>(out().events);
-  v.fifo_count = out().fifo_count;
-  v.fifo_limit = fifo_limit_;
-  return v;
-}
+std::uint64_t ReferenceClockDomain::violations() const { return rules_.violations(view()); }
 
 }  // namespace aesim

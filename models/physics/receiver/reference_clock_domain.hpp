@@ -42,7 +42,7 @@ class ReferenceClockDomain : public sc_core::sc_module {
   // Ack or the overflow count changes (the bus must see those at their edge) and after the
   // firing. Without it, one activation per edge.
   void set_wires_hold_until(std::function<std::uint64_t()> until) { wires_hold_until_ = std::move(until); }
-  std::uint64_t violations() const { return rules_.violations(view()); }
+  std::uint64_t violations() const;
 
  private:
   void on_wake();

@@ -22,14 +22,37 @@ struct StreamView {
 // reference receiver's clock domain (receiver/reference_clock_domain).
 class StreamRules {
  public:
-  // A rising edge; `before` is what the outputs held before it.
-  void edge(const StreamView& before);
+  // A rising edge; `before` is what the outputs held before it. Inline, as are the rules: run
+  // at every edge of every tile.
+  void edge(const StreamView& before) {
+    if (pending_) violations_ += broken(before);
+    pending_ = false;
+    if (!before.rst_n) {
+      taken_ = 0;
+      stalled_ = false;
+      return;
+    }
+    pending_ = true;
+    // A beat offered and not taken must be offered again, unchanged.
+    if (before.valid && before.ready) ++taken_;
+    stalled_ = before.valid && !before.ready;
+    held_ts_ = before.ts;
+    held_addr_ = before.addr;
+    held_flags_ = before.flags;
+  }
   // Rule breaks so far, the last edge's outputs (`now`) included.
   std::uint64_t violations(const StreamView& now) const { return violations_ + (pending_ ? broken(now) : 0); }
 
  private:
   // Rules the outputs break now, after the last edge.
-  unsigned broken(const StreamView& now) const;
+  unsigned broken(const StreamView& now) const {
+    if (!now.rst_n) return 0;
+    unsigned n = 0;
+    if (stalled_ && (!now.valid || now.ts != held_ts_ || now.addr != held_addr_ || now.flags != held_flags_)) ++n;
+    if (now.events != taken_ + now.fifo_count) ++n;
+    if (now.fifo_count > now.fifo_limit) ++n;
+    return n;
+  }
 
   bool stalled_ = false;
   bool pending_ = false;  // an edge's outputs not yet checked
