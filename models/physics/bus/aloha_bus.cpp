@@ -19,27 +19,21 @@ void AlohaBus::request_all(const AddressEvent* firings, std::size_t n) {
   }
 }
 
-void AlohaBus::close_cluster() {
-  if (cluster_.empty()) return;
-  if (cluster_.size() == 1) {
-    log_.resolve(cluster_[0], Fate::Delivered, cluster_[0].t);
-    log_.output(cluster_[0]);
-  } else {
-    const Fate fate = detect_ ? Fate::Collided : Fate::Ghost;
-    AddressEvent ghost = cluster_[0];
-    ghost.bus_address = 0;
-    for (const AddressEvent& e : cluster_) {
-      log_.resolve(e, fate);
-      ghost.t = std::min(ghost.t, e.t);
-      ghost.bus_address |= e.bus_address;
-    }
-    if (!detect_) {
-      const PixelAddress p = map_.locate(ghost.tile, ghost.bus_address);
-      ghost.x = p.x;
-      ghost.y = p.y;
-      ghost.flags = kGhostEvent;
-      log_.output(ghost);
-    }
+void AlohaBus::close_collision() {
+  const Fate fate = detect_ ? Fate::Collided : Fate::Ghost;
+  AddressEvent ghost = cluster_[0];
+  ghost.bus_address = 0;
+  for (const AddressEvent& e : cluster_) {
+    log_.resolve(e, fate);
+    ghost.t = std::min(ghost.t, e.t);
+    ghost.bus_address |= e.bus_address;
+  }
+  if (!detect_) {
+    const PixelAddress p = map_.locate(ghost.tile, ghost.bus_address);
+    ghost.x = p.x;
+    ghost.y = p.y;
+    ghost.flags = kGhostEvent;
+    log_.output(ghost);
   }
   cluster_.clear();
 }

@@ -23,7 +23,19 @@ class AlohaBus final : public EventBus {
   double held_since() const override { return cluster_.empty() ? EventBus::held_since() : earliest_; }
 
  private:
-  void close_cluster();
+  // Inline for the cluster of one firing on a free bus, most of them: an out-of-line call an event
+  // cost 6-8 % of the event rung (best of 12 interleaved runs, bright QCIF). A collision is settled
+  // out of line.
+  void close_cluster() {
+    if (cluster_.size() == 1) {
+      log_.resolve(cluster_[0], Fate::Delivered, cluster_[0].t);
+      log_.output(cluster_[0]);
+      cluster_.clear();
+    } else if (!cluster_.empty()) {
+      close_collision();
+    }
+  }
+  void close_collision();
 
   EventLog& log_;
   const AddressMap& map_;
