@@ -27,7 +27,7 @@ void WakeCalendar::push_outside_year(const Entry& e, std::int64_t bucket) {
   }
 }
 
-bool WakeCalendar::next_bucket() {
+bool WakeCalendar::next_bucket_far() {
   if (in_year_ == 0) {
     if (far_.empty()) return false;
     // Nothing within the year: jump to the far heap's first.
