@@ -46,19 +46,8 @@ bool WakeCalendar::next_bucket_far() {
   return true;
 }
 
-void WakeCalendar::sort_present() {
-  // Latest first, so the earliest pops from the back. A bucket holds a pixel or two, where an
-  // insertion sort in place beats std::sort's call.
-  if (present_.size() > 16) {
-    std::sort(present_.begin(), present_.end(), [](const Entry& a, const Entry& b) { return Before()(b, a); });
-  } else {
-    for (std::size_t i = 1; i < present_.size(); ++i) {
-      const Entry e = present_[i];
-      std::size_t j = i;
-      for (; j > 0 && Before()(present_[j - 1], e); --j) present_[j] = present_[j - 1];
-      present_[j] = e;
-    }
-  }
+void WakeCalendar::sort_large_present() {
+  std::sort(present_.begin(), present_.end(), [](const Entry& a, const Entry& b) { return Before()(b, a); });
 }
 
 }  // namespace aesim
