@@ -73,10 +73,11 @@ std::size_t FiringSchedule::fill(AddressEvent* out, std::size_t capacity, double
     // while this one is worked on.
     if (const WakeCalendar::Entry* after = calendar_.following()) __builtin_prefetch(&pixels_[after->slot]);
     Slot& p = pixels_[slot];
-    const double t_fire = p.next_fire();
-    const double t_boundary = p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
-    const bool fires = fires_first(t_fire, t_boundary);
-    if (fires) {
+    // Under light that never changes again the wake-up is the firing, at the time it was queued.
+    const bool still = p.next_boundary == kNoBoundary;
+    const double t_fire = still ? top.t : p.next_fire();
+    const double t_boundary = still ? kNever : photocurrents_.boundary_time(p.next_boundary);
+    if (fires_first(t_fire, t_boundary)) {
       AddressEvent& firing = out[filled++];
       firing.t = t_fire;
       firing.x = x_of(top.key);
@@ -90,7 +91,7 @@ std::size_t FiringSchedule::fill(AddressEvent* out, std::size_t capacity, double
       p.set_current(sensor_, t_boundary, photocurrents_.current(p.next_boundary, index));
       p.next_boundary = boundary_after(p.next_boundary, index);
     }
-    const double t_next = wake_time(p);
+    const double t_next = p.next_boundary == kNoBoundary ? p.next_fire() : wake_time(p);
     if (t_next <= t_end_) calendar_.push(slot, t_next, top.key);
   }
   return filled;
