@@ -442,6 +442,19 @@ TEST_F(NgspiceTest, CtrlCStopsItWithNoPresetAndNoScratchLeft) {
   EXPECT_TRUE(fs::is_empty(dir_ / "tmp"));
 }
 
+TEST_F(NgspiceTest, AnNgspiceEndedByCtrlCIsAnInterruptionNotABadDeck) {
+  // The group's Ctrl-C can end ngspice before the command sees its own: an ngspice that ends by
+  // SIGINT (here a stand-in that sends it to itself) stops the command as the Ctrl-C would.
+  fs::create_directories(dir_ / "bin");
+  write("bin/ngspice", "#!/bin/sh\nkill -INT $$\n");
+  fs::permissions(dir_ / "bin" / "ngspice", fs::perms::owner_all);
+  const Outcome o = aesim("calibrate '" + kIdealDeck + "' --subckt ideal_pixel -o p.toml --points 3",
+                          "PATH='" + (dir_ / "bin").string() + ":/usr/bin:/bin' ");
+  EXPECT_EQ(o.status, 128 + SIGINT) << o.err;
+  EXPECT_EQ(o.err.find("rejects"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(dir_ / "p.toml"));
+}
+
 TEST_F(NgspiceTest, SameDeckSameOptionsSameBytesAndTheChart) {
   const std::string args = "calibrate '" + kIdealDeck + "' --subckt ideal_pixel --currents 1pA:10nA --points 5 -o ";
   ASSERT_EQ(aesim(args + "a.toml --chart a.png -j 1").status, 0);

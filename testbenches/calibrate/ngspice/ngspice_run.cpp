@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <sstream>
 
@@ -111,6 +112,9 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
                                  "collapsed (check the deck's models and initial conditions)",
                                  deck.given, kRunSeconds, request.iph));
   }
+  // Ended by SIGINT or SIGTERM: a Ctrl-C or a kill reaches ngspice with the rest of the process
+  // group, often before this process has seen its own; the signal, not the deck, is why.
+  if (*status == 128 + SIGINT || *status == 128 + SIGTERM) throw Interrupted(*status - 128);
   if (*status != 0) {
     const std::string error = first_error(read_all(log));
     if (ascii_lower(error).find("unknown subckt") != std::string::npos) {
