@@ -15,7 +15,9 @@ ReceiverCycleModel::ReceiverCycleModel(const Config& config)
       addr_mask_(static_cast<std::uint32_t>(mask(config.addr_width))),
       prescale_(std::max(1u, config.prescale)),
       limit_(std::min(config.fifo_limit, config.capacity)),
-      ring_(std::max(1u, limit_)) {}
+      ring_(std::max(1u, limit_)) {
+  update_outputs();
+}
 
 void ReceiverCycleModel::reset() {
   s1_ = s2_ = s3_ = acking_ = false;
