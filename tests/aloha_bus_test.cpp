@@ -1,6 +1,9 @@
 // Event-fidelity buses on hand-made cases: pure ALOHA windows, chains, ghosts, arbitration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
 #include "array/address_map.hpp"
 #include "bus/aloha_bus.hpp"
 #include "run/imager_simulation.hpp"
@@ -88,6 +91,78 @@ TEST_F(EventBusTest, WithoutContentionDetectionTheReceiverGetsTheOrAsAGhost) {
   EXPECT_EQ(c.collided, 2u);
   EXPECT_EQ(c.ghost, 1u);
   EXPECT_EQ(c.delivered, 1u);  // the ghost reached the output
+}
+
+// The bus takes a tile's firings in batches (the event rung hands over 256 at a time) and finds
+// the clusters within a batch in place. Whatever the batch boundaries, each firing's fate must be
+// pure ALOHA's, computed here from scratch: a firing is lost iff another starts within tau of it,
+// and the firings so linked form a cluster, which leaves one ghost (the OR of its addresses, at
+// its first start) when the receiver cannot detect the collision.
+TEST_F(EventBusTest, BatchesOfAnySizeGiveEachFiringPureAlohasFate) {
+  std::mt19937_64 rng(7);
+  std::vector<AddressEvent> firings;
+  double t = 0;
+  for (int i = 0; i < 3000; ++i) {
+    // Gaps around tau, some zero (simultaneous firings), so that clusters of every size occur
+    // and straddle batch boundaries.
+    const int kind = static_cast<int>(rng() % 8);
+    t += kind == 0 ? 0.0 : kTau * 0.3 * static_cast<double>(rng() % 10);
+    firings.push_back(firing(t, static_cast<std::uint32_t>(rng() % 32), static_cast<std::uint32_t>(rng() % 32)));
+  }
+  for (const bool detect : {true, false}) {
+    // Pure ALOHA from scratch: clusters chain firings less than tau after the previous one.
+    std::vector<Fate> expected(firings.size(), Fate::Delivered);
+    std::vector<AddressEvent> expected_out;
+    for (std::size_t a = 0; a < firings.size();) {
+      std::size_t b = a + 1;
+      while (b < firings.size() && firings[b].t - firings[b - 1].t < kTau) ++b;
+      if (b - a == 1) {
+        expected_out.push_back(firings[a]);
+      } else {
+        std::uint32_t address = 0;
+        for (std::size_t k = a; k < b; ++k) {
+          expected[k] = detect ? Fate::Collided : Fate::Ghost;
+          address |= firings[k].bus_address;
+        }
+        if (!detect) {
+          AddressEvent ghost = firings[a];
+          ghost.bus_address = address;
+          ghost.x = address & 31;
+          ghost.y = address >> 5;
+          ghost.flags = kGhostEvent;
+          expected_out.push_back(ghost);
+        }
+      }
+      a = b;
+    }
+    // Both fates common, collisions of two and of many.
+    ASSERT_GT(std::count(expected.begin(), expected.end(), Fate::Delivered), 300);
+    ASSERT_GT(std::count(expected.begin(), expected.end(), detect ? Fate::Collided : Fate::Ghost), 300);
+    for (const std::size_t most : {std::size_t(1), std::size_t(2), std::size_t(7), std::size_t(256), firings.size()}) {
+      EventLog log(1, true);
+      const AddressMap map(array_);
+      AlohaBus bus(log, map, kTau, detect);
+      std::mt19937_64 sizes(most);
+      for (std::size_t at = 0; at < firings.size();) {
+        const std::size_t n = std::min(firings.size() - at, 1 + static_cast<std::size_t>(sizes() % most));
+        bus.request_all(firings.data() + at, n);
+        at += n;
+      }
+      bus.finish();
+      log.finish();
+      ASSERT_EQ(fates(log), expected) << "batches of up to " << most << ", detect " << detect;
+      ASSERT_EQ(log.events().size(), expected_out.size());
+      for (std::size_t k = 0; k < expected_out.size(); ++k) {
+        const AddressEvent& got = log.events()[k];
+        EXPECT_EQ(got.t, expected_out[k].t);
+        EXPECT_EQ(got.bus_address, expected_out[k].bus_address);
+        EXPECT_EQ(got.x, expected_out[k].x);
+        EXPECT_EQ(got.y, expected_out[k].y);
+        EXPECT_EQ(got.flags, expected_out[k].flags);
+      }
+      EXPECT_EQ(log.totals().fired, firings.size());
+    }
+  }
 }
 
 TEST_F(EventBusTest, ArbitratedBusServesInFireOrderWithLatency) {

@@ -6,27 +6,56 @@ namespace aesim {
 
 void AlohaBus::request(const AddressEvent& firing) { request_all(&firing, 1); }
 
+// Pixels firing within the same picosecond may arrive in either order: a firing is compared with
+// the latest start of its cluster so far, so that order never matters.
 void AlohaBus::request_all(const AddressEvent* firings, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) {
-    const AddressEvent& firing = firings[i];
-    log_.fired(firing);
-    // Pixels firing within the same picosecond may arrive in either order; compare against the
-    // latest start seen so that order never matters.
-    if (!cluster_.empty() && firing.t - latest_start_ >= tau_) close_cluster();
-    latest_start_ = cluster_.empty() ? firing.t : std::max(latest_start_, firing.t);
-    earliest_ = cluster_.empty() ? firing.t : std::min(earliest_, firing.t);
-    cluster_.push_back(firing);
+  if (n == 0) return;
+  log_.fired_all(firings, n);
+  std::size_t i = 0;
+  if (!cluster_.empty()) {
+    for (; i < n && firings[i].t - latest_start_ < tau_; ++i) join(firings[i]);
+    if (i == n) return;
+    close_cluster();
   }
+  // Clusters of this batch are [begin, j). Lone firings, most of them on a lightly loaded bus, go to
+  // the log in runs, [singles, begin), before whatever collides after them.
+  std::size_t begin = i, singles = i;
+  double latest = firings[i].t;
+  for (std::size_t j = i + 1; j < n; ++j) {
+    if (firings[j].t - latest >= tau_) {
+      if (j - begin > 1) {
+        log_.delivered_as_fired(firings + singles, begin - singles);
+        close_collision(firings + begin, j - begin);
+        singles = j;
+      }
+      begin = j;
+      latest = firings[j].t;
+    } else {
+      latest = std::max(latest, firings[j].t);
+    }
+  }
+  log_.delivered_as_fired(firings + singles, begin - singles);
+  // The last cluster waits for the next batch, which may still join it.
+  for (std::size_t k = begin; k < n; ++k) join(firings[k]);
 }
 
-void AlohaBus::close_collision() {
+void AlohaBus::close_cluster() {
+  if (cluster_.size() == 1) {
+    log_.delivered_as_fired(cluster_.data(), 1);
+  } else if (!cluster_.empty()) {
+    close_collision(cluster_.data(), cluster_.size());
+  }
+  cluster_.clear();
+}
+
+void AlohaBus::close_collision(const AddressEvent* cluster, std::size_t n) {
   const Fate fate = detect_ ? Fate::Collided : Fate::Ghost;
-  AddressEvent ghost = cluster_[0];
+  AddressEvent ghost = cluster[0];
   ghost.bus_address = 0;
-  for (const AddressEvent& e : cluster_) {
-    log_.resolve(e, fate);
-    ghost.t = std::min(ghost.t, e.t);
-    ghost.bus_address |= e.bus_address;
+  for (std::size_t i = 0; i < n; ++i) {
+    log_.resolve(cluster[i], fate);
+    ghost.t = std::min(ghost.t, cluster[i].t);
+    ghost.bus_address |= cluster[i].bus_address;
   }
   if (!detect_) {
     const PixelAddress p = map_.locate(ghost.tile, ghost.bus_address);
@@ -35,7 +64,6 @@ void AlohaBus::close_collision() {
     ghost.flags = kGhostEvent;
     log_.output(ghost);
   }
-  cluster_.clear();
 }
 
 void ArbitratedBus::request(const AddressEvent& firing) { request_all(&firing, 1); }

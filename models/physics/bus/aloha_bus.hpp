@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <vector>
 
 #include "array/address_map.hpp"
@@ -23,27 +24,23 @@ class AlohaBus final : public EventBus {
   double held_since() const override { return cluster_.empty() ? EventBus::held_since() : earliest_; }
 
  private:
-  // Inline for the cluster of one firing on a free bus, most of them: an out-of-line call an event
-  // cost 6-8 % of the event rung (best of 12 interleaved runs, bright QCIF). A collision is settled
-  // out of line.
-  void close_cluster() {
-    if (cluster_.size() == 1) {
-      log_.resolve(cluster_[0], Fate::Delivered, cluster_[0].t);
-      log_.output(cluster_[0]);
-      cluster_.clear();
-    } else if (!cluster_.empty()) {
-      close_collision();
-    }
+  // The open cluster: the firings that may still collide with the next one. A batch's clusters
+  // are found in place; only the last, which the next batch may extend, is copied here.
+  void join(const AddressEvent& firing) {
+    latest_start_ = cluster_.empty() ? firing.t : std::max(latest_start_, firing.t);
+    earliest_ = cluster_.empty() ? firing.t : std::min(earliest_, firing.t);
+    cluster_.push_back(firing);
   }
-  void close_collision();
+  void close_cluster();
+  void close_collision(const AddressEvent* cluster, std::size_t n);
 
   EventLog& log_;
   const AddressMap& map_;
   double tau_;
   bool detect_;
   std::vector<AddressEvent> cluster_;
-  double latest_start_ = 0;
-  double earliest_ = 0;  // of the open cluster
+  double latest_start_ = 0;  // of the open cluster
+  double earliest_ = 0;
 };
 
 // bus.access=arbitrated: events take the bus one after the other in fire order, each for tau;

@@ -14,7 +14,8 @@ class IdealBus final : public EventBus {
     log_.output(firing);
   }
   void request_all(const AddressEvent* firings, std::size_t n) override {
-    for (std::size_t i = 0; i < n; ++i) IdealBus::request(firings[i]);
+    log_.fired_all(firings, n);
+    log_.delivered_as_fired(firings, n);
   }
 
  private:

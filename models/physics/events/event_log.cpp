@@ -46,6 +46,30 @@ void EventLog::count_pixels(std::size_t pixels, std::uint32_t cols, double windo
   window_ = window;
 }
 
+void EventLog::delivered_as_fired(const AddressEvent* firings, std::size_t n) {
+  if (n == 0) return;
+  const std::uint32_t t = firings[0].tile;
+  Tile& tile = tiles_[t];
+  // A firing is never a ghost (the receiver makes those), and it waited for nothing.
+  tile.latencies.add_zeros(n);
+  tile.counters.delivered += n;
+  if (outputs_.truth) {
+    std::vector<TruthRecord>& truth = filling_.truth[t];
+    for (std::size_t i = 0; i < n; ++i) truth.push_back({firings[i], Fate::Delivered, firings[i].t});
+  }
+  if (!pixels_.empty()) {
+    for (std::size_t i = 0; i < n; ++i) {
+      PixelCounts& p = pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x];
+      ++p.output;
+      p.output_in_window += firings[i].t <= window_ ? 1 : 0;
+    }
+  }
+  if (outputs_.events) {
+    std::vector<TileEvent>& events = filling_.events[t];
+    for (std::size_t i = 0; i < n; ++i) events.push_back(TileEvent::of(firings[i]));
+  }
+}
+
 void EventLog::hand_over(double before) {
   if (!outputs_.events && !outputs_.truth) return;
   if (!pipeline_) pipeline_ = std::make_unique<MergePipeline>(*merger_, tiles_.size());

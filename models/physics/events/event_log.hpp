@@ -66,6 +66,27 @@ class EventLog {
       p.fired_in_window += firing.t <= window_ ? 1 : 0;
     }
   }
+  // fired() for each of a batch of one tile's firings (a bus serves one tile), with the counters
+  // summed in registers and added once: the event rung's buses take 256 firings a call.
+  void fired_all(const AddressEvent* firings, std::size_t n) {
+    if (n == 0) return;
+    Tile& tile = tiles_[firings[0].tile];
+    std::uint64_t address_ones = 0;
+    for (std::size_t i = 0; i < n; ++i) address_ones += ones(firings[i].bus_address);
+    tile.counters.fired += n;
+    tile.address_ones += address_ones;
+    if (!pixels_.empty()) {
+      for (std::size_t i = 0; i < n; ++i) {
+        PixelCounts& p = pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x];
+        ++p.fired;
+        p.fired_in_window += firings[i].t <= window_ ? 1 : 0;
+      }
+    }
+  }
+  // resolve(firing, Fate::Delivered, firing.t) then output(firing), for each of a batch of one
+  // tile's firings delivered the moment they fired, as most are on a free bus: the same records
+  // in the same order, each kind of work done for the batch at once.
+  void delivered_as_fired(const AddressEvent* firings, std::size_t n);
   std::vector<std::uint32_t> fired_per_pixel() const { return per_pixel(&PixelCounts::fired); }
   std::vector<std::uint32_t> window_per_pixel() const { return per_pixel(&PixelCounts::fired_in_window); }
   // Output events per pixel, ghosts included; and real (non-ghost) ones within the window.

@@ -27,6 +27,8 @@ class LatencyRecorder {
       bin(wait);
     }
   }
+  // add(0) n times.
+  void add_zeros(std::uint64_t n) { zeros_ += n; }
   // Takes `other`'s waits (tiles are recorded apart and combined in tile order after the run).
   void absorb(LatencyRecorder& other);
   LatencyStats stats() const;
