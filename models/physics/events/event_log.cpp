@@ -65,8 +65,12 @@ void EventLog::delivered_as_fired(const AddressEvent* firings, std::size_t n) {
     }
   }
   if (outputs_.events) {
+    // Grown once and written in place: a push_back an event checked the capacity every time.
     std::vector<TileEvent>& events = filling_.events[t];
-    for (std::size_t i = 0; i < n; ++i) events.push_back(TileEvent::of(firings[i]));
+    const std::size_t at = events.size();
+    events.resize(at + n);
+    TileEvent* out = events.data() + at;
+    for (std::size_t i = 0; i < n; ++i) out[i] = TileEvent::of(firings[i]);
   }
 }
 
