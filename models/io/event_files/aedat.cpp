@@ -91,7 +91,7 @@ AedatWriter::AedatWriter(std::ostream& out, const std::vector<std::string>& head
                          AedatLayout layout)
     : out_(out),
       bus_bits_(static_cast<unsigned>(map.bus_bits())),
-      tick_(tick),
+      stamps_(tick),
       layout_(layout),
       chip_(jaer_chip(layout, map)),
       rows_(map.rows()) {
@@ -103,7 +103,7 @@ AedatWriter::~AedatWriter() { flush(); }
 
 void AedatWriter::events(const AddressEvent* first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
-    AedatRecord r = aedat_record(first[i], bus_bits_, tick_);
+    AedatRecord r = aedat_record(first[i], bus_bits_, stamps_);
     if (layout_ != AedatLayout::Aesim) r.address = jaer_address(layout_, chip_, rows_, first[i]);
     zero_stamps_ += r.timestamp_us == 0 ? 1 : 0;
     // Packed into a buffer of fixed size (growing a vector by 8 bytes an event cost a fifth of
@@ -175,15 +175,12 @@ std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, 
 }
 
 AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick) {
-  const std::uint64_t stamp = stamp_us(e.t, tick);
-  AedatRecord r;
-  r.address = (e.tile << bus_bits) | e.bus_address;
-  if (stamp > 0x7FFFFFFFu) {
-    throw InputError(fmt::format("AEDAT 2.0 stamps are int32 microseconds: an event at {:.6g} s does not fit "
-                                 "(at most 2147 s)", e.t));
-  }
-  r.timestamp_us = static_cast<std::int32_t>(stamp);
-  return r;
+  return aedat_record(e, bus_bits, MicrosecondStamps(tick));
+}
+
+void throw_aedat_stamp_overflow(double t) {
+  throw InputError(fmt::format("AEDAT 2.0 stamps are int32 microseconds: an event at {:.6g} s does not fit "
+                               "(at most 2147 s)", t));
 }
 
 }  // namespace aesim

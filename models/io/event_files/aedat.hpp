@@ -8,6 +8,7 @@
 #include "array/address_map.hpp"
 #include "events/address_event.hpp"
 #include "event_files/aedat_layout.hpp"
+#include "event_files/event_stamps.hpp"
 #include "event_files/event_writer.hpp"
 
 #include <nlohmann/json_fwd.hpp>
@@ -56,7 +57,7 @@ class AedatWriter : public EventFileWriter {
  private:
   std::ostream& out_;
   unsigned bus_bits_;
-  double tick_;
+  MicrosecondStamps stamps_;
   AedatLayout layout_;
   JaerChip chip_;
   int rows_;
@@ -65,7 +66,16 @@ class AedatWriter : public EventFileWriter {
   std::size_t used_ = 0;
 };
 
+[[noreturn]] void throw_aedat_stamp_overflow(double t);
 // The AEDAT record of a delivered event (timestamp in whole microseconds of receiver ticks).
+inline AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, const MicrosecondStamps& stamps) {
+  const std::uint64_t stamp = stamps(e.t);
+  if (stamp > 0x7FFFFFFFu) throw_aedat_stamp_overflow(e.t);
+  AedatRecord r;
+  r.address = (e.tile << bus_bits) | e.bus_address;
+  r.timestamp_us = static_cast<std::int32_t>(stamp);
+  return r;
+}
 AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick);
 // The AEDAT records of delivered events (timestamps in whole microseconds of receiver ticks).
 std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, const AddressMap& map,

@@ -146,7 +146,7 @@ Aedat4Compression parse_aedat4_compression(const std::string& text) {
 }
 
 Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
-    : out_(out), tick_(spec.tick), compression_(spec.compression) {
+    : out_(out), stamps_(spec.tick), compression_(spec.compression) {
   out_.write(kAedat4Magic, static_cast<std::streamsize>(kAedat4MagicBytes));
   flatbuffers::FlatBufferBuilder fbb;
   const auto info = fbb.CreateString(info_node(spec));
@@ -162,7 +162,7 @@ Aedat4Writer::~Aedat4Writer() = default;
 void Aedat4Writer::events(const AddressEvent* first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
     const AddressEvent& e = first[i];
-    pending_.push_back({static_cast<std::int64_t>(stamp_us(e.t, tick_)), static_cast<std::int16_t>(e.x),
+    pending_.push_back({static_cast<std::int64_t>(stamps_(e.t)), static_cast<std::int16_t>(e.x),
                         static_cast<std::int16_t>(e.y), e.flags != kGhostEvent});
     if (pending_.size() == kAedat4PacketEvents) write_packet();
   }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "event_files/event_stamps.hpp"
 #include "event_files/event_writer.hpp"
 
 namespace aesim {
@@ -24,7 +25,7 @@ class Aedat4Writer : public EventFileWriter {
  private:
   void write_packet();
   std::ostream& out_;
-  double tick_;
+  MicrosecondStamps stamps_;
   Aedat4Compression compression_;
   struct Pending {
     std::int64_t t_us;

@@ -105,7 +105,7 @@ struct DsecWriter::Handles {
 };
 
 DsecWriter::DsecWriter(const std::string& path, const EventFileSpec& spec, double duration_s)
-    : h_(std::make_unique<Handles>()), path_(path), tick_(spec.tick), ms_total_(static_cast<std::uint64_t>(std::ceil(duration_s * 1e3))) {
+    : h_(std::make_unique<Handles>()), path_(path), stamps_(spec.tick), ms_total_(static_cast<std::uint64_t>(std::ceil(duration_s * 1e3))) {
   quiet_hdf5();
   h_->file = checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                      fmt::format("cannot create HDF5 file '{}'", path));
@@ -128,7 +128,7 @@ DsecWriter::~DsecWriter() = default;
 void DsecWriter::events(const AddressEvent* first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
     const AddressEvent& e = first[i];
-    const std::uint64_t t = stamp_us(e.t, tick_);
+    const std::uint64_t t = stamps_(e.t);
     if (t > 0xFFFFFFFFu) {
       throw InputError(fmt::format("DSEC stamps are uint32 microseconds: an event at {:.6g} s does not fit (at most "
                                    "4294 s)", e.t));

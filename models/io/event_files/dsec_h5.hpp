@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "event_files/aedat4.hpp"
+#include "event_files/event_stamps.hpp"
 #include "event_files/event_writer.hpp"
 
 namespace aesim {
@@ -27,7 +28,7 @@ class DsecWriter : public EventFileWriter {
   struct Handles;
   std::unique_ptr<Handles> h_;
   std::string path_;
-  double tick_;
+  MicrosecondStamps stamps_;
   std::uint64_t ms_total_;
   std::uint64_t written_ = 0, count_ = 0;
   std::vector<std::uint16_t> x_, y_;

@@ -49,7 +49,7 @@ struct Field {
 
 }  // namespace
 
-NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, std::ios::binary | std::ios::trunc), path_(path), tick_(tick) {
+NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, std::ios::binary | std::ios::trunc), path_(path), stamps_(tick) {
   if (!out_) throw OutputError(fmt::format("cannot write '{}'", path));
   const std::string text = header_text(0);
   out_.write(kNpyMagic, 6);
@@ -67,7 +67,7 @@ void NpyWriter::events(const AddressEvent* first, std::size_t count) {
     char* p = buffer_.data() + at;
     put_le_bytes(p, e.x, 2);
     put_le_bytes(p + 2, e.y, 2);
-    put_le_bytes(p + 4, stamp_us(e.t, tick_), 8);
+    put_le_bytes(p + 4, stamps_(e.t), 8);
     p[12] = e.flags == kGhostEvent ? 0 : 1;
     if (buffer_.size() >= kNpyBufferBytes) flush();
   }

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "event_files/aedat4.hpp"
+#include "event_files/event_stamps.hpp"
 #include "event_files/event_writer.hpp"
 
 namespace aesim {
@@ -22,7 +23,7 @@ class NpyWriter : public EventFileWriter {
   void flush();
   std::ofstream out_;
   std::string path_;
-  double tick_;
+  MicrosecondStamps stamps_;
   std::uint64_t count_ = 0;
   std::vector<char> buffer_;
 };
