@@ -24,13 +24,18 @@ struct TileEvent {
   }
   AddressEvent in_tile(std::uint32_t tile) const {
     AddressEvent e;
+    expand(tile, e);
+    return e;
+  }
+  // in_tile() written in place, field by field: an event built on the stack and copied whole
+  // stalled the merge on store forwarding (narrow stores read back as 16-byte loads).
+  void expand(std::uint32_t tile, AddressEvent& e) const {
     e.t = t;
     e.x = x;
     e.y = y;
     e.tile = tile;
     e.bus_address = address_ghost & ~kGhostBit;
     e.flags = (address_ghost & kGhostBit) ? kGhostEvent : kNormalEvent;
-    return e;
   }
 };
 
@@ -59,7 +64,7 @@ class EventMerger {
  private:
   std::vector<std::vector<TileEvent>> events_;  // held: not yet earlier than a `before`
   std::vector<std::vector<TruthRecord>> truth_;
-  std::vector<AddressEvent> event_chunk_;
+  std::vector<AddressEvent> event_chunk_;  // kChunk records, filled from the front
   std::vector<TruthRecord> truth_chunk_;
   EventStream& out_;
 };
