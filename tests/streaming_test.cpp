@@ -89,6 +89,26 @@ TEST(Streaming, WindowsAndThreadsDoNotChangeTheRecords) {
   }
 }
 
+// The 1 bits the buses carried (the power model's bus energy) are summed per pixel after the run:
+// they must equal the sum over every fired event's address, ghosts (which no pixel fired) aside.
+TEST(Streaming, AddressOnesAreThoseOfEveryFiredEvent) {
+  const SensorConfig c = busy_sensor();
+  const Photocurrents p(disc_scene(), c.pixel);
+  const SimulationResult r = run_with(c, p, 2, 1000);
+  std::uint64_t expected = 0;
+  for (const TruthRecord& t : r.log.truth()) expected += static_cast<std::uint64_t>(__builtin_popcount(t.firing.bus_address));
+  ASSERT_GT(r.log.totals().ghost, 10u);
+  ASSERT_GT(expected, 100000u);
+  EXPECT_EQ(r.log.address_ones(), expected);
+  // A log that counts no pixels sums them per event.
+  EventLog bare(1, false);
+  AddressEvent e;
+  e.bus_address = 0x2F5;
+  bare.fired(e);
+  bare.fired_all(&e, 1);
+  EXPECT_EQ(bare.address_ones(), 14u);
+}
+
 // The merge orders by (time, tile, bus address) whatever the windows: many records share a time
 // (a coarse grid of times, zero among them, written both as +0.0 and -0.0, which are the same
 // time), across tiles and within one. Expected: the whole set sorted by the triple.

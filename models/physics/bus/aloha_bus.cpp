@@ -7,10 +7,11 @@ namespace aesim {
 void AlohaBus::request(const AddressEvent& firing) { request_all(&firing, 1); }
 
 // Pixels firing within the same picosecond may arrive in either order: a firing is compared with
-// the latest start of its cluster so far, so that order never matters.
+// the latest start of its cluster so far, so that order never matters. A firing is counted when
+// its cluster closes, lone or not, so that the log reaches a pixel's counters once for both its
+// firing and its delivery.
 void AlohaBus::request_all(const AddressEvent* firings, std::size_t n) {
   if (n == 0) return;
-  log_.fired_all(firings, n);
   std::size_t i = 0;
   if (!cluster_.empty()) {
     for (; i < n && firings[i].t - latest_start_ < tau_; ++i) join(firings[i]);
@@ -24,7 +25,7 @@ void AlohaBus::request_all(const AddressEvent* firings, std::size_t n) {
   for (std::size_t j = i + 1; j < n; ++j) {
     if (firings[j].t - latest >= tau_) {
       if (j - begin > 1) {
-        log_.delivered_as_fired(firings + singles, begin - singles);
+        log_.fired_and_delivered(firings + singles, begin - singles);
         close_collision(firings + begin, j - begin);
         singles = j;
       }
@@ -34,14 +35,14 @@ void AlohaBus::request_all(const AddressEvent* firings, std::size_t n) {
       latest = std::max(latest, firings[j].t);
     }
   }
-  log_.delivered_as_fired(firings + singles, begin - singles);
+  log_.fired_and_delivered(firings + singles, begin - singles);
   // The last cluster waits for the next batch, which may still join it.
   for (std::size_t k = begin; k < n; ++k) join(firings[k]);
 }
 
 void AlohaBus::close_cluster() {
   if (cluster_.size() == 1) {
-    log_.delivered_as_fired(cluster_.data(), 1);
+    log_.fired_and_delivered(cluster_.data(), 1);
   } else if (!cluster_.empty()) {
     close_collision(cluster_.data(), cluster_.size());
   }
@@ -49,6 +50,7 @@ void AlohaBus::close_cluster() {
 }
 
 void AlohaBus::close_collision(const AddressEvent* cluster, std::size_t n) {
+  log_.fired_all(cluster, n);
   const Fate fate = detect_ ? Fate::Collided : Fate::Ghost;
   AddressEvent ghost = cluster[0];
   ghost.bus_address = 0;

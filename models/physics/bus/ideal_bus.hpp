@@ -14,8 +14,7 @@ class IdealBus final : public EventBus {
     log_.output(firing);
   }
   void request_all(const AddressEvent* firings, std::size_t n) override {
-    log_.fired_all(firings, n);
-    log_.delivered_as_fired(firings, n);
+    log_.fired_and_delivered(firings, n);
   }
 
  private:

@@ -40,29 +40,34 @@ EventLog::EventLog(EventLog&&) noexcept = default;
 EventLog& EventLog::operator=(EventLog&&) noexcept = default;
 EventLog::~EventLog() = default;
 
-void EventLog::count_pixels(std::size_t pixels, std::uint32_t cols, double window) {
+void EventLog::count_pixels(std::size_t pixels, std::uint32_t cols, double window,
+                            std::function<std::uint32_t(std::uint32_t, std::uint32_t)> bus_address) {
   pixels_.assign(pixels, PixelCounts{});
   cols_ = cols;
   window_ = window;
+  pixel_address_ = pixels > 0 ? std::move(bus_address) : nullptr;
 }
 
-void EventLog::delivered_as_fired(const AddressEvent* firings, std::size_t n) {
+void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
   if (n == 0) return;
   const std::uint32_t t = firings[0].tile;
   Tile& tile = tiles_[t];
+  tile.counters.fired += n;
   // A firing is never a ghost (the receiver makes those), and it waited for nothing.
   tile.latencies.add_zeros(n);
   tile.counters.delivered += n;
-  if (outputs_.truth) {
-    std::vector<TruthRecord>& truth = filling_.truth[t];
-    for (std::size_t i = 0; i < n; ++i) truth.push_back({firings[i], Fate::Delivered, firings[i].t});
-  }
   if (!pixels_.empty()) {
     for (std::size_t i = 0; i < n; ++i) {
       PixelCounts& p = pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x];
+      count_fired(p, firings[i]);
       ++p.output;
       p.output_in_window += firings[i].t <= window_ ? 1 : 0;
     }
+  }
+  if (!pixel_address_) tile.address_ones += address_ones_of(firings, n);
+  if (outputs_.truth) {
+    std::vector<TruthRecord>& truth = filling_.truth[t];
+    for (std::size_t i = 0; i < n; ++i) truth.push_back({firings[i], Fate::Delivered, firings[i].t});
   }
   if (outputs_.events) {
     // Grown once and written in place: a push_back an event checked the capacity every time.
@@ -98,6 +103,14 @@ std::vector<TileCounters> EventLog::tiles() const {
 
 std::uint64_t EventLog::address_ones() const {
   std::uint64_t n = 0;
+  if (pixel_address_) {
+    // Each firing of a pixel put the pixel's address on the bus.
+    for (std::size_t i = 0; i < pixels_.size(); ++i) {
+      const auto x = static_cast<std::uint32_t>(i % cols_), y = static_cast<std::uint32_t>(i / cols_);
+      n += static_cast<std::uint64_t>(pixels_[i].fired) * ones(pixel_address_(x, y));
+    }
+    return n;
+  }
   for (const Tile& t : tiles_) n += t.address_ones;
   return n;
 }

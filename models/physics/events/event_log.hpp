@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -54,39 +55,27 @@ class EventLog {
 
   // Counts firings per pixel (y * cols + x) in all and within [0, window], and output events per
   // pixel (the histogram image) in all and, without ghosts, within the window (the sizing
-  // metrics). Tiles on separate threads touch separate pixels.
-  void count_pixels(std::size_t pixels, std::uint32_t cols, double window);
-  void fired(const AddressEvent& firing) {
-    Tile& tile = tiles_[firing.tile];
-    ++tile.counters.fired;
-    tile.address_ones += static_cast<std::uint64_t>(ones(firing.bus_address));
-    if (!pixels_.empty()) {
-      PixelCounts& p = pixels_[std::size_t(firing.y) * cols_ + firing.x];
-      ++p.fired;
-      p.fired_in_window += firing.t <= window_ ? 1 : 0;
-    }
-  }
+  // metrics). Tiles on separate threads touch separate pixels. With the pixels' bus addresses
+  // (`bus_address(x, y)`), the 1 bits the bus carried are summed per pixel after the run rather
+  // than per event.
+  void count_pixels(std::size_t pixels, std::uint32_t cols, double window,
+                    std::function<std::uint32_t(std::uint32_t x, std::uint32_t y)> bus_address = {});
+  void fired(const AddressEvent& firing) { fired_all(&firing, 1); }
   // fired() for each of a batch of one tile's firings (a bus serves one tile), with the counters
   // summed in registers and added once: the event rung's buses take 256 firings a call.
   void fired_all(const AddressEvent* firings, std::size_t n) {
     if (n == 0) return;
     Tile& tile = tiles_[firings[0].tile];
-    std::uint64_t address_ones = 0;
-    for (std::size_t i = 0; i < n; ++i) address_ones += ones(firings[i].bus_address);
     tile.counters.fired += n;
-    tile.address_ones += address_ones;
     if (!pixels_.empty()) {
-      for (std::size_t i = 0; i < n; ++i) {
-        PixelCounts& p = pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x];
-        ++p.fired;
-        p.fired_in_window += firings[i].t <= window_ ? 1 : 0;
-      }
+      for (std::size_t i = 0; i < n; ++i) count_fired(pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x], firings[i]);
     }
+    if (!pixel_address_) tile.address_ones += address_ones_of(firings, n);
   }
-  // resolve(firing, Fate::Delivered, firing.t) then output(firing), for each of a batch of one
-  // tile's firings delivered the moment they fired, as most are on a free bus: the same records
-  // in the same order, each kind of work done for the batch at once.
-  void delivered_as_fired(const AddressEvent* firings, std::size_t n);
+  // fired_all() then, for each firing, resolve(firing, Fate::Delivered, firing.t) and
+  // output(firing): a batch of one tile's firings delivered the moment they fired, as most are on
+  // a free bus. The same counts and records in the same order, each pixel's counters reached once.
+  void fired_and_delivered(const AddressEvent* firings, std::size_t n);
   std::vector<std::uint32_t> fired_per_pixel() const { return per_pixel(&PixelCounts::fired); }
   std::vector<std::uint32_t> window_per_pixel() const { return per_pixel(&PixelCounts::fired_in_window); }
   // Output events per pixel, ghosts included; and real (non-ghost) ones within the window.
@@ -157,6 +146,16 @@ class EventLog {
   struct PixelCounts {
     std::uint32_t fired = 0, fired_in_window = 0, output = 0, output_in_window = 0;
   };
+  void count_fired(PixelCounts& p, const AddressEvent& firing) const {
+    ++p.fired;
+    p.fired_in_window += firing.t <= window_ ? 1 : 0;
+  }
+  static std::uint64_t address_ones_of(const AddressEvent* firings, std::size_t n) {
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < n; ++i) sum += ones(firings[i].bus_address);
+    return sum;
+  }
+  std::function<std::uint32_t(std::uint32_t, std::uint32_t)> pixel_address_;
   std::vector<std::uint32_t> per_pixel(std::uint32_t PixelCounts::*field) const {
     std::vector<std::uint32_t> out;
     out.reserve(pixels_.size());
