@@ -1,9 +1,11 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "array/address_map.hpp"
+#include "array/firing_window.hpp"
 #include "array/wake_calendar.hpp"
 #include "events/address_event.hpp"
 #include "config/sensor_config.hpp"
@@ -18,10 +20,16 @@ namespace aesim {
 // queue keyed by (time, bus address), so firings come out in time order, ties in address order.
 // A pixel dark in every frame never gets a slot; a pixel whose next wake-up is past the end of
 // the run leaves the queue. Cost follows the events, not the pixels.
+//
+// A tile whose every pixel fires periodically (light that never changes, no shot noise: a still
+// scene) needs no queue: it makes its firings a window of about one firing a pixel at a time, and
+// counting-sorts them (FiringWindow). Same firings, same order, about 1.4x the calendar's rate.
 class FiringSchedule {
  public:
+  // `windows`: a tile whose every pixel fires periodically makes its firings a window at a time
+  // (see fill_periodic); false keeps every tile on the calendar (tests compare the two).
   FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& photocurrents,
-                 const AddressMap& map, std::uint32_t tile);
+                 const AddressMap& map, std::uint32_t tile, bool windows = true);
 
   // The next firing at or before sim.duration; false when none remains.
   bool next(AddressEvent& firing) { return fill(&firing, 1, t_end_) == 1; }
@@ -31,7 +39,11 @@ class FiringSchedule {
   // The next firings at or before `until`, up to `capacity` of them, into `out` in order; fewer
   // than `capacity` when none remains that early (as next()). A batch costs one call, not one an
   // event.
-  std::size_t fill(AddressEvent* out, std::size_t capacity, double until);
+  std::size_t fill(AddressEvent* out, std::size_t capacity, double until) {
+    return periodic_ ? fill_periodic(out, capacity, until) : fill_from_calendar(out, capacity, until);
+  }
+  // Whether the tile's firings come from windows (every pixel periodic) rather than the calendar.
+  bool periodic() const { return periodic_; }
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
   // 68 bytes per lit pixel (a still scene's photocurrents are not held; see Photocurrents). Its bus address is its key in the
@@ -59,11 +71,25 @@ class FiringSchedule {
   std::uint32_t y_of(std::uint32_t bus_address) const { return y0_ + (bus_address >> xbits_); }
   IntegrateFire::ShotNoise& noise(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
   std::uint32_t boundary_after(std::uint64_t boundary, std::size_t index) const;
+  std::size_t fill_from_calendar(AddressEvent* out, std::size_t capacity, double until);
+  // A tile whose every pixel fires periodically (light that never changes, no shot noise) makes
+  // its firings a window at a time: each pixel's firings up to the window's end, in pixel order,
+  // counting-sorted by time (FiringWindow). The same firings in the same order as the calendar's,
+  // for about a third of the work a firing; the calendar is not built.
+  std::size_t fill_periodic(AddressEvent* out, std::size_t capacity, double until);
+  void make_window(double to);
 
   std::vector<Slot> pixels_;
   std::vector<IntegrateFire::ShotNoise> shot_noise_;  // per pixel, only with pixel.shot_noise
   IntegrateFire::ShotNoise no_noise_;                 // untouched: without shot noise nothing is random
   WakeCalendar calendar_;
+
+  bool periodic_ = false;
+  std::vector<std::uint32_t> keys_;       // periodic: each pixel's bus address
+  double window_ = 0;                     // periodic: a window's length, about one firing a pixel
+  double made_to_ = 0;                    // periodic: firings up to this time are made
+  std::unique_ptr<FiringWindow> made_;    // periodic: the window made last, while any is left
+  const FiringWindow::Firing* next_ = nullptr;  // periodic: its first firing not yet taken
 };
 
 }  // namespace aesim

@@ -63,6 +63,27 @@ class IntegrateFire {
       ++cycles_;
     }
   }
+  // fire() at each firing up to and including time `to`, handing each firing's time to `emit`
+  // first: the same times as next_fire() and fire() one at a time, for a pixel without shot noise
+  // (its period stays, so the loop runs in registers).
+  template <typename Emit>
+  void fire_through(const Sensor& sensor, ShotNoise& noise, double to, Emit&& emit) {
+    for (;;) {
+      const double first = first_;
+      const double period = period_;
+      std::uint32_t cycles = cycles_;
+      double t = cycles == 0 ? first : first + static_cast<double>(cycles) * period;
+      for (; t <= to && cycles < kMaxCycles; t = first + static_cast<double>(cycles) * period) {
+        emit(t);
+        ++cycles;
+      }
+      cycles_ = cycles;
+      if (!(t <= to)) return;
+      // Past 2^30 cycles: re-anchored as fire() does.
+      emit(t);
+      fire(sensor, noise);
+    }
+  }
   // The current changes at time t (last firing <= t <= next_fire()); collected charge carries over.
   void set_current(const Sensor& sensor, double t, double current);
   // Charge collected at time t (zero during reset); t within [last firing, next_fire()].

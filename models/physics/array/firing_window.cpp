@@ -1,0 +1,52 @@
+#include "array/firing_window.hpp"
+
+namespace aesim {
+
+void FiringWindow::start(double from, double to, std::size_t expected) {
+  std::size_t buckets = 16;
+  while (buckets < expected && buckets < (std::size_t(1) << 20)) buckets *= 2;
+  const double width = (to - from) / static_cast<double>(buckets);
+  per_width_ = width > 0 ? 1.0 / width : 0.0;
+  last_bucket_ = static_cast<double>(buckets - 1);
+  count_.assign(buckets, 0);
+  if (added_.size() < 2 * buckets) added_.resize(2 * buckets);
+  added_count_ = 0;
+}
+
+void FiringWindow::sort() {
+  // Where each bucket starts in the sorted order.
+  std::uint32_t at = 0;
+  for (std::uint32_t& c : count_) {
+    const std::uint32_t n = c;
+    c = at;
+    at += n;
+  }
+  if (sorted_.size() < added_count_) sorted_.resize(added_.size());
+  Firing* const sorted = sorted_.data();
+  std::uint32_t* const start = count_.data();
+  const Firing* const added = added_.data();
+  for (std::size_t i = 0; i < added_count_; ++i) sorted[start[added[i].bucket]++] = added[i];
+  // Buckets follow time, so what is left is within a bucket (a few firings): an insertion sort,
+  // which moves nothing past an equal time, so equal times keep the bus-address order they came in.
+  for (std::size_t i = 1; i < added_count_; ++i) {
+    const Firing f = sorted[i];
+    std::size_t j = i;
+    for (; j > 0 && f.t < sorted[j - 1].t; --j) sorted[j] = sorted[j - 1];
+    sorted[j] = f;
+  }
+}
+
+namespace {
+thread_local std::unique_ptr<FiringWindow> spare;
+}  // namespace
+
+std::unique_ptr<FiringWindow> FiringWindow::take() {
+  if (spare) return std::move(spare);
+  return std::make_unique<FiringWindow>();
+}
+
+void FiringWindow::give_back(std::unique_ptr<FiringWindow> window) {
+  if (!spare) spare = std::move(window);
+}
+
+}  // namespace aesim
