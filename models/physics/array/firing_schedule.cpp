@@ -8,6 +8,13 @@
 static_assert(sizeof(aesim::FiringSchedule::Slot) <= 56, "pixel record grew");
 
 namespace aesim {
+namespace {
+
+// A periodic tile's windows: about this many firings a pixel each, so that visiting every pixel
+// once a window costs little beside its firings.
+constexpr double kWindowFirings = 4;
+
+}  // namespace
 
 FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& photocurrents,
                                const AddressMap& map, std::uint32_t tile, bool windows)
@@ -56,9 +63,8 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
               std::all_of(pixels_.begin(), pixels_.end(), [](const Slot& p) { return p.next_boundary == kNoBoundary; });
   if (periodic_) {
     // Every pixel is lit (a pixel dark all run has no slot): windows of about one firing a pixel.
-    double rate = 0;
-    for (const double period : periods) rate += 1 / period;
-    window_ = static_cast<double>(pixels_.size()) / rate;
+    for (const double period : periods) rate_ += 1 / period;
+    window_ = kWindowFirings * static_cast<double>(pixels_.size()) / rate_;
     keys_.reserve(entries.size());
     for (const WakeCalendar::Entry& e : entries) keys_.push_back(e.key);
     return;
@@ -118,13 +124,20 @@ std::size_t FiringSchedule::fill_periodic(AddressEvent* out, std::size_t capacit
 
 void FiringSchedule::make_window(double to) {
   std::unique_ptr<FiringWindow> window = FiringWindow::take();
-  window->make(made_to_, to, pixels_.size(), [&](auto& add) {
-    // Pixel by pixel, so in bus-address order; each pixel's firings in time order.
-    for (std::size_t i = 0; i < pixels_.size(); ++i) {
-      const std::uint32_t key = keys_[i];
-      pixels_[i].fire_through(sensor_, no_noise_, to, [&](double t) { add(t, key); });
-    }
-  });
+  const std::size_t n = pixels_.size();
+  // A pixel fires at most (to - from) / period + 1 times in the window, one more at each end for
+  // rounding; a little over the sum, so the loop below need not check for room.
+  const double most = (to - made_to_) * rate_ * (1 + 1e-9) + 3.0 * static_cast<double>(n) + 64;
+  FiringWindow::Writer writer =
+      window->start(made_to_, to, static_cast<std::size_t>((to - made_to_) * rate_), static_cast<std::size_t>(most));
+  Slot* const pixels = pixels_.data();
+  const std::uint32_t* const keys = keys_.data();
+  // Pixel by pixel, so in bus-address order; each pixel's firings in time order.
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t key = keys[i];
+    pixels[i].fire_through(sensor_, no_noise_, to, [&writer, key](double t) { writer.add(t, key); });
+  }
+  window->finish(writer);
   made_to_ = to;
   if (window->first() == window->end()) {
     FiringWindow::give_back(std::move(window));

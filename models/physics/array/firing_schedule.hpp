@@ -86,6 +86,7 @@ class FiringSchedule {
 
   bool periodic_ = false;
   std::vector<std::uint32_t> keys_;       // periodic: each pixel's bus address
+  double rate_ = 0;                       // periodic: the tile's firings per second
   double window_ = 0;                     // periodic: a window's length, about one firing a pixel
   double made_to_ = 0;                    // periodic: firings up to this time are made
   std::unique_ptr<FiringWindow> made_;    // periodic: the window made last, while any is left

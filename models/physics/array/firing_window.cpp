@@ -1,16 +1,34 @@
 #include "array/firing_window.hpp"
 
+#include <stdexcept>
+
 namespace aesim {
 
-void FiringWindow::start(double from, double to, std::size_t expected) {
+FiringWindow::Writer FiringWindow::start(double from, double to, std::size_t expected, std::size_t room) {
   std::size_t buckets = 16;
   while (buckets < expected && buckets < (std::size_t(1) << 20)) buckets *= 2;
   const double width = (to - from) / static_cast<double>(buckets);
   per_width_ = width > 0 ? 1.0 / width : 0.0;
   last_bucket_ = static_cast<double>(buckets - 1);
   count_.assign(buckets, 0);
-  if (added_.size() < 2 * buckets) added_.resize(2 * buckets);
+  if (added_.size() < room) added_.resize(room);
   added_count_ = 0;
+  Writer w;
+  w.out_ = added_.data();
+  w.n_ = 0;
+  w.room_ = room;
+  w.count_ = count_.data();
+  w.from_ = from;
+  w.per_width_ = per_width_;
+  w.last_bucket_ = last_bucket_;
+  w.overflow_ = false;
+  return w;
+}
+
+void FiringWindow::finish(const Writer& writer) {
+  if (writer.overflow_) throw std::logic_error("a window of firings outgrew the room made for it");
+  added_count_ = writer.n_;
+  sort();
 }
 
 void FiringWindow::sort() {

@@ -19,19 +19,42 @@ class FiringWindow {
     std::uint32_t bucket;  // of time within the window, kept for the sort
   };
 
-  // Collects the firings over [from, to], about `expected` of them: `generate(add)` calls
-  // add(t, key) for each, in the order described above; then sorts them, and first() .. end()
-  // is the window in order.
-  template <typename Generate>
-  void make(double from, double to, std::size_t expected, Generate&& generate) {
-    start(from, to, expected);
-    // Locals, not members, while the firings come in: the loop's stores would make the compiler
-    // reload members at every firing.
-    Adder add{added_.data(), 0, added_.size(), count_.data(), from, per_width_, last_bucket_, this};
-    generate(add);
-    added_count_ = add.n;
-    sort();
-  }
+  // Where a window's firings are written as they come: plain locals, so that the hot loop keeps
+  // them in registers (a call in it, even one never taken, made GCC keep the loop's doubles on
+  // the stack). Room for them is made before: see start().
+  class Writer {
+   public:
+    void add(double t, std::uint32_t key) {
+      if (n_ == room_) {
+        overflow_ = true;
+        return;
+      }
+      // Times in the window are never before `from`; the clamp keeps `to` in the last bucket.
+      double b = (t - from_) * per_width_;
+      b = b < last_bucket_ ? b : last_bucket_;
+      const auto bucket = static_cast<std::uint32_t>(b);
+      out_[n_].t = t;
+      out_[n_].key = key;
+      out_[n_].bucket = bucket;
+      ++n_;
+      ++count_[bucket];
+    }
+
+   private:
+    friend class FiringWindow;
+    Firing* out_;
+    std::size_t n_, room_;
+    std::uint32_t* count_;
+    double from_, per_width_, last_bucket_;
+    bool overflow_;
+  };
+
+  // A window over [from, to] with about `expected` firings and room for `room`: add() them
+  // through the writer, in the order described above, then finish().
+  Writer start(double from, double to, std::size_t expected, std::size_t room);
+  // Sorts what was written; first() .. end() is then the window in order. Throws std::logic_error
+  // if more came than the room made for them (they were not written).
+  void finish(const Writer& writer);
   const Firing* first() const { return sorted_.data(); }
   const Firing* end() const { return sorted_.data() + added_count_; }
 
@@ -41,31 +64,6 @@ class FiringWindow {
   static void give_back(std::unique_ptr<FiringWindow> window);
 
  private:
-  struct Adder {
-    Firing* out;
-    std::size_t n, capacity;
-    std::uint32_t* count;
-    double from, per_width, last_bucket;
-    FiringWindow* window;
-    void operator()(double t, std::uint32_t key) {
-      if (n == capacity) grow();
-      // Times in the window are never before `from`; the clamp keeps `to` in the last bucket.
-      double b = (t - from) * per_width;
-      b = b < last_bucket ? b : last_bucket;
-      const auto bucket = static_cast<std::uint32_t>(b);
-      out[n].t = t;
-      out[n].key = key;
-      out[n].bucket = bucket;
-      ++n;
-      ++count[bucket];
-    }
-    void grow() {
-      window->added_.resize(2 * capacity);
-      out = window->added_.data();
-      capacity = window->added_.size();
-    }
-  };
-  void start(double from, double to, std::size_t expected);
   void sort();
 
   double per_width_ = 0;

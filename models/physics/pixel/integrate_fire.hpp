@@ -78,7 +78,7 @@ class IntegrateFire {
         ++cycles;
       }
       cycles_ = cycles;
-      if (!(t <= to)) return;
+      if (__builtin_expect(!(t <= to), 1)) return;
       // Past 2^30 cycles: re-anchored as fire() does.
       emit(t);
       fire(sensor, noise);
