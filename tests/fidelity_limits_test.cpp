@@ -32,46 +32,20 @@ std::map<std::uint32_t, std::uint64_t> counts(const SimulationResult& r, int col
   return n;
 }
 
-TEST(Rungs, PixelProcessesAndTheScheduleGiveTheSameEvents) {
-  // Mismatch, random start, shot noise, a moving scene, an ALOHA bus with collisions: the one
-  // process per pixel baseline and the scheduled event rung must agree bit for bit.
+// Mismatch, random start, reset time, an ALOHA bus with collisions, 32x32 in four tiles.
+SensorConfig busy_small_sensor() {
   SensorConfig c = exact_sensor(32, 32, 16);
   c.pixel.mismatch = 0.05;
   c.pixel.initial = InitialState::Random;
-  c.pixel.shot_noise = true;
   c.pixel.t_reset = 1e-3;
   c.bus.access = BusAccess::Aloha;
   c.bus.t_event = 2e-4;
   c.sim.duration = 3.0;
-  std::vector<Image> frames;
-  for (int k = 0; k < 8; ++k) {
-    frames.push_back(make_image(32, 32, [k](int x, int y) { return std::abs(x - 4 * k) < 6 ? 1.0 : 0.05 * (y % 3); }));
-  }
-  const Scene scene = make_scene(frames, 0.1, true);
-  const SimulationResult a = run(c, Fidelity::Event, scene);
-  const SimulationResult b = run(c, Fidelity::PixelProcesses, scene);
-  ASSERT_GT(a.log.totals().collided, 10u);
-  ASSERT_EQ(a.log.truth().size(), b.log.truth().size());
-  for (std::size_t i = 0; i < a.log.truth().size(); ++i) {
-    ASSERT_EQ(a.log.truth()[i].firing.t, b.log.truth()[i].firing.t) << i;
-    ASSERT_EQ(a.log.truth()[i].firing.x, b.log.truth()[i].firing.x) << i;
-    ASSERT_EQ(a.log.truth()[i].fate, b.log.truth()[i].fate) << i;
-  }
-  ASSERT_EQ(a.log.events().size(), b.log.events().size());
+  return c;
 }
 
-TEST(Rungs, PixelProcessesAndTheWindowsGiveTheSameEvents) {
-  // A still scene without shot noise: the event rung makes each tile's firings a window at a time
-  // (FiringWindow), not through its calendar; the one process per pixel baseline must agree bit
-  // for bit (ties are tested against the calendar in firing_schedule_test).
-  SensorConfig c = exact_sensor(32, 32, 16);
-  c.pixel.mismatch = 0.05;
-  c.pixel.initial = InitialState::Random;
-  c.pixel.t_reset = 1e-3;
-  c.bus.access = BusAccess::Aloha;
-  c.bus.t_event = 2e-4;
-  c.sim.duration = 3.0;
-  const Scene scene = make_scene({make_image(32, 32, [](int x, int y) { return x < 4 ? 1.0 : 0.05 * (1 + (x + y) % 9); })});
+// The one process per pixel baseline and the scheduled event rung must agree bit for bit.
+void expect_processes_agree(const SensorConfig& c, const Scene& scene) {
   const SimulationResult a = run(c, Fidelity::Event, scene);
   const SimulationResult b = run(c, Fidelity::PixelProcesses, scene);
   ASSERT_GT(a.log.totals().collided, 10u);
@@ -83,6 +57,26 @@ TEST(Rungs, PixelProcessesAndTheWindowsGiveTheSameEvents) {
     ASSERT_EQ(a.log.truth()[i].fate, b.log.truth()[i].fate) << i;
   }
   ASSERT_EQ(a.log.events().size(), b.log.events().size());
+}
+
+TEST(Rungs, PixelProcessesAndTheScheduleGiveTheSameEvents) {
+  // Shot noise and a moving scene: the event rung's tiles go through their calendars.
+  SensorConfig c = busy_small_sensor();
+  c.pixel.shot_noise = true;
+  std::vector<Image> frames;
+  for (int k = 0; k < 8; ++k) {
+    frames.push_back(make_image(32, 32, [k](int x, int y) { return std::abs(x - 4 * k) < 6 ? 1.0 : 0.05 * (y % 3); }));
+  }
+  expect_processes_agree(c, make_scene(frames, 0.1, true));
+}
+
+TEST(Rungs, PixelProcessesAndTheWindowsGiveTheSameEvents) {
+  // A still scene without shot noise: the event rung makes each tile's firings a window at a time
+  // (FiringWindow), not through its calendar (ties are tested against the calendar in
+  // firing_schedule_test).
+  expect_processes_agree(busy_small_sensor(), make_scene({make_image(32, 32, [](int x, int y) {
+                                                return x < 4 ? 1.0 : 0.05 * (1 + (x + y) % 9);
+                                              })}));
 }
 
 TEST(Rungs, TilesOnThreadsGiveTheSameEventsAsOneThread) {
