@@ -62,7 +62,7 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
   periodic_ = windows && !sensor_.shot_noise && !pixels_.empty() &&
               std::all_of(pixels_.begin(), pixels_.end(), [](const Slot& p) { return p.next_boundary == kNoBoundary; });
   if (periodic_) {
-    // Every pixel is lit (a pixel dark all run has no slot): windows of about one firing a pixel.
+    // Every pixel is lit (a pixel dark all run has no slot), so the rate is the sum of its rates.
     for (const double period : periods) rate_ += 1 / period;
     window_ = kWindowFirings * static_cast<double>(pixels_.size()) / rate_;
     keys_.reserve(entries.size());
@@ -126,7 +126,8 @@ void FiringSchedule::make_window(double to) {
   std::unique_ptr<FiringWindow> window = FiringWindow::take();
   const std::size_t n = pixels_.size();
   // A pixel fires at most (to - from) / period + 1 times in the window, one more at each end for
-  // rounding; a little over the sum, so the loop below need not check for room.
+  // rounding; room for a little over the sum, so that the loop below never has to grow it (the
+  // writer would report a shortfall rather than write past it).
   const double most = (to - made_to_) * rate_ * (1 + 1e-9) + 3.0 * static_cast<double>(n) + 64;
   FiringWindow::Writer writer =
       window->start(made_to_, to, static_cast<std::size_t>((to - made_to_) * rate_), static_cast<std::size_t>(most));

@@ -22,8 +22,9 @@ namespace aesim {
 // the run leaves the queue. Cost follows the events, not the pixels.
 //
 // A tile whose every pixel fires periodically (light that never changes, no shot noise: a still
-// scene) needs no queue: it makes its firings a window of about one firing a pixel at a time, and
-// counting-sorts them (FiringWindow). Same firings, same order, about 1.4x the calendar's rate.
+// scene) needs no queue: it makes its firings a window of about four firings a pixel at a time,
+// and counting-sorts them (FiringWindow). Same firings, same order, about twice the calendar's
+// rate.
 class FiringSchedule {
  public:
   // `windows`: a tile whose every pixel fires periodically makes its firings a window at a time
@@ -75,7 +76,7 @@ class FiringSchedule {
   // A tile whose every pixel fires periodically (light that never changes, no shot noise) makes
   // its firings a window at a time: each pixel's firings up to the window's end, in pixel order,
   // counting-sorted by time (FiringWindow). The same firings in the same order as the calendar's,
-  // for about a third of the work a firing; the calendar is not built.
+  // for about half the work a firing; the calendar is not built.
   std::size_t fill_periodic(AddressEvent* out, std::size_t capacity, double until);
   void make_window(double to);
 
@@ -87,7 +88,7 @@ class FiringSchedule {
   bool periodic_ = false;
   std::vector<std::uint32_t> keys_;       // periodic: each pixel's bus address
   double rate_ = 0;                       // periodic: the tile's firings per second
-  double window_ = 0;                     // periodic: a window's length, about one firing a pixel
+  double window_ = 0;                     // periodic: a window's length (kWindowFirings a pixel)
   double made_to_ = 0;                    // periodic: firings up to this time are made
   std::unique_ptr<FiringWindow> made_;    // periodic: the window made last, while any is left
   const FiringWindow::Firing* next_ = nullptr;  // periodic: its first firing not yet taken
