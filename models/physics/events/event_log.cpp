@@ -40,12 +40,11 @@ EventLog::EventLog(EventLog&&) noexcept = default;
 EventLog& EventLog::operator=(EventLog&&) noexcept = default;
 EventLog::~EventLog() = default;
 
-void EventLog::count_pixels(std::size_t pixels, std::uint32_t cols, double window,
-                            std::function<std::uint32_t(std::uint32_t, std::uint32_t)> bus_address) {
-  pixels_.assign(pixels, PixelCounts{});
-  cols_ = cols;
+void EventLog::count_pixels(const AddressMap& map, double window) {
+  pixels_.assign(static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols()), PixelCounts{});
+  cols_ = static_cast<std::uint32_t>(map.cols());
   window_ = window;
-  pixel_address_ = pixels > 0 ? std::move(bus_address) : nullptr;
+  map_ = map;
 }
 
 void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
@@ -64,7 +63,7 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
       p.output_in_window += firings[i].t <= window_ ? 1 : 0;
     }
   }
-  if (!pixel_address_) tile.address_ones += address_ones_of(firings, n);
+  if (pixels_.empty()) tile.address_ones += address_ones_of(firings, n);
   if (outputs_.truth) {
     std::vector<TruthRecord>& truth = filling_.truth[t];
     for (std::size_t i = 0; i < n; ++i) truth.push_back({firings[i], Fate::Delivered, firings[i].t});
@@ -103,11 +102,11 @@ std::vector<TileCounters> EventLog::tiles() const {
 
 std::uint64_t EventLog::address_ones() const {
   std::uint64_t n = 0;
-  if (pixel_address_) {
+  if (!pixels_.empty()) {
     // Each firing of a pixel put the pixel's address on the bus.
     for (std::size_t i = 0; i < pixels_.size(); ++i) {
       const auto x = static_cast<std::uint32_t>(i % cols_), y = static_cast<std::uint32_t>(i / cols_);
-      n += static_cast<std::uint64_t>(pixels_[i].fired) * ones(pixel_address_(x, y));
+      n += static_cast<std::uint64_t>(pixels_[i].fired) * ones(map_->bus_address({x, y}));
     }
     return n;
   }

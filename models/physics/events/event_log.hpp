@@ -1,9 +1,10 @@
 #pragma once
 #include <cstdint>
-#include <functional>
+#include <optional>
 #include <memory>
 #include <vector>
 
+#include "array/address_map.hpp"
 #include "events/address_event.hpp"
 #include "events/event_merger.hpp"
 #include "events/event_stream.hpp"
@@ -55,11 +56,12 @@ class EventLog {
 
   // Counts firings per pixel (y * cols + x) in all and within [0, window], and output events per
   // pixel (the histogram image) in all and, without ghosts, within the window (the sizing
-  // metrics). Tiles on separate threads touch separate pixels. With the pixels' bus addresses
-  // (`bus_address(x, y)`), the 1 bits the bus carried are summed per pixel after the run rather
-  // than per event.
-  void count_pixels(std::size_t pixels, std::uint32_t cols, double window,
-                    std::function<std::uint32_t(std::uint32_t x, std::uint32_t y)> bus_address = {});
+  // metrics). Tiles on separate threads touch separate pixels. An output whose address names no
+  // pixel of its tile (a ghost, the OR of several addresses, may name a column past a narrow edge
+  // tile or a row past the bottom; a receiver under test may put out anything) is counted in its
+  // tile's counters but at no pixel. The 1 bits the bus carried are summed per pixel after the
+  // run rather than per event.
+  void count_pixels(const AddressMap& map, double window);
   void fired(const AddressEvent& firing) { fired_all(&firing, 1); }
   // fired() for each of a batch of one tile's firings (a bus serves one tile), with the counters
   // summed in registers and added once: the event rung's buses take 256 firings a call.
@@ -70,7 +72,7 @@ class EventLog {
     if (!pixels_.empty()) {
       for (std::size_t i = 0; i < n; ++i) count_fired(pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x], firings[i]);
     }
-    if (!pixel_address_) tile.address_ones += address_ones_of(firings, n);
+    if (pixels_.empty()) tile.address_ones += address_ones_of(firings, n);
   }
   // fired_all() then, for each firing, resolve(firing, Fate::Delivered, firing.t) and
   // output(firing): a batch of one tile's firings delivered the moment they fired, as most are on
@@ -103,9 +105,11 @@ class EventLog {
     const bool ghost = (e.flags & kGhostEvent) != 0;
     if (ghost) ++tile.counters.ghost;
     if (!pixels_.empty()) {
-      PixelCounts& p = pixels_[std::size_t(e.y) * cols_ + e.x];
-      ++p.output;
-      p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
+      if (const std::optional<PixelAddress> at = map_->decode((e.tile << map_->bus_bits()) | e.bus_address)) {
+        PixelCounts& p = pixels_[std::size_t(at->y) * cols_ + at->x];
+        ++p.output;
+        p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
+      }
     }
     if (outputs_.events) filling_.events[e.tile].push_back(TileEvent::of(e));
   }
@@ -155,7 +159,6 @@ class EventLog {
     for (std::size_t i = 0; i < n; ++i) sum += ones(firings[i].bus_address);
     return sum;
   }
-  std::function<std::uint32_t(std::uint32_t, std::uint32_t)> pixel_address_;
   std::vector<std::uint32_t> per_pixel(std::uint32_t PixelCounts::*field) const {
     std::vector<std::uint32_t> out;
     out.reserve(pixels_.size());
@@ -163,6 +166,7 @@ class EventLog {
     return out;
   }
   std::vector<PixelCounts> pixels_;
+  std::optional<AddressMap> map_;  // with the pixels counted
   std::uint32_t cols_ = 0;
   double window_ = 0;
 };

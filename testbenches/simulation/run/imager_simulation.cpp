@@ -14,9 +14,7 @@ SimulationResult simulate(const ResolvedConfig& config, const Photocurrents& pho
 
   const AddressMap map(config.array);
   SimulationResult result{EventLog(map.tiles(), LogOutputs{request.keep_events, request.keep_truth, request.stream}), {}, nullptr};
-  result.log.count_pixels(static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols()),
-                          static_cast<std::uint32_t>(map.cols()), config.analysis.window,
-                          [map](std::uint32_t x, std::uint32_t y) { return map.bus_address({x, y}); });
+  result.log.count_pixels(map, config.analysis.window);
   if (request.waveforms) result.vcd = std::make_unique<VcdRecorder>(request.vcd_from, request.vcd_to);
   rung.run(RungRun{config, photocurrents, map, request, result.log, result.vcd.get()}, result.facts);
   result.log.finish();
