@@ -149,6 +149,12 @@ int run_command(RunOptions opt) {
                  "next one in its place); aesim's readers keep them\n",
                  static_cast<unsigned long long>(events->zero_stamps()), opt.out.c_str());
   }
+  if (events && events->off_array() > 0) {
+    std::fprintf(stderr,
+                 "aesim: warning: %llu ghost events name no pixel (the OR of colliding addresses, past their tile's "
+                 "columns or rows); %s leaves them out (no reader could place them); the events CSV keeps them\n",
+                 static_cast<unsigned long long>(events->off_array()), opt.out.c_str());
+  }
   if (result.facts.empty_queue_frames > 0) {
     std::fprintf(stderr,
                  "aesim: warning: %llu lit frames are too short for the queue model's brightest pixel to fire once "

@@ -9,6 +9,7 @@
 #include "event_files/aedat4.hpp"
 #include "event_files/dsec_h5.hpp"
 #include "event_files/npy_events.hpp"
+#include "event_files/on_array_events.hpp"
 #include "output/atomic_file.hpp"
 
 namespace aesim {
@@ -28,18 +29,21 @@ EventFileFormat event_file_format(const std::string& path, const std::string& op
 std::unique_ptr<EventFileWriter> open_event_writer(OutputFiles& files, const std::string& path,
                                                    const EventFileSpec& spec) {
   const AddressMap map(spec.array);
+  const auto on_array = [&map](std::unique_ptr<EventFileWriter> writer) -> std::unique_ptr<EventFileWriter> {
+    return std::make_unique<OnArrayEvents>(std::move(writer), map);
+  };
   switch (event_file_format(path, "--out")) {
     case EventFileFormat::Aedat2: {
       std::vector<std::string> header = aedat_header(map, spec.sensor, spec.layout);
       header.insert(header.begin() + 1, spec.notes.begin(), spec.notes.end());
-      return std::make_unique<AedatWriter>(files.open(path), header, map, spec.tick, spec.layout);
+      return on_array(std::make_unique<AedatWriter>(files.open(path), header, map, spec.tick, spec.layout));
     }
     case EventFileFormat::Aedat4:
-      return std::make_unique<Aedat4Writer>(files.open(path), spec);
+      return on_array(std::make_unique<Aedat4Writer>(files.open(path), spec));
     case EventFileFormat::Npy:
-      return std::make_unique<NpyWriter>(files.adopt(path), spec.tick);
+      return on_array(std::make_unique<NpyWriter>(files.adopt(path), spec.tick));
     case EventFileFormat::Hdf5:
-      return std::make_unique<DsecWriter>(files.adopt(path), spec, spec.duration);
+      return on_array(std::make_unique<DsecWriter>(files.adopt(path), spec, spec.duration));
     case EventFileFormat::Csv:
       break;
   }

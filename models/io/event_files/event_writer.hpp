@@ -20,6 +20,8 @@ class EventFileWriter : public EventStream {
   virtual void finish() = 0;
   // Events stamped 0 us (only the jAER layouts of AEDAT 2.0 care: jAER's reader skips them).
   virtual std::uint64_t zero_stamps() const { return 0; }
+  // Events left out because they name no pixel of the array (see OnArrayEvents).
+  virtual std::uint64_t off_array() const { return 0; }
 };
 
 // The event file formats, chosen by the output's extension (SPEC section 5); a name without an
