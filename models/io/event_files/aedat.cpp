@@ -170,12 +170,9 @@ std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, 
                                        double tick) {
   std::vector<AedatRecord> out;
   out.reserve(events.size());
-  for (const AddressEvent& e : events) out.push_back(aedat_record(e, static_cast<unsigned>(map.bus_bits()), tick));
+  const MicrosecondStamps stamps(tick);
+  for (const AddressEvent& e : events) out.push_back(aedat_record(e, static_cast<unsigned>(map.bus_bits()), stamps));
   return out;
-}
-
-AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick) {
-  return aedat_record(e, bus_bits, MicrosecondStamps(tick));
 }
 
 void throw_aedat_stamp_overflow(double t) {

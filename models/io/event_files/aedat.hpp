@@ -76,7 +76,6 @@ inline AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, const 
   r.timestamp_us = static_cast<std::int32_t>(stamp);
   return r;
 }
-AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, double tick);
 // The AEDAT records of delivered events (timestamps in whole microseconds of receiver ticks).
 std::vector<AedatRecord> aedat_records(const std::vector<AddressEvent>& events, const AddressMap& map,
                                        double tick);

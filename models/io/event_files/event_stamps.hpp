@@ -31,6 +31,4 @@ class MicrosecondStamps {
   std::uint64_t factor_;
 };
 
-inline std::uint64_t stamp_us(double t, double tick) { return MicrosecondStamps(tick)(t); }
-
 }  // namespace aesim

@@ -38,6 +38,14 @@ class AddressMap {
   PixelAddress locate(std::uint32_t tile, std::uint32_t bus_address) const;
   // Inverse of word(); empty when the word names no pixel of this array.
   std::optional<PixelAddress> decode(std::uint32_t word) const;
+  // decode() for an event whose coordinates are its address located (every event aesim makes):
+  // whether its bus address names a pixel of its tile, without decode's division (this runs over
+  // every event a file receives).
+  bool names_pixel(const AddressEvent& e) const {
+    const auto xl = e.bus_address & ((1u << xbits_) - 1u), yl = e.bus_address >> xbits_;
+    return xl < static_cast<std::uint32_t>(tile_cols_) && yl < static_cast<std::uint32_t>(tile_rows_) &&
+           e.x < static_cast<std::uint32_t>(cols_) && e.y < static_cast<std::uint32_t>(rows_);
+  }
 
  private:
   int rows_, cols_, tile_rows_, tile_cols_;

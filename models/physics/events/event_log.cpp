@@ -42,7 +42,6 @@ EventLog::~EventLog() = default;
 
 void EventLog::count_pixels(const AddressMap& map, double window) {
   pixels_.assign(static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols()), PixelCounts{});
-  cols_ = static_cast<std::uint32_t>(map.cols());
   window_ = window;
   map_ = map;
 }
@@ -55,15 +54,15 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
   // A firing is never a ghost (the receiver makes those), and it waited for nothing.
   tile.latencies.add_zeros(n);
   tile.counters.delivered += n;
-  if (!pixels_.empty()) {
+  if (pixels_.empty()) {
+    tile.address_ones += address_ones_of(firings, n);
+  } else {
     for (std::size_t i = 0; i < n; ++i) {
-      PixelCounts& p = pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x];
+      PixelCounts& p = pixel_of(firings[i]);
       count_fired(p, firings[i]);
-      ++p.output;
-      p.output_in_window += firings[i].t <= window_ ? 1 : 0;
+      count_output(p, firings[i], false);
     }
   }
-  if (pixels_.empty()) tile.address_ones += address_ones_of(firings, n);
   if (outputs_.truth) {
     std::vector<TruthRecord>& truth = filling_.truth[t];
     for (std::size_t i = 0; i < n; ++i) truth.push_back({firings[i], Fate::Delivered, firings[i].t});
@@ -104,8 +103,9 @@ std::uint64_t EventLog::address_ones() const {
   std::uint64_t n = 0;
   if (!pixels_.empty()) {
     // Each firing of a pixel put the pixel's address on the bus.
+    const auto cols = static_cast<std::size_t>(map_->cols());
     for (std::size_t i = 0; i < pixels_.size(); ++i) {
-      const auto x = static_cast<std::uint32_t>(i % cols_), y = static_cast<std::uint32_t>(i / cols_);
+      const auto x = static_cast<std::uint32_t>(i % cols), y = static_cast<std::uint32_t>(i / cols);
       n += static_cast<std::uint64_t>(pixels_[i].fired) * ones(map_->bus_address({x, y}));
     }
     return n;

@@ -69,10 +69,11 @@ class EventLog {
     if (n == 0) return;
     Tile& tile = tiles_[firings[0].tile];
     tile.counters.fired += n;
-    if (!pixels_.empty()) {
-      for (std::size_t i = 0; i < n; ++i) count_fired(pixels_[std::size_t(firings[i].y) * cols_ + firings[i].x], firings[i]);
+    if (pixels_.empty()) {
+      tile.address_ones += address_ones_of(firings, n);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) count_fired(pixel_of(firings[i]), firings[i]);
     }
-    if (pixels_.empty()) tile.address_ones += address_ones_of(firings, n);
   }
   // fired_all() then, for each firing, resolve(firing, Fate::Delivered, firing.t) and
   // output(firing): a batch of one tile's firings delivered the moment they fired, as most are on
@@ -104,13 +105,7 @@ class EventLog {
     ++tile.counters.delivered;
     const bool ghost = (e.flags & kGhostEvent) != 0;
     if (ghost) ++tile.counters.ghost;
-    if (!pixels_.empty()) {
-      if (const std::optional<PixelAddress> at = map_->decode((e.tile << map_->bus_bits()) | e.bus_address)) {
-        PixelCounts& p = pixels_[std::size_t(at->y) * cols_ + at->x];
-        ++p.output;
-        p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
-      }
-    }
+    if (!pixels_.empty() && map_->names_pixel(e)) count_output(pixel_of(e), e, ghost);
     if (outputs_.events) filling_.events[e.tile].push_back(TileEvent::of(e));
   }
 
@@ -150,9 +145,14 @@ class EventLog {
   struct PixelCounts {
     std::uint32_t fired = 0, fired_in_window = 0, output = 0, output_in_window = 0;
   };
+  PixelCounts& pixel_of(const AddressEvent& e) { return pixels_[std::size_t(e.y) * std::size_t(map_->cols()) + e.x]; }
   void count_fired(PixelCounts& p, const AddressEvent& firing) const {
     ++p.fired;
     p.fired_in_window += firing.t <= window_ ? 1 : 0;
+  }
+  void count_output(PixelCounts& p, const AddressEvent& e, bool ghost) const {
+    ++p.output;
+    p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
   }
   static std::uint64_t address_ones_of(const AddressEvent* firings, std::size_t n) {
     std::uint64_t sum = 0;
@@ -167,7 +167,6 @@ class EventLog {
   }
   std::vector<PixelCounts> pixels_;
   std::optional<AddressMap> map_;  // with the pixels counted
-  std::uint32_t cols_ = 0;
   double window_ = 0;
 };
 
