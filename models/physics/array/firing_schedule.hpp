@@ -47,7 +47,8 @@ class FiringSchedule {
   bool periodic() const { return periodic_; }
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
-  // 68 bytes per lit pixel (a still scene's photocurrents are not held; see Photocurrents). Its bus address is its key in the
+  // 68 bytes per lit pixel; a still tile's 56 and its 4-byte bus address, with no calendar (a still
+  // scene's photocurrents are not held; see Photocurrents). Its bus address is its key in the
   // calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
   // in IntegrateFire's tail padding.
   struct Slot : IntegrateFire {

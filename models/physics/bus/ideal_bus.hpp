@@ -8,11 +8,7 @@ namespace aesim {
 class IdealBus final : public EventBus {
  public:
   explicit IdealBus(EventLog& log) : log_(log) {}
-  void request(const AddressEvent& firing) override {
-    log_.fired(firing);
-    log_.resolve(firing, Fate::Delivered, firing.t);
-    log_.output(firing);
-  }
+  void request(const AddressEvent& firing) override { request_all(&firing, 1); }
   void request_all(const AddressEvent* firings, std::size_t n) override {
     log_.fired_and_delivered(firings, n);
   }
