@@ -1,6 +1,7 @@
 // Records streamed, not hoarded: the merge across tiles is exact whatever the windows and threads,
 // the writers stream the same bytes as formatting each event on its own, errors in a writer end
-// the run, and latency statistics stay exact (or bounded) in bounded memory.
+// the run, latency statistics stay exact (or bounded) in bounded memory, and the tiles' worker
+// threads share out every tile and start clear of their creator's CPU.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +14,14 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sched.h>
+#include <pthread.h>
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <vector>
 
 #include "event_files/events_csv.hpp"
 #include "array/address_map.hpp"
@@ -21,6 +30,8 @@
 #include "events/timestamps.hpp"
 #include "scene/photocurrents.hpp"
 #include "support/scenes.hpp"
+#include "threads/thread_placement.hpp"
+#include "threads/worker_pool.hpp"
 
 namespace aesim {
 namespace {
@@ -356,6 +367,85 @@ TEST(LatencyRecorder, BinnedPastTheLimitStaysWithinABin) {
   EXPECT_NEAR(b.mean, e.mean, 1e-12 * e.mean);
   EXPECT_GE(b.p99, e.p99);
   EXPECT_LE(b.p99, e.p99 * (1 + std::ldexp(1.0, -12)));
+}
+
+TEST(WorkerPool, EveryIndexRunsOnceAndTheFirstErrorComesBack) {
+  WorkerPool pool(3);
+  for (int round = 0; round < 50; ++round) {
+    std::vector<std::atomic<int>> runs(97);
+    pool.for_each(runs.size(), [&](std::size_t i) { ++runs[i]; });
+    for (const auto& r : runs) ASSERT_EQ(r.load(), 1);
+  }
+  std::atomic<int> ran{0};
+  EXPECT_THROW(pool.for_each(40,
+                             [&](std::size_t i) {
+                               ++ran;
+                               if (i % 10 == 3) throw std::runtime_error("tile failed");
+                             }),
+               std::runtime_error);
+  EXPECT_EQ(ran.load(), 40);  // the other indices still ran
+  std::atomic<int> after{0};
+  pool.for_each(5, [&](std::size_t) { ++after; });  // the error was handed back, not kept
+  EXPECT_EQ(after.load(), 5);
+}
+
+// A thread kept off its creator's CPU may run on every CPU the process may use but that one; a
+// creator with a single CPU leaves it alone. The creator is pinned for the first check and given
+// back its CPUs after.
+TEST(ThreadPlacement, ANewThreadMayRunAnywhereButItsCreatorsCpu) {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
+  const int cpu = sched_getcpu();
+  ASSERT_GE(cpu, 0);
+  cpu_set_t here;
+  CPU_ZERO(&here);
+  CPU_SET(cpu, &here);
+  ASSERT_EQ(sched_setaffinity(0, sizeof here, &here), 0);
+  std::mutex m;
+  std::condition_variable cv;
+  bool go = false;
+  std::thread t([&] {
+    std::unique_lock<std::mutex> lock(m);
+    cv.wait(lock, [&] { return go; });
+  });
+  // Pinned, the creator's own mask is now one CPU: the thread inherited it, and it is left alone.
+  keep_off_callers_cpu(t);
+  cpu_set_t mask;
+  CPU_ZERO(&mask);
+  ASSERT_EQ(pthread_getaffinity_np(t.native_handle(), sizeof mask, &mask), 0);
+  EXPECT_TRUE(CPU_EQUAL(&mask, &here));
+  {
+    std::lock_guard<std::mutex> lock(m);
+    go = true;
+  }
+  cv.notify_all();
+  t.join();
+  ASSERT_EQ(sched_setaffinity(0, sizeof allowed, &allowed), 0);
+  if (CPU_COUNT(&allowed) < 2) GTEST_SKIP() << "one CPU allowed: nowhere else to put a thread";
+
+  // With every CPU allowed again: only the creator's CPU is left out, read just before and just
+  // after the call (the creator could move between, not twice within so short a span).
+  std::thread u([&] {
+    std::unique_lock<std::mutex> lock(m);
+    cv.wait(lock, [&] { return !go; });
+  });
+  const int before = sched_getcpu();
+  keep_off_callers_cpu(u);
+  const int after = sched_getcpu();
+  CPU_ZERO(&mask);
+  ASSERT_EQ(pthread_getaffinity_np(u.native_handle(), sizeof mask, &mask), 0);
+  {
+    std::lock_guard<std::mutex> lock(m);
+    go = false;
+  }
+  cv.notify_all();
+  u.join();
+  EXPECT_EQ(CPU_COUNT(&mask), CPU_COUNT(&allowed) - 1);
+  cpu_set_t left_out;
+  CPU_XOR(&left_out, &mask, &allowed);
+  ASSERT_EQ(CPU_COUNT(&left_out), 1);
+  EXPECT_TRUE(CPU_ISSET(before, &left_out) || CPU_ISSET(after, &left_out));
 }
 
 }  // namespace

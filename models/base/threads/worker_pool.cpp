@@ -1,9 +1,14 @@
 #include "threads/worker_pool.hpp"
 
+#include "threads/thread_placement.hpp"
+
 namespace aesim {
 
 WorkerPool::WorkerPool(int threads) {
-  for (int i = 1; i < threads; ++i) threads_.emplace_back([this] { work(); });
+  for (int i = 1; i < threads; ++i) {
+    threads_.emplace_back([this] { work(); });
+    keep_off_callers_cpu(threads_.back());
+  }
 }
 
 WorkerPool::~WorkerPool() {

@@ -1,9 +1,13 @@
 #include "events/merge_pipeline.hpp"
 
+#include "threads/thread_placement.hpp"
+
 namespace aesim {
 
 MergePipeline::MergePipeline(EventMerger& merger, std::size_t tiles)
-    : merger_(merger), batch_(tiles), thread_([this] { work(); }) {}
+    : merger_(merger), batch_(tiles), thread_([this] { work(); }) {
+  keep_off_callers_cpu(thread_);
+}
 
 MergePipeline::~MergePipeline() {
   {
