@@ -172,12 +172,16 @@ BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Reference, ReceiverModel::Reference)
     ->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Rtl, ReceiverModel::Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 // Rates per wall second (UseRealTime): writing AEDAT and the second tile thread work beside the
-// benchmark's own thread, whose CPU time alone would flatter them.
-BENCHMARK(BM_QcifCeilingProbe)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
-BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
-BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
-BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false)
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+// benchmark's own thread, whose CPU time alone would flatter them. Six repetitions each, which
+// scripts/bench interleaves at random with the others', so that the ratios it prints (of
+// medians) compare runs spread over the same stretch of a noisy machine's time.
+void qcif(benchmark::internal::Benchmark* b) {
+  b->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime()->Repetitions(6)->DisplayAggregatesOnly(true);
+}
+BENCHMARK(BM_QcifCeilingProbe)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false)->Apply(qcif);
 BENCHMARK(BM_QcifPixelProcesses)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace
