@@ -448,5 +448,34 @@ TEST(ThreadPlacement, ANewThreadMayRunAnywhereButItsCreatorsCpu) {
   EXPECT_TRUE(CPU_ISSET(before, &left_out) || CPU_ISSET(after, &left_out));
 }
 
+// Kept off its creator's CPU only for its start: by the time its body runs, the thread may run on
+// every CPU its creator may (more threads than CPUs still balance), and a creator with a single
+// CPU shares it.
+TEST(ThreadPlacement, AStartedThreadMayRunOnEveryCpuOnceItRuns) {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
+  cpu_set_t seen;
+  auto body = [&seen] {
+    CPU_ZERO(&seen);
+    sched_getaffinity(0, sizeof seen, &seen);
+  };
+  for (int i = 0; i < 20; ++i) {
+    std::thread t = start_off_callers_cpu(body);
+    t.join();
+    ASSERT_TRUE(CPU_EQUAL(&seen, &allowed)) << "start " << i;
+  }
+  const int cpu = sched_getcpu();
+  cpu_set_t here;
+  CPU_ZERO(&here);
+  CPU_SET(cpu, &here);
+  ASSERT_EQ(sched_setaffinity(0, sizeof here, &here), 0);
+  int ran_on = -1;
+  std::thread t = start_off_callers_cpu([&ran_on] { ran_on = sched_getcpu(); });
+  t.join();
+  ASSERT_EQ(sched_setaffinity(0, sizeof allowed, &allowed), 0);
+  EXPECT_EQ(ran_on, cpu);
+}
+
 }  // namespace
 }  // namespace aesim

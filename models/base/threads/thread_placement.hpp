@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 #include <thread>
 
 namespace aesim {
@@ -6,11 +7,16 @@ namespace aesim {
 // Linux starts a new thread on its creator's CPU. A creator that goes straight on working leaves
 // it waiting there for the load balancer, up to 4 ms on the 2-core VM (the second thread of a
 // 44-58 ms two-thread run began its first tile 2.0 ms late on average; a bare thread started
-// 1.8-3.7 ms after its creation while its creator spun, 60-100 us while it slept). Called by the
-// creator right after starting `thread`, this keeps the thread off the creator's current CPU, so
-// that it starts at once on an idle one. Only where the process may use more than one CPU; the
-// creator's own placement is left alone, and a thread the system will not move runs where it was
-// put.
+// 1.8-3.7 ms after its creation while its creator spun, 60-100 us while it slept).
+
+// Runs `body` on a new thread that starts off the caller's current CPU, at once on an idle one,
+// and once started may run on every CPU the caller may: kept off only for its start, so that
+// more threads than CPUs, or a CPU another program keeps busy, still balance as the system sees
+// fit. Where the caller may use a single CPU, a plain thread.
+std::thread start_off_callers_cpu(std::function<void()> body);
+
+// The first half of it: `thread` may run on every CPU the caller may but the caller's current one
+// (left alone where the caller may use a single CPU, or the system will not move it).
 void keep_off_callers_cpu(std::thread& thread);
 
 }  // namespace aesim

@@ -5,10 +5,7 @@
 namespace aesim {
 
 WorkerPool::WorkerPool(int threads) {
-  for (int i = 1; i < threads; ++i) {
-    threads_.emplace_back([this] { work(); });
-    keep_off_callers_cpu(threads_.back());
-  }
+  for (int i = 1; i < threads; ++i) threads_.push_back(start_off_callers_cpu([this] { work(); }));
 }
 
 WorkerPool::~WorkerPool() {

@@ -5,9 +5,7 @@
 namespace aesim {
 
 MergePipeline::MergePipeline(EventMerger& merger, std::size_t tiles)
-    : merger_(merger), batch_(tiles), thread_([this] { work(); }) {
-  keep_off_callers_cpu(thread_);
-}
+    : merger_(merger), batch_(tiles), thread_(start_off_callers_cpu([this] { work(); })) {}
 
 MergePipeline::~MergePipeline() {
   {
