@@ -5,7 +5,8 @@ catches each. Every mutation names the exact text it replaces and fails if that 
 the mutants cannot silently drift from the RTL.
 
 usage: rtl_mutants.py RECEIVER SOURCE_DIR OUT_DIR
-  RECEIVER: aer_receiver (rtl/) or ae_rx_alt (tests/rtl/second_receiver/)
+  RECEIVER: aer_receiver (rtl/), ae_rx_alt (tests/rtl/second_receiver/) or pkt_rx
+  (tests/rtl/third_receiver/)
 """
 import glob
 import os
@@ -58,6 +59,31 @@ RECEIVERS = {
         # The output advances whether or not it was taken: beats move while stalled.
         "moves_while_stalled": ("ae_rx_alt.v", [
             ("else if (out_valid && out_ready) rd <= rd + 1'b1;", "else if (out_valid) rd <= rd + 1'b1;"),
+        ]),
+    }),
+    "pkt_rx": (["pkt_rx_pkg.sv", "pkt_rx.sv"], {
+        # The decision reads the first synchroniser flop, which may be metastable.
+        "first_flop_decision": ("pkt_rx.sv", [
+            ("wire offer = state == IDLE && req_sync;", "wire offer = state == IDLE && req_meta;"),
+        ]),
+        # The stamp is the tick counter's previous value: one tick stale.
+        "stale_tick": ("pkt_rx.sv", [
+            ("      now <= now + 1'b1;\n", "      now <= now + 1'b1;\n      previous <= now;\n"),
+            ("      stamp <= now;\n", "      stamp <= previous;\n"),
+            ("  logic [TSW-1:0] now;\n", "  logic [TSW-1:0] now;\n  logic [TSW-1:0] previous = '0;\n"),
+        ]),
+        # The divider counts one cycle too many: a tick of 11 cycles.
+        "divider_off_by_one": ("pkt_rx.sv", [
+            ("divider == 16'(TICK_CYCLES - 1)", "divider == 16'(TICK_CYCLES)"),
+        ]),
+        # The counter skips a tick once, at 7.
+        "skipped_tick": ("pkt_rx.sv", [
+            ("      now <= now + 1'b1;\n", "      now <= now + (now == 7 ? 2'd2 : 2'd1);\n"),
+        ]),
+        # The design's own check fails on every request.
+        "own_fatal": ("pkt_rx.sv", [
+            ("  assign pkt_valid = offer && !col_q;",
+             "  always_ff @(posedge clk) if (rst_n && offer) $fatal(1, \"boom\");\n  assign pkt_valid = offer && !col_q;"),
         ]),
     }),
 }

@@ -2,6 +2,8 @@
 // catch, with no RTL at all.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "scoreboard/transaction_scoreboard.hpp"
 
 namespace aesim {
@@ -14,7 +16,9 @@ ReceiverDescription description(ReceiverDescription::Collisions collisions = Rec
   ReceiverDescription d;
   d.collisions = collisions;
   d.full = full;
+  d.ports["timestamp"] = PortRef{"ts"};
   d.timestamp_tick = 1e-6;
+  d.timestamp_cycles = 50;
   d.timestamp_bits = 8;
   d.ack_latency_min = 2;
   d.ack_latency_max = 3;
@@ -230,6 +234,140 @@ TEST(TransactionScoreboard, DropsNeedAStalledOutputAndAnExactCount) {
   h.edge();
   h.sb.finish_case(h.k, h.k * kPeriod);
   EXPECT_EQ(h.sb.first_failure()->check, "lost");
+}
+
+// SPEC section 6, timing around a reset: the lower latency bound counts from Req rising, the upper
+// from the later of Req rising and the reset's release (here edge 5, after reset on edges 1..4).
+TEST(TransactionScoreboard, AReqHeldThroughResetIsTimedFromItsRiseAndFromTheRelease) {
+  auto held = [](std::uint64_t rise_after_edge) {
+    auto h = std::make_unique<History>(description());
+    h->k = rise_after_edge;
+    h->wires(true, 0x13C);
+    h->k = 4;
+    return h;
+  };
+  {  // Req rose after edge 1; Ack on edge 5, the first after the release: 4 edges after the rise
+    auto h = held(1);
+    h->edge();
+    h->ack(true);
+    h->sb.wires(h->k * kPeriod + 1, h->k, false, 0, false);
+    h->offer(0x13C, 0);
+    h->edge();
+    h->idle_output();
+    h->edge();
+    h->ack(false);
+    h->sb.finish_case(h->k, h->k * kPeriod);
+    EXPECT_EQ(h->sb.failures(), 0u) << h->sb.first_failure()->check << ": " << h->sb.first_failure()->observed;
+    EXPECT_EQ(h->sb.transactions(), 1u);
+  }
+  {  // Req rose after edge 4: Ack on edge 5 is 1 edge after it, under the lower bound of 2
+    auto h = held(4);
+    h->edge();
+    h->ack(true);
+    ASSERT_TRUE(h->sb.first_failure());
+    EXPECT_EQ(h->sb.first_failure()->check, "ack_rise_latency");
+    EXPECT_EQ(h->sb.first_failure()->observed, "1 edges");
+  }
+  {  // Req rose after edge 1: no Ack by edge 7, 3 edges after the release: late
+    auto h = held(1);
+    for (int i = 0; i < 3; ++i) h->edge();
+    EXPECT_FALSE(h->sb.first_failure());
+    h->edge();
+    ASSERT_TRUE(h->sb.first_failure());
+    EXPECT_EQ(h->sb.first_failure()->check, "ack_rise_latency");
+  }
+}
+
+// SPEC section 6: a beat taken at the edge where Ack rises (a valid that follows the synchronised
+// Req) belongs to that transaction, as does one taken before it.
+TEST(TransactionScoreboard, ABeatOnOrBeforeTheAckEdgeBelongsToItsTransaction) {
+  for (int before : {0, 1}) {
+    History h(description());
+    h.wires(true, 0x2A5);
+    h.edge();
+    if (before) {
+      h.offer(0x2A5, 0);
+      h.edge();
+      h.idle_output();
+    } else {
+      h.offer(0x2A5, 0);
+      h.edge();  // the beat is taken at this edge, and Ack rises at it
+      h.idle_output();
+      h.ack(true);
+    }
+    if (before) h.ack(true);
+    h.sb.wires(h.k * kPeriod + 1, h.k, false, 0, false);
+    h.edge();
+    h.edge();
+    h.ack(false);
+    h.sb.finish_case(h.k, h.k * kPeriod);
+    EXPECT_EQ(h.sb.failures(), 0u) << before << ": " << h.sb.first_failure()->check << " " << h.sb.first_failure()->observed;
+    EXPECT_EQ(h.sb.transactions(), 1u);
+    EXPECT_EQ(h.sb.beats_checked(), 1u);
+  }
+}
+
+// One stamp rule for the run: here ticks (50 cycles each) at the edge Ack rises. A stamp one tick
+// stale fails, with what the rule predicts; the beats after it are held to the same rule.
+TEST(TransactionScoreboard, StampsFollowOneRuleAndOneTickStaleFails) {
+  History h(description());
+  std::uint64_t stale_at = 0;
+  for (int n = 0; n < 12; ++n) {
+    for (int i = 0; i < 13; ++i) h.edge();
+    h.transaction(0x10 + n);
+    const std::uint64_t ack_edge = h.k - 2;  // transaction(): Ack on the 2nd edge, down 2 edges later
+    std::uint64_t stamp = (ack_edge - 4) / 50;
+    if (n == 8) {
+      stamp -= 1;
+      stale_at = h.k + 1;
+    }
+    h.offer(0x10 + n, stamp);
+    h.edge();
+    h.idle_output();
+  }
+  ASSERT_TRUE(h.sb.first_failure());
+  EXPECT_EQ(h.sb.failures(), 1u);
+  EXPECT_EQ(h.sb.first_failure()->check, "timestamp");
+  EXPECT_EQ(h.sb.first_failure()->cycle, stale_at);
+  EXPECT_NE(h.sb.first_failure()->expected.find("the rule of the earlier beats"), std::string::npos);
+  EXPECT_NE(h.sb.stamp_rule().find("Ack"), std::string::npos) << h.sb.stamp_rule();
+}
+
+// A description may state the edge: then a stamp taken at another edge fails even on its first beat
+// (here the stamp of edge 2 after Req rose, across a tick boundary, where the description says 1).
+TEST(TransactionScoreboard, AStatedOffsetIsHeldFromTheFirstBeat) {
+  for (int stated : {2, 1}) {
+    ReceiverDescription d = description();
+    d.timestamp_offset_cycles = stated;
+    History h(d);
+    for (int i = 0; i < 48; ++i) h.edge();  // Req after edge 52: its first edge, 53, is tick 0; edge 54 is tick 1
+    h.transaction(0x33);
+    h.offer(0x33, 1);
+    h.edge();
+    if (stated == 2) {
+      EXPECT_EQ(h.sb.failures(), 0u) << h.sb.first_failure()->expected;
+    } else {
+      ASSERT_TRUE(h.sb.first_failure());
+      EXPECT_EQ(h.sb.first_failure()->check, "timestamp");
+    }
+  }
+}
+
+TEST(TransactionScoreboard, TheRtlsOwnVerdictsFailAndItsFinishDoesNot) {
+  History h(description());
+  RtlEvent finish;
+  finish.kind = RtlEvent::Kind::Finish;
+  finish.where = "rx.v:9";
+  h.sb.rtl_event(h.k, h.k * kPeriod, finish);
+  EXPECT_EQ(h.sb.failures(), 0u);
+  RtlEvent stop;
+  stop.kind = RtlEvent::Kind::Stop;
+  stop.where = "rx.v:12";
+  stop.message = "rx.v:12: Assertion failed in rx: boom";
+  h.sb.rtl_event(h.k, h.k * kPeriod, stop);
+  ASSERT_TRUE(h.sb.first_failure());
+  EXPECT_EQ(h.sb.first_failure()->check, "rtl_assertion");
+  EXPECT_EQ(h.sb.first_failure()->observed, stop.message);
 }
 
 TEST(TransactionScoreboard, AHeldBeatMustNotMove) {

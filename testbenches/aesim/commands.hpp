@@ -88,6 +88,7 @@ struct SweepOptions {
 struct VerifyCommandOptions {
   std::string description, plan = "quick", out = "out/verify", export_tb;
   std::uint64_t seed = 1;
+  bool allow_system_tasks = false;
 };
 
 struct CalibrateOptions {

@@ -29,7 +29,8 @@ int verify_command(const VerifyCommandOptions& opt) {
   check_output_paths(outputs, inputs);
 
   const VerificationPlan plan = make_plan(opt.plan);
-  const std::vector<VerifyCase> cases = plan_cases(plan, d, opt.seed);
+  std::vector<std::string> notes;
+  const std::vector<VerifyCase> cases = plan_cases(plan, d, opt.seed, &notes);
   const double cycles = plan_cycles(cases);
   if (cycles > kMaxPlanCycles) {
     throw InputError(fmt::format("--plan {}: asks for up to {:.3g} receiver clock cycles, more than the {:.0e} aesim "
@@ -43,6 +44,7 @@ int verify_command(const VerifyCommandOptions& opt) {
   DutBuildOptions build_options;
   build_options.cache_dir = default_cache_dir();
   build_options.log_dir = opt.out;
+  build_options.allow_system_tasks = opt.allow_system_tasks;
   const DutBuild build = build_dut(d, build_options);
   check_ports(d, build.ports, kVerifyBusBits);
   const DutLibrary library(build.library);
@@ -50,7 +52,9 @@ int verify_command(const VerifyCommandOptions& opt) {
   std::fprintf(stderr, "aesim verify: %s (%s), plan %s, %zu cases, seed %llu\n", d.top.c_str(),
                build.cached ? "cached model" : fmt::format("built in {:.1f} s", build.seconds).c_str(),
                plan.name.c_str(), cases.size(), static_cast<unsigned long long>(opt.seed));
+  for (const std::string& note : notes) std::fprintf(stderr, "aesim verify: %s\n", note.c_str());
   VerifyOptions options;
+  options.source_prefix = std::filesystem::path(d.file).parent_path().string() + "/";
   ExportedRun exported;
   if (!opt.export_tb.empty()) options.exported = &exported;
   const VerifyResult result = verify_receiver(library, build.ports, d, cases, options);
@@ -71,13 +75,18 @@ int verify_command(const VerifyCommandOptions& opt) {
     }
   }
   if (!opt.export_tb.empty()) write_testbench(opt.export_tb, d, build.ports, exported, files);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  files.open(report_path) << verify_report(d, opt.plan, opt.seed, build, result, wall).dump(2) << "\n";
-  files.commit();
-  if (!result.first_failure) {
-    std::error_code ec;
-    std::filesystem::remove(vcd_path, ec);  // a stale trace of an earlier failure would mislead
+  const std::string rtl_log = opt.out + "/rtl_output.log";
+  if (!result.rtl_output.empty()) files.open(rtl_log) << result.rtl_output;
+  for (const CaseSummary& c : result.cases) {
+    if (!c.rtl_finish.empty()) notes.push_back(fmt::format("the RTL's $finish at {} ended case '{}'", c.rtl_finish, c.name));
   }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  files.open(report_path) << verify_report(d, opt.plan, opt.seed, build, result, notes, wall).dump(2) << "\n";
+  files.commit();
+  // A stale trace or log of an earlier run would mislead.
+  std::error_code ec;
+  if (!result.first_failure) std::filesystem::remove(vcd_path, ec);
+  if (result.rtl_output.empty()) std::filesystem::remove(rtl_log, ec);
 
   std::printf("%s: %llu transactions, %llu beats checked, %llu receiver cycles in %.2f s (%.3g cycles/s)\n",
               result.passed() ? "PASS" : "FAIL", static_cast<unsigned long long>(result.transactions),
@@ -93,6 +102,11 @@ int verify_command(const VerifyCommandOptions& opt) {
                 static_cast<unsigned long long>(result.failures),
                 static_cast<unsigned long long>(result.protocol_violations), vcd_path.c_str());
   }
+  if (!result.stamp_rule.empty()) std::printf("stamps: %s\n", result.stamp_rule.c_str());
+  for (const std::string& note : notes) {
+    if (note.find("$finish") != std::string::npos) std::printf("note: %s\n", note.c_str());
+  }
+  if (!result.rtl_output.empty()) std::printf("the RTL's own output: %s\n", rtl_log.c_str());
   std::printf("wrote %s%s\n", report_path.c_str(), opt.export_tb.empty() ? "" : (", " + opt.export_tb + "/tb.v").c_str());
   return result.passed() ? 0 : 1;
 }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -105,11 +106,42 @@ Toolchain toolchain(const fs::path& scratch) {
 // Flags of the model and of Verilator's runtime alike (verilated.mk's, for a C++ model with VCD
 // tracing). Hidden visibility and -Bsymbolic at the link keep the library's Verilator runtime
 // its own: aesim itself links another (a SystemC one) that must not be interposed.
-std::vector<std::string> compile_flags(const Toolchain& t, bool trace) {
+std::vector<std::string> compile_flags(const Toolchain& t, bool trace, const fs::path& hooks) {
   const std::string on = trace ? "1" : "0";
   return {"-std=c++17", "-O2", "-fPIC", "-fvisibility=hidden", "-faligned-new", "-w",
           "-DVM_COVERAGE=0", "-DVM_SC=0", "-DVM_TRACE=" + on, "-DVM_TRACE_FST=0", "-DVM_TRACE_VCD=" + on,
+          "-include", hooks.string(),
           "-I" + t.verilator_root + "/include", "-I" + t.verilator_root + "/include/vltstd"};
+}
+
+// The hooks header, in the cache under a name made of its own hash (so a changed header is a
+// new file, and the flags naming it a new cache key).
+fs::path hooks_header(const fs::path& cache) {
+  const std::string text = verilator_hooks_header();
+  const fs::path path = cache / ("vl_hooks-" + content_hash_hex(text) + ".h");
+  if (fs::is_regular_file(path)) return path;
+  const fs::path temp = cache / fmt::format("tmp-hooks.{}", ::getpid());
+  write_text(temp, text);
+  fs::rename(temp, path);
+  return path;
+}
+
+// What the RTL would run on this machine: $system (a shell command) and DPI imports (C functions
+// aesim does not link). Found in Verilator's output, so no macro or generate block hides them.
+void refuse_host_calls(const fs::path& obj, bool allow_system_tasks) {
+  const std::regex dpi(R"(// DPI import at ([^\n]*))");
+  for (const auto& e : fs::directory_iterator(obj)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() < 4) continue;
+    const std::string text = read_text(e.path());
+    std::smatch m;
+    if (name.find("__Dpi.h") != std::string::npos && std::regex_search(text, m, dpi)) {
+      throw InputError(fmt::format("receiver RTL imports a C function (DPI import at {}); aesim verify links no C code", m[1].str()));
+    }
+    if (!allow_system_tasks && e.path().extension() == ".cpp" && text.find("VL_SYSTEM_I") != std::string::npos) {
+      throw InputError("receiver RTL calls $system, which would run a shell command; pass --allow-system-tasks to let it");
+    }
+  }
 }
 
 // Runs compiler jobs two at a time; returns the first failure's index, or -1.
@@ -141,11 +173,12 @@ int compile_all(const std::string& compiler, const std::vector<std::vector<std::
 }
 
 // Verilator's runtime, compiled once per Verilator and compiler for every model in the cache.
-std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain& t, bool trace, const Progress& progress) {
+std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain& t, bool trace, const fs::path& hooks,
+                                         const Progress& progress) {
   std::vector<std::string> units = {"verilated", "verilated_threads"};
   if (trace) units.push_back("verilated_vcd_c");
   std::string key = t.verilator_version + "\n" + t.verilator_root + "\n" + t.compiler + "\n";
-  for (const std::string& flag : compile_flags(t, trace)) key += flag + " ";
+  for (const std::string& flag : compile_flags(t, trace, hooks)) key += flag + " ";
   const fs::path dir = cache / ("runtime-" + content_hash_hex(key));
   std::vector<std::string> objects;
   for (const std::string& u : units) objects.push_back((dir / (u + ".o")).string());
@@ -156,7 +189,7 @@ std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain&
   fs::create_directories(work);
   std::vector<std::vector<std::string>> jobs;
   for (const std::string& u : units) {
-    std::vector<std::string> args = compile_flags(t, trace);
+    std::vector<std::string> args = compile_flags(t, trace, hooks);
     for (const std::string& a : {std::string("-c"), t.verilator_root + "/include/" + u + ".cpp", std::string("-o"),
                                  (work / (u + ".o")).string()}) {
       args.push_back(a);
@@ -173,7 +206,8 @@ std::vector<std::string> runtime_objects(const fs::path& cache, const Toolchain&
 }
 
 std::vector<std::string> verilator_args(const ReceiverDescription& d, const fs::path& obj, bool trace) {
-  std::vector<std::string> args = {"--cc", "-O3", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--prefix", "Vdut",
+  // --assert: the RTL's own assertions are its verdicts, so they are compiled in.
+  std::vector<std::string> args = {"--cc", "-O3", "--assert", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--prefix", "Vdut",
                                    "--top-module", d.top, "--Mdir", obj.string()};
   if (trace) args.push_back("--trace");
   for (const std::string& dir : d.include_dirs) args.push_back("-I" + dir);
@@ -183,10 +217,12 @@ std::vector<std::string> verilator_args(const ReceiverDescription& d, const fs::
   return args;
 }
 
-std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool trace) {
+std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool trace, const fs::path& hooks,
+                      bool allow_system_tasks) {
   std::string all = "aesim-dut-glue-v" + std::to_string(kDutGlueVersion) + (trace ? " traced\n" : "\n") +
-                    t.verilator_version + "\n" + t.verilator_root + "\n" + t.compiler + "\ntop " + d.top + "\n";
-  for (const std::string& flag : compile_flags(t, trace)) all += flag + " ";
+                    t.verilator_version + "\n" + t.verilator_root + "\n" + t.compiler + "\ntop " + d.top + "\n" +
+                    (allow_system_tasks ? "system tasks allowed\n" : "");
+  for (const std::string& flag : compile_flags(t, trace, hooks)) all += flag + " ";
   for (const std::string& arg : verilator_args(d, "", trace)) all += arg + " ";
   for (const std::string& s : d.sources) all += "source " + s + "\n" + read_text(s) + "\n";
   for (const std::string& dir : d.include_dirs) {
@@ -242,7 +278,9 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   const fs::path& work = scratch.path();
 
   const Toolchain t = toolchain(work);
-  const fs::path entry = cache / ((options.trace ? "traced-" : "model-") + cache_key(d, t, options.trace));
+  const fs::path hooks = hooks_header(cache);
+  const fs::path entry =
+      cache / ((options.trace ? "traced-" : "model-") + cache_key(d, t, options.trace, hooks, options.allow_system_tasks));
   DutBuild out;
   out.library = (entry / "dut.so").string();
   if (fs::is_regular_file(out.library) && fs::is_regular_file(entry / "ports.txt")) {
@@ -260,6 +298,7 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   if (run_child("verilator", verilator_args(d, obj, options.trace), {(work / "verilator.log").string(), (work / "verilator.log").string()}) != 0) {
     build_failed("verilator", work / "verilator.log", options);
   }
+  refuse_host_calls(obj, options.allow_system_tasks);
   out.ports = ports_in_verilated_header(read_text(obj / "Vdut.h"));
   write_text(work / "dut_glue.cpp", dut_glue_source(out.ports));
   std::vector<fs::path> generated;
@@ -274,9 +313,9 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   unity += "#include \"" + (work / "dut_glue.cpp").string() + "\"\n";
   write_text(work / "model.cpp", unity);
 
-  const std::vector<std::string> runtime = runtime_objects(cache, t, options.trace, progress);
+  const std::vector<std::string> runtime = runtime_objects(cache, t, options.trace, hooks, progress);
   progress.step("compiling the model");
-  std::vector<std::string> args = compile_flags(t, options.trace);
+  std::vector<std::string> args = compile_flags(t, options.trace, hooks);
   for (const std::string& a : {"-I" + obj.string(), std::string("-c"), (work / "model.cpp").string(), std::string("-o"),
                                (work / "model.o").string()}) {
     args.push_back(a);

@@ -14,6 +14,8 @@ struct DutBuildOptions {
   // With Verilator's tracing (--trace), for the rerun that writes failure.vcd. Tracing costs
   // about a quarter of the speed even when no trace is open, so runs use the model without it.
   bool trace = false;
+  // Let the RTL call $system (a shell command on this machine); refused otherwise.
+  bool allow_system_tasks = false;
 };
 
 // A team's receiver Verilated as a shared object that aesim loads (driver/dut_library).

@@ -1,9 +1,19 @@
 #include "build/port_list.hpp"
 
+#include <cstdlib>
 #include <regex>
 #include <sstream>
 
 namespace aesim {
+namespace {
+
+void set_range(RtlPort& p, int msb, int lsb) {
+  p.msb = msb;
+  p.lsb = lsb;
+  p.width = std::abs(msb - lsb) + 1;
+}
+
+}  // namespace
 
 std::vector<RtlPort> ports_in_verilated_header(const std::string& header_text) {
   // VL_IN8(&name,msb,lsb) and VL_OUT16, VL_IN (32 bits), VL_OUT64, VL_INW(&name,msb,lsb,words).
@@ -14,7 +24,7 @@ std::vector<RtlPort> ports_in_verilated_header(const std::string& header_text) {
     RtlPort p;
     p.name = m[3];
     p.input = m[1] != "OUT";
-    p.width = std::stoi(m[4]) - std::stoi(m[5]) + 1;
+    set_range(p, std::stoi(m[4]), std::stoi(m[5]));
     const std::string size = m[2];
     p.bytes = size == "8" ? 1 : size == "16" ? 2 : size.empty() ? 4 : size == "64" ? 8 : 0;
     ports.push_back(p);
@@ -24,7 +34,9 @@ std::vector<RtlPort> ports_in_verilated_header(const std::string& header_text) {
 
 std::string port_list_text(const std::vector<RtlPort>& ports) {
   std::ostringstream out;
-  for (const RtlPort& p : ports) out << (p.input ? "in " : "out ") << p.width << ' ' << p.bytes << ' ' << p.name << '\n';
+  for (const RtlPort& p : ports) {
+    out << (p.input ? "in " : "out ") << p.msb << ' ' << p.lsb << ' ' << p.bytes << ' ' << p.name << '\n';
+  }
   return out.str();
 }
 
@@ -32,9 +44,11 @@ std::vector<RtlPort> parse_port_list_text(const std::string& text) {
   std::vector<RtlPort> ports;
   std::istringstream in(text);
   std::string direction;
+  int msb = 0, lsb = 0;
   RtlPort p;
-  while (in >> direction >> p.width >> p.bytes >> p.name) {
+  while (in >> direction >> msb >> lsb >> p.bytes >> p.name) {
     p.input = direction == "in";
+    set_range(p, msb, lsb);
     ports.push_back(p);
   }
   return ports;

@@ -8,14 +8,18 @@ namespace aesim {
 struct RtlPort {
   std::string name;
   bool input = true;
-  int width = 1;   // bits
-  int bytes = 1;   // storage: 1, 2, 4 or 8; 0 for ports wider than 64 bits (not driven by aesim)
+  int msb = 0, lsb = 0;  // as declared; [msb:lsb] with msb >= lsb for a descending range
+  int width = 1;         // bits
+  // Verilator's storage: 1, 2, 4 or 8 bytes, or 0 for a port of over 64 bits (32-bit words).
+  int bytes = 1;
+  bool wide() const { return bytes == 0; }
 };
 
 // The ports declared in a Verilated model header (VL_IN8(&name,msb,lsb); and so on).
 std::vector<RtlPort> ports_in_verilated_header(const std::string& header_text);
 
-// The list as one line per port ("in 10 2 addr"), the form the build cache keeps.
+// The list as one line per port ("in 9 0 2 addr": direction, msb, lsb, bytes, name), the form the
+// build cache keeps.
 std::string port_list_text(const std::vector<RtlPort>& ports);
 std::vector<RtlPort> parse_port_list_text(const std::string& text);
 

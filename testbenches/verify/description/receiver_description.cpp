@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -23,7 +24,9 @@ constexpr std::uintmax_t kMaxSourceBytes = 64ull << 20;
 class Reader {
  public:
   Reader(const std::string& path, const TomlValue& root) : path_(path), root_(root) {
-    dir_ = fs::path(path).parent_path();
+    std::error_code ec;
+    dir_ = fs::absolute(fs::path(path), ec).parent_path();
+    if (ec || dir_.empty()) dir_ = fs::path(path).parent_path();
     if (dir_.empty()) dir_ = ".";
   }
 
@@ -86,6 +89,29 @@ class Reader {
     if (!ok) fail(label, fmt::format("'{}' is not a plain Verilog identifier", text));
     return text;
   }
+  // "name", "name[msb:lsb]" or "name[bit]", descending.
+  PortRef port_ref(const std::string& text, const std::string& label) const {
+    PortRef ref;
+    const auto open = text.find('[');
+    ref.port = identifier(text.substr(0, open), label);
+    if (open == std::string::npos) return ref;
+    const std::string range = text.substr(open);
+    long msb = -1, lsb = -1;
+    char close = 0;
+    int used = 0;
+    const bool one = std::sscanf(range.c_str(), "[%ld]%n", &msb, &used) == 1 && used == static_cast<int>(range.size());
+    const bool two = !one && std::sscanf(range.c_str(), "[%ld:%ld%c%n", &msb, &lsb, &close, &used) == 3 &&
+                     close == ']' && used == static_cast<int>(range.size());
+    if (one) lsb = msb;
+    if (!(one || two) || msb < 0 || lsb < 0 || msb > 65535) {
+      fail(label, fmt::format("'{}' is not a port or a slice of one (name[msb:lsb] or name[bit])", text));
+    }
+    if (msb < lsb) fail(label, fmt::format("'{}': a slice is [msb:lsb] with msb >= lsb", text));
+    if (msb - lsb >= 64) fail(label, fmt::format("'{}': aesim connects slices of up to 64 bits", text));
+    ref.msb = static_cast<int>(msb);
+    ref.lsb = static_cast<int>(lsb);
+    return ref;
+  }
   std::string literal(const TomlValue& v, const std::string& label) const {
     if (v.is_integer()) return std::to_string(v.as_integer());
     if (v.is_boolean()) return v.as_boolean() ? "1" : "0";
@@ -107,11 +133,16 @@ class Reader {
 
 }  // namespace
 
+std::string PortRef::text() const {
+  if (!sliced()) return port;
+  return msb == lsb ? fmt::format("{}[{}]", port, msb) : fmt::format("{}[{}:{}]", port, msb, lsb);
+}
+
 const std::vector<PortRole>& port_roles() {
   static const std::vector<PortRole> roles = {
       {"clk", true, false},         {"req", true, false},        {"ack", false, false},
-      {"addr", true, false},        {"valid", false, false},     {"ready", true, false},
-      {"out_addr", false, false},   {"timestamp", false, false}, {"contention", true, true},
+      {"addr", true, false},        {"valid", false, false},     {"out_addr", false, false},
+      {"ready", true, true},        {"timestamp", false, true},  {"contention", true, true},
       {"flags", false, true},       {"overflow_count", false, true}};
   return roles;
 }
@@ -173,22 +204,48 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   if (!ports.is_table()) r.fail("ports", "expected a table of role = \"port name\"");
   for (const auto& entry : ports.as_table()) {
     const std::string& role = entry.first;
-    const TomlValue& name = entry.second;
+    const TomlValue& value = entry.second;
+    const std::string key = "ports." + role;
     const auto& roles = port_roles();
     if (std::none_of(roles.begin(), roles.end(), [&role](const PortRole& p) { return role == p.name; })) {
-      r.fail("ports." + role, "not a port role (clk, req, ack, addr, contention, valid, ready, out_addr, timestamp, "
-                              "flags, overflow_count)");
+      r.fail(key, "not a port role (clk, req, ack, addr, contention, valid, ready, out_addr, timestamp, "
+                  "flags, overflow_count)");
     }
-    d.ports[role] = r.identifier(r.string_of(name, "ports." + role), "ports." + role);
+    std::string text;
+    if (value.is_table()) {
+      // { port = "aer_req_n", active = "low" }: the handshake's polarity.
+      if (role != "req" && role != "ack") r.fail(key, "only req and ack take { port, active }; give the port name");
+      for (const auto& [k, v] : value.as_table()) {
+        if (k != "port" && k != "active") r.fail(key + "." + k, "unknown key (port, active)");
+        (void)v;
+      }
+      text = r.string_of(r.need(value, "port", key + ".port"), key + ".port");
+      if (const TomlValue* active = r.find(value, "active")) {
+        const std::string a = r.string_of(*active, key + ".active");
+        if (a != "low" && a != "high") r.fail(key + ".active", "must be \"low\" or \"high\"");
+        (role == "req" ? d.req_active_high : d.ack_active_high) = a == "high";
+      }
+    } else {
+      text = r.string_of(value, key);
+    }
+    d.ports[role] = r.port_ref(text, key);
   }
   for (const PortRole& p : port_roles()) {
     if (!p.optional && !d.has(p.name)) r.fail(fmt::format("ports.{}", p.name), "missing");
   }
+  // A port plays one role, except that slices of it may play several when their bits do not meet.
   std::map<std::string, std::string> used;  // port -> what uses it
   used[d.reset_port] = "reset.port";
-  for (const auto& [role, name] : d.ports) {
-    if (used.count(name)) r.fail("ports." + role, fmt::format("port {} is also {}", name, used[name]));
-    used[name] = "ports." + role;
+  for (const auto& [role, ref] : d.ports) {
+    for (const auto& [other_role, other] : d.ports) {
+      if (other_role >= role || other.port != ref.port) continue;
+      const bool apart = ref.sliced() && other.sliced() && (ref.lsb > other.msb || other.lsb > ref.msb);
+      if (!apart) r.fail("ports." + role, fmt::format("port {} is also ports.{}", ref.port, other_role));
+    }
+    if (used.count(ref.port) && used[ref.port] == "reset.port") {
+      r.fail("ports." + role, fmt::format("port {} is also reset.port", ref.port));
+    }
+    used[ref.port] = "ports." + role;
   }
   if (const TomlValue* inputs = r.find(root, "inputs")) {
     if (!inputs->is_table()) r.fail("inputs", "expected a table of PORT = value");
@@ -209,7 +266,8 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   const TomlValue& behaviour = r.need(root, "behaviour", "behaviour");
   if (!behaviour.is_table()) r.fail("behaviour", "expected a table");
   for (const auto& [key, value] : behaviour.as_table()) {
-    static const char* known[] = {"collisions", "full", "timestamp_tick", "timestamp_bits", "ack_latency_cycles"};
+    static const char* known[] = {"collisions", "full", "timestamp_tick", "timestamp_bits", "timestamp_offset_cycles",
+                                  "ack_latency_cycles"};
     if (std::find(std::begin(known), std::end(known), key) == std::end(known)) r.fail("behaviour." + key, "unknown key");
     (void)value;
   }
@@ -218,19 +276,14 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   else if (collisions == "flag") d.collisions = ReceiverDescription::Collisions::Flag;
   else if (collisions == "pass") d.collisions = ReceiverDescription::Collisions::Pass;
   else r.fail("behaviour.collisions", "must be \"discard\", \"flag\" or \"pass\"");
-  const std::string full = r.string_of(r.need(behaviour, "full", "behaviour.full"), "behaviour.full");
+  // Without a ready port the output takes every beat at once, so it is never full.
+  const TomlValue* full_value = r.find(behaviour, "full");
+  if (!full_value && d.has("ready")) r.fail("behaviour.full", "missing (needed with a ready port)");
+  const std::string full = full_value ? r.string_of(*full_value, "behaviour.full") : "drop";
   if (full == "drop") d.full = ReceiverDescription::Full::Drop;
   else if (full == "hold") d.full = ReceiverDescription::Full::Hold;
   else r.fail("behaviour.full", "must be \"drop\" or \"hold\"");
-  const TomlValue& tick = r.need(behaviour, "timestamp_tick", "behaviour.timestamp_tick");
-  d.timestamp_tick = parse_si(r.string_of(tick, "behaviour.timestamp_tick"), "s", "behaviour.timestamp_tick");
-  if (!(d.timestamp_tick * d.clock_hz >= 1 - 1e-9)) r.fail("behaviour.timestamp_tick", "shorter than a clock period");
-  if (!(d.timestamp_tick <= 1.0)) r.fail("behaviour.timestamp_tick", "at most 1 s");
-  const TomlValue& bits = r.need(behaviour, "timestamp_bits", "behaviour.timestamp_bits");
-  if (!bits.is_integer() || bits.as_integer() < 2 || bits.as_integer() > 64) {
-    r.fail("behaviour.timestamp_bits", "expected an integer from 2 to 64");
-  }
-  d.timestamp_bits = static_cast<int>(bits.as_integer());
+
   const TomlValue& latency = r.need(behaviour, "ack_latency_cycles", "behaviour.ack_latency_cycles");
   const auto& l = latency.as_array();
   if (!latency.is_array() || l.size() != 2 || !l[0].is_integer() || !l[1].is_integer() || l[0].as_integer() < 1 ||
@@ -239,6 +292,37 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   }
   d.ack_latency_min = static_cast<int>(l[0].as_integer());
   d.ack_latency_max = static_cast<int>(l[1].as_integer());
+
+  if (d.has("timestamp")) {
+    const TomlValue& tick = r.need(behaviour, "timestamp_tick", "behaviour.timestamp_tick");
+    d.timestamp_tick = parse_si(r.string_of(tick, "behaviour.timestamp_tick"), "s", "behaviour.timestamp_tick");
+    if (!(d.timestamp_tick <= 1.0)) r.fail("behaviour.timestamp_tick", "at most 1 s");
+    // The receiver counts clock cycles, so a tick is a whole number of them.
+    const double cycles = d.timestamp_tick * d.clock_hz;
+    if (!(cycles >= 1 - 1e-9)) r.fail("behaviour.timestamp_tick", "shorter than a clock period");
+    if (std::fabs(cycles - std::round(cycles)) > 1e-6 * cycles) {
+      r.fail("behaviour.timestamp_tick", fmt::format("{:.6g} clock periods; a tick is a whole number of them", cycles));
+    }
+    d.timestamp_cycles = static_cast<std::uint64_t>(std::llround(cycles));
+    const TomlValue& bits = r.need(behaviour, "timestamp_bits", "behaviour.timestamp_bits");
+    if (!bits.is_integer() || bits.as_integer() < 2 || bits.as_integer() > 64) {
+      r.fail("behaviour.timestamp_bits", "expected an integer from 2 to 64");
+    }
+    d.timestamp_bits = static_cast<int>(bits.as_integer());
+    if (const TomlValue* offset = r.find(behaviour, "timestamp_offset_cycles")) {
+      if (!offset->is_integer() || offset->as_integer() < 0 || offset->as_integer() > d.ack_latency_max + 1) {
+        r.fail("behaviour.timestamp_offset_cycles",
+               fmt::format("expected the edge of the stamp, 0 to {} (ack_latency_cycles max + 1), counting the first "
+                           "rising edge after Req rose as 1",
+                           d.ack_latency_max + 1));
+      }
+      d.timestamp_offset_cycles = static_cast<int>(offset->as_integer());
+    }
+  } else {
+    for (const char* key : {"timestamp_tick", "timestamp_bits", "timestamp_offset_cycles"}) {
+      if (r.find(behaviour, key)) r.fail(fmt::format("behaviour.{}", key), "given, but [ports] names no timestamp");
+    }
+  }
 
   if (d.collisions != ReceiverDescription::Collisions::Pass && !d.has("contention")) {
     r.fail("behaviour.collisions", fmt::format("\"{}\" needs the contention port ([ports] contention)", collisions));

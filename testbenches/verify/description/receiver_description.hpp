@@ -7,6 +7,14 @@
 
 namespace aesim {
 
+// Where a role lives in the RTL: a whole port, or a slice of one (`pkt_data[23:8]`, `ctl[0]`).
+struct PortRef {
+  std::string port;
+  int msb = -1, lsb = -1;  // the slice in the port's own bit numbering; -1: the whole port
+  bool sliced() const { return msb >= 0; }
+  std::string text() const;  // as the description wrote it
+};
+
 // A team's receiver RTL as its description file (SPEC section 6) says: how to build it, which of
 // its ports plays which role, and what it promises. Paths are absolute (relative ones in the file
 // are taken from the file's folder).
@@ -22,16 +30,23 @@ struct ReceiverDescription {
   double clock_hz = 0;
   std::string reset_port;
   bool reset_active_high = false;
-  std::map<std::string, std::string> ports;        // role -> RTL port name
+  bool req_active_high = true, ack_active_high = true;
+  std::map<std::string, PortRef> ports;            // role -> where it is
   std::map<std::string, std::uint64_t> inputs;     // RTL port -> constant value
   Collisions collisions = Collisions::Discard;
-  Full full = Full::Drop;
+  Full full = Full::Drop;  // meaningful only with a ready port
+  // The stamp (with a timestamp port only): ticks of timestamp_cycles clock cycles since reset,
+  // modulo 2^timestamp_bits, at one fixed edge of every transaction.
   double timestamp_tick = 0;  // s
+  std::uint64_t timestamp_cycles = 0;
   int timestamp_bits = 0;
+  // That edge, when the description states it: counting the first rising edge after Req rose as 1.
+  std::optional<int> timestamp_offset_cycles;
   int ack_latency_min = 0, ack_latency_max = 0;  // clock edges
 
   bool has(const std::string& role) const { return ports.count(role) != 0; }
-  const std::string& port(const std::string& role) const { return ports.at(role); }
+  const std::string& port(const std::string& role) const { return ports.at(role).port; }
+  const PortRef& ref(const std::string& role) const { return ports.at(role); }
 };
 
 // The roles of SPEC section 6, required ones first; `optional` says which may be left out.

@@ -12,35 +12,59 @@ namespace {
 }
 
 const RtlPort& need(const ReceiverDescription& d, const std::vector<RtlPort>& ports, const std::string& key,
-                    const std::string& name, bool input) {
-  const RtlPort* p = find_port(ports, name);
-  if (!p) port_error(d, key, fmt::format("the RTL (top {}) has no port '{}'", d.top, name));
-  if (p->input != input) port_error(d, key, fmt::format("port {} is an {}; aesim expects an {}", name, p->input ? "input" : "output", input ? "input" : "output"));
-  if (p->bytes == 0) port_error(d, key, fmt::format("port {} is {} bits; aesim connects ports of up to 64 bits", name, p->width));
+                    const PortRef& ref, bool input) {
+  const RtlPort* p = find_port(ports, ref.port);
+  if (!p) port_error(d, key, fmt::format("the RTL (top {}) has no port '{}'", d.top, ref.port));
+  if (p->input != input) {
+    port_error(d, key, fmt::format("port {} is an {}; aesim expects an {}", ref.port, p->input ? "input" : "output",
+                                   input ? "input" : "output"));
+  }
+  const int lo = std::min(p->msb, p->lsb), hi = std::max(p->msb, p->lsb);
+  if (ref.sliced() && (ref.lsb < lo || ref.msb > hi)) {
+    port_error(d, key, fmt::format("{} is outside port {} [{}:{}]", ref.text(), ref.port, p->msb, p->lsb));
+  }
+  if (!ref.sliced() && p->wide()) {
+    port_error(d, key, fmt::format("port {} is {} bits; name the bits of this role, e.g. {}[{}:{}]", ref.port, p->width,
+                                   ref.port, lo + 15, lo));
+  }
   return *p;
 }
 
+PortAccess bind(DutInstance& dut, const RtlPort& p, const PortRef& ref) {
+  const int lo = std::min(p.msb, p.lsb);
+  return ref.sliced() ? dut.port(p.name, p.bytes, ref.lsb - lo, ref.msb - ref.lsb + 1) : dut.port(p.name, p.bytes, 0, p.width);
+}
+
 }  // namespace
+
+int role_width(const ReceiverDescription& d, const std::vector<RtlPort>& ports, const std::string& role) {
+  const PortRef& ref = d.ref(role);
+  if (ref.sliced()) return ref.msb - ref.lsb + 1;
+  const RtlPort* p = find_port(ports, ref.port);
+  return p ? p->width : 0;
+}
 
 void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports, int bus_bits) {
   for (const PortRole& role : port_roles()) {
     if (!d.has(role.name)) continue;
     const std::string key = fmt::format("ports.{}", role.name);
-    const RtlPort& p = need(d, ports, key, d.port(role.name), role.input);
+    need(d, ports, key, d.ref(role.name), role.input);
     const std::string r = role.name;
+    const int width = role_width(d, ports, r);
+    const std::string what = d.ref(r).text();
     const bool one_bit = r == "clk" || r == "req" || r == "ack" || r == "contention" || r == "valid" || r == "ready";
-    if (one_bit && p.width != 1) port_error(d, key, fmt::format("port {} is {} bits; {} is one bit", p.name, p.width, r));
-    if ((r == "addr" || r == "out_addr") && p.width < bus_bits) {
-      port_error(d, key, fmt::format("port {} is {} bits; the bus carries {}-bit addresses", p.name, p.width, bus_bits));
+    if (one_bit && width != 1) port_error(d, key, fmt::format("{} is {} bits; {} is one bit", what, width, r));
+    if ((r == "addr" || r == "out_addr") && width < bus_bits) {
+      port_error(d, key, fmt::format("{} is {} bits; the bus carries {}-bit addresses", what, width, bus_bits));
     }
-    if (r == "timestamp" && p.width < d.timestamp_bits) {
-      port_error(d, key, fmt::format("port {} is {} bits; behaviour.timestamp_bits is {}", p.name, p.width, d.timestamp_bits));
+    if (r == "timestamp" && width < d.timestamp_bits) {
+      port_error(d, key, fmt::format("{} is {} bits; behaviour.timestamp_bits is {}", what, width, d.timestamp_bits));
     }
   }
-  const RtlPort& reset = need(d, ports, "reset.port", d.reset_port, true);
+  const RtlPort& reset = need(d, ports, "reset.port", PortRef{d.reset_port}, true);
   if (reset.width != 1) port_error(d, "reset.port", fmt::format("port {} is {} bits; a reset is one bit", reset.name, reset.width));
   for (const auto& [name, value] : d.inputs) {
-    const RtlPort& p = need(d, ports, "inputs." + name, name, true);
+    const RtlPort& p = need(d, ports, "inputs." + name, PortRef{name}, true);
     if (p.width < 64 && (value >> p.width) != 0) {
       port_error(d, "inputs." + name, fmt::format("{} does not fit the {} bits of port {}", value, p.width, name));
     }
@@ -48,11 +72,9 @@ void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports
 }
 
 BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std::vector<RtlPort>& ports) {
-  auto bind = [&](const std::string& name) {
-    const RtlPort* p = find_port(ports, name);
-    return dut.port(name, p->bytes, p->width);
+  auto role = [&](const char* r) {
+    return d.has(r) ? bind(dut, *find_port(ports, d.port(r)), d.ref(r)) : PortAccess();
   };
-  auto role = [&](const char* r) { return d.has(r) ? bind(d.port(r)) : PortAccess(); };
   BoundPorts b;
   b.clk = role("clk");
   b.req = role("req");
@@ -65,9 +87,11 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   b.timestamp = role("timestamp");
   b.flags = role("flags");
   b.overflow = role("overflow_count");
-  b.reset = bind(d.reset_port);
+  b.reset = bind(dut, *find_port(ports, d.reset_port), PortRef{d.reset_port});
   b.reset_active_high = d.reset_active_high;
-  for (const auto& [name, value] : d.inputs) bind(name).write(value);
+  b.req_active_high = d.req_active_high;
+  b.ack_active_high = d.ack_active_high;
+  for (const auto& [name, value] : d.inputs) bind(dut, *find_port(ports, name), PortRef{name}).write(value);
   return b;
 }
 

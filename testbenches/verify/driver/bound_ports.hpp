@@ -9,15 +9,23 @@
 namespace aesim {
 
 // The description's roles checked against the ports the RTL has: every named port exists, goes
-// the right way, and is wide enough (1 bit for the handshake and clock; the bus's address bits;
-// the declared timestamp bits; [inputs] values that fit). InputError naming the port otherwise.
+// the right way, holds the slice named, and is wide enough (1 bit for the handshake and clock;
+// the bus's address bits; the declared timestamp bits; [inputs] values that fit). InputError
+// naming the port otherwise.
 void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports, int bus_bits);
 
-// A live model's ports by role.
+// The width of a role's bits (its slice, or its whole port).
+int role_width(const ReceiverDescription& d, const std::vector<RtlPort>& ports, const std::string& role);
+
+// A live model's ports by role, with the handshake's polarity applied: aesim reasons in "Req
+// raised" and "Ack raised" whatever levels the RTL uses for them. Unbound roles (no ready, no
+// timestamp, ...) read as 0 and ignore writes.
 struct BoundPorts {
   PortAccess clk, reset, req, ack, addr, contention, valid, ready, out_addr, timestamp, flags, overflow;
-  bool reset_active_high = false;
+  bool reset_active_high = false, req_active_high = true, ack_active_high = true;
   void set_reset(bool active) const { reset.write(active == reset_active_high ? 1 : 0); }
+  void set_req(bool raised) const { req.write(raised == req_active_high ? 1 : 0); }
+  bool ack_raised() const { return (ack.read() != 0) == ack_active_high; }
 };
 
 // Binds the roles and sets the [inputs] constants.

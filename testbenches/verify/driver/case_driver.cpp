@@ -70,9 +70,9 @@ class BusSide {
     req_ = req;
     addr_ = addr;
     contention_ = contention;
-    ports_.req.write(req);
+    ports_.set_req(req);
     ports_.addr.write(addr);
-    if (ports_.contention.bound()) ports_.contention.write(contention);
+    ports_.contention.write(contention);
     if (sb_) sb_->wires(t, edges_done, req, addr, contention);
     record(t);
   }
@@ -168,19 +168,29 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   };
 
   ports.clk.write(0);
-  ports.req.write(0);
+  ports.set_req(false);
   ports.addr.write(0);
-  if (ports.contention.bound()) ports.contention.write(0);
+  ports.contention.write(0);
   ports.ready.write(1);
   ports.set_reset(true);
   bus.record_controls(0, true, true);
   apply_until(half, 0);
   dut.eval();
 
+  // After every evaluation: has the RTL ended the case itself?
+  auto rtl_ended = [&](std::uint64_t at) {
+    if (dut.status() == 0) return false;
+    stats.rtl = dut.event();
+    if (sb) sb->rtl_event(at, at * period, stats.rtl);
+    return true;
+  };
+
   std::uint64_t k = 1;
-  for (; k <= c.max_edges; ++k) {
+  bool ended = rtl_ended(0);
+  for (; k <= c.max_edges && !ended; ++k) {
     const std::uint64_t t_edge = k * period;
     if (apply_until(t_edge, k - 1)) dut.eval();  // changes in the second half of the cycle
+    if ((ended = rtl_ended(k - 1))) break;
 
     EdgeSample s;
     s.reset = reset;
@@ -190,9 +200,9 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     if (s.valid) {
       s.out_addr = ports.out_addr.read();
       s.timestamp = ports.timestamp.read();
-      s.flags = ports.flags.bound() ? ports.flags.read() : 0;
+      s.flags = ports.flags.read();
     }
-    if (ports.overflow.bound()) s.overflow = ports.overflow.read();
+    s.overflow = ports.overflow.read();
     if (sb) sb->edge(k, t_edge, s);
     if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1});
 
@@ -200,7 +210,8 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     dut.eval();
     const bool trace_now = options.trace && k >= options.trace_from && k <= options.trace_to;
     if (trace_now) dut.dump(t_edge);
-    const bool ack_now = ports.ack.read() != 0;
+    if ((ended = rtl_ended(k))) break;
+    const bool ack_now = ports.ack_raised();
     if (ack_now != ack) {
       ack = ack_now;
       if (sb) sb->ack_changed(k, t_edge, ack);
@@ -217,14 +228,19 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       if (quiet > quiet_needed) break;
     }
 
+    // The consumer and the reset change a quarter period after the edge, amid the bus's own
+    // changes, so that the waveform stays in time order.
+    apply_until(t_edge + half / 2, k);
     set_controls(k + 1);
     apply_until(t_edge + half, k);
     ports.clk.write(0);
     dut.eval();
     if (trace_now) dut.dump(t_edge + half);
+    if ((ended = rtl_ended(k))) break;
   }
   stats.edges = std::min(k, c.max_edges);
-  if (sb) sb->finish_case(stats.edges, stats.edges * period);
+  stats.rtl_output = dut.take_output();
+  if (sb) sb->finish_case(stats.edges, stats.edges * period, ended);
   return stats;
 }
 

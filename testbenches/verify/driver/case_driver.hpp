@@ -32,6 +32,8 @@ struct CaseRunOptions {
 
 struct CaseStats {
   std::uint64_t edges = 0, firings = 0, absorbed = 0;
+  RtlEvent rtl;  // what the RTL itself did to end the case early, if anything
+  std::string rtl_output;  // what it printed (bounded)
 };
 
 // The receiver's clock period in whole picoseconds, rounded to an even number.
@@ -44,7 +46,8 @@ inline constexpr std::uint64_t kResetEdges = 4;
 // between edges (a bus change due exactly on an edge moves 1 ps later, as on the cycle rung's
 // bus). The clock runs on every cycle: the receiver's own timestamp counter is state aesim
 // cannot see, so no cycle may be skipped. The scoreboard (if any) sees every wire change and
-// every edge.
+// every edge. The case ends early when the RTL calls $finish, or judges itself ($stop, $error,
+// $fatal, a failing assertion) or Verilator stops it: the scoreboard records the verdict.
 CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDescription& d, const VerifyCase& c,
                    TransactionScoreboard* scoreboard, const CaseRunOptions& options = {});
 

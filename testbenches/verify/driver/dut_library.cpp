@@ -2,6 +2,8 @@
 
 #include <dlfcn.h>
 
+#include <cstring>
+
 #include <fmt/format.h>
 
 #include "build/dut_glue.hpp"
@@ -26,6 +28,10 @@ DutLibrary::DutLibrary(const std::string& path) {
   port = reinterpret_cast<PortFn>(symbol("aesim_dut_port"));
   trace_open = reinterpret_cast<TraceOpenFn>(symbol("aesim_dut_trace_open"));
   trace_dump = reinterpret_cast<TraceDumpFn>(symbol("aesim_dut_trace_dump"));
+  status = reinterpret_cast<StatusFn>(symbol("aesim_dut_status"));
+  where = reinterpret_cast<TextFn>(symbol("aesim_dut_where"));
+  output = reinterpret_cast<TextFn>(symbol("aesim_dut_output"));
+  clear = reinterpret_cast<ClearFn>(symbol("aesim_dut_clear"));
 }
 
 DutLibrary::~DutLibrary() {
@@ -33,12 +39,40 @@ DutLibrary::~DutLibrary() {
 }
 
 DutInstance::DutInstance(const DutLibrary& library, bool trace)
-    : library_(library), eval_(library.eval), model_(library.create(trace ? 1 : 0)) {}
+    : library_(library), eval_(library.eval), model_(library.create(trace ? 1 : 0)), status_(library.status(model_)) {}
 
 DutInstance::~DutInstance() { library_.destroy(model_); }
 
-PortAccess DutInstance::port(const std::string& name, int bytes, int width) const {
-  return PortAccess(library_.port(model_, name.c_str()), bytes, width);
+PortAccess DutInstance::port(const std::string& name, int bytes, int shift, int width) const {
+  return PortAccess(library_.port(model_, name.c_str()), bytes, shift, width);
+}
+
+// The last complete line of the output before the event: Verilator prints an assertion's message
+// ("%Error: rx.v:12: Assertion failed in rx: boom") just before it stops.
+RtlEvent DutInstance::event() const {
+  RtlEvent e;
+  e.kind = static_cast<RtlEvent::Kind>(*status_);
+  e.where = library_.where(model_);
+  std::string text = library_.output(model_);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  const auto nl = text.rfind('\n');
+  e.message = nl == std::string::npos ? text : text.substr(nl + 1);
+  // "[0] %Error: rx.v:12: Assertion failed in rx: boom" -> "rx.v:12: Assertion failed in rx: boom"
+  if (!e.message.empty() && e.message.front() == '[') {
+    const auto close = e.message.find("] ");
+    if (close != std::string::npos) e.message.erase(0, close + 2);
+  }
+  for (const char* tag : {"%Error: ", "%Fatal: ", "%Warning: "}) {
+    if (e.message.rfind(tag, 0) == 0) e.message.erase(0, std::strlen(tag));
+  }
+  if (e.message.empty()) e.message = e.where;
+  return e;
+}
+
+std::string DutInstance::take_output() {
+  std::string text = library_.output(model_);
+  library_.clear(model_);
+  return text;
 }
 
 bool DutInstance::open_trace(const std::string& path) { return library_.trace_open(model_, path.c_str()) != 0; }

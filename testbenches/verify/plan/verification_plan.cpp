@@ -129,17 +129,37 @@ VerificationPlan make_plan(const std::string& plan) {
   return read_plan(plan);
 }
 
-std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverDescription& d, std::uint64_t seed) {
+std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverDescription& d, std::uint64_t seed,
+                                   std::vector<std::string>* notes) {
+  const bool ready = d.has("ready");
   std::vector<VerifyCase> cases;
+  std::vector<std::string> left_out;
   if (plan.directed) {
     for (VerifyCase& c : directed_cases(d)) {
       const auto& only = plan.directed_cases;
-      if (only.empty() || std::find(only.begin(), only.end(), c.name) != only.end()) cases.push_back(std::move(c));
+      if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
+      if (!ready && !c.stalls.empty()) {
+        left_out.push_back(c.name);
+        continue;
+      }
+      cases.push_back(std::move(c));
     }
   }
+  bool always_ready = false;
   for (SceneLoad l : plan.scenes) {
     l.seed += seed - 1;
+    if (!ready && l.ready < 1) {
+      l.ready = 1;
+      always_ready = true;
+    }
     cases.push_back(scene_case(l, d));
+  }
+  if (notes && (!left_out.empty() || always_ready)) {
+    std::string note = "the receiver has no ready port, so it takes no back-pressure:";
+    if (!left_out.empty()) note += fmt::format(" the cases {} are left out", fmt::join(left_out, ", "));
+    if (!left_out.empty() && always_ready) note += " and";
+    if (always_ready) note += " the scene runs' consumer is always ready";
+    notes->push_back(note);
   }
   if (cases.empty()) throw InputError(fmt::format("plan '{}' has no case to run", plan.name));
   return cases;

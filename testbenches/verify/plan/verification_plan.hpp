@@ -33,8 +33,11 @@ struct VerificationPlan {
 VerificationPlan make_plan(const std::string& plan);
 
 // The plan's cases for this receiver; `seed` offsets every scene run's seed, so --seed N gives
-// other firings and other back-pressure.
-std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverDescription& d, std::uint64_t seed);
+// other firings and other back-pressure. A receiver without a ready port takes no back-pressure:
+// the directed back-pressure cases are left out and the scene runs' consumer is always ready, and
+// `notes` says so.
+std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverDescription& d, std::uint64_t seed,
+                                   std::vector<std::string>* notes = nullptr);
 
 // The work a plan asks for, in receiver clock cycles (estimated before anything runs).
 double plan_cycles(const std::vector<VerifyCase>& cases);

@@ -3,7 +3,8 @@
 namespace aesim {
 
 nlohmann::json verify_report(const ReceiverDescription& d, const std::string& plan, std::uint64_t seed,
-                             const DutBuild& build, const VerifyResult& r, double wall_time_s) {
+                             const DutBuild& build, const VerifyResult& r, const std::vector<std::string>& notes,
+                             double wall_time_s) {
   nlohmann::json j;
   j["passed"] = r.passed();
   j["transactions"] = r.transactions;
@@ -20,6 +21,8 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
     j["first_failure"] = nullptr;
   }
   j["drops_accounted"] = r.drops;
+  j["stamp_rule"] = r.stamp_rule.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.stamp_rule);
+  j["notes"] = notes;
   j["receiver"] = {{"description", d.file}, {"top", d.top},
                    {"collisions", to_string(d.collisions)}, {"full", to_string(d.full)}};
   j["plan"] = plan;
@@ -30,7 +33,8 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   nlohmann::json cases = nlohmann::json::array();
   for (const CaseSummary& c : r.cases) {
     cases.push_back({{"name", c.name}, {"kind", c.kind}, {"receiver_cycles", c.edges}, {"firings", c.firings},
-                     {"transactions", c.transactions}, {"beats_checked", c.beats}, {"failures", c.failures}});
+                     {"transactions", c.transactions}, {"beats_checked", c.beats}, {"failures", c.failures},
+                     {"rtl_finish", c.rtl_finish.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.rtl_finish)}});
   }
   j["cases"] = cases;
   return j;

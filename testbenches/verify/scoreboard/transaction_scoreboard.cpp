@@ -15,22 +15,21 @@ TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool 
     : collisions_(d.collisions),
       full_(d.full),
       has_overflow_(has_overflow),
+      has_stamp_(d.has("timestamp")),
       overflow_mask_(overflow_width >= 64 ? ~0ULL : (1ULL << overflow_width) - 1),
       period_ps_(period_ps),
-      tick_ps_(static_cast<std::uint64_t>(std::llround(d.timestamp_tick * 1e12))),
-      ts_mask_(d.timestamp_bits >= 64 ? ~0ULL : (1ULL << d.timestamp_bits) - 1),
       lat_min_(d.ack_latency_min),
-      lat_max_(d.ack_latency_max) {}
+      lat_max_(d.ack_latency_max),
+      stamps_(d) {}
 
 void TransactionScoreboard::begin_case(const std::string& name) {
   case_ = name;
   pending_.clear();
   open_id_.reset();
   req_ = ack_ = in_reset_ = contention_ = false;
-  addr_ = 0;
+  addr_ = req_rise_edge_ = req_rise_ps_ = 0;
   ack_fall_due_ = late_reported_ = answered_glitch_ = false;
-  t0_ps_ = 0;
-  last_ts_.reset();
+  stamps_.reset_ended(0);
   held_.reset();
   last_stall_edge_ = 0;
   stalled_ever_ = false;
@@ -41,6 +40,20 @@ void TransactionScoreboard::begin_case(const std::string& name) {
 TransactionScoreboard::Transaction* TransactionScoreboard::open() {
   if (!open_id_ || pending_.empty() || *open_id_ < pending_.front().id) return nullptr;
   return &pending_[*open_id_ - pending_.front().id];
+}
+
+TransactionScoreboard::Transaction& TransactionScoreboard::open_transaction(std::uint64_t t_req, std::uint64_t first_edge,
+                                                                            std::uint64_t bound_edge) {
+  Transaction t;
+  t.id = next_id_++;
+  t.t_req = t_req;
+  t.first_edge = first_edge;
+  t.bound_edge = bound_edge;
+  t.values.push_back({addr_, contention_});
+  pending_.push_back(std::move(t));
+  open_id_ = pending_.back().id;
+  late_reported_ = false;
+  return pending_.back();
 }
 
 std::string TransactionScoreboard::describe(const Transaction& t) const {
@@ -77,10 +90,6 @@ bool TransactionScoreboard::may_lack_beat(const Transaction& t) const {
   return full_ == Full::Drop && t.stalled;
 }
 
-std::uint64_t TransactionScoreboard::ticks_at(std::uint64_t t_ps) const {
-  return t_ps <= t0_ps_ ? 0 : (t_ps - t0_ps_) / tick_ps_;
-}
-
 // A transaction allowed to give no beat: a glitch counts nothing; a discarded collision is no
 // drop, unless the output was full then too (a receiver may count it either way); else a drop.
 void TransactionScoreboard::count_missing_beat(const Transaction& t) {
@@ -105,16 +114,13 @@ void TransactionScoreboard::wires(std::uint64_t t_ps, std::uint64_t edges_done, 
   req_ = req;
   addr_ = addr;
   contention_ = contention;
+  if (rose) {
+    req_rise_edge_ = edges_done + 1;
+    req_rise_ps_ = t_ps;
+  }
   if (in_reset_) return;
   if (rose) {
-    Transaction t;
-    t.id = next_id_++;
-    t.t_req = t_ps;
-    t.first_edge = edges_done + 1;
-    t.values.push_back({addr, contention});
-    pending_.push_back(std::move(t));
-    open_id_ = pending_.back().id;
-    late_reported_ = false;
+    open_transaction(t_ps, edges_done + 1, edges_done + 1);
     return;
   }
   Transaction* t = open();
@@ -148,21 +154,14 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
   }
   if (in_reset_) {
     in_reset_ = false;
-    t0_ps_ = t_ps - period_ps_;
-    last_ts_.reset();
+    stamps_.reset_ended(cycle - 1);
     overflow_base_ = s.overflow;
     drops_strict_ = drops_maybe_ = 0;
     if (s.ack) fail("reset", cycle, t_ps, true, [&] { return Texts{"Ack low after reset", "Ack high"}; });
     ack_ = s.ack;
-    if (req_) {  // a Req held through the reset is a new transaction for the receiver
-      Transaction t;
-      t.id = next_id_++;
-      t.t_req = t_ps - period_ps_;
-      t.first_edge = cycle;
-      t.values.push_back({addr_, contention_});
-      pending_.push_back(std::move(t));
-      open_id_ = pending_.back().id;
-    }
+    // A Req held through the reset is a new transaction for the receiver: the lower latency
+    // bound counts from its rise, the upper from this edge (the first the receiver may act on).
+    if (req_) open_transaction(req_rise_ps_, std::min(req_rise_edge_, cycle), cycle);
   }
   overflow_now_ = s.overflow;
 
@@ -192,10 +191,17 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     }
   }
 
+  // Under "hold" a receiver with no room of its own (its valid follows ready) waits for ready with
+  // nothing offered: a consumer not ready while a transaction waits for its Ack excuses the wait too.
+  if (full_ == Full::Hold && !s.ready && !s.valid && open()) {
+    last_stall_edge_ = cycle;
+    stalled_ever_ = true;
+  }
+
   // Ack overdue: reported at the first edge past the bound, once per change.
   if (!late_reported_) {
     if (Transaction* t = open(); t && req_ && !ack_) {
-      std::uint64_t start = t->first_edge;
+      std::uint64_t start = t->bound_edge;
       if (full_ == Full::Hold && stalled_ever_ && last_stall_edge_ + 1 > start) start = last_stall_edge_ + 1;
       if (cycle >= start && cycle - start + 1 > static_cast<std::uint64_t>(lat_max_)) {
         late_reported_ = true;
@@ -225,14 +231,19 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
       // Ack must then fall as after any Req, and a beat of the glitch's address may follow.
       Transaction& glitch = pending_.back();
       if (glitch.withdrawn && !glitch.answered &&
-          cycle - glitch.first_edge + 1 <= static_cast<std::uint64_t>(lat_max_)) {
+          cycle - glitch.bound_edge + 1 <= static_cast<std::uint64_t>(lat_max_)) {
         glitch.answered = true;
-        glitch.t_ack = t_ps;
+        glitch.ack_edge = cycle;
         glitch.values.push_back({addr_, contention_});  // the wires as the receiver latched them
         ack_fall_due_ = true;
         answered_glitch_ = true;
         req_fall_edge_ = cycle + 1;
         late_reported_ = false;
+        if (glitch.beat_taken) {
+          const Transaction done = glitch;
+          pending_.pop_back();
+          check_stamp(done, done.beat_stamp, done.beat_cycle, done.beat_t_ps);
+        }
         return;
       }
     }
@@ -243,7 +254,7 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
       return;
     }
     const std::uint64_t latency = cycle - t->first_edge + 1;
-    std::uint64_t start = t->first_edge;
+    std::uint64_t start = t->bound_edge;
     if (full_ == Full::Hold && stalled_ever_ && last_stall_edge_ + 1 > start) start = last_stall_edge_ + 1;
     const std::uint64_t excused = cycle >= start ? cycle - start + 1 : 1;
     if (!late_reported_ && (latency < static_cast<std::uint64_t>(lat_min_) || excused > static_cast<std::uint64_t>(lat_max_))) {
@@ -252,13 +263,19 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
       });
     }
     t->acked = true;
-    t->t_ack = t_ps;
+    t->ack_edge = cycle;
     // Met a full output: the output stalled within a few edges before the Req (a receiver may
     // decide on fullness a pipeline stage or two early) or while waiting for the Ack.
     t->stalled = stalled_ever_ && last_stall_edge_ + static_cast<std::uint64_t>(lat_max_) + 8 >= t->first_edge;
     open_id_.reset();
     ++transactions_;
     late_reported_ = false;
+    if (t->beat_taken) {
+      // Its beat came first (at this edge, or earlier): the stamp is checked now the Ack is known.
+      const Transaction done = *t;
+      pending_.erase(pending_.begin() + static_cast<long>(t->id - pending_.front().id));
+      check_stamp(done, done.beat_stamp, done.beat_cycle, done.beat_t_ps);
+    }
     return;
   }
   if (req_) {
@@ -281,47 +298,92 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
   late_reported_ = false;
 }
 
+void TransactionScoreboard::check_stamp(const Transaction& t, std::uint64_t stamp, std::uint64_t cycle, std::uint64_t t_ps) {
+  if (!has_stamp_) return;
+  const StampRule::Edges edges{t.first_edge, t.bound_edge, t.ack_edge};
+  std::string expected;
+  if (stamps_.check(edges, stamp, expected)) return;
+  fail("timestamp", cycle, t_ps, false, [&] { return Texts{expected + " for " + describe(t), fmt::format("{}", stamp)}; });
+}
+
 void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b) {
   ++beats_;
-  const std::string seen = fmt::format("address 0x{:x}, stamp {}, flag {}", b.addr, b.ts, b.flag ? 1 : 0);
-  auto matches = [&](const Transaction& t) { return (!t.withdrawn || t.answered) && value_matches(t, b); };
+  auto matches = [&](const Transaction& t) {
+    return !t.beat_taken && (!t.withdrawn || t.answered) && value_matches(t, b);
+  };
   std::size_t i = 0;
   while (i < pending_.size() && !matches(pending_[i]) && may_lack_beat(pending_[i])) ++i;
+  if (i == pending_.size() && !pending_.empty()) {
+    // A beat of a glitch the receiver is answering at this very edge (its valid follows the
+    // synchronised Req): the wires as it read them; its Ack must follow at once.
+    Transaction& glitch = pending_.back();
+    if (glitch.withdrawn && !glitch.answered && !glitch.beat_taken &&
+        cycle - glitch.bound_edge + 1 <= static_cast<std::uint64_t>(lat_max_)) {
+      glitch.values.push_back({addr_, contention_});
+      if (value_matches(glitch, b)) {
+        for (std::size_t k = 0; k + 1 < pending_.size(); ++k) count_missing_beat(pending_[k]);
+        pending_.erase(pending_.begin(), pending_.end() - 1);
+        Transaction& t = pending_.front();
+        t.beat_taken = true;
+        t.beat_stamp = b.ts;
+        t.beat_cycle = cycle;
+        t.beat_t_ps = t_ps;
+        return;
+      }
+      glitch.values.pop_back();
+    }
+  }
   if (i == pending_.size() || !matches(pending_[i])) {
     const Transaction* head = nullptr;
     for (const Transaction& t : pending_) {
-      if (!t.withdrawn) {
+      if (!t.withdrawn && !t.beat_taken) {
         head = &t;
         break;
       }
     }
     fail("beat", cycle, t_ps, false, [&] {
-      return Texts{head ? describe(*head) : "no beat (no transaction is waiting)", seen};
+      return Texts{head ? describe(*head) : "no beat (no transaction is waiting)",
+                   fmt::format("address 0x{:x}, stamp {}, flag {}", b.addr, b.ts, b.flag ? 1 : 0)};
     });
     return;
   }
   for (std::size_t k = 0; k < i; ++k) count_missing_beat(pending_[k]);
-  const Transaction& t = pending_[i];
-  const std::uint64_t lo = ticks_at(t.t_req), hi = ticks_at(t.acked ? t.t_ack : t_ps);
-  const std::uint64_t from = (lo - 1) & ts_mask_, span = hi - lo + 2;
-  if (((b.ts - from) & ts_mask_) > span) {
-    fail("timestamp", cycle, t_ps, false, [&] {
-      return Texts{fmt::format("{} to {} (within a tick of {})", from, (hi + 1) & ts_mask_, describe(t)),
-                   fmt::format("{}", b.ts)};
-    });
-  } else if (last_ts_ && ((b.ts - *last_ts_) & ts_mask_) > ts_mask_ / 2) {
-    fail("timestamp", cycle, t_ps, false, [&] {
-      return Texts{fmt::format("a stamp at or after {}", *last_ts_), fmt::format("{}", b.ts)};
-    });
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(i));
+  Transaction& t = pending_.front();
+  if (!t.acked && !t.answered) {
+    // The beat of the open transaction, before (or at the edge of) its Ack: it stays open.
+    t.beat_taken = true;
+    t.beat_stamp = b.ts;
+    t.beat_cycle = cycle;
+    t.beat_t_ps = t_ps;
+    return;
   }
-  last_ts_ = b.ts;
-  if (open_id_ && *open_id_ <= t.id) open_id_.reset();
-  pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(i) + 1);
+  const Transaction done = t;
+  pending_.pop_front();
+  check_stamp(done, b.ts, cycle, t_ps);
 }
 
-void TransactionScoreboard::finish_case(std::uint64_t cycle, std::uint64_t t_ps) {
-  if (in_reset_) return;
+void TransactionScoreboard::rtl_event(std::uint64_t cycle, std::uint64_t t_ps, const RtlEvent& e) {
+  if (e.kind == RtlEvent::Kind::None || e.kind == RtlEvent::Kind::Finish) return;
+  const bool own = e.kind == RtlEvent::Kind::Stop;
+  fail(own ? "rtl_assertion" : "rtl_error", cycle, t_ps, false, [&] {
+    return Texts{own ? "no $stop, $error, $fatal or failing assertion in the RTL" : "a model Verilator can run",
+                 e.message.empty() ? e.where : e.message};
+  });
+}
+
+void TransactionScoreboard::finish_case(std::uint64_t cycle, std::uint64_t t_ps, bool cut_short) {
+  if (in_reset_ || cut_short) {
+    pending_.clear();
+    return;
+  }
   for (const Transaction& t : pending_) {
+    if (t.withdrawn && t.beat_taken && !t.answered) {
+      fail("ack_without_beat", cycle, t_ps, true, [&] {
+        return Texts{"an Ack with the beat of " + describe(t), "a beat, and no Ack"};
+      });
+      continue;
+    }
     if (!t.acked && !t.withdrawn) continue;  // never acknowledged: the latency check reported it
     if (!may_lack_beat(t)) {
       fail("lost", cycle, t_ps, false, [&] { return Texts{describe(t) + " gives a beat", "no beat"}; });

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "description/receiver_description.hpp"
+#include "driver/dut_library.hpp"
+#include "scoreboard/stamp_rule.hpp"
 
 namespace aesim {
 
@@ -26,19 +28,24 @@ struct VerifyFailure {
 // wires and the receiver's ports, never its insides.
 //  - Every output beat is a transaction the bus carried, in bus order: an address (and contention
 //    flag, per the collision policy) the wires held between Req rising and Ack rising, so nothing
-//    is invented and nothing reordered. A transaction with no beat is allowed only when the
-//    description says so: a collision under "discard", or a full output under "drop" (the output
-//    was stalled around it), and then overflow_count, if present, must have counted exactly the
-//    drops. A Req that falls before any Ack (a glitch) is not a transaction: a receiver may
-//    ignore it, or (without a glitch filter) answer it within the latency bound with an Ack that
-//    then falls as usual and perhaps a beat of the glitch's address; the next transactions must
-//    go through as ever.
-//  - Stamps count timestamp_tick since reset modulo 2^bits, lie within one tick of the
-//    transaction's span (Req rise to Ack rise), and never go backwards (modulo the wrap).
+//    is invented and nothing reordered. A beat may come before Ack rises or at the edge it rises
+//    (a combinational valid); it belongs to the transaction then open. A transaction with no beat
+//    is allowed only when the description says so: a collision under "discard", or a full output
+//    under "drop" (the output was stalled around it), and then overflow_count, if present, must
+//    have counted exactly the drops. A Req that falls before any Ack (a glitch) is not a
+//    transaction: a receiver may ignore it, or (without a glitch filter) answer it within the
+//    latency bound with an Ack that then falls as usual and perhaps a beat of the glitch's
+//    address; the next transactions must go through as ever.
+//  - Stamps follow one rule for the run (StampRule), exactly, modulo the wrap.
 //  - A beat offered and not taken (valid, not ready) stays, unchanged, until taken.
 //  - The handshake: Ack rises only while Req is high and falls only after Req fell (four-phase
-//    order), each within ack_latency_cycles edges of the change; under "hold" a rising Ack may also
-//    wait while the output is stalled. Ack is low after a reset.
+//    order). Latency counts the first rising edge after a change as 1: Ack rises no sooner than
+//    ack_latency min edges after Req rose, and no later than ack_latency max edges after the later
+//    of Req rising and the reset's release (a Req held through a reset is a transaction for the
+//    receiver, whose synchroniser may or may not have been reset); under "hold" a rising Ack may
+//    also wait while the output is stalled. Ack falls within the same bounds of Req falling. Ack
+//    is low after a reset.
+//  - The RTL's own verdicts ($stop, $error, $fatal, failing assertions) fail the run.
 class TransactionScoreboard {
  public:
   // Without a flags port every beat counts as unflagged; without overflow_count drops are
@@ -53,8 +60,10 @@ class TransactionScoreboard {
   void edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s);
   // Ack changed right after rising edge `cycle`.
   void ack_changed(std::uint64_t cycle, std::uint64_t t_ps, bool ack);
-  // The case is over and the receiver drained: accounts for every transaction left.
-  void finish_case(std::uint64_t cycle, std::uint64_t t_ps);
+  // The RTL ended the case itself ($finish) or judged itself; a verdict is a failure.
+  void rtl_event(std::uint64_t cycle, std::uint64_t t_ps, const RtlEvent& event);
+  // The case is over: accounts for every transaction left (unless the RTL cut it short).
+  void finish_case(std::uint64_t cycle, std::uint64_t t_ps, bool cut_short = false);
 
   std::uint64_t transactions() const { return transactions_; }
   std::uint64_t beats_checked() const { return beats_; }
@@ -62,14 +71,20 @@ class TransactionScoreboard {
   std::uint64_t protocol_violations() const { return violations_; }
   std::uint64_t drops_accepted() const { return drops_total_; }
   const std::optional<VerifyFailure>& first_failure() const { return first_; }
+  // The stamp rule the beats followed, e.g. "ticks since reset at edge 4 after Req rose".
+  std::string stamp_rule() const { return stamps_.describe(); }
 
  private:
   struct Transaction {
     std::uint64_t id = 0;
-    std::uint64_t t_req = 0, t_ack = 0;
-    std::uint64_t first_edge = 0;  // the first rising edge after Req rose
+    std::uint64_t t_req = 0;
+    std::uint64_t first_edge = 0;  // the first rising edge after Req rose: the lower latency bound's origin
+    std::uint64_t bound_edge = 0;  // the later of that and the reset's release: the upper bound's origin
+    std::uint64_t ack_edge = 0;
     bool acked = false, withdrawn = false, stalled = false;
     bool answered = false;                               // withdrawn (a glitch), yet the receiver raised Ack for it
+    bool beat_taken = false;                             // its beat came before its Ack
+    std::uint64_t beat_stamp = 0, beat_cycle = 0, beat_t_ps = 0;
     std::vector<std::pair<std::uint64_t, bool>> values;  // (addr, contention) held while open
   };
   struct Beat {
@@ -89,20 +104,22 @@ class TransactionScoreboard {
                            static_cast<double>(t_ps) * 1e-12, cycle};
   }
   void beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b);
+  void check_stamp(const Transaction& t, std::uint64_t stamp, std::uint64_t cycle, std::uint64_t t_ps);
   bool value_matches(const Transaction& t, const Beat& b) const;
   bool may_lack_beat(const Transaction& t) const;
   void count_missing_beat(const Transaction& t);
   bool has_contention(const Transaction& t) const;
-  std::uint64_t ticks_at(std::uint64_t t_ps) const;
   std::string describe(const Transaction& t) const;
   void clear_for_reset();
+  Transaction& open_transaction(std::uint64_t t_req, std::uint64_t first_edge, std::uint64_t bound_edge);
 
   ReceiverDescription::Collisions collisions_;
   ReceiverDescription::Full full_;
-  bool has_overflow_;
+  bool has_overflow_, has_stamp_;
   std::uint64_t overflow_mask_;
-  std::uint64_t period_ps_, tick_ps_, ts_mask_;
+  std::uint64_t period_ps_;
   int lat_min_, lat_max_;
+  StampRule stamps_;  // one rule for the whole run, across cases
 
   std::string case_;
   std::deque<Transaction> pending_;
@@ -110,12 +127,10 @@ class TransactionScoreboard {
   std::optional<std::uint64_t> open_id_;
   std::uint64_t next_id_ = 0;
   bool req_ = false, ack_ = false, in_reset_ = false;
-  std::uint64_t addr_ = 0;
+  std::uint64_t addr_ = 0, req_rise_edge_ = 0, req_rise_ps_ = 0;
   bool contention_ = false;
   std::uint64_t req_fall_edge_ = 0;  // first edge after Req fell, while Ack is due to fall
   bool ack_fall_due_ = false, late_reported_ = false, answered_glitch_ = false;
-  std::uint64_t t0_ps_ = 0;  // the stamps' zero: the last edge of the reset
-  std::optional<std::uint64_t> last_ts_;
   std::optional<Beat> held_;  // offered, not taken, at the previous edge
   std::uint64_t last_stall_edge_ = 0;
   bool stalled_ever_ = false;

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "driver/bound_ports.hpp"
 
 namespace aesim {
@@ -27,28 +29,42 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
                            d.has("overflow_count") ? find_port(ports, d.port("overflow_count"))->width : 0,
                            clock_period_ps(d));
   VerifyResult r;
-  bool exported = false;
+  const VerifyCase* to_export = nullptr;
+  for (const VerifyCase& c : cases) {
+    if (c.kind != "scene" || !options.exported) continue;
+    if (!to_export || (to_export->ready_probability >= 1 && c.ready_probability < 1)) to_export = &c;
+  }
+  auto shorten = [&](std::string text) {
+    if (options.source_prefix.empty()) return text;
+    for (std::size_t at; (at = text.find(options.source_prefix)) != std::string::npos;) text.erase(at, options.source_prefix.size());
+    return text;
+  };
   for (const VerifyCase& c : cases) {
     DutInstance dut(library, false);
     const BoundPorts bound = bind_ports(dut, d, ports);
     CaseRunOptions o;
-    const bool export_this = !exported && c.kind == "scene" && options.exported;
+    const bool export_this = &c == to_export;
     if (export_this) {
       o.waveform = &options.exported->waveform;
       o.beats = &options.exported->beats;
       options.exported->case_name = c.name;
-      exported = true;
     }
     const std::uint64_t t0 = sb.transactions(), b0 = sb.beats_checked(), f0 = sb.failures();
     const CaseStats stats = run_case(dut, bound, d, c, &sb, o);
     CaseSummary s{c.name, c.kind, stats.edges, stats.firings, sb.transactions() - t0, sb.beats_checked() - b0,
-                  sb.failures() - f0};
+                  sb.failures() - f0, ""};
+    if (stats.rtl.kind == RtlEvent::Kind::Finish) s.rtl_finish = shorten(stats.rtl.where);
+    if (!stats.rtl_output.empty() && r.rtl_output.size() < (1u << 20)) {
+      r.rtl_output += "== " + c.name + "\n" + shorten(stats.rtl_output);
+      if (r.rtl_output.back() != '\n') r.rtl_output += '\n';
+    }
     r.receiver_cycles += stats.edges;
     if (export_this) options.exported->end_ps = (stats.edges + 2) * clock_period_ps(d);
     if (options.progress) {
-      std::fprintf(stderr, "  %-34s %9llu cycles %8llu transactions %8llu beats  %s\n", c.name.c_str(),
+      std::fprintf(stderr, "  %-34s %9llu cycles %8llu transactions %8llu beats  %s%s\n", c.name.c_str(),
                    static_cast<unsigned long long>(s.edges), static_cast<unsigned long long>(s.transactions),
-                   static_cast<unsigned long long>(s.beats), s.failures ? "FAIL" : "ok");
+                   static_cast<unsigned long long>(s.beats), s.failures ? "FAIL" : "ok",
+                   s.rtl_finish.empty() ? "" : fmt::format(" (ended by the RTL's $finish at {})", s.rtl_finish).c_str());
     }
     r.cases.push_back(s);
   }
@@ -58,6 +74,11 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
   r.protocol_violations = sb.protocol_violations();
   r.drops = sb.drops_accepted();
   r.first_failure = sb.first_failure();
+  if (r.first_failure) {
+    r.first_failure->observed = shorten(r.first_failure->observed);
+    r.first_failure->expected = shorten(r.first_failure->expected);
+  }
+  r.stamp_rule = sb.stamp_rule();
   r.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -16,6 +16,7 @@ namespace aesim {
 struct CaseSummary {
   std::string name, kind;
   std::uint64_t edges = 0, firings = 0, transactions = 0, beats = 0, failures = 0;
+  std::string rtl_finish;  // where the RTL's $finish ended the case, if it did
 };
 
 struct VerifyResult {
@@ -24,6 +25,8 @@ struct VerifyResult {
   double run_seconds = 0;  // the cases alone, not the build
   std::optional<VerifyFailure> first_failure;
   std::vector<CaseSummary> cases;
+  std::string stamp_rule;  // the rule the stamps followed (StampRule::describe)
+  std::string rtl_output;  // what the RTL printed, per case (bounded)
   bool passed() const { return failures == 0; }
 };
 
@@ -37,7 +40,11 @@ struct ExportedRun {
 
 struct VerifyOptions {
   bool progress = true;
-  ExportedRun* exported = nullptr;  // filled from the first scene case when set
+  // Filled when set, from the first scene case with back-pressure (a consumer not always ready),
+  // or the first scene case when there is none.
+  ExportedRun* exported = nullptr;
+  // A prefix cut from file names in the RTL's messages (the description's folder).
+  std::string source_prefix;
 };
 
 // Runs every case on a fresh model from the library, with the transaction scoreboard.

@@ -38,6 +38,10 @@ std::vector<VerifyCase> directed_cases(const ReceiverDescription& d) {
 
   add("collision", {{at(10, 0.2), 0x0F0}, {at(10, 0.6), 0x00F}}, 10);
 
+  // A pixel that fires while the receiver is still in reset and holds Req through its release:
+  // the receiver sees it as soon as it may (at once, if its first synchroniser flop has no reset).
+  add("req_through_reset", {{at(1, 0.4), 0x13C}}, 10);
+
   VerifyCase& reset = add("reset_mid_handshake", {{at(10, 0.3), 0x2A5}, {at(40 + 2 * handshake, 0.3), 0x15A}},
                           40 + 2 * handshake);
   reset.reset_after_ack = 1;
