@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -218,6 +219,99 @@ TEST_F(VerifyTest, TheRtlsOwnVerdictsCountAndItRunsNoCommand) {
                              " --out dpi");
   EXPECT_EQ(dpi.status, 2);
   EXPECT_NE(dpi.err.find("DPI import at"), std::string::npos) << dpi.err;
+}
+
+// `--formal` on the three receivers: every handshake property proved (ABC's pdr); the structural
+// check follows Req through the synchronisers (the bundled receiver's idle_o, a clock-gating hint
+// that reads the first flop, is declared unsynchronised in its description).
+TEST_F(VerifyTest, FormalProvesTheHandshakeOfEveryReceiver) {
+  const char* handshake[] = {"req_synchronised", "ack_low_after_reset", "ack_rises_with_req", "ack_rise_min",
+                             "ack_rise_max", "ack_falls_after_req", "ack_fall_min", "ack_fall_max"};
+  int n = 0;
+  for (const std::string& receiver : {kThird + "/pkt_rx.toml", kRtl + "/aer_receiver.toml"}) {
+    const std::string out = "formal" + std::to_string(n++);
+    const Outcome o = verify(receiver + " --formal --out " + out);
+    ASSERT_EQ(o.status, 0) << o.out << o.err;
+    const nlohmann::json r = report(out);
+    EXPECT_EQ(r["passed"], true);
+    ASSERT_TRUE(r["formal"].is_array());
+    std::map<std::string, std::string> verdict;
+    for (const auto& v : r["formal"]) {
+      verdict[v["property"]] = v["verdict"];
+      EXPECT_TRUE(v.contains("depth") && v.contains("time_s")) << v.dump();
+      EXPECT_NE(v["verdict"], "failed") << v.dump();
+    }
+    for (const char* p : handshake) EXPECT_EQ(verdict[p], "proved") << receiver << " " << p;
+    EXPECT_GT(r["formal_run"]["depth"].get<int>(), 20);
+    EXPECT_NE(o.out.find("formal: 12 properties"), std::string::npos) << o.out;
+  }
+  // The third receiver, with no FIFO, has every property proved, its stamps and beats included.
+  for (const auto& v : report("formal0")["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
+  // A second run is the cache's.
+  ASSERT_EQ(verify(kThird + "/pkt_rx.toml --formal --out formal_again").status, 0);
+  EXPECT_EQ(report("formal_again")["formal_run"]["cached"], true);
+}
+
+// The stale-stamp and first-flop mutants fail the proof as they fail the simulation: the property,
+// the step, the counterexample's VCD, and the counterexample replayed through the simulation
+// driver to the scoreboard's own failure.
+TEST_F(VerifyTest, FormalCatchesTheStaleStampAndTheFirstFlopDecision) {
+  struct Case {
+    const char* mutant;
+    const char* property;
+    const char* replayed;
+  };
+  for (const Case& c : {Case{"stale_tick", "stamp_rule", "reports timestamp"},
+                        Case{"first_flop_decision", "ack_rise_min", "reports ack_rise_latency"}}) {
+    const std::string out = std::string("formal_") + c.mutant;
+    const Outcome o = verify(std::string(AESIM_THIRD_MUTANT_DIR) + "/" + c.mutant + "/pkt_rx.toml --formal --out " + out);
+    ASSERT_EQ(o.status, 1) << o.err;
+    const nlohmann::json r = report(out);
+    EXPECT_EQ(r["passed"], false);
+    bool failed = false;
+    for (const auto& v : r["formal"]) {
+      if (v["property"] == c.property) {
+        EXPECT_EQ(v["verdict"], "failed");
+        EXPECT_GT(v["step"].get<int>(), 4);
+        failed = true;
+      }
+    }
+    EXPECT_TRUE(failed) << c.mutant;
+    EXPECT_EQ(r["formal_run"]["failed_property"], c.property);
+    const std::string vcd = slurp(dir_ / out / "formal_failure.vcd");
+    EXPECT_NE(vcd.find("$enddefinitions"), std::string::npos);
+    EXPECT_NE(r["formal_run"]["replay"].get<std::string>().find(c.replayed), std::string::npos) << r["formal_run"].dump();
+  }
+  // The structural check names the path of the decision read from the first flop.
+  const nlohmann::json first = report("formal_first_flop_decision");
+  for (const auto& v : first["formal"]) {
+    if (v["property"] != "req_synchronised") continue;
+    EXPECT_EQ(v["verdict"], "failed");
+    EXPECT_NE(v["detail"].get<std::string>().find("aer_req_n -> req_meta -> "), std::string::npos) << v.dump();
+    EXPECT_NE(v["detail"].get<std::string>().find("pkt_rx.sv:"), std::string::npos) << v.dump();
+  }
+}
+
+// RTL yosys cannot read: one line naming yosys's first error, exit 2, and the simulation's report
+// written all the same. `formal = true` in a plan file asks for the proof as --formal does.
+TEST_F(VerifyTest, FormalOnRtlYosysCannotReadIsOneLineAndThePlanMayAskForIt) {
+  fs::create_directories(dir_ / "imported");
+  for (const char* f : {"pkt_rx_pkg.sv", "pkt_rx.toml"}) fs::copy_file(kThird + "/" + f, dir_ / "imported" / f);
+  std::string rtl = slurp(kThird + "/pkt_rx.sv");
+  const std::string from = "module pkt_rx #(";
+  rtl.replace(rtl.find(from), from.size(), "import pkt_rx_pkg::*;\nmodule pkt_rx #(");
+  write("imported/pkt_rx.sv", rtl);
+  write("formal_plan.toml", "formal = true\ndirected = [\"single_event\"]\n");
+  const Outcome o = verify((dir_ / "imported/pkt_rx.toml").string() + " --plan formal_plan.toml --out imported_out");
+  EXPECT_EQ(o.status, 2) << o.err;
+  const auto error = o.err.find("aesim: ");
+  ASSERT_NE(error, std::string::npos) << o.err;
+  EXPECT_EQ(o.err.find('\n', error), o.err.size() - 1) << o.err;
+  EXPECT_NE(o.err.find("pkt_rx.sv:", error), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("import", error), std::string::npos) << o.err;
+  const nlohmann::json r = report("imported_out");
+  EXPECT_EQ(r["passed"], true);
+  EXPECT_NE(r["formal_error"].get<std::string>().find("yosys"), std::string::npos);
 }
 
 struct Mutant {

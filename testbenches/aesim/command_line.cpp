@@ -81,6 +81,8 @@ void add_verify(CLI::App& app, int& status) {
   cmd->add_option("--seed", opt->seed, "Seed of the scene runs' pixels and back-pressure")->capture_default_str();
   cmd->add_option("--out", opt->out, "Folder for verify.json (and failure.vcd)")->capture_default_str();
   cmd->add_option("--export-tb", opt->export_tb, "Folder for a self-checking Verilog testbench of a scene run");
+  cmd->add_flag("--formal", opt->formal,
+                "Also prove the description's properties with yosys and z3 (bounded check, then k-induction)");
   cmd->add_flag("--allow-system-tasks", opt->allow_system_tasks,
                 "Let the RTL call $system (it runs shell commands on this machine); refused otherwise");
   cmd->callback([opt, &status] { status = verify_command(*opt); });

@@ -89,6 +89,7 @@ struct VerifyCommandOptions {
   std::string description, plan = "quick", out = "out/verify", export_tb;
   std::uint64_t seed = 1;
   bool allow_system_tasks = false;
+  bool formal = false;
 };
 
 struct CalibrateOptions {

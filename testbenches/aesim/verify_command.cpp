@@ -1,6 +1,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -11,6 +13,7 @@
 #include "driver/bound_ports.hpp"
 #include "errors/input_error.hpp"
 #include "export/testbench_export.hpp"
+#include "formal/formal_run.hpp"
 #include "output/atomic_file.hpp"
 #include "plan/verification_plan.hpp"
 #include "report/verify_report.hpp"
@@ -54,10 +57,47 @@ int verify_command(const VerifyCommandOptions& opt) {
                plan.name.c_str(), cases.size(), static_cast<unsigned long long>(opt.seed));
   for (const std::string& note : notes) std::fprintf(stderr, "aesim verify: %s\n", note.c_str());
   VerifyOptions options;
-  options.source_prefix = std::filesystem::path(d.file).parent_path().string() + "/";
+  options.source_prefix = std::filesystem::absolute(d.file).parent_path().string() + "/";
   ExportedRun exported;
   if (!opt.export_tb.empty()) options.exported = &exported;
   const VerifyResult result = verify_receiver(library, build.ports, d, cases, options);
+
+  // The formal check, after the simulation (whose stamp rule it asserts). RTL yosys cannot read is
+  // bad input: the report still says what the simulation found, then the one-line error.
+  std::optional<FormalResult> formal;
+  std::string formal_error, replay_text;
+  if (opt.formal || plan.formal) {
+    FormalOptions fo;
+    fo.cache_dir = build_options.cache_dir;
+    try {
+      formal = run_formal(d, result.stamp_edge, fo);
+    } catch (const InputError& e) {
+      formal_error = e.what();
+    }
+    if (formal && !formal->replay.empty()) {
+      // The counterexample's inputs through the simulation driver and the scoreboard.
+      VerifyCase replay;
+      replay.name = "formal counterexample (" + formal->failed_property + ")";
+      replay.kind = "replay";
+      replay.replay = formal->replay;
+      replay.max_edges = formal->replay.size() + 2 * static_cast<std::uint64_t>(d.ack_latency_max) + 40;
+      VerifyOptions ro;
+      ro.progress = false;
+      ro.source_prefix = options.source_prefix;
+      ro.stamp_rule = result.stamp_edge;
+      const VerifyResult again = verify_receiver(library, build.ports, d, {replay}, ro);
+      if (again.first_failure) {
+        const VerifyFailure& f = *again.first_failure;
+        replay_text = fmt::format("the simulation driver, replaying the counterexample's inputs, reports {} at cycle {}: "
+                                  "expected {}, observed {}",
+                                  f.check, f.cycle, f.expected, f.observed);
+      } else {
+        replay_text = "the simulation driver, replaying the counterexample's inputs, finds no failure: the proof starts "
+                      "flops without a reset at any value where Verilator starts them at 0, and its checker follows one "
+                      "transaction the solver picked where the scoreboard follows them all";
+      }
+    }
+  }
 
   OutputFiles files;
   if (result.first_failure) {
@@ -81,12 +121,18 @@ int verify_command(const VerifyCommandOptions& opt) {
     if (!c.rtl_finish.empty()) notes.push_back(fmt::format("the RTL's $finish at {} ended case '{}'", c.rtl_finish, c.name));
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  files.open(report_path) << verify_report(d, opt.plan, opt.seed, build, result, notes, wall).dump(2) << "\n";
+  const std::string formal_vcd = opt.out + "/formal_failure.vcd";
+  if (formal && !formal->counterexample_vcd.empty()) files.open(formal_vcd) << formal->counterexample_vcd;
+  nlohmann::json report = verify_report(d, opt.plan, opt.seed, build, result, notes, wall);
+  if (formal) add_formal_report(report, *formal, formal->counterexample_vcd.empty() ? "" : formal_vcd, replay_text);
+  if (!formal_error.empty()) report["formal_error"] = formal_error;
+  files.open(report_path) << report.dump(2) << "\n";
   files.commit();
   // A stale trace or log of an earlier run would mislead.
   std::error_code ec;
   if (!result.first_failure) std::filesystem::remove(vcd_path, ec);
   if (result.rtl_output.empty()) std::filesystem::remove(rtl_log, ec);
+  if (!formal || formal->counterexample_vcd.empty()) std::filesystem::remove(formal_vcd, ec);
 
   std::printf("%s: %llu transactions, %llu beats checked, %llu receiver cycles in %.2f s (%.3g cycles/s)\n",
               result.passed() ? "PASS" : "FAIL", static_cast<unsigned long long>(result.transactions),
@@ -107,8 +153,23 @@ int verify_command(const VerifyCommandOptions& opt) {
     if (note.find("$finish") != std::string::npos) std::printf("note: %s\n", note.c_str());
   }
   if (!result.rtl_output.empty()) std::printf("the RTL's own output: %s\n", rtl_log.c_str());
+  if (formal) {
+    std::map<std::string, int> count;
+    for (const FormalVerdict& v : formal->verdicts) ++count[v.verdict];
+    std::printf("formal: %zu properties: %d proved, %d bounded to %d steps, %d failed (%.1f s%s)\n", formal->verdicts.size(),
+                count["proved"], count["bounded"], formal->depth, count["failed"], formal->seconds,
+                formal->cached ? ", cached" : "");
+    for (const FormalVerdict& v : formal->verdicts) {
+      if (v.verdict == "failed") {
+        std::printf("formal failure: %s (%s)%s%s\n", v.property.c_str(), v.text.c_str(), v.detail.empty() ? "" : ": ",
+                    v.detail.c_str());
+      }
+    }
+    if (!formal->counterexample_vcd.empty()) std::printf("counterexample: %s; %s\n", formal_vcd.c_str(), replay_text.c_str());
+  }
   std::printf("wrote %s%s\n", report_path.c_str(), opt.export_tb.empty() ? "" : (", " + opt.export_tb + "/tb.v").c_str());
-  return result.passed() ? 0 : 1;
+  if (!formal_error.empty()) throw InputError(formal_error);
+  return result.passed() && !(formal && formal->failed()) ? 0 : 1;
 }
 
 }  // namespace aesim

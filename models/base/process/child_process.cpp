@@ -57,6 +57,7 @@ pid_t spawn_child(const std::string& program, const std::vector<std::string>& ar
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, output.stderr_path.c_str(),
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
   }
+  if (!output.working_dir.empty()) posix_spawn_file_actions_addchdir_np(&actions, output.working_dir.c_str());
   pid_t pid = 0;
   const int rc = posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);

@@ -8,9 +8,12 @@
 
 namespace aesim {
 
-// Where a child's standard output and error go: inherited when empty, else this file (truncated).
+// Where a child's standard output and error go: inherited when empty, else this file (truncated);
+// and the folder it runs in (the caller's when empty), so tools that take file names in scripts
+// (yosys, ABC) need no paths at all.
 struct ChildOutput {
   std::string stdout_path, stderr_path;
+  std::string working_dir;
 };
 
 // Starts a program with an argument vector: no shell ever sees any of the strings, so paths and

@@ -168,7 +168,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   d.file = path;
   for (const auto& [key, value] : root.as_table()) {
     static const char* known[] = {"top", "sources", "include_dirs", "defines", "parameters", "clock",
-                                  "reset", "ports", "inputs", "behaviour"};
+                                  "reset", "ports", "inputs", "behaviour", "formal"};
     if (std::find(std::begin(known), std::end(known), key) == std::end(known)) r.fail(key, "unknown key");
     (void)value;
   }
@@ -267,7 +267,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   if (!behaviour.is_table()) r.fail("behaviour", "expected a table");
   for (const auto& [key, value] : behaviour.as_table()) {
     static const char* known[] = {"collisions", "full", "timestamp_tick", "timestamp_bits", "timestamp_offset_cycles",
-                                  "ack_latency_cycles"};
+                                  "ack_latency_cycles", "synchroniser_flops"};
     if (std::find(std::begin(known), std::end(known), key) == std::end(known)) r.fail("behaviour." + key, "unknown key");
     (void)value;
   }
@@ -292,6 +292,12 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   }
   d.ack_latency_min = static_cast<int>(l[0].as_integer());
   d.ack_latency_max = static_cast<int>(l[1].as_integer());
+  if (const TomlValue* flops = r.find(behaviour, "synchroniser_flops")) {
+    if (!flops->is_integer() || flops->as_integer() < 1 || flops->as_integer() > 8) {
+      r.fail("behaviour.synchroniser_flops", "expected the flops Req passes before any logic reads it, 1 to 8");
+    }
+    d.synchroniser_flops = static_cast<int>(flops->as_integer());
+  }
 
   if (d.has("timestamp")) {
     const TomlValue& tick = r.need(behaviour, "timestamp_tick", "behaviour.timestamp_tick");
@@ -321,6 +327,39 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   } else {
     for (const char* key : {"timestamp_tick", "timestamp_bits", "timestamp_offset_cycles"}) {
       if (r.find(behaviour, key)) r.fail(fmt::format("behaviour.{}", key), "given, but [ports] names no timestamp");
+    }
+  }
+
+  if (const TomlValue* formal = r.find(root, "formal")) {
+    if (!formal->is_table()) r.fail("formal", "expected a table");
+    for (const auto& [key, value] : formal->as_table()) {
+      const std::string label = "formal." + key;
+      if (key == "parameters") {
+        if (!value.is_table()) r.fail(label, "expected a table, e.g. { DEPTH = 4 }");
+        for (const auto& [name, v] : value.as_table()) {
+          r.identifier(name, label + "." + name);
+          d.formal.parameters[name] = r.literal(v, label + "." + name);
+        }
+      } else if (key == "inputs") {
+        if (!value.is_table()) r.fail(label, "expected a table of PORT = value");
+        for (const auto& [name, v] : value.as_table()) {
+          if (!d.inputs.count(name)) r.fail(label + "." + name, "not one of [inputs]");
+          if (!v.is_integer() || v.as_integer() < 0) r.fail(label + "." + name, "expected a non-negative integer");
+          d.formal.inputs[name] = static_cast<std::uint64_t>(v.as_integer());
+        }
+      } else if (key == "unsynchronised_outputs") {
+        if (!value.is_array()) r.fail(label, "expected a list of output port names");
+        for (const TomlValue& v : value.as_array()) d.formal.unsynchronised_outputs.push_back(r.identifier(r.string_of(v, label), label));
+      } else if (key == "fifo_words" || key == "depth") {
+        const long hi = key == "depth" ? 5000 : 4096;
+        if (!value.is_integer() || value.as_integer() < (key == "depth" ? 1 : 0) || value.as_integer() > hi) {
+          r.fail(label, fmt::format("expected an integer up to {}", hi));
+        }
+        if (key == "depth") d.formal.depth = static_cast<int>(value.as_integer());
+        else d.formal.fifo_words = static_cast<int>(value.as_integer());
+      } else {
+        r.fail(label, "unknown key (parameters, inputs, fifo_words, depth, unsynchronised_outputs)");
+      }
     }
   }
 

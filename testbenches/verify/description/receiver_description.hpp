@@ -43,6 +43,19 @@ struct ReceiverDescription {
   // That edge, when the description states it: counting the first rising edge after Req rose as 1.
   std::optional<int> timestamp_offset_cycles;
   int ack_latency_min = 0, ack_latency_max = 0;  // clock edges
+  // The flops Req passes through before any logic reads it (the formal structural check).
+  int synchroniser_flops = 2;
+  // `aesim verify --formal`: parameter overrides for the proof only (a smaller FIFO, say), the
+  // words the receiver can hold (for the depth of the bounded check), or that depth itself.
+  // Outputs that may read Req before the synchroniser's last flop (a clock-gating hint, say): the
+  // structural check accepts logic whose only sinks they are.
+  struct Formal {
+    std::map<std::string, std::string> parameters;
+    std::map<std::string, std::uint64_t> inputs;  // [inputs] overrides for the proof
+    int fifo_words = 2;
+    std::optional<int> depth;
+    std::vector<std::string> unsynchronised_outputs;
+  } formal;
 
   bool has(const std::string& role) const { return ports.count(role) != 0; }
   const std::string& port(const std::string& role) const { return ports.at(role).port; }

@@ -53,6 +53,14 @@ class BusSide {
       drive(t, edges_done);
     }
   }
+  // Wires as a recorded run drove them (a formal counterexample), not from pixels.
+  void force(bool req, std::uint64_t addr, bool contention, std::uint64_t t, std::uint64_t edges_done) {
+    forced_ = true;
+    forced_req_ = req;
+    forced_addr_ = addr;
+    forced_contention_ = contention;
+    drive(t, edges_done);
+  }
   bool quiet() const { return !lines_.req() && waiting_.empty() && !glitch_; }
   bool req() const { return req_; }
   void record_controls(std::uint64_t t, bool ready, bool reset) {
@@ -63,9 +71,9 @@ class BusSide {
 
  private:
   void drive(std::uint64_t t, std::uint64_t edges_done) {
-    const std::uint64_t addr = lines_.addr() | (glitch_ ? glitch_addr_ : 0);
-    const bool req = lines_.req() || glitch_;
-    const bool contention = lines_.contention();
+    const std::uint64_t addr = forced_ ? forced_addr_ : lines_.addr() | (glitch_ ? glitch_addr_ : 0);
+    const bool req = forced_ ? forced_req_ : lines_.req() || glitch_;
+    const bool contention = forced_ ? forced_contention_ : lines_.contention();
     if (req == req_ && addr == addr_ && contention == contention_) return;
     req_ = req;
     addr_ = addr;
@@ -89,6 +97,8 @@ class BusSide {
   std::deque<std::uint32_t> waiting_;
   bool glitch_ = false;
   std::uint32_t glitch_addr_ = 0;
+  bool forced_ = false, forced_req_ = false, forced_contention_ = false;
+  std::uint64_t forced_addr_ = 0;
   bool req_ = false, contention_ = false, ready_ = true, reset_ = true;
   std::uint64_t addr_ = 0;
 };
@@ -153,7 +163,9 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   // the falling edge, so that one evaluation takes them with it).
   auto set_controls = [&](std::uint64_t k) {
     bool ready_k = true;
-    if (!draining) {
+    if (!c.replay.empty()) {
+      ready_k = k - 1 < c.replay.size() ? c.replay[k - 1].ready : true;
+    } else if (!draining) {
       const bool stalled = std::any_of(c.stalls.begin(), c.stalls.end(),
                                        [k](const auto& s) { return k >= s.first && k < s.second; });
       ready_k = !stalled && (always_ready || (ready_rng() >> 11) < ready_below);
@@ -174,6 +186,12 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   ports.ready.write(1);
   ports.set_reset(true);
   bus.record_controls(0, true, true);
+  if (!c.replay.empty()) {
+    ready = c.replay[0].ready;
+    ports.ready.write(ready);
+    bus.record_controls(half / 2, ready, true);
+    bus.force(c.replay[0].req, c.replay[0].addr, c.replay[0].contention, half / 2, 0);
+  }
   apply_until(half, 0);
   dut.eval();
 
@@ -222,7 +240,9 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     }
 
     const bool reset_over = c.reset_after_ack == 0 || (reset_from != kNever && k >= reset_from + static_cast<std::uint64_t>(c.reset_edges));
-    if (!have_next && gi == glitch_edges.size() && bus.quiet() && reset_over && k >= stalls_end) draining = true;
+    if (!have_next && gi == glitch_edges.size() && bus.quiet() && reset_over && k >= stalls_end && k >= c.replay.size()) {
+      draining = true;
+    }
     if (draining) {
       quiet = (!s.valid && !ack && !bus.req()) ? quiet + 1 : 0;
       if (quiet > quiet_needed) break;
@@ -232,6 +252,10 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     // changes, so that the waveform stays in time order.
     apply_until(t_edge + half / 2, k);
     set_controls(k + 1);
+    if (k < c.replay.size()) {
+      const ReplayStep& step = c.replay[k];
+      bus.force(step.req, step.addr, step.contention, t_edge + half / 2, k);
+    }
     apply_until(t_edge + half, k);
     ports.clk.write(0);
     dut.eval();

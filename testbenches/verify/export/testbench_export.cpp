@@ -1,83 +1,21 @@
 #include "export/testbench_export.hpp"
 
 #include <algorithm>
-#include <map>
 
 #include <fmt/format.h>
 
 #include "driver/bound_ports.hpp"
 #include "driver/case_driver.hpp"
+#include "export/port_wiring.hpp"
 
 namespace aesim {
 namespace {
-
-std::string range(int msb, int lsb) { return msb == 0 && lsb == 0 ? "" : fmt::format("[{}:{}] ", msb, lsb); }
 
 bool any_systemverilog(const ReceiverDescription& d) {
   return std::any_of(d.sources.begin(), d.sources.end(), [](const std::string& s) {
     return s.size() > 3 && (s.compare(s.size() - 3, 3, ".sv") == 0 || s.compare(s.size() - 4, 4, ".svh") == 0);
   });
 }
-
-// Every port the testbench touches, once, as a wire named p_PORT of the port's own width: an
-// output read by roles (whole or sliced), or an input assembled from the roles and constants that
-// drive its bits (continuous assignments, so the levels hold from time 0).
-class PortWiring {
- public:
-  PortWiring(const ReceiverDescription& d, const std::vector<RtlPort>& ports) : d_(d), ports_(ports) {}
-  // An output role's bits.
-  std::string read(const std::string& r) {
-    const PortRef& ref = d_.ref(r);
-    used_[ref.port];
-    if (!ref.sliced()) return "p_" + ref.port;
-    return ref.msb == ref.lsb ? fmt::format("p_{}[{}]", ref.port, ref.msb) : fmt::format("p_{}[{}:{}]", ref.port, ref.msb, ref.lsb);
-  }
-  // An input role's bits (or a whole input port) driven by `expr`.
-  void drive(const std::string& r, const std::string& expr) { drive(d_.ref(r), expr); }
-  void drive(const PortRef& ref, const std::string& expr) {
-    const RtlPort& p = *find_port(ports_, ref.port);
-    const int lo = std::min(p.msb, p.lsb);
-    used_[ref.port].push_back({ref.sliced() ? ref.msb : lo + p.width - 1, ref.sliced() ? ref.lsb : lo, expr});
-  }
-  std::string declarations() const {
-    std::string out;
-    for (const auto& [name, pieces] : used_) {
-      const RtlPort& p = *find_port(ports_, name);
-      const int lo = std::min(p.msb, p.lsb), hi = lo + p.width - 1;
-      if (!p.input) {
-        out += fmt::format("  wire {}p_{};\n", range(hi, lo), name);
-        continue;
-      }
-      // Highest bits first; bits no role drives are 0.
-      std::vector<Piece> sorted = pieces;
-      std::sort(sorted.begin(), sorted.end(), [](const Piece& a, const Piece& b) { return a.msb > b.msb; });
-      std::string concat;
-      int next = hi;
-      for (const Piece& piece : sorted) {
-        if (piece.msb < next) concat += fmt::format("{}{}'d0", concat.empty() ? "" : ", ", next - piece.msb);
-        concat += fmt::format("{}{}", concat.empty() ? "" : ", ", piece.expr);
-        next = piece.lsb - 1;
-      }
-      if (next >= lo) concat += fmt::format("{}{}'d0", concat.empty() ? "" : ", ", next - lo + 1);
-      out += fmt::format("  wire {}p_{} = {{{}}};\n", range(hi, lo), name, concat);
-    }
-    return out;
-  }
-  std::string connections() const {
-    std::string out;
-    for (const auto& [name, pieces] : used_) out += fmt::format("{}      .{}(p_{})", out.empty() ? "" : ",\n", name, name);
-    return out;
-  }
-
- private:
-  struct Piece {
-    int msb, lsb;
-    std::string expr;
-  };
-  const ReceiverDescription& d_;
-  const std::vector<RtlPort>& ports_;
-  std::map<std::string, std::vector<Piece>> used_;
-};
 
 }  // namespace
 

@@ -59,8 +59,11 @@ VerificationPlan read_plan(const std::string& path) {
         }
         p.directed_cases.push_back(name.as_string());
       }
+    } else if (key == "formal") {
+      if (!value.is_boolean()) fail(key, "expected true or false");
+      p.formal = value.as_boolean();
     } else if (key != "scene") {
-      fail(key, "unknown key (directed, [[scene]])");
+      fail(key, "unknown key (directed, formal, [[scene]])");
     }
   }
   const auto& tables = root.as_table();

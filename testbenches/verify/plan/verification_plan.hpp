@@ -22,11 +22,13 @@ namespace aesim {
 //   seeds = [1, 2, 3]               # or seeds = 3 (seeds 1..3)
 //   firings = 100000                # per run
 //   ready = 0.9                     # probability the consumer is ready at an edge
+//   formal = true                   # (top level) the formal check too, as --formal
 struct VerificationPlan {
   std::string name;
   bool directed = true;
   std::vector<std::string> directed_cases;  // empty: all of them
   std::vector<SceneLoad> scenes;  // one per run (seed expanded)
+  bool formal = false;            // formal = true: the formal check too (as --formal)
 };
 
 // "quick", "full", or a plan file; InputError naming the key otherwise.

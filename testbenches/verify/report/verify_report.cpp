@@ -40,4 +40,27 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   return j;
 }
 
+void add_formal_report(nlohmann::json& report, const FormalResult& formal, const std::string& counterexample_path,
+                       const std::string& replay) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const FormalVerdict& v : formal.verdicts) {
+    nlohmann::json item = {{"property", v.property}, {"verdict", v.verdict}, {"depth", v.depth}, {"time_s", v.time_s},
+                           {"asserts", v.text}};
+    if (v.step) item["step"] = *v.step;
+    if (!v.detail.empty()) item["detail"] = v.detail;
+    list.push_back(item);
+  }
+  report["formal"] = list;
+  report["formal_run"] = {{"depth", formal.depth},
+                          {"depth_reason", formal.depth_reason},
+                          {"solver", formal.solver},
+                          {"cached", formal.cached},
+                          {"seconds", formal.seconds},
+                          {"notes", formal.notes},
+                          {"failed_property", formal.failed_property.empty() ? nlohmann::json(nullptr) : nlohmann::json(formal.failed_property)},
+                          {"counterexample", counterexample_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(counterexample_path)},
+                          {"replay", replay.empty() ? nlohmann::json(nullptr) : nlohmann::json(replay)}};
+  if (formal.failed()) report["passed"] = false;
+}
+
 }  // namespace aesim

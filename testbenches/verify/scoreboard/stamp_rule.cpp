@@ -69,3 +69,13 @@ std::string StampRule::describe() const {
 }
 
 }  // namespace aesim
+
+namespace aesim {
+
+std::optional<StampRule::Candidate> StampRule::rule() const {
+  if (!enabled_) return std::nullopt;
+  if (narrowed_ || initial_.size() == 1) return candidates_.front();
+  return std::nullopt;
+}
+
+}  // namespace aesim

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,11 +42,22 @@ class StampRule {
   // The rule as inferred so far, e.g. "ticks at edge 4 after Req rose"; empty before any beat.
   std::string describe() const;
 
- private:
+  // The edge of a stamp: offset k after Req rose (1 = the first edge after it), or the edge Ack
+  // rose + offset.
   struct Candidate {
     bool from_ack;
     int offset;
   };
+  // The first rule that explains every beat so far (the stated one if the description states it),
+  // or none before any beat.
+  std::optional<Candidate> rule() const;
+  // Holds the stamps to this rule from the first beat (a replay of a run whose rule is known).
+  void hold_to(const Candidate& c) {
+    candidates_ = initial_ = {c};
+    narrowed_ = true;
+  }
+
+ private:
   bool explains(const Candidate& c, const Edges& e, std::uint64_t stamp) const;
   std::uint64_t predicted(const Candidate& c, const Edges& e) const;
   static std::string name(const Candidate& c);

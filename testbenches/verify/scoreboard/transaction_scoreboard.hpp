@@ -73,6 +73,8 @@ class TransactionScoreboard {
   const std::optional<VerifyFailure>& first_failure() const { return first_; }
   // The stamp rule the beats followed, e.g. "ticks since reset at edge 4 after Req rose".
   std::string stamp_rule() const { return stamps_.describe(); }
+  std::optional<StampRule::Candidate> stamp_edge() const { return stamps_.rule(); }
+  void hold_stamps_to(const StampRule::Candidate& c) { stamps_.hold_to(c); }
 
  private:
   struct Transaction {

@@ -28,6 +28,7 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
   TransactionScoreboard sb(d, d.has("overflow_count"),
                            d.has("overflow_count") ? find_port(ports, d.port("overflow_count"))->width : 0,
                            clock_period_ps(d));
+  if (options.stamp_rule) sb.hold_stamps_to(*options.stamp_rule);
   VerifyResult r;
   const VerifyCase* to_export = nullptr;
   for (const VerifyCase& c : cases) {
@@ -79,6 +80,7 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
     r.first_failure->expected = shorten(r.first_failure->expected);
   }
   r.stamp_rule = sb.stamp_rule();
+  r.stamp_edge = sb.stamp_edge();
   r.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -26,6 +26,7 @@ struct VerifyResult {
   std::optional<VerifyFailure> first_failure;
   std::vector<CaseSummary> cases;
   std::string stamp_rule;  // the rule the stamps followed (StampRule::describe)
+  std::optional<StampRule::Candidate> stamp_edge;
   std::string rtl_output;  // what the RTL printed, per case (bounded)
   bool passed() const { return failures == 0; }
 };
@@ -45,6 +46,8 @@ struct VerifyOptions {
   ExportedRun* exported = nullptr;
   // A prefix cut from file names in the RTL's messages (the description's folder).
   std::string source_prefix;
+  // Stamps held to this rule from the first beat (a replay), instead of inferring one.
+  std::optional<StampRule::Candidate> stamp_rule;
 };
 
 // Runs every case on a fresh model from the library, with the transaction scoreboard.

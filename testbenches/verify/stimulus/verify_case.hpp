@@ -41,6 +41,13 @@ struct ReqGlitch {
   std::uint32_t addr = 0;
 };
 
+// The bus and consumer as a formal counterexample drove them before one clock edge (replayed by
+// the simulation driver instead of pixels).
+struct ReplayStep {
+  bool req = false, contention = false, ready = true;
+  std::uint64_t addr = 0;
+};
+
 // One run of the receiver from reset: the firings, how the consumer of the output behaves, and
 // any reset in the middle. Replayable: make_firings gives the same firings every time, so a
 // failing case can be run again with a trace.
@@ -59,6 +66,7 @@ struct VerifyCase {
   // Reset asserted reset_delay edges after the reset_after_ack-th Ack rise (0: never), for
   // reset_edges edges.
   int reset_after_ack = 0, reset_delay = 0, reset_edges = 0;
+  std::vector<ReplayStep> replay;  // when set, the inputs before edge k+1 are replay[k] (no pixels)
   std::uint64_t max_edges = 0;  // the run's bound (the drain included)
   double expected_firings = 0;  // for the work estimate
 };

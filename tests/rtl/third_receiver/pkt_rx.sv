@@ -5,21 +5,22 @@
 // valid follows the synchronised Req combinationally, so the beat is taken on the edge Ack rises;
 // no storage, so Ack waits for the consumer; and a 72-bit packet (a SpiNNaker-style key and
 // payload) whose fields carry the address and the stamp.
-module pkt_rx
-  import pkt_rx_pkg::*;
-#(
+// Names from the package are qualified (pkt_rx_pkg::...), not imported: yosys, which the formal
+// check reads the RTL with, has no import. The state's enum is the module's own: Icarus Verilog 11
+// crashes on a package's enum type.
+module pkt_rx #(
     parameter int TICK_CYCLES = 10,
     parameter int TSW = 16
 ) (
     input  logic              clk,
     input  logic              rst_n,
     input  logic              aer_req_n,
-    input  logic [ADDR_W-1:0] aer_addr,
+    input  logic [pkt_rx_pkg::ADDR_W-1:0] aer_addr,
     input  logic              aer_col,
     output logic              aer_ack_n,
     output logic              pkt_valid,
     input  logic              pkt_ready,
-    output logic [PKT_W-1:0]  pkt_data
+    output logic [pkt_rx_pkg::PKT_W-1:0] pkt_data
 );
   logic req_meta, req_sync;
   always_ff @(posedge clk) req_meta <= ~aer_req_n;
@@ -44,10 +45,14 @@ module pkt_rx
 
   // The bus's address and contention and the counter, taken at the edge the synchroniser first
   // shows Req (the bundled data has settled by then) and held while the beat waits.
+  typedef enum logic [0:0] {
+    IDLE,
+    WAIT_RELEASE
+  } state_t;
   state_t state;
   wire offer = state == IDLE && req_sync;
   logic [TSW-1:0] stamp;
-  logic [ADDR_W-1:0] addr_q;
+  logic [pkt_rx_pkg::ADDR_W-1:0] addr_q;
   logic col_q;
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin

@@ -1,0 +1,58 @@
+#include "export/port_wiring.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace aesim {
+namespace {
+
+std::string range(int msb, int lsb) { return msb == 0 && lsb == 0 ? "" : fmt::format("[{}:{}] ", msb, lsb); }
+
+}  // namespace
+
+std::string PortWiring::read(const std::string& role) {
+  const PortRef& ref = d_.ref(role);
+  used_[ref.port];
+  if (!ref.sliced()) return "p_" + ref.port;
+  return ref.msb == ref.lsb ? fmt::format("p_{}[{}]", ref.port, ref.msb) : fmt::format("p_{}[{}:{}]", ref.port, ref.msb, ref.lsb);
+}
+
+void PortWiring::drive(const PortRef& ref, const std::string& expr) {
+  const RtlPort& p = *find_port(ports_, ref.port);
+  const int lo = std::min(p.msb, p.lsb);
+  used_[ref.port].push_back({ref.sliced() ? ref.msb : lo + p.width - 1, ref.sliced() ? ref.lsb : lo, expr});
+}
+
+std::string PortWiring::declarations() const {
+  std::string out;
+  for (const auto& [name, pieces] : used_) {
+    const RtlPort& p = *find_port(ports_, name);
+    const int lo = std::min(p.msb, p.lsb), hi = lo + p.width - 1;
+    if (!p.input) {
+      out += fmt::format("  wire {}p_{};\n", range(hi, lo), name);
+      continue;
+    }
+    // Highest bits first; bits no role drives are 0.
+    std::vector<Piece> sorted = pieces;
+    std::sort(sorted.begin(), sorted.end(), [](const Piece& a, const Piece& b) { return a.msb > b.msb; });
+    std::string concat;
+    int next = hi;
+    for (const Piece& piece : sorted) {
+      if (piece.msb < next) concat += fmt::format("{}{}'d0", concat.empty() ? "" : ", ", next - piece.msb);
+      concat += fmt::format("{}{}", concat.empty() ? "" : ", ", piece.expr);
+      next = piece.lsb - 1;
+    }
+    if (next >= lo) concat += fmt::format("{}{}'d0", concat.empty() ? "" : ", ", next - lo + 1);
+    out += fmt::format("  wire {}p_{} = {{{}}};\n", range(hi, lo), name, concat);
+  }
+  return out;
+}
+
+std::string PortWiring::connections() const {
+  std::string out;
+  for (const auto& [name, pieces] : used_) out += fmt::format("{}      .{}(p_{})", out.empty() ? "" : ",\n", name, name);
+  return out;
+}
+
+}  // namespace aesim

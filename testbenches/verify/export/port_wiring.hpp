@@ -1,0 +1,37 @@
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "build/port_list.hpp"
+#include "description/receiver_description.hpp"
+
+namespace aesim {
+
+// The receiver's ports as Verilog around an instance of it (the exported testbench, the formal
+// checker): every port used, once, as a wire p_PORT of the port's own width; an output read by
+// roles (whole or sliced), an input assembled by continuous assignment from the expressions that
+// drive its bits (bits no role drives are 0).
+class PortWiring {
+ public:
+  PortWiring(const ReceiverDescription& d, const std::vector<RtlPort>& ports) : d_(d), ports_(ports) {}
+  // An output role's bits, e.g. "p_pkt_data[17:8]".
+  std::string read(const std::string& role);
+  // An input role's bits (or a whole input port) driven by `expr`.
+  void drive(const std::string& role, const std::string& expr) { drive(d_.ref(role), expr); }
+  void drive(const PortRef& ref, const std::string& expr);
+  // The wires, one per port, and the instance's port connections.
+  std::string declarations() const;
+  std::string connections() const;
+
+ private:
+  struct Piece {
+    int msb, lsb;
+    std::string expr;
+  };
+  const ReceiverDescription& d_;
+  const std::vector<RtlPort>& ports_;
+  std::map<std::string, std::vector<Piece>> used_;
+};
+
+}  // namespace aesim

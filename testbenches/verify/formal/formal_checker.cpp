@@ -1,0 +1,317 @@
+#include "formal/formal_checker.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "driver/bound_ports.hpp"
+#include "export/port_wiring.hpp"
+
+namespace aesim {
+namespace {
+
+using Collisions = ReceiverDescription::Collisions;
+using Full = ReceiverDescription::Full;
+
+const char* level(bool active_high) { return active_high ? "1'b1" : "1'b0"; }
+// The guard of property p's assertions: CHECK selects one (0: all); a property left out is off.
+std::string on(int p) { return p < 0 ? "1'b0" : fmt::format("(CHECK == 0 || CHECK == {})", p); }
+const char* inverse(bool active_high) { return active_high ? "1'b0" : "1'b1"; }
+
+// Bits for a counter that reaches `n`.
+int bits_for(std::uint64_t n) {
+  int b = 1;
+  while (b < 63 && (1ULL << b) <= n) ++b;
+  return b;
+}
+
+}  // namespace
+
+FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<RtlPort>& ports,
+                             const std::optional<StampRule::Candidate>& stamp) {
+  FormalChecker c;
+  const int lmin = d.ack_latency_min, lmax = d.ack_latency_max;
+  const bool hold = d.full == Full::Hold && d.has("ready");
+  const bool drops = d.full == Full::Drop && d.has("ready");
+  // Data properties need to know which transactions give no beat: a discarded collision is
+  // visible (contention), a drop only through overflow_count (a discarded collision the receiver
+  // also counts as a drop is told by its contention).
+  bool data = true;
+  if (drops && !d.has("overflow_count")) {
+    data = false;
+    c.notes.push_back("the beats' order, values and stamps are simulated only: under \"drop\" without overflow_count "
+                      "the proof cannot tell a dropped transaction");
+  }
+  const bool stamps = data && d.has("timestamp") && stamp.has_value();
+  if (data && d.has("timestamp") && !stamp) {
+    c.notes.push_back("the stamp rule is simulated only: the simulation inferred none (no stamped beat)");
+  }
+
+  auto add = [&](const std::string& name, const std::string& text) {
+    c.properties.push_back({static_cast<int>(c.properties.size()) + 1, name, text});
+    return c.properties.back().id;
+  };
+  const int p_reset = add("ack_low_after_reset", "Ack is low after the reset");
+  const int p_rise = add("ack_rises_with_req", "Ack rises only while a Req waits for it");
+  const int p_rise_min = add("ack_rise_min", fmt::format("Ack rises no sooner than {} edges after Req rose", lmin));
+  const int p_rise_max =
+      add("ack_rise_max", fmt::format("Ack rises within {} edges of Req rising{}", lmax,
+                                      hold ? " (or of the consumer's last stall)" : ""));
+  const int p_fall = add("ack_falls_after_req", "Ack falls only after Req fell");
+  const int p_fall_min = add("ack_fall_min", fmt::format("Ack falls no sooner than {} edges after Req fell", lmin));
+  const int p_fall_max = add("ack_fall_max", fmt::format("Ack falls within {} edges of Req falling", lmax));
+  const int p_held = d.has("ready") ? add("held_beat_stable", "a beat offered and not taken stays, unchanged") : -1;
+  const int p_invent = data ? add("no_invented_beat", "every beat is a transaction's") : -1;
+  const int p_order =
+      data ? add("beat_in_order", fmt::format("every transaction's beat comes in bus order with its address and flag "
+                                              "(collisions {})",
+                                              to_string(d.collisions)))
+           : -1;
+  const int p_stamp = stamps ? add("stamp_rule", "the stamp follows the run's stamp rule") : -1;
+
+  // Deep enough for the FIFO to fill and drain, a tick to pass, and the handshakes around them.
+  const int handshake = 2 * lmax + 2;
+  const int tick = d.has("timestamp") ? static_cast<int>(std::min<std::uint64_t>(d.timestamp_cycles, 4000)) : 0;
+  c.depth = kFormalResetSteps + 2 + (d.formal.fifo_words + 2) * handshake + tick;
+  c.depth_reason = fmt::format("{} reset steps + 2 + ({} FIFO words + 2) x {} edges a handshake{}", kFormalResetSteps,
+                               d.formal.fifo_words, handshake, tick ? fmt::format(" + a tick of {} edges", tick) : "");
+  if (d.formal.depth) {
+    c.depth = *d.formal.depth;
+    c.depth_reason = "stated by [formal] depth";
+  }
+
+  PortWiring wiring(d, ports);
+  wiring.drive("clk", "clk");
+  wiring.drive(PortRef{d.reset_port}, fmt::format("(in_reset ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
+  wiring.drive("req", fmt::format("(req_i ? {} : {})", level(d.req_active_high), inverse(d.req_active_high)));
+  wiring.drive("addr", "addr_i");
+  if (d.has("contention")) wiring.drive("contention", "contention_i");
+  if (d.has("ready")) wiring.drive("ready", "ready_i");
+  for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
+  const std::string ack = wiring.read("ack"), valid = wiring.read("valid"), out_addr = wiring.read("out_addr");
+  const std::string ts = d.has("timestamp") ? wiring.read("timestamp") : "";
+  const std::string flag = d.has("flags") ? wiring.read("flags") : "";
+  const std::string ov = d.has("overflow_count") ? wiring.read("overflow_count") : "";
+  const int aw = role_width(d, ports, "addr"), ow = role_width(d, ports, "out_addr");
+  const int tw = d.has("timestamp") ? role_width(d, ports, "timestamp") : 1;
+  const int vw = d.has("overflow_count") ? role_width(d, ports, "overflow_count") : 1;
+
+  std::map<std::string, std::string> parameters = d.parameters;
+  for (const auto& [k, v] : d.formal.parameters) parameters[k] = v;
+  std::string parameter_list;
+  for (const auto& [k, v] : parameters) parameter_list += fmt::format("{}.{}({})", parameter_list.empty() ? "" : ", ", k, v);
+
+  // The stamp's edge for the tagged transaction: ticks since reset (tk, with div the edges into
+  // the current tick) at edge rise + k, or at the Ack edge + j; tk_hist keeps earlier ticks.
+  std::string stamp_logic;
+  if (stamps) {
+    const int hist = std::max(1, lmax + 1);
+    std::string capture;
+    if (!stamp->from_ack) {
+      capture = fmt::format("      if ((choose || tagged) && !tag_ts_known && since_tag == {}) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n",
+                            stamp->offset);
+    } else if (stamp->offset == 1) {
+      capture = "      if (tag_acked_q) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n";
+    } else if (stamp->offset == 0) {
+      capture = "      if (tag_ack_rise) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n";
+    } else {
+      capture = fmt::format("      if (tag_ack_rise) begin tag_ts <= tk_hist[{}]; tag_ts_known <= 1'b1; end\n", -stamp->offset - 1);
+    }
+    stamp_logic = fmt::format(R"(
+  // Ticks since reset: tk after each edge, div the edges into the current tick.
+  reg [{tw_msb}:0] tk = 0;
+  reg [{dw_msb}:0] div = 0;
+  reg [{tw_msb}:0] tk_hist [0:{hist_last}];
+  integer h;
+  always @(posedge clk) begin
+    if (in_reset) begin
+      tk <= 0;
+      div <= 0;
+    end else if (div == {dw}'d{tick_last}) begin
+      tk <= tk + 1'b1;
+      div <= 0;
+    end else begin
+      div <= div + 1'b1;
+    end
+    tk_hist[0] <= tk;
+    for (h = 1; h <= {hist_last}; h = h + 1) tk_hist[h] <= tk_hist[h - 1];
+  end
+  reg [{tw_msb}:0] tag_ts = 0, tag_beat_ts = 0;
+  reg tag_ts_known = 0, tag_beat_known = 0, tag_acked_q = 0;
+  always @(posedge clk) begin
+    tag_acked_q <= tag_ack_rise;
+{capture}    if (tag_beat) begin
+      tag_beat_ts <= out_ts;
+      tag_beat_known <= 1'b1;
+    end
+  end
+  always @* if ({p_stamp}) begin
+    if (tag_ts_known && tag_beat_known) assert (tag_beat_ts == tag_ts);
+  end
+)",
+                              fmt::arg("tw_msb", tw - 1), fmt::arg("hist_last", hist - 1),
+                              fmt::arg("tick_last", d.timestamp_cycles - 1), fmt::arg("capture", capture),
+                              fmt::arg("dw", bits_for(d.timestamp_cycles)), fmt::arg("dw_msb", bits_for(d.timestamp_cycles) - 1),
+                              fmt::arg("p_stamp", on(p_stamp)));
+  }
+
+  const std::string gives = d.collisions == Collisions::Discard ? "!contention_i" : "1'b1";
+  const std::string flag_ok = d.collisions == Collisions::Flag ? "out_flag == tag_flag" : "!out_flag";
+  const int cw = bits_for(static_cast<std::uint64_t>(lmax) + 1);
+  const int qw = bits_for(static_cast<std::uint64_t>(d.formal.fifo_words) + 8);
+  const int sw = bits_for(static_cast<std::uint64_t>(lmax) + 3);
+  c.source = fmt::format(R"(// Generated by aesim verify --formal from {description}: the checker around {top}.
+// One step is one clock edge. Properties are selected by CHECK (0: all of them).
+module aesim_formal_top #(
+    parameter integer CHECK = 0
+) (
+    input wire clk,
+    input wire req_i,
+    input wire [{aw_msb}:0] addr_i,
+    input wire contention_i,
+    input wire ready_i,
+    input wire pick_i
+);
+  reg [3:0] rst_cnt = 0;
+  wire in_reset = rst_cnt < 4'd{reset_steps};
+  always @(posedge clk) if (in_reset) rst_cnt <= rst_cnt + 1'b1;
+
+{declarations}
+  {top} {parameter_list}dut (
+{connections}
+  );
+
+  wire ack = {ack} == {ack_on};
+  wire valid = {valid_expr};
+  wire [{ow_msb}:0] out_addr = {out_addr};
+  wire [{tw_msb}:0] out_ts = {ts_expr};
+  wire out_flag = {flag_expr};
+  wire [{vw_msb}:0] ov = {ov_expr};
+  wire ready = {ready_expr};
+
+  // The sender and the handshake as the checker follows them: a transaction is open from the step
+  // Req rises to the step Ack is seen high; closing from the step Req falls to the step Ack is low.
+  reg past_valid = 0, free_q = 0, req_q = 0, ack_q = 0, open_q = 0, closing_q = 0, col_q = 0;
+  reg [{aw_msb}:0] addr_q = 0;
+  wire rise = !in_reset && req_i && !req_q;
+  wire open = rise || open_q;
+  wire fall = req_q && !req_i;
+  wire closing = fall || closing_q;
+  wire stall = !in_reset && !ready && (valid || ({hold} && open && !ack));
+  wire beat = !in_reset && valid && ready;
+  // Edges since Req rose (lat), since it rose or the consumer last stalled (exc), since it fell
+  // (flat); saturating just past the upper bound, where the properties have already decided.
+  reg [{cw_msb}:0] lat_cnt = 0, exc_cnt = 0, fall_cnt = 0;
+  wire [{cw_msb}:0] lat = rise ? {cw}'d0 : lat_cnt;
+  wire [{cw_msb}:0] exc = rise ? {cw}'d0 : exc_cnt;
+  wire [{cw_msb}:0] flat = fall ? {cw}'d0 : fall_cnt;
+  always @(posedge clk) begin
+    past_valid <= 1'b1;
+    free_q <= !in_reset;
+    req_q <= req_i;
+    ack_q <= ack;
+    addr_q <= addr_i;
+    col_q <= contention_i;
+    open_q <= open && !ack;
+    closing_q <= closing && ack;
+    lat_cnt <= open && !ack ? (lat == {cw}'d{sat} ? lat : lat + 1'b1) : {cw}'d0;
+    exc_cnt <= open && !ack ? ({hold} && stall ? {cw}'d0 : exc == {cw}'d{sat} ? exc : exc + 1'b1) : {cw}'d0;
+    fall_cnt <= closing && ack ? (flat == {cw}'d{sat} ? flat : flat + 1'b1) : {cw}'d0;
+  end
+
+  always @* begin
+    if (in_reset) assume (!req_i);
+    if (rise) assume (!ack);
+    if (open_q && !ack) assume (req_i);
+    if (open_q && req_i) assume (addr_i == addr_q && contention_i == col_q);
+  end
+
+  always @* begin
+    if ({p_reset}) if (past_valid && !in_reset && !free_q) assert (!ack);
+    if ({p_rise}) if (free_q && ack && !ack_q) assert (open);
+    if ({p_rise_min}) if (free_q && ack && !ack_q && open) assert (lat >= {cw}'d{lmin});
+    if ({p_rise_max}) if (!in_reset && open && !ack) assert (exc < {cw}'d{lmax});
+    if ({p_fall}) if (free_q && !ack && ack_q) assert (!req_q);
+    if ({p_fall_min}) if (closing && !ack && ack_q) assert (flat >= {cw}'d{lmin});
+    if ({p_fall_max}) if (closing && ack) assert (flat < {cw}'d{lmax});
+  end
+
+  // A beat offered and not taken.
+  reg held = 0, held_flag = 0;
+  reg [{ow_msb}:0] held_addr = 0;
+  reg [{tw_msb}:0] held_ts = 0;
+  always @(posedge clk) begin
+    held <= !in_reset && valid && !ready;
+    held_addr <= out_addr;
+    held_ts <= out_ts;
+    held_flag <= out_flag;
+  end
+  always @* if ({p_held}) begin
+    if (held && !in_reset) assert (valid && out_addr == held_addr && out_ts == held_ts && out_flag == held_flag);
+  end
+
+  // Transactions whose beat (or drop) is still to come, and the symbolic tag: one transaction the
+  // solver picks (pick_i at its Req rise), with the beats due before its own. Small saturating
+  // counters, not running totals, so that an inductive proof can relate them to the FIFO.
+  reg [{qw_msb}:0] outstanding = 0, ahead = 0;
+  reg [{vw_msb}:0] ov_q = 0;
+  reg tagged = 0, tag_open = 0, tag_dropped = 0, tag_done = 0, tag_flag = 0;
+  reg [{aw_msb}:0] tag_addr = 0;
+  reg [{sw_msb}:0] since_tag_q = 0;
+  wire gives = rise && {gives};
+  // A drop counted now is the last transaction's (counted by its Ack edge); it takes a beat off
+  // only if that transaction was to give one.
+  reg last_gives = 0;
+  wire dropped = {drops} && free_q && ov != ov_q && (rise ? {gives} : last_gives);
+  wire choose = gives && pick_i && !tagged;
+  wire tag_open_any = choose || tag_open;
+  wire [{sw_msb}:0] since_tag = choose ? {sw}'d0 : since_tag_q;
+  wire tag_ack_rise = tag_open_any && ack && !ack_q;
+  wire tag_beat = tagged && !tag_dropped && !tag_done && beat && ahead == {qw}'d0;
+  wire [{qw_msb}:0] taken = (beat ? {qw}'d1 : {qw}'d0) + (dropped ? {qw}'d1 : {qw}'d0);
+  always @(posedge clk) begin
+    ov_q <= ov;
+    if (rise) last_gives <= {gives};
+    if (in_reset) outstanding <= 0;
+    else if (outstanding != {qw}'d{qw_sat}) outstanding <= outstanding + (gives ? {qw}'d1 : {qw}'d0) - taken;
+    if ((choose || tagged) && since_tag != {sw}'d{sw_sat}) since_tag_q <= since_tag + 1'b1;
+    if (choose) begin
+      tagged <= 1'b1;
+      tag_open <= 1'b1;
+      tag_addr <= addr_i;
+      tag_flag <= contention_i;
+      ahead <= outstanding - taken;
+    end
+    if (tagged && !tag_done && beat && ahead != {qw}'d0) ahead <= ahead - 1'b1;
+    if (tag_beat) tag_done <= 1'b1;
+    if (tag_open && dropped) tag_dropped <= 1'b1;
+    if (tag_ack_rise) tag_open <= 1'b0;
+  end
+  always @* begin
+    if ({p_invent}) if (beat && outstanding != {qw}'d{qw_sat}) assert (outstanding > (dropped ? {qw}'d1 : {qw}'d0));
+    if ({p_order}) if (tag_beat) assert (out_addr == tag_addr && {flag_ok});
+  end
+{stamp_logic}endmodule
+)",
+                         fmt::arg("description", d.file), fmt::arg("top", d.top), fmt::arg("aw_msb", aw - 1),
+                         fmt::arg("reset_steps", kFormalResetSteps), fmt::arg("declarations", wiring.declarations()),
+                         fmt::arg("parameter_list", parameter_list.empty() ? "" : "#(" + parameter_list + ") "),
+                         fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
+                         fmt::arg("ack_on", level(d.ack_active_high)), fmt::arg("valid_expr", valid),
+                         fmt::arg("ow_msb", ow - 1), fmt::arg("out_addr", out_addr), fmt::arg("tw_msb", tw - 1),
+                         fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "1'b0" : flag + "[0]"),
+                         fmt::arg("vw_msb", vw - 1), fmt::arg("ov_expr", ov.empty() ? "1'b0" : ov),
+                         fmt::arg("ready_expr", d.has("ready") ? "ready_i" : "1'b1"), fmt::arg("hold", hold ? "1'b1" : "1'b0"),
+                         fmt::arg("p_reset", on(p_reset)), fmt::arg("p_rise", on(p_rise)), fmt::arg("p_rise_min", on(p_rise_min)),
+                         fmt::arg("p_rise_max", on(p_rise_max)), fmt::arg("p_fall", on(p_fall)), fmt::arg("p_fall_min", on(p_fall_min)),
+                         fmt::arg("p_fall_max", on(p_fall_max)), fmt::arg("p_held", on(p_held)), fmt::arg("p_invent", on(p_invent)),
+                         fmt::arg("p_order", on(p_order)), fmt::arg("lmin", lmin), fmt::arg("lmax", lmax), fmt::arg("gives", gives),
+                         fmt::arg("flag_ok", flag_ok), fmt::arg("drops", drops && data ? "1'b1" : "1'b0"),
+                         fmt::arg("cw", cw), fmt::arg("cw_msb", cw - 1), fmt::arg("sat", lmax + 1), fmt::arg("qw", qw),
+                         fmt::arg("qw_msb", qw - 1), fmt::arg("qw_sat", (1 << qw) - 1), fmt::arg("sw", sw),
+                         fmt::arg("sw_msb", sw - 1), fmt::arg("sw_sat", (1 << sw) - 1),
+                         fmt::arg("stamp_logic", stamp_logic));
+  return c;
+}
+
+}  // namespace aesim
