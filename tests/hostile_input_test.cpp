@@ -4,6 +4,7 @@
 // also under a 4 GB address-space limit, so a runaway allocation fails the case).
 #include <signal.h>
 #include <sys/mount.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -295,7 +297,7 @@ TEST_F(HostileInputTest, WorkBeyondTheLimitIsEstimatedAndRefusedBeforeTheRun) {
   write("bright.toml", "sensor = \"aloha\"\nduration = \"2s\"\n[[group]]\n\"pixel.i_max\" = [\"1uA\"]\n");
   const Outcome sweep = bounded("sweep bright.toml -o r.csv");
   EXPECT_EQ(sweep.status, 2) << sweep.err;
-  EXPECT_NE(sweep.err.find("point 1 failed: aesim: pixel.i_max: the run would fire"), std::string::npos) << sweep.err;
+  EXPECT_NE(sweep.err.find("point 1 failed: pixel.i_max: the run would fire"), std::string::npos) << sweep.err;
   EXPECT_FALSE(fs::exists(dir_ / "r.csv"));
   EXPECT_FALSE(fs::exists(dir_ / "r.csv.partial"));  // nothing finished, nothing to resume
   // The limit is the user's to raise, and it is what decides: a run refused at 10 events runs at 1e8.
@@ -356,17 +358,158 @@ TEST_F(HostileInputTest, AFullDiskIsReportedWithItsReasonAndLeavesNothing) {
   if (::mount("tmpfs", (dir_ / "small").c_str(), "tmpfs", 0, "size=64k") != 0) {
     GTEST_SKIP() << "cannot mount a small tmpfs here (" << std::strerror(errno) << "): needs root";
   }
-  const Outcome o = bounded("run --duration 2s --csv small/e.csv --summary small/s.json");
-  const std::set<std::string> left = [&] {
-    std::set<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_ / "small")) names.insert(e.path().filename().string());
-    return names;
-  }();
+  // Every event file's writer, and the CSV: the system's reason, the file the user named, nothing left.
+  for (const std::string out : {"--csv small/e.csv", "--out small/e.h5", "--out small/e.npy", "--out small/e.aedat4"}) {
+    const Outcome o = bounded("run --duration 2s " + out + " --summary small/s.json");
+    const std::set<std::string> left = [&] {
+      std::set<std::string> names;
+      for (const auto& e : fs::directory_iterator(dir_ / "small")) names.insert(e.path().filename().string());
+      return names;
+    }();
+    EXPECT_EQ(o.status, 1) << out << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_NE(o.err.find("No space left on device"), std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find(".aesim-tmp."), std::string::npos) << "names the output, not its temporary: " << o.err;
+    EXPECT_TRUE(left.empty()) << *left.begin();
+  }
   ::umount((dir_ / "small").c_str());
-  EXPECT_EQ(o.status, 1) << o.err;
-  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
-  EXPECT_NE(o.err.find("No space left on device"), std::string::npos) << o.err;
-  EXPECT_TRUE(left.empty()) << *left.begin();
+}
+
+// An output that is a device or a FIFO is written through, never replaced: /dev/null stays the
+// machine's /dev/null, a FIFO's reader gets the events, a FIFO with no reader is refused.
+TEST_F(HostileInputTest, OutputsThatAreDevicesOrFifosAreWrittenThroughNeverReplaced) {
+  const Outcome o = bounded("run --duration 50ms --summary /dev/null --csv /dev/null --out /dev/null.aedat");
+  (void)o;
+  struct stat st {};
+  ASSERT_EQ(::stat("/dev/null", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode)) << "/dev/null was replaced";
+  const Outcome to_null = bounded("run --duration 50ms --summary /dev/null --csv /dev/null");
+  EXPECT_EQ(to_null.status, 0) << to_null.err;
+
+  ASSERT_EQ(::mkfifo((dir_ / "events.csv").c_str(), 0644), 0);
+  std::string received;
+  std::thread reader([&] {
+    std::ifstream in(dir_ / "events.csv", std::ios::binary);
+    received.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const Outcome fifo = bounded("run --duration 50ms --csv events.csv --summary s.json");
+  reader.join();
+  EXPECT_EQ(fifo.status, 0) << fifo.err;
+  EXPECT_EQ(received.rfind("t_us,x,y,tile,flags\n", 0), 0u);
+  const nlohmann::json summary = nlohmann::json::parse(slurp(dir_ / "s.json"));
+  EXPECT_EQ(std::count(received.begin(), received.end(), '\n') - 1, summary["events_delivered"].get<long>());
+  ASSERT_EQ(::stat((dir_ / "events.csv").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+  fs::remove(dir_ / "s.json");
+
+  const Outcome lonely = bounded("run --duration 50ms --csv events.csv");
+  EXPECT_EQ(lonely.status, 2) << lonely.err;
+  EXPECT_NE(lonely.err.find("a FIFO with no reader"), std::string::npos) << lonely.err;
+  ASSERT_EQ(::stat((dir_ / "events.csv").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+  expect_refused("run --duration 50ms --summary newdir/", "ends in /");
+  // A sweep's resume journal is read back: a FIFO there is refused at once, and kept.
+  copy_scene("uniform.pgm", "u.pgm");
+  write("spec.toml", "sensor = \"aloha\"\nduration = \"10ms\"\n[[group]]\nscene = \"u.pgm\"\n");
+  ASSERT_EQ(::mkfifo((dir_ / "r.csv.partial").c_str(), 0644), 0);
+  expect_refused("sweep spec.toml -o r.csv", "resume journal 'r.csv.partial': is a FIFO");
+}
+
+// Inputs that are not files say what they are; a name with a newline stays on one line.
+TEST_F(HostileInputTest, InputsThatAreNotFilesSayWhatTheyAre) {
+  ASSERT_EQ(::mkfifo((dir_ / "scene.pgm").c_str(), 0644), 0);
+  expect_refused("run --scene scene.pgm --summary s.json", "is a FIFO, not a file");
+  fs::remove(dir_ / "scene.pgm");
+  expect_refused("info /dev/zero.h5", "not found");
+  fs::create_directory(dir_ / "frames");
+  copy_scene("uniform.pgm", "frames/0001.pgm");
+  fs::create_symlink("nowhere.pgm", dir_ / "frames/0002.pgm");
+  expect_refused("run --scene frames --summary s.json", "'0002.pgm' is a link to nothing");
+  fs::remove(dir_ / "frames/0002.pgm");
+  copy_scene("uniform.pgm", "frames/frame_20261124123456789.pgm");
+  expect_refused("run --scene frames --summary s.json", "over 15 digits");
+  fs::remove(dir_ / "frames/frame_20261124123456789.pgm");
+  const Outcome newline = bounded("run --scene 'bad\nname.pgm' --summary s.json");
+  EXPECT_EQ(newline.status, 2);
+  EXPECT_EQ(std::count(newline.err.begin(), newline.err.end(), '\n'), 1) << newline.err;
+  EXPECT_NE(newline.err.find("bad\\nname.pgm"), std::string::npos) << newline.err;
+}
+
+// Readers bounded by the bytes they are given: an HDF5 file whose datasets claim 3e8 entries it
+// does not store, or that links to another file; a scene whose frames at the array's size would
+// not fit; a truncated JPEG (libjpeg would invent its missing rows).
+TEST_F(HostileInputTest, ReadersAreBoundedByTheBytesTheyAreGiven) {
+  write("make.py",
+        "import h5py, numpy as np\n"
+        "with h5py.File('huge.h5', 'w') as f:\n"
+        "    g = f.create_group('events')\n"
+        "    for n, t in [('x', 'u2'), ('y', 'u2'), ('t', 'u4'), ('p', 'u1')]:\n"
+        "        g.create_dataset(n, shape=(300000000,), dtype=t, chunks=(65536,))\n"
+        "with h5py.File('target.h5', 'w') as f:\n"
+        "    g = f.create_group('events')\n"
+        "    for n, t in [('x', 'u2'), ('y', 'u2'), ('t', 'u4'), ('p', 'u1')]:\n"
+        "        g.create_dataset(n, data=np.zeros(4, dtype=t))\n"
+        "with h5py.File('linked.h5', 'w') as f:\n"
+        "    f['events'] = h5py.ExternalLink('target.h5', '/events')\n");
+  ASSERT_EQ(std::system(("cd '" + dir_.string() + "' && /usr/bin/python3 make.py").c_str()), 0);
+  expect_refused("info huge.h5", "claims 300000000 entries");
+  expect_refused("info linked.h5", "/events is an external link");
+
+  fs::create_directory(dir_ / "many");
+  for (int i = 0; i < 9; ++i) write(fmt::format("many/{:02d}.pgm", i), "P2\n1 1\n255\n7\n");
+  expect_refused("run --scene many --set array.rows=4096 --set array.cols=4096 --duration 10s --summary s.json",
+                 "would take");
+
+  write("make_jpeg.py",
+        "from PIL import Image\nimport numpy as np\n"
+        "Image.fromarray((np.arange(4096).reshape(64, 64) % 256).astype('uint8')).save('g.jpg', quality=95)\n"
+        "d = open('g.jpg', 'rb').read()\nopen('cut.jpg', 'wb').write(d[:len(d) // 2])\n");
+  ASSERT_EQ(std::system(("cd '" + dir_.string() + "' && /usr/bin/python3 make_jpeg.py").c_str()), 0);
+  expect_refused("run --scene cut.jpg --summary s.json", "Premature end of JPEG file");
+}
+
+// Decks and RTL describe circuits: a deck's .control block (and one in a file it includes) would
+// run commands, and is refused before ngspice starts; an include that is a FIFO is named, not
+// waited on; the output may not be the base preset it is made from.
+TEST_F(HostileInputTest, NoCommandFromADeckAndNoWaitOnItsIncludes) {
+  const std::string deck = slurp(std::string(AESIM_SOURCE_DIR) + "/models/circuits/aesim_pixel.cir");
+  const std::string marker = (dir_ / "ran").string();
+  write("inc.lib", ".control\nshell touch " + marker + "\n.endc\n");
+  write("deck.cir", deck + ".include inc.lib\n");
+  expect_refused("calibrate deck.cir --subckt aesim_pixel -o p.toml", "inc.lib' line 1: a .control block");
+  EXPECT_FALSE(fs::exists(marker));
+  fs::remove(dir_ / "inc.lib");
+  ASSERT_EQ(::mkfifo((dir_ / "inc.lib").c_str(), 0644), 0);
+  expect_refused("calibrate deck.cir --subckt aesim_pixel -o p.toml", "is a FIFO, not a file");
+  fs::remove(dir_ / "inc.lib");
+  fs::remove(dir_ / "deck.cir");
+  fs::copy_file(std::string(AESIM_SOURCE_DIR) + "/models/sensors/aloha.toml", dir_ / "base.toml");
+  expect_refused("calibrate " + std::string(AESIM_SOURCE_DIR) + "/models/circuits/aesim_pixel.cir --subckt aesim_pixel "
+                 "-o base.toml --base base.toml",
+                 "would overwrite the input");
+}
+
+// Work no estimate counted before: set-up of the cycle rung's tiles and of pixel_processes.
+TEST_F(HostileInputTest, SetUpThatGrowsFasterThanItsSizeIsRefusedBeforeTheRun) {
+  expect_refused("run --duration 1ms --set sim.fidelity=cycle --set array.rows=4096 --set array.cols=4096 --summary s.json",
+                 "16384 tiles is more than its 4096");
+  expect_refused("run --duration 1ms --set sim.fidelity=pixel_processes --set array.rows=256 --set array.cols=256 "
+                 "--summary s.json",
+                 "65536 pixels is more than its 32768");
+}
+
+TEST_F(HostileInputTest, NumbersOnTheCommandLineAreChecked) {
+  copy_scene("uniform.pgm", "u.pgm");
+  write("spec.toml", "sensor = \"aloha\"\nduration = \"10ms\"\n[[group]]\nscene = \"u.pgm\"\n");
+  expect_refused("sweep spec.toml -o r.csv -j -3", "--jobs");
+  expect_refused("compare --scene u.pgm --steps 0s -o c.csv", "--steps");
+  expect_refused("classify u.pgm --cycles-per-template inf", "--cycles-per-template");
+  expect_refused("emulate u.pgm --size 4294967297x1 --out e.aedat", "--size");
+  write("far.csv", "t_us,x,y,tile,flags\n1e20,1,1,0,0\n");
+  expect_refused("info far.csv", "past 1e15");
+  write("far.csv", "t_us,x,y,tile,flags\n1,1,1,70000,0\n");
+  expect_refused("info far.csv", "tile 70000");
 }
 
 TEST_F(HostileInputTest, PathsTheSystemCannotLookUpAreInputErrors) {

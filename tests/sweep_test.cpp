@@ -191,7 +191,7 @@ name = "brightening"
   const testing::Outcome o = TempDirTest::aesim("sweep " + s + " -o out.csv --jobs 1");
   const std::string& err = o.err;
   EXPECT_EQ(o.status, 2) << err;
-  EXPECT_NE(err.find("point 3 failed: aesim: "), std::string::npos) << err;
+  EXPECT_NE(err.find("point 3 failed: pixel.i_max: "), std::string::npos) << err;
   EXPECT_NE(err.find("max_events"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir_ / "out.csv"));
   std::ifstream journal(dir_ / "out.csv.partial");

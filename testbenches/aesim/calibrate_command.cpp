@@ -59,7 +59,7 @@ int calibrate_command(const CalibrateOptions& opt) {
   }
   const std::string chart_data =
       opt.chart.empty() ? std::string() : std::filesystem::path(opt.chart).replace_extension(".csv").string();
-  check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {opt.deck});
+  check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {opt.deck, sensor_file(opt.base)});
   const PixelDeck deck = read_pixel_deck(opt.deck, opt.subckt, opt.probe);
 
   std::fprintf(stderr, "aesim calibrate: %s (%s), %d photocurrents from %s to %s%s, %d ngspice at once\n",

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <optional>
@@ -19,7 +20,9 @@ nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* giv
   if (!(opt.classifier.k > 0)) throw InputError("--k: must be positive");
   if (opt.classifier.max_events == 0) throw InputError("--max-events: must be at least 1");
   if (!(opt.classifier.overflow > 0)) throw InputError("--overflow: must be positive");
-  if (!(opt.cycles_per_template > 0)) throw InputError("--cycles-per-template: must be positive");
+  if (!(opt.cycles_per_template > 0) || !std::isfinite(opt.cycles_per_template)) {
+    throw InputError("--cycles-per-template: must be a positive, finite number");
+  }
   const double clock = parse_si(opt.clock, "Hz", "--clock");
   if (!(clock > 0)) throw InputError("--clock: must be positive");
   opt.classifier.ranks = !opt.no_ranks;

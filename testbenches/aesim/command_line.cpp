@@ -65,7 +65,8 @@ void add_sweep(CLI::App& app, int& status) {
                "write one CSV (and a sizing report when the spec has [constraints]); an interrupted sweep resumes");
   cmd->add_option("SPEC", opt->spec, "Sweep spec, e.g. scripts/sweeps/collisions.toml")->required();
   cmd->add_option("-o,--output", opt->output, "CSV file (default out/SPEC_NAME.csv)");
-  cmd->add_option("-j,--jobs", opt->jobs, "Parallel processes (default: the spec's jobs; 0 = all cores)");
+  cmd->add_option("-j,--jobs", opt->jobs, "Parallel processes (default: the spec's jobs; 0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-chart", opt->no_chart, "Do not draw the spec's chart");
   cmd->callback([opt, &status] { status = sweep_command(*opt); });
 }
@@ -108,7 +109,9 @@ void add_calibrate(CLI::App& app, int& status) {
   cmd->add_option("--firings", opt->firings, "Periods each transient measures")->capture_default_str();
   cmd->add_option("--probe", opt->probe, "Integration node inside the subcircuit, for the comparator delay "
                                          "(skipped when the subcircuit has no such node)")->capture_default_str();
-  cmd->add_option("-j,--jobs", opt->jobs, "ngspice processes at once (0: all cores)")->capture_default_str();
+  cmd->add_option("-j,--jobs", opt->jobs, "ngspice processes at once (0: all cores)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->callback([opt, &status] { status = calibrate_command(*opt); });
 }
 

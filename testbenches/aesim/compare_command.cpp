@@ -1,3 +1,4 @@
+#include <cmath>
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -65,7 +66,10 @@ std::string display(const std::string& path) {
 int compare_command(CompareOptions opt) {
   if (opt.scenes.empty()) opt.scenes = {data_dir() + "/scenes/letters/A.pgm"};
   std::vector<double> steps;
-  for (const std::string& text : opt.steps) steps.push_back(parse_si(text, "s", "--steps"));
+  for (const std::string& text : opt.steps) {
+    steps.push_back(parse_si(text, "s", "--steps"));
+    if (!(steps.back() > 0) || !std::isfinite(steps.back())) throw InputError(fmt::format("--steps: '{}' is not a positive time", text));
+  }
   const std::vector<LadderStep> rungs = ladder(steps);
   std::vector<std::string> inputs = {opt.sensor};
   for (const std::string& scene_path : opt.scenes) {

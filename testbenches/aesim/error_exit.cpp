@@ -13,20 +13,38 @@
 #include "output/temp_files.hpp"
 
 namespace aesim {
+namespace {
+
+// The message as one line whatever it quotes (a file name may hold a newline): control characters
+// are written as escapes.
+void say(const char* prefix, const std::string& message) {
+  std::string line;
+  for (const char c : message) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') line += "\\n";
+    else if (c == '\r') line += "\\r";
+    else if (c == '\t') line += "\\t";
+    else if (u < 0x20 || u == 0x7f) line += fmt::format("\\x{:02x}", u);
+    else line += c;
+  }
+  std::fprintf(stderr, "aesim: %s%s\n", prefix, line.c_str());
+}
+
+}  // namespace
 
 int with_error_exit(const std::function<int()>& command) {
   try {
     return command();
   } catch (const InputError& e) {
-    std::fprintf(stderr, "aesim: %s\n", e.what());
+    say("", e.what());
     return 2;
   } catch (const std::filesystem::filesystem_error& e) {
     // Every path aesim looks up came from the user (or derives from one); the readers ask without
     // exceptions, so this is a safety net that still gives one line and the input's status.
-    std::fprintf(stderr, "aesim: %s\n", e.what());
+    say("", e.what());
     return 2;
   } catch (const OutputError& e) {
-    std::fprintf(stderr, "aesim: %s\n", e.what());
+    say("", e.what());
     return 1;
   } catch (const Interrupted& e) {
     std::fprintf(stderr, "aesim: interrupted (signal %d); no output written\n", e.signal);
@@ -35,12 +53,10 @@ int with_error_exit(const std::function<int()>& command) {
     std::fprintf(stderr, "aesim: out of memory (a limit the checks before the run did not foresee)\n");
     return 1;
   } catch (const sc_core::sc_report& e) {
-    std::string what = e.what();
-    for (char& c : what) c = c == '\n' ? ' ' : c;
-    std::fprintf(stderr, "aesim: internal error: SystemC: %s\n", what.c_str());
+    say("internal error: SystemC: ", e.what());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "aesim: internal error: %s\n", e.what());
+    say("internal error: ", e.what());
     return 1;
   }
 }

@@ -92,7 +92,7 @@ int run_command(RunOptions opt) {
   inputs.push_back(opt.sensor);
   check_output_paths(outputs, inputs);
 
-  const Photocurrents photocurrents(load_scene(scene_files, config.array, config.scene), config.pixel);
+  const Photocurrents photocurrents(load_scene(scene_files, config.array, config.scene, config.sim.duration), config.pixel);
   const Scene& scene = photocurrents.scene();
   OutputFiles files;
   if (!rtl_traces.empty()) {

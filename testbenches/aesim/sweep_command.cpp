@@ -1,4 +1,5 @@
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +22,7 @@
 #include "error_exit.hpp"
 #include "files/data_dir.hpp"
 #include "errors/input_error.hpp"
+#include "files/input_path.hpp"
 #include "files/content_hash.hpp"
 #include "files/scratch_folder.hpp"
 #include "output/atomic_file.hpp"
@@ -161,7 +163,18 @@ class PointRunner {
         for (std::size_t i = running.size(); i > 0; --i) waitpid(-1, nullptr, 0);
         std::ifstream log(work_ / fmt::format("point_{}.log", index));
         const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
-        const std::string why = fmt::format("point {} failed: {}", index + 1, text.substr(0, text.find('\n')));
+        std::string reason = text.substr(0, text.find('\n'));
+        if (reason.rfind("aesim: ", 0) == 0) reason.erase(0, 7);
+        if (reason.empty()) {
+          // No message: say how it ended, and whether its folder has room left (a full disk
+          // leaves the log empty too).
+          struct statvfs fs_info {};
+          const bool full = ::statvfs(work_.c_str(), &fs_info) == 0 && fs_info.f_bavail == 0;
+          reason = WIFSIGNALED(status) ? fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)))
+                                       : fmt::format("exit status {}", WEXITSTATUS(status));
+          if (full) reason += fmt::format(" with no message: {}", std::strerror(ENOSPC));
+        }
+        const std::string why = fmt::format("point {} failed: {}", index + 1, reason);
         // A point refused as bad input (e.g. work past sim.max_events) makes the sweep's input bad too.
         if (WIFEXITED(status) && WEXITSTATUS(status) == 2) throw InputError(why);
         throw std::runtime_error(why);
@@ -327,6 +340,14 @@ int sweep_command(SweepOptions opt) {
                       {"the chart", chart ? stem + ".svg" : ""},
                       {"the resume journal", opt.output + ".partial"}},
                      inputs);
+  // The journal is read back and rewritten: it must be a file, not a device or a FIFO.
+  {
+    std::error_code ec;
+    const std::string partial = opt.output + ".partial";
+    if ((fs::exists(partial, ec) || fs::is_symlink(partial, ec)) && !fs::is_regular_file(partial, ec)) {
+      throw InputError(fmt::format("the resume journal '{}': {}", partial, not_a_file(partial)));
+    }
+  }
 
   const Cooperative stop_politely;  // a signal stops the points and keeps the journal for a resume
   const auto wall_start = std::chrono::steady_clock::now();

@@ -201,7 +201,7 @@ py::object py_run(const std::string& sensor, const py::object& scene, const py::
   request.stream = &collected;
   const Rung& rung = choose_rung(config, request);
   const double tick = rung.tick(config);
-  const Photocurrents photocurrents(frames.empty() ? load_scene(files, config.array, config.scene)
+  const Photocurrents photocurrents(frames.empty() ? load_scene(files, config.array, config.scene, config.sim.duration)
                                                   : load_scene(frames, config.array, config.scene),
                                    config.pixel);
   const SimulationResult result = without_gil([&] { return simulate(config, photocurrents, request); });

@@ -58,6 +58,7 @@ Y4mVideo decode_y4m(const std::string& data, const std::string& path) {
 
   std::size_t pos = eol + 1;
   while (pos < data.size()) {
+    if (video.frames.size() == kMaxSceneFrames) fail(fmt::format("more than {} frames, the most aesim reads", kMaxSceneFrames));
     if (data.compare(pos, 5, "FRAME") != 0) fail(fmt::format("frame {}: missing FRAME marker", video.frames.size()));
     const std::size_t frame_eol = data.find('\n', pos);
     if (frame_eol == std::string::npos) fail(fmt::format("frame {}: truncated", video.frames.size()));

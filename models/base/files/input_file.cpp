@@ -12,7 +12,7 @@
 namespace aesim {
 
 std::string read_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
-  if (!is_input_file(path, what)) throw InputError(fmt::format("{} '{}' not found", what, path));
+  require_input_file(path, what);
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size > max_bytes) {

@@ -29,4 +29,24 @@ bool is_input_folder(const std::string& path, const std::string& what) {
   return kind_of(path, what) == fs::file_type::directory;
 }
 
+std::string not_a_file(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  switch (st.type()) {
+    case fs::file_type::not_found: return fs::is_symlink(path, ec) ? "is a link to nothing" : "not found";
+    case fs::file_type::directory: return "is a folder, not a file";
+    case fs::file_type::fifo: return "is a FIFO, not a file";
+    case fs::file_type::character: return "is a character device, not a file";
+    case fs::file_type::block: return "is a block device, not a file";
+    case fs::file_type::socket: return "is a socket, not a file";
+    case fs::file_type::regular: return "";
+    default: return ec ? ec.message() : "is not a regular file";
+  }
+}
+
+void require_input_file(const std::string& path, const std::string& what) {
+  if (is_input_file(path, what)) return;
+  throw InputError(fmt::format("{} '{}': {}", what, path, not_a_file(path)));
+}
+
 }  // namespace aesim

@@ -10,4 +10,10 @@ namespace aesim {
 bool is_input_file(const std::string& path, const std::string& what);
 bool is_input_folder(const std::string& path, const std::string& what);
 
+// What a path is when it is not a regular file, in words for a message: "not found", "is a folder,
+// not a file", "is a FIFO, not a file", "is a character device, not a file", ...
+std::string not_a_file(const std::string& path);
+// InputError "WHAT 'PATH': is a FIFO, not a file" (or not found, ...) unless it is a regular file.
+void require_input_file(const std::string& path, const std::string& what);
+
 }  // namespace aesim

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 namespace aesim {
@@ -10,5 +11,9 @@ constexpr int kMaxTiles = 1 << 16;                 // tiles (each has its own bu
 constexpr std::uintmax_t kMaxInputFileBytes = 1ULL << 28;  // 256 MiB: a scene image or frame
 constexpr std::uintmax_t kMaxEventFileBytes = 1ULL << 34;  // 16 GiB: an event file, read whole
 constexpr double kMaxFrameRate = 1e9;              // Hz, of any scene or video
+constexpr std::size_t kMaxSceneFrames = 100000;    // frames of a scene folder or a video
+// A scene's frames at the array's size, with the photocurrents made of them (16 bytes a pixel a
+// frame), estimated before any frame is read.
+constexpr double kMaxSceneBytes = 2.0 * (1ULL << 30);
 
 }  // namespace aesim

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cerrno>
 #include <chrono>
@@ -18,6 +19,35 @@
 extern char** environ;
 
 namespace aesim {
+namespace {
+
+// The children running now, for a signal handler to stop with the process (kill() is
+// async-signal-safe; the table is fixed and lock-free).
+constexpr int kChildSlots = 64;
+std::atomic<pid_t> g_children[kChildSlots];
+
+void remember_child(pid_t pid) {
+  for (auto& slot : g_children) {
+    pid_t empty = 0;
+    if (slot.compare_exchange_strong(empty, pid)) return;
+  }
+}
+
+void forget_child(pid_t pid) {
+  for (auto& slot : g_children) {
+    pid_t mine = pid;
+    if (slot.compare_exchange_strong(mine, 0)) return;
+  }
+}
+
+}  // namespace
+
+void kill_children(int sig) {
+  for (auto& slot : g_children) {
+    const pid_t pid = slot.load();
+    if (pid > 0) ::kill(-pid, sig);
+  }
+}
 
 bool program_available(const std::string& program) {
   if (program.empty()) return false;
@@ -58,10 +88,18 @@ pid_t spawn_child(const std::string& program, const std::vector<std::string>& ar
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
   }
   if (!output.working_dir.empty()) posix_spawn_file_actions_addchdir_np(&actions, output.working_dir.c_str());
+  // Each child leads a process group of its own, so that kill_children stops what it started too
+  // (a compiler driver's cc1plus, a shell's commands).
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attr, 0);
   pid_t pid = 0;
-  const int rc = posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(&pid, program.c_str(), &actions, &attr, argv.data(), environ);
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw std::runtime_error(fmt::format("cannot start '{}': {}", program, std::strerror(rc)));
+  remember_child(pid);
   return pid;
 }
 
@@ -70,6 +108,7 @@ int wait_child(pid_t pid) {
   while (::waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) throw std::runtime_error(fmt::format("waiting for a child process: {}", std::strerror(errno)));
   }
+  forget_child(pid);
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 1;
 }
@@ -82,6 +121,7 @@ std::optional<int> wait_child_for(pid_t pid, double seconds) {
     int status = 0;
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
     if (done == pid) {
+      forget_child(pid);
       if (WIFEXITED(status)) return WEXITSTATUS(status);
       return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 1;
     }
@@ -89,7 +129,7 @@ std::optional<int> wait_child_for(pid_t pid, double seconds) {
       throw std::runtime_error(fmt::format("waiting for a child process: {}", std::strerror(errno)));
     }
     if (std::chrono::steady_clock::now() > deadline) {
-      ::kill(pid, SIGKILL);
+      ::kill(-pid, SIGKILL);
       wait_child(pid);
       return std::nullopt;
     }

@@ -31,6 +31,11 @@ std::optional<int> wait_child_for(pid_t pid, double seconds);
 // spawn_child then wait_child.
 int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output = {});
 
+// Sends `sig` to every child spawn_child started that no wait has reaped yet: a signal handler
+// calls it (it is async-signal-safe), so that aesim stopped by a signal leaves no compiler or
+// solver running on.
+void kill_children(int sig);
+
 // Whether `program` names an executable on PATH (or, with a '/', an executable file).
 bool program_available(const std::string& program);
 

@@ -1,7 +1,9 @@
 #include "event_files/dsec_h5.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 #include "errors/input_error.hpp"
 #include "event_files/event_stamps.hpp"
 #include "files/input_path.hpp"
+#include "output/temp_files.hpp"
 
 namespace aesim {
 namespace h5 {
@@ -53,8 +56,17 @@ using h5::Handle;
 
 constexpr std::size_t kDsecChunk = std::size_t(1) << 14;  // elements per chunk and per append
 
-// HDF5 prints its own error stack unless told not to; aesim reports one line instead.
-void quiet_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+// HDF5 prints its own error stack unless told not to; aesim reports one line instead. And HDF5's
+// exit handler closes the files still open: one whose last write failed (a full disk) it crashes
+// on (HDF5 1.10, H5F__close_cb), so it registers none; the system takes back what is left.
+void quiet_hdf5() {
+  static const bool once = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)once;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
 Handle checked(hid_t id, const std::string& what) {
   if (id < 0) throw OutputError(what);
@@ -73,12 +85,13 @@ Handle extendable(hid_t parent, const char* name, hid_t type) {
 void append(hid_t dataset, hid_t type, const void* data, hsize_t at, hsize_t count) {
   if (count == 0) return;
   const hsize_t size = at + count;
-  if (H5Dset_extent(dataset, &size) < 0) throw OutputError("HDF5: cannot extend a dataset");
+  // The system's reason alone (a full disk: "No space left on device"); the writer names the file.
+  if (H5Dset_extent(dataset, &size) < 0) throw OutputError(std::strerror(errno ? errno : EIO));
   Handle file_space = checked(H5Dget_space(dataset), "HDF5: no dataspace");
   H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &at, nullptr, &count, nullptr);
   Handle memory = checked(H5Screate_simple(1, &count, nullptr), "HDF5: cannot make a dataspace");
   if (H5Dwrite(dataset, type, memory.get(), file_space.get(), H5P_DEFAULT, data) < 0) {
-    throw OutputError("HDF5: writing events failed (disk full?)");
+    throw OutputError(std::strerror(errno ? errno : EIO));
   }
 }
 
@@ -145,10 +158,14 @@ void DsecWriter::events(const AddressEvent* first, std::size_t count) {
 
 void DsecWriter::flush() {
   const hsize_t n = x_.size();
-  append(h_->x.get(), H5T_NATIVE_UINT16, x_.data(), written_, n);
-  append(h_->y.get(), H5T_NATIVE_UINT16, y_.data(), written_, n);
-  append(h_->t.get(), H5T_NATIVE_UINT32, t_.data(), written_, n);
-  append(h_->p.get(), H5T_NATIVE_UINT8, p_.data(), written_, n);
+  try {
+    append(h_->x.get(), H5T_NATIVE_UINT16, x_.data(), written_, n);
+    append(h_->y.get(), H5T_NATIVE_UINT16, y_.data(), written_, n);
+    append(h_->t.get(), H5T_NATIVE_UINT32, t_.data(), written_, n);
+    append(h_->p.get(), H5T_NATIVE_UINT8, p_.data(), written_, n);
+  } catch (const OutputError& e) {
+    throw OutputError(fmt::format("writing '{}' failed: {}", target_of(path_), e.what()));
+  }
   written_ += n;
   x_.clear();
   y_.clear();
@@ -173,34 +190,99 @@ void DsecWriter::finish() {
                           "HDF5: cannot create /t_offset");
   const long long zero = 0;
   H5Dwrite(offset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &zero);
-  if (H5Fflush(h_->file.get(), H5F_SCOPE_GLOBAL) < 0) throw OutputError(fmt::format("HDF5: flushing '{}' failed", path_));
+  errno = 0;
+  if (H5Fflush(h_->file.get(), H5F_SCOPE_GLOBAL) < 0) throw OutputError(write_failure(path_));
   h_ = std::make_unique<Handles>();  // the file is closed and complete
 }
 
 namespace {
 
-// A whole 1-D dataset of integers, converted by HDF5 to `type` (a native type of T's width).
-template <typename T>
-std::vector<T> read_column(hid_t file, const char* name, hid_t type, const std::string& path, hsize_t* length) {
-  Handle d(H5Dopen2(file, name, H5P_DEFAULT));
-  if (!d.ok()) throw InputError(fmt::format("event file '{}': no dataset {} (not the DSEC layout)", path, name));
-  Handle space(H5Dget_space(d.get()));
-  Handle stored(H5Dget_type(d.get()));
+// Refuses what would make HDF5 read beyond the file it was given: a link to another file, data
+// stored in other files, a virtual dataset.
+void require_local(hid_t file, const char* name, const std::string& path) {
+  // Every link on the way (/events, then /events/x).
+  std::string sofar;
+  for (const std::string part : {std::string("/events"), std::string(name)}) {
+    if (part == sofar) continue;
+    sofar = part;
+    if (H5Lexists(file, part.c_str(), H5P_DEFAULT) <= 0) return;
+    H5L_info_t info{};
+    if (H5Lget_info(file, part.c_str(), &info, H5P_DEFAULT) >= 0 && info.type != H5L_TYPE_HARD) {
+      throw InputError(fmt::format("event file '{}': {} is {} link; aesim reads datasets stored in the file itself", path, part,
+                                   info.type == H5L_TYPE_EXTERNAL ? "an external" : "a soft"));
+    }
+  }
+}
+
+// A filter the dataset needs that this HDF5 cannot decode, named: "filter 32001 (blosc)".
+std::string missing_filter(hid_t dcpl) {
+  const int n = H5Pget_nfilters(dcpl);
+  for (int i = 0; i < n; ++i) {
+    unsigned flags = 0, config = 0;
+    std::size_t cd_count = 0;
+    char name[64] = {};
+    const H5Z_filter_t id = H5Pget_filter2(dcpl, static_cast<unsigned>(i), &flags, &cd_count, nullptr, sizeof name, name, &config);
+    if (id >= 0 && H5Zfilter_avail(id) <= 0) return fmt::format("filter {} ({})", static_cast<int>(id), name[0] ? name : "unnamed");
+  }
+  return "";
+}
+
+// A 1-D dataset of integers, opened and checked against the bytes the file holds before anything
+// is read: its length is what it claims, but the claim must fit the file.
+struct Column {
+  Handle d;
+  hsize_t n = 0;
+};
+Column open_column(hid_t file, const char* name, const std::string& path, hsize_t expected, std::uintmax_t file_bytes) {
+  require_local(file, name, path);
+  Column c;
+  c.d = Handle(H5Dopen2(file, name, H5P_DEFAULT));
+  if (!c.d.ok()) throw InputError(fmt::format("event file '{}': no dataset {} (not the DSEC layout)", path, name));
+  Handle space(H5Dget_space(c.d.get()));
+  Handle stored(H5Dget_type(c.d.get()));
   if (!space.ok() || H5Sget_simple_extent_ndims(space.get()) != 1 || H5Tget_class(stored.get()) != H5T_INTEGER) {
     throw InputError(fmt::format("event file '{}': {} is not a 1-D array of integers", path, name));
   }
-  hsize_t n = 0;
-  H5Sget_simple_extent_dims(space.get(), &n, nullptr);
-  if (*length != static_cast<hsize_t>(-1) && n != *length) {
-    throw InputError(fmt::format("event file '{}': {} has {} entries, /events/x {}", path, name, n, *length));
+  H5Sget_simple_extent_dims(space.get(), &c.n, nullptr);
+  if (expected != static_cast<hsize_t>(-1) && c.n != expected) {
+    throw InputError(fmt::format("event file '{}': {} has {} entries, /events/x {}", path, name, c.n, expected));
   }
-  if (n > (hsize_t(1) << 32)) throw InputError(fmt::format("event file '{}': {} has more than 2^32 events", path, name));
-  *length = n;
-  std::vector<T> out(n);
-  if (n > 0 && H5Dread(d.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
+  Handle dcpl(H5Dget_create_plist(c.d.get()));
+  if (dcpl.ok() && H5Pget_external_count(dcpl.get()) > 0) {
+    throw InputError(fmt::format("event file '{}': {} keeps its data in other files", path, name));
+  }
+  if (dcpl.ok() && H5Pget_layout(dcpl.get()) == H5D_VIRTUAL) {
+    throw InputError(fmt::format("event file '{}': {} is a virtual dataset (data in other files)", path, name));
+  }
+  if (dcpl.ok()) {
+    const std::string filter = missing_filter(dcpl.get());
+    if (!filter.empty()) {
+      throw InputError(fmt::format("event file '{}': {} is compressed with HDF5 {}, which this HDF5 cannot decode "
+                                   "(install its plugin, or write the file without it)",
+                                   path, name, filter));
+    }
+  }
+  // Stored bytes, compressed or not, within the file; decompressed, at most 1000 times more (far
+  // past what HDF5's filters reach on event streams).
+  const std::uint64_t element = H5Tget_size(stored.get());
+  const haddr_t storage = H5Dget_storage_size(c.d.get());
+  const double claimed = static_cast<double>(c.n) * static_cast<double>(element);
+  if (c.n > 0 && (storage == 0 || static_cast<double>(storage) * 1000.0 < claimed || storage > file_bytes)) {
+    throw InputError(fmt::format("event file '{}': {} claims {} entries ({:.3g} bytes) but the file stores {} bytes of it",
+                                 path, name, c.n, claimed, storage));
+  }
+  if (c.n > (hsize_t(1) << 32)) throw InputError(fmt::format("event file '{}': {} has more than 2^32 events", path, name));
+  return c;
+}
+
+// Entries [from, from + count) of a column, converted by HDF5 to int64.
+void read_block(const Column& c, hsize_t from, hsize_t count, std::int64_t* out, const char* name, const std::string& path) {
+  Handle file_space(H5Dget_space(c.d.get()));
+  Handle memory(H5Screate_simple(1, &count, nullptr));
+  if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &from, nullptr, &count, nullptr) < 0 ||
+      H5Dread(c.d.get(), H5T_NATIVE_INT64, memory.get(), file_space.get(), H5P_DEFAULT, out) < 0) {
     throw InputError(fmt::format("event file '{}': cannot read {}", path, name));
   }
-  return out;
 }
 
 // One root attribute "aesim.sensor.KEY" (a fixed-length string) into the map.
@@ -222,7 +304,7 @@ herr_t collect_sensor_attribute(hid_t object, const char* name, const H5A_info_t
 }  // namespace
 
 PolarityRecording read_dsec_h5(const std::string& path) {
-  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
+  require_input_file(path, "event file");
   {
     std::ifstream in(path, std::ios::binary);
     char signature[8] = {};
@@ -234,13 +316,18 @@ PolarityRecording read_dsec_h5(const std::string& path) {
   quiet_hdf5();
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.ok()) throw InputError(fmt::format("event file '{}': HDF5 cannot open it", path));
+  std::error_code ec;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  const char* names[] = {"/events/x", "/events/y", "/events/t", "/events/p"};
+  Column columns[4];
   hsize_t n = static_cast<hsize_t>(-1);
-  const auto x = read_column<std::int64_t>(file.get(), "/events/x", H5T_NATIVE_INT64, path, &n);
-  const auto y = read_column<std::int64_t>(file.get(), "/events/y", H5T_NATIVE_INT64, path, &n);
-  const auto t = read_column<std::int64_t>(file.get(), "/events/t", H5T_NATIVE_INT64, path, &n);
-  const auto p = read_column<std::int64_t>(file.get(), "/events/p", H5T_NATIVE_INT64, path, &n);
+  for (int k = 0; k < 4; ++k) {
+    columns[k] = open_column(file.get(), names[k], path, n, file_bytes);
+    n = columns[k].n;
+  }
   std::int64_t t_offset = 0;
   if (H5Lexists(file.get(), "t_offset", H5P_DEFAULT) > 0) {
+    require_local(file.get(), "/t_offset", path);
     Handle d(H5Dopen2(file.get(), "t_offset", H5P_DEFAULT));
     Handle space(d.ok() ? H5Dget_space(d.get()) : H5I_INVALID_HID);
     if (!space.ok() || H5Sget_simple_extent_npoints(space.get()) != 1 ||
@@ -248,13 +335,22 @@ PolarityRecording read_dsec_h5(const std::string& path) {
       throw InputError(fmt::format("event file '{}': /t_offset is not one integer", path));
     }
   }
+  // Read in blocks, straight into the events: memory is the events' own, not four columns more.
   PolarityRecording rec;
-  rec.events.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (x[i] < 0 || y[i] < 0 || x[i] >= 4096 || y[i] >= 4096) {
-      throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is outside 4096x4096", path, i, x[i], y[i]));
+  rec.events.reserve(n);
+  constexpr hsize_t kBlock = hsize_t(1) << 18;
+  std::vector<std::int64_t> block[4];
+  for (auto& b : block) b.resize(std::min<hsize_t>(n, kBlock));
+  for (hsize_t from = 0; from < n; from += kBlock) {
+    const hsize_t count = std::min(kBlock, n - from);
+    for (int k = 0; k < 4; ++k) read_block(columns[k], from, count, block[k].data(), names[k], path);
+    for (hsize_t j = 0; j < count; ++j) {
+      const std::int64_t x = block[0][j], y = block[1][j];
+      if (x < 0 || y < 0 || x >= 4096 || y >= 4096) {
+        throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is outside 4096x4096", path, from + j, x, y));
+      }
+      rec.events.push_back({block[2][j] + t_offset, static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), block[3][j] != 0});
     }
-    rec.events[i] = {t[i] + t_offset, static_cast<std::int32_t>(x[i]), static_cast<std::int32_t>(y[i]), p[i] != 0};
   }
   // aesim's own attributes, when aesim wrote the file.
   Handle events(H5Gopen2(file.get(), "events", H5P_DEFAULT));

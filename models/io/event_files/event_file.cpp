@@ -1,6 +1,7 @@
 #include "event_files/event_file.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -165,13 +166,19 @@ std::string read_whole(const std::string& path) { return read_input_file(path, "
 }  // namespace
 
 ArraySize parse_array_size(const std::string& text, const std::string& option) {
-  ArraySize s;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%dx%d%c", &s.width, &s.height, &tail) != 2 || s.width < 1 || s.height < 1 ||
-      s.width > 4096 || s.height > 4096) {
+  // Digits only, each number read whole (no sign, no wrap of a number past the int's range).
+  const auto x = text.find('x');
+  long long w = 0, h = 0;
+  const char* end = text.data() + text.size();
+  const bool ok = x != std::string::npos && x > 0 && x + 1 < text.size() &&
+                  std::all_of(text.begin(), text.begin() + static_cast<long>(x), ::isdigit) &&
+                  std::all_of(text.begin() + static_cast<long>(x) + 1, text.end(), ::isdigit) &&
+                  std::from_chars(text.data(), text.data() + x, w).ptr == text.data() + x &&
+                  std::from_chars(text.data() + x + 1, end, h).ptr == end;
+  if (!ok || w < 1 || h < 1 || w > 4096 || h > 4096) {
     throw InputError(fmt::format("{}: expected WIDTHxHEIGHT up to 4096x4096 (got '{}')", option, text));
   }
-  return s;
+  return ArraySize{static_cast<int>(w), static_cast<int>(h)};
 }
 
 EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size) {

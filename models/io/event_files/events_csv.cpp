@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
+#include "limits/limits.hpp"
 #include "files/input_path.hpp"
 #include "events/timestamps.hpp"
 
@@ -55,7 +56,7 @@ void EventsCsvWriter::flush() {
 }
 
 std::vector<AddressEvent> read_events_csv(const std::string& path) {
-  if (!is_input_file(path, "event file")) throw InputError(fmt::format("event file '{}' not found", path));
+  require_input_file(path, "event file");
   std::ifstream in(path);
   return parse_events_csv(in, path);
 }
@@ -79,6 +80,10 @@ std::vector<AddressEvent> parse_events_csv(std::istream& in, const std::string& 
         c3 != ',' || c4 != ',' || !std::isfinite(t_us) || t_us < 0 || x < 0 || y < 0 || tile < 0 ||
         flags < 0 || flags > 1 || x > 0xFFFF || y > 0xFFFF || tile > 0xFFFFFF) {
       throw InputError(fmt::format("event file '{}': malformed line {}", path, number));
+    }
+    if (t_us > 1e15) throw InputError(fmt::format("event file '{}': line {}: t_us {} is past 1e15 (31 years)", path, number, t_us));
+    if (tile >= kMaxTiles) {
+      throw InputError(fmt::format("event file '{}': line {}: tile {} is past the {} tiles aesim handles", path, number, tile, kMaxTiles));
     }
     e.t = t_us * 1e-6;
     e.x = static_cast<std::uint32_t>(x);

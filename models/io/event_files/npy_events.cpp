@@ -1,6 +1,7 @@
 #include "event_files/npy_events.hpp"
 
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
+#include "output/temp_files.hpp"
 #include "event_files/event_stamps.hpp"
 
 namespace aesim {
@@ -50,7 +52,7 @@ struct Field {
 }  // namespace
 
 NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, std::ios::binary | std::ios::trunc), path_(path), stamps_(tick) {
-  if (!out_) throw OutputError(fmt::format("cannot write '{}'", path));
+  if (!out_) throw OutputError(write_failure(path));
   const std::string text = header_text(0);
   out_.write(kNpyMagic, 6);
   const char version[4] = {1, 0, static_cast<char>(text.size() & 0xff), static_cast<char>(text.size() >> 8)};
@@ -75,7 +77,11 @@ void NpyWriter::events(const AddressEvent* first, std::size_t count) {
 }
 
 void NpyWriter::flush() {
+  // Checked at once, while errno still holds the system's reason.
+  errno = 0;
   out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  if (!buffer_.empty()) out_.flush();
+  if (!out_) throw OutputError(write_failure(path_));
   buffer_.clear();
 }
 
@@ -83,9 +89,10 @@ void NpyWriter::finish() {
   flush();
   out_.seekp(10);
   const std::string text = header_text(count_);
+  errno = 0;
   out_.write(text.data(), static_cast<std::streamsize>(text.size()));
   out_.close();
-  if (!out_) throw OutputError(fmt::format("writing '{}' failed", path_));
+  if (!out_) throw OutputError(write_failure(path_));
 }
 
 PolarityRecording decode_npy(const std::string& data, const std::string& label) {

@@ -22,6 +22,24 @@ fs::path folder_of(const std::string& path) {
   return parent.empty() ? fs::path(".") : parent;
 }
 
+// An output that is a device or a FIFO (or a name for one, such as /dev/stdout) is written through:
+// opened and written as it is, never replaced by a file renamed over it.
+bool write_through(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (st.type() == fs::file_type::character || st.type() == fs::file_type::fifo) return true;
+  const std::string p = fs::absolute(path, ec).lexically_normal().string();
+  return p.rfind("/dev/", 0) == 0 || p.rfind("/proc/", 0) == 0;
+}
+
+// The file a link names (an output through a link replaces the file, not the link).
+std::string resolved(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_symlink(path, ec)) return path;
+  const fs::path target = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  return ec ? path : target.string();
+}
+
 // The same file, whether or not it exists yet (links and relative spellings resolved).
 bool same_file(const std::string& a, const std::string& b) {
   std::error_code ec;
@@ -37,6 +55,19 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const std::vecto
     if (o.path.empty()) continue;
     std::error_code ec;
     if (fs::is_directory(o.path, ec)) throw InputError(fmt::format("{} '{}': is a folder, not a file", o.option, o.path));
+    if (o.path.back() == '/') throw InputError(fmt::format("{} '{}': names a folder (ends in /), not a file", o.option, o.path));
+    const fs::file_type type = fs::status(o.path, ec).type();
+    if (type == fs::file_type::block || type == fs::file_type::socket) {
+      throw InputError(fmt::format("{} '{}': is a {}; aesim writes files, character devices (such as /dev/null) and FIFOs",
+                                   o.option, o.path, type == fs::file_type::block ? "block device" : "socket"));
+    }
+    if (write_through(o.path)) {
+      // Written as it is: it must exist and be writable; nothing is made beside it.
+      if (::access(o.path.c_str(), W_OK) != 0) {
+        throw InputError(fmt::format("{} '{}': cannot write: {}", o.option, o.path, std::strerror(errno)));
+      }
+      continue;
+    }
     // The nearest folder that exists must be a writable folder (the rest is created later).
     fs::path folder = folder_of(o.path);
     while (!fs::exists(folder, ec) && folder.has_parent_path() && folder.parent_path() != folder) {
@@ -122,15 +153,33 @@ OutputFiles::~OutputFiles() {
   }
 }
 
+// A device or FIFO, opened for writing. A FIFO with no reader is refused rather than waited on.
+int open_through(const std::string& path) {
+  int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0 && errno == ENXIO) throw InputError(fmt::format("output '{}': a FIFO with no reader", path));
+  if (fd < 0) throw InputError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  return fd;
+}
+
 std::ostream& OutputFiles::open(const std::string& path) {
   auto f = std::make_unique<Pending>();
   f->target = path;
-  f->temp = temp_name_for(path);
-  const fs::path parent = fs::path(path).parent_path();
+  if (write_through(path)) {
+    f->direct = true;
+    f->buffer = std::make_unique<FileBuffer>(open_through(path));
+    f->stream = std::make_unique<std::ostream>(f->buffer.get());
+    files_.push_back(std::move(f));
+    return *files_.back()->stream;
+  }
+  f->target = resolved(path);
+  f->temp = temp_name_for(f->target);
+  const fs::path parent = fs::path(f->target).parent_path();
   std::error_code ec;
   if (!parent.empty()) fs::create_directories(parent, ec);
   if (ec) throw InputError(fmt::format("cannot create folder '{}': {}", parent.string(), ec.message()));
-  remove_stale_temps(folder_of(path).string());
+  remove_stale_temps(folder_of(f->target).string());
   register_temp(f->temp);
   const int fd = ::open(f->temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
@@ -145,6 +194,26 @@ std::ostream& OutputFiles::open(const std::string& path) {
 }
 
 std::string OutputFiles::adopt(const std::string& path) {
+  if (write_through(path)) {
+    // A library writes a file (it may seek): a temporary in the system's temporary folder, copied
+    // into the device or FIFO at the commit.
+    auto f = std::make_unique<Pending>();
+    f->target = path;
+    f->direct = true;
+    std::error_code ec;
+    const fs::path tmp = fs::temp_directory_path(ec);
+    f->temp = temp_name_for(((ec ? fs::path("/tmp") : tmp) / fs::path(path).filename()).string());
+    register_temp(f->temp);
+    const int fd = ::open(f->temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (fd < 0) {
+      unregister_temp(f->temp);
+      throw InputError(fmt::format("cannot write a temporary for '{}': {}", path, std::strerror(errno)));
+    }
+    ::close(fd);
+    f->buffer = std::make_unique<FileBuffer>(-1);
+    files_.push_back(std::move(f));
+    return files_.back()->temp;
+  }
   open(path);
   files_.back()->buffer->close();
   return files_.back()->temp;
@@ -152,7 +221,7 @@ std::string OutputFiles::adopt(const std::string& path) {
 
 std::string OutputFiles::temp_path(const std::string& target) const {
   for (const auto& f : files_) {
-    if (f->target == target) return f->temp;
+    if (f->target == target || f->target == resolved(target)) return f->temp;
   }
   throw std::logic_error("no output file " + target);
 }
@@ -175,11 +244,27 @@ void OutputFiles::commit() {
       throw OutputError(fmt::format("writing '{}' failed: {}", f->target, std::strerror(f->buffer->error())));
     }
   }
+  // Devices and FIFOs: what was written through is there; what a library wrote is copied in.
+  for (auto& f : files_) {
+    if (!f->direct || f->temp.empty()) continue;
+    const int in = ::open(f->temp.c_str(), O_RDONLY | O_CLOEXEC);
+    if (in < 0) throw OutputError(fmt::format("reading the temporary for '{}': {}", f->target, std::strerror(errno)));
+    FileBuffer out(open_through(f->target));
+    std::ostream stream(&out);
+    char chunk[1 << 16];
+    for (ssize_t n; (n = ::read(in, chunk, sizeof chunk)) != 0;) {
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) break;
+      stream.write(chunk, n);
+    }
+    ::close(in);
+    if (!out.close()) throw OutputError(fmt::format("writing '{}' failed: {}", f->target, std::strerror(out.error())));
+  }
   // Keep what the targets held, so that a failed rename can put every one of them back.
   std::vector<std::string> backups(files_.size());
   for (std::size_t i = 0; i < files_.size(); ++i) {
     std::error_code ec;
-    if (!fs::is_regular_file(files_[i]->target, ec)) continue;
+    if (files_[i]->direct || !fs::is_regular_file(files_[i]->target, ec)) continue;
     backups[i] = temp_name_for(files_[i]->target, ".old");
     fs::remove(backups[i], ec);
     if (::link(files_[i]->target.c_str(), backups[i].c_str()) != 0) backups[i].clear();
@@ -192,9 +277,11 @@ void OutputFiles::commit() {
   };
   for (std::size_t i = 0; i < files_.size(); ++i) {
     std::error_code ec;
+    if (files_[i]->direct) continue;
     fs::rename(files_[i]->temp, files_[i]->target, ec);
     if (!ec) continue;
     for (std::size_t j = 0; j < i; ++j) {
+      if (files_[j]->direct) continue;
       std::error_code ignored;
       if (!backups[j].empty()) fs::rename(backups[j], files_[j]->target, ignored);
       else fs::remove(files_[j]->target, ignored);
@@ -204,6 +291,8 @@ void OutputFiles::commit() {
   }
   drop_backups();
   for (auto& f : files_) {
+    std::error_code ignored;
+    if (f->direct && !f->temp.empty()) fs::remove(f->temp, ignored);
     unregister_temp(f->temp);
     f->temp.clear();
   }

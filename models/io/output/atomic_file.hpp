@@ -12,14 +12,19 @@ struct OutputPath {
 };
 
 // Checks, before any work starts, that every named output can be written: its folder exists or
-// can be created and is writable, it is not a folder, it is not one of the inputs, and no two
-// outputs are the same file. Empty paths are skipped. Throws InputError naming the option.
+// can be created and is writable, it is not a folder (nor ends in /), a block device or a socket
+// (a character device or FIFO is written through, see OutputFiles), it is not one of the inputs,
+// and no two outputs are the same file. Empty paths are skipped. Throws InputError naming the option.
 void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
 
 // A set of output files written to temporary names beside their targets (see temp_files.hpp)
 // and renamed into place only by commit(), all or none: a run that fails part-way, or is
 // interrupted, leaves no half-written output and no temporaries. Files not committed are
-// removed when the set is destroyed.
+// removed when the set is destroyed. An output that is a link is written to the file it names.
+// An output that is a character device or a FIFO (or a name under /dev or /proc, such as
+// /dev/stdout) is written through, never replaced: opened at once and written as the run goes
+// (what a library writes goes through a temporary copied in at the commit), so it has no
+// all-or-none promise; a FIFO with no reader is refused.
 class OutputFiles {
  public:
   OutputFiles();
@@ -44,6 +49,7 @@ class OutputFiles {
   class FileBuffer;
   struct Pending {
     std::string target, temp;
+    bool direct = false;  // a device or FIFO, written through
     std::unique_ptr<FileBuffer> buffer;
     std::unique_ptr<std::ostream> stream;
     ~Pending();

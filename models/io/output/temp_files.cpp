@@ -1,5 +1,7 @@
 #include "output/temp_files.hpp"
 
+#include "process/child_process.hpp"
+
 #include "process/interrupt.hpp"
 
 #include <signal.h>
@@ -47,6 +49,7 @@ void on_signal(int sig) {
   for (Slot& s : g_slots) {
     if (s.ready.load()) ::unlink(s.path);
   }
+  kill_children(SIGTERM);
   ::signal(sig, SIG_DFL);
   ::raise(sig);
 }
@@ -58,6 +61,19 @@ std::string temp_name_for(const std::string& target, const std::string& suffix) 
   const std::string name = p.filename().string();
   const std::string temp = fmt::format(".{}{}{}{}.{}", name, suffix, kMarker, host_name(), ::getpid());
   return (p.parent_path() / temp).string();
+}
+
+std::string target_of(const std::string& path) {
+  const fs::path p(path);
+  const std::string name = p.filename().string();
+  const std::size_t at = name.find(kMarker);
+  if (name.size() < 2 || name[0] != '.' || at == std::string::npos) return path;
+  return (p.parent_path() / name.substr(1, at - 1)).string();
+}
+
+std::string write_failure(const std::string& path) {
+  const int err = errno;
+  return fmt::format("writing '{}' failed: {}", target_of(path), err ? std::strerror(err) : "the writer gave no reason");
 }
 
 void remove_stale_temps(const std::string& folder) {
@@ -104,7 +120,10 @@ void install_signal_cleanup() {
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);
   action.sa_flags = 0;  // no SA_RESTART: a cooperative command's waitpid returns EINTR
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(sig, &action, nullptr);
+  // Every signal whose default ends the process (but SIGKILL and SIGSTOP, which cannot be caught).
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGPIPE, SIGALRM, SIGVTALRM, SIGXCPU, SIGXFSZ}) {
+    ::sigaction(sig, &action, nullptr);
+  }
 }
 
 Cooperative::Cooperative() { g_cooperative = 1; }

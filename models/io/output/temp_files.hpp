@@ -14,6 +14,13 @@ namespace aesim {
 // The temporary name for `target` owned by this process; `suffix` tells several apart.
 std::string temp_name_for(const std::string& target, const std::string& suffix = "");
 
+// The target a temporary name stands for (the path itself if it is no temporary name), for
+// messages about what the user asked for.
+std::string target_of(const std::string& path);
+// "writing 'TARGET' failed: REASON", the system's reason (errno) as it stands now: called right
+// after the failing write, it names a full disk as "No space left on device".
+std::string write_failure(const std::string& path);
+
 // Removes leftovers of dead aesim processes of this host in `folder` (no error if none).
 void remove_stale_temps(const std::string& folder);
 

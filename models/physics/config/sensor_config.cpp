@@ -322,13 +322,19 @@ ResolvedConfig SensorConfig::resolved() const {
 
 std::string sensors_dir() { return data_dir() + "/models/sensors"; }
 
+std::string sensor_file(const std::string& name_or_file) {
+  namespace fs = std::filesystem;
+  const bool is_path = name_or_file.find('/') != std::string::npos || fs::path(name_or_file).extension() == ".toml";
+  return is_path ? name_or_file : sensors_dir() + "/" + name_or_file + ".toml";
+}
+
 SensorConfig load_sensor(const std::string& name_or_file) {
   namespace fs = std::filesystem;
   const bool is_path = name_or_file.find('/') != std::string::npos ||
                        fs::path(name_or_file).extension() == ".toml";
-  const std::string path = is_path ? name_or_file : sensors_dir() + "/" + name_or_file + ".toml";
+  const std::string path = sensor_file(name_or_file);
   if (!is_input_file(path, "sensor file")) {
-    throw InputError(is_path ? fmt::format("sensor file '{}' not found", path)
+    throw InputError(is_path ? fmt::format("sensor file '{}': {}", path, not_a_file(path))
                              : fmt::format("unknown sensor '{}' (no {})", name_or_file, path));
   }
   SensorConfig config;

@@ -128,6 +128,8 @@ struct ResolvedConfig : SensorConfig {
 };
 
 // Loads a preset: NAME (a file in the sensors folder) or a path to a .toml file.
+// The file a sensor name (a preset in the data folder) or path names.
+std::string sensor_file(const std::string& name_or_file);
 SensorConfig load_sensor(const std::string& name_or_file);
 // Sets keys from a TOML file: "[section] key = value" tables, or, when `section` is given, plain
 // "key = value" lines within that section. Values are strings with units, numbers or booleans.

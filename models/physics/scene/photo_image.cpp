@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 #include <jpeglib.h>
+#include <jerror.h>
 #include <png.h>
 
 #include "errors/input_error.hpp"
@@ -71,7 +72,11 @@ struct JpegErrors {
   jpeg_error_mgr mgr;
   std::jmp_buf jump;
   char message[JMSG_LENGTH_MAX];
+  int scans = 0;
 };
+
+// A progressive JPEG decodes every scan again: 20,000 scans of a small file cost seconds.
+constexpr int kMaxJpegScans = 1000;
 
 void jpeg_fail(j_common_ptr cinfo) {
   auto* errors = reinterpret_cast<JpegErrors*>(cinfo->err);
@@ -79,7 +84,16 @@ void jpeg_fail(j_common_ptr cinfo) {
   std::longjmp(errors->jump, 1);
 }
 
-void jpeg_ignore_message(j_common_ptr, int) {}
+// libjpeg's warnings are corrupt data it would paper over (a truncated file's missing rows are
+// invented grey): each is an error here. Its trace of scan starts counts the scans.
+void jpeg_message(j_common_ptr cinfo, int level) {
+  auto* errors = reinterpret_cast<JpegErrors*>(cinfo->err);
+  if (level < 0) jpeg_fail(cinfo);
+  if (cinfo->err->msg_code == JTRC_SOS && ++errors->scans > kMaxJpegScans) {
+    std::snprintf(errors->message, sizeof errors->message, "more than %d scans, the most aesim decodes", kMaxJpegScans);
+    std::longjmp(errors->jump, 1);
+  }
+}
 
 }  // namespace
 
@@ -156,7 +170,8 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   JpegErrors errors;
   cinfo.err = jpeg_std_error(&errors.mgr);
   errors.mgr.error_exit = jpeg_fail;
-  errors.mgr.emit_message = jpeg_ignore_message;
+  errors.mgr.emit_message = jpeg_message;
+  errors.mgr.trace_level = 1;
   std::vector<unsigned char> bytes;
   Image img;
   int channels = 0;

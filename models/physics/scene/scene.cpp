@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
+#include "limits/limits.hpp"
 #include "files/input_path.hpp"
 #include "scene/netpbm.hpp"
 #include "scene/resample.hpp"
@@ -23,8 +24,9 @@ long long frame_number(const std::string& stem) {
   if (end == std::string::npos) return -1;
   auto begin = end;
   while (begin > 0 && std::isdigit(static_cast<unsigned char>(stem[begin - 1]))) --begin;
-  const std::string digits = stem.substr(begin, std::min<std::size_t>(end - begin + 1, 15));
-  return std::stoll(digits);
+  // Up to 15 digits (a frame's number, not a date and time stamp run together): more is refused.
+  if (end - begin + 1 > 15) return -2;
+  return std::stoll(stem.substr(begin, end - begin + 1));
 }
 
 // The image files a scene folder's frames may be (read_image's formats).
@@ -43,7 +45,7 @@ SceneFiles find_scene(const std::string& file_or_dir) {
     return files;
   }
   if (!is_input_folder(file_or_dir, "scene")) {
-    throw InputError(fmt::format("scene '{}' not found", file_or_dir));
+    throw InputError(fmt::format("scene '{}': {}", file_or_dir, not_a_file(file_or_dir)));
   }
   std::vector<std::pair<long long, std::string>> numbered;
   std::error_code ec;
@@ -54,10 +56,22 @@ SceneFiles find_scene(const std::string& file_or_dir) {
     const fs::directory_entry& entry = *it;
     const fs::path& p = entry.path();
     std::error_code kind;
-    if (!entry.is_regular_file(kind)) continue;
+    if (!entry.is_regular_file(kind)) {
+      // A frame that is a broken link, a FIFO or a device is named, not skipped.
+      if (is_scene_image(p) || p.filename() == "scene.toml") {
+        throw InputError(fmt::format("scene folder '{}': '{}' {}", file_or_dir, p.filename().string(), not_a_file(p.string())));
+      }
+      continue;
+    }
     if (p.filename() == "scene.toml") files.settings = p.string();
     if (!is_scene_image(p)) continue;
+    if (numbered.size() == kMaxSceneFrames) {
+      throw InputError(fmt::format("scene folder '{}': more than {} frames, the most aesim reads", file_or_dir, kMaxSceneFrames));
+    }
     const long long n = frame_number(p.stem().string());
+    if (n == -2) {
+      throw InputError(fmt::format("scene folder '{}': frame '{}' has a number of over 15 digits", file_or_dir, p.filename().string()));
+    }
     if (n < 0) throw InputError(fmt::format("scene folder '{}': frame '{}' has no number", file_or_dir, p.filename().string()));
     numbered.emplace_back(n, p.string());
   }
@@ -107,8 +121,34 @@ std::vector<Image> read_frames(const SceneFiles& files) {
   return frames;
 }
 
-Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown) {
-  return load_scene(read_frames(files), array, shown);
+Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown, double duration) {
+  // The frames a run of `duration` shows: without a wrap of the loop, only the first ones.
+  std::size_t needed = files.frames.size();
+  if (needed > 1 && std::isfinite(duration)) {
+    const double started = std::ceil(duration * shown.frame_rate) + 1;
+    if (started < static_cast<double>(needed)) needed = static_cast<std::size_t>(started);
+  }
+  const double bytes = static_cast<double>(needed) * static_cast<double>(array.rows) * array.cols * 16.0;
+  if (bytes > kMaxSceneBytes) {
+    throw InputError(fmt::format("scene '{}': {} frames at {}x{} would take {:.3g} GB (at most {:.3g} GB): use fewer "
+                                 "frames, a smaller array or a shorter sim.duration",
+                                 files.source, needed, array.cols, array.rows, bytes / 1e9, kMaxSceneBytes / 1e9));
+  }
+  // One frame in memory at a time before it is resampled to the array.
+  Scene scene;
+  scene.frame_period = 1.0 / shown.frame_rate;
+  scene.loop = shown.loop;
+  for (std::size_t f = 0; f < needed; ++f) {
+    const Image img = read_image(files.frames[f]);
+    if (f > 0 && (img.width != scene.source_width || img.height != scene.source_height)) {
+      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", files.frames[f], img.width,
+                                   img.height, scene.source_width, scene.source_height));
+    }
+    scene.source_width = img.width;
+    scene.source_height = img.height;
+    scene.frames.push_back(resample_area(img, array.cols, array.rows));
+  }
+  return scene;
 }
 
 Scene load_scene(const std::vector<Image>& frames, const ArrayParams& array, const SceneParams& shown) {

@@ -1,4 +1,5 @@
 #pragma once
+#include <limits>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -42,7 +43,11 @@ struct Scene {
 std::vector<Image> read_frames(const SceneFiles& files);
 
 // The scene at the array's resolution (array.cols x array.rows, area resampling), shown as `shown` says.
-Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown);
+// Reads the frames one at a time, resampled to the array as they come; only those a run of
+// `duration` shows (the first ceil(duration x frame_rate) + 1, when the loop does not wrap), after
+// checking that they fit kMaxSceneBytes.
+Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown,
+                 double duration = std::numeric_limits<double>::infinity());
 // The same from frames in memory (all of one size; the Python module's arrays).
 Scene load_scene(const std::vector<Image>& frames, const ArrayParams& array, const SceneParams& shown);
 

@@ -104,7 +104,7 @@ std::string resolve_path(const std::string& p, const fs::path& spec_dir) {
 }  // namespace
 
 SweepSpec load_sweep_spec(const std::string& path) {
-  if (!is_input_file(path, "sweep spec")) throw InputError(fmt::format("sweep spec '{}' not found", path));
+  require_input_file(path, "sweep spec");
   const Value doc = parse_toml_file(path, fmt::format("sweep spec '{}'", path));
   const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
   SweepSpec spec;
@@ -117,7 +117,9 @@ SweepSpec load_sweep_spec(const std::string& path) {
     else if (key == "duration") spec.duration = scalar_text(value, where);
     else if (key == "chart") {
       spec.chart = resolve_path(scalar_text(value, where), dir);
-      if (!is_input_file(spec.chart, "chart script")) throw InputError(fmt::format("{}: chart script '{}' not found", where, spec.chart));
+      if (!is_input_file(spec.chart, "chart script")) {
+        throw InputError(fmt::format("{}: chart script '{}': {}", where, spec.chart, not_a_file(spec.chart)));
+      }
     }
     else if (key == "jobs") {
       if (!value.is_integer() || value.as_integer() < 0 || value.as_integer() > 1024) {

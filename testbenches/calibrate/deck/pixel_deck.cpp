@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 constexpr std::uintmax_t kMaxDeckBytes = 64u << 20;
 
 std::string read_text(const std::string& path, const std::string& what) {
-  if (!is_input_file(path, what)) throw InputError(fmt::format("{} '{}' not found", what, path));
+  require_input_file(path, what);
   std::error_code ec;
   if (fs::file_size(path, ec) > kMaxDeckBytes) {
     throw InputError(fmt::format("{} '{}' is larger than {} MiB", what, path, kMaxDeckBytes >> 20));
@@ -71,18 +71,39 @@ std::vector<std::string> tokens(const std::string& line) {
   return out;
 }
 
-// The .include'd files of a deck, resolved against its folder as ngspice does.
+// The .include'd files of a deck, resolved against its folder as ngspice does (a `.lib NAME` of
+// one word opens a section of the file it is in, not a file).
 std::vector<std::string> includes(const std::vector<std::string>& lines, const fs::path& folder) {
   std::vector<std::string> out;
   for (const std::string& line : lines) {
     const std::vector<std::string> t = tokens(line);
-    if (t.size() < 2 || (ascii_lower(t[0]) != ".include" && ascii_lower(t[0]) != ".inc" && ascii_lower(t[0]) != ".lib")) continue;
+    const std::string keyword = t.empty() ? "" : ascii_lower(t[0]);
+    if (t.size() < 2 || (keyword != ".include" && keyword != ".inc" && keyword != ".lib")) continue;
+    if (keyword == ".lib" && t.size() < 3) continue;
     std::string name = t[1];
     if (name.size() >= 2 && (name.front() == '"' || name.front() == '\'')) name = name.substr(1, name.size() - 2);
     const fs::path p = fs::path(name).is_absolute() ? fs::path(name) : folder / name;
     out.push_back(p.string());
   }
   return out;
+}
+
+// ngspice runs commands from a deck's .control (and .exec) blocks, `shell` among them, which could
+// run any program: a deck aesim calibrates must describe a circuit only. Found in every file the
+// deck includes, not only the deck.
+void refuse_commands(const std::string& text, const std::string& file) {
+  std::istringstream in(text);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    const std::vector<std::string> t = tokens(line);
+    if (t.empty()) continue;
+    const std::string keyword = ascii_lower(t[0]);
+    if (keyword == ".control" || keyword == ".exec") {
+      throw InputError(fmt::format("'{}' line {}: a {} block, whose commands ngspice would run (shell commands among "
+                                   "them); aesim calibrate runs the circuit of a deck only: remove the block",
+                                   file, n, keyword));
+    }
+  }
 }
 
 struct Subcircuit {
@@ -136,13 +157,29 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   deck.subckt = subckt;
   deck.given = path;
   std::uint64_t h = fnv1a(text, 0xcbf29ce484222325ull);
+  refuse_commands(text, path);
   const std::vector<std::string> lines = logical_lines(text);
   std::optional<Subcircuit> found = find_subckt(lines, subckt);
-  for (const std::string& inc : includes(lines, fs::path(deck.path).parent_path())) {
-    if (!is_input_file(inc, "included file")) continue;  // ngspice names it on the first run
+  // Every file the deck includes, and those they include (a PDK's .lib files nest), once each.
+  std::vector<std::string> pending = includes(lines, fs::path(deck.path).parent_path());
+  std::vector<std::string> seen;
+  while (!pending.empty()) {
+    const std::string inc = pending.front();
+    pending.erase(pending.begin());
+    const std::string key = fs::weakly_canonical(inc, ec).string();
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+    seen.push_back(key);
+    if (seen.size() > 4096) throw InputError(fmt::format("deck '{}' includes more than 4096 files", path));
+    if (!is_input_file(inc, "included file")) {
+      if (fs::exists(inc, ec) || fs::is_symlink(inc, ec)) throw InputError(fmt::format("file '{}' included by the deck: {}", inc, not_a_file(inc)));
+      continue;  // missing: ngspice names it on the first run
+    }
     const std::string included = read_text(inc, "included file");
+    refuse_commands(included, inc);
     h = fnv1a(included, h);
-    if (!found) found = find_subckt(logical_lines(included), subckt);
+    const std::vector<std::string> included_lines = logical_lines(included);
+    if (!found) found = find_subckt(included_lines, subckt);
+    for (const std::string& next : includes(included_lines, fs::path(inc).parent_path())) pending.push_back(next);
   }
   deck.hash = fmt::format("{:016x}", h);
   if (!found) {

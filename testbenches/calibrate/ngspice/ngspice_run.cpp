@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -115,6 +116,10 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   // Ended by SIGINT or SIGTERM: a Ctrl-C or a kill reaches ngspice with the rest of the process
   // group, often before this process has seen its own; the signal, not the deck, is why.
   if (*status == 128 + SIGINT || *status == 128 + SIGTERM) throw Interrupted(*status - 128);
+  if (*status > 128) {
+    throw InputError(fmt::format("deck '{}': ngspice crashed on it (signal {}: {})", deck.given, *status - 128,
+                                 strsignal(*status - 128)));
+  }
   if (*status != 0) {
     const std::string error = first_error(read_all(log));
     if (ascii_lower(error).find("unknown subckt") != std::string::npos) {

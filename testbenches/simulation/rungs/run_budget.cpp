@@ -57,6 +57,11 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& phot
     }
   }
   if (fidelity == Fidelity::PixelProcesses) w.process_pixels = static_cast<double>(pixels);
+  if (fidelity == Fidelity::Cycle) {
+    const double across = std::ceil(static_cast<double>(config.array.cols) / config.array.tile_cols);
+    const double down = std::ceil(static_cast<double>(config.array.rows) / config.array.tile_rows);
+    w.cycle_tiles = across * down;
+  }
   return w;
 }
 
@@ -89,8 +94,14 @@ void check_work(const SensorConfig& config, const Photocurrents& photocurrents, 
   }
   if (w.process_pixels > kMaxProcessPixels) {
     throw InputError(fmt::format("sim.fidelity: pixel_processes elaborates a SystemC process per pixel; {:.0f} pixels "
-                                 "is more than its {:.0f} (use sim.fidelity=event)",
+                                 "is more than its {:.0f}, whose set-up alone takes seconds (use sim.fidelity=event)",
                                  w.process_pixels, kMaxProcessPixels));
+  }
+  if (w.cycle_tiles > kMaxCycleTiles) {
+    throw InputError(fmt::format("sim.fidelity: the cycle rung elaborates a clocked bus and receiver per tile; {:.0f} "
+                                 "tiles is more than its {:.0f}, whose set-up alone takes seconds (use larger "
+                                 "array.tile_rows/tile_cols, or sim.fidelity=event)",
+                                 w.cycle_tiles, kMaxCycleTiles));
   }
 }
 

@@ -1,6 +1,9 @@
 #include "build/dut_build.hpp"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <chrono>
@@ -261,6 +264,21 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
 
 }  // namespace
 
+void remove_dead_temps(const std::string& cache) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(cache, ec)) {
+    const std::string name = e.path().filename().string();
+    const auto dot = name.rfind('.');
+    if (name.rfind("tmp", 0) != 0 || dot == std::string::npos) continue;
+    const std::string pid = name.substr(dot + 1);
+    if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    const pid_t owner = static_cast<pid_t>(std::stol(pid));
+    if (owner == ::getpid() || ::kill(owner, 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    fs::remove_all(e.path(), ignored);
+  }
+}
+
 std::string default_cache_dir() {
   if (const char* dir = std::getenv("AESIM_CACHE_DIR"); dir && *dir) return dir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/aesim";
@@ -274,6 +292,7 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   std::error_code ec;
   fs::create_directories(cache, ec);
   if (ec) throw InputError(fmt::format("cache folder '{}': {}", cache.string(), ec.message()));
+  remove_dead_temps(cache.string());
   const ScratchFolder scratch(cache / fmt::format("tmp.{}", ::getpid()));
   const fs::path& work = scratch.path();
 

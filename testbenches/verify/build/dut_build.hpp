@@ -33,6 +33,10 @@ struct DutBuild {
 // the first error's file and line, with the tool's log kept in options.log_dir.
 DutBuild build_dut(const ReceiverDescription& description, const DutBuildOptions& options);
 
+// Removes what runs that died (a signal, a kill) left in the cache: its tmp*.PID folders whose
+// process is gone.
+void remove_dead_temps(const std::string& cache);
+
 // $AESIM_CACHE_DIR, else $XDG_CACHE_HOME/aesim, else ~/.cache/aesim.
 std::string default_cache_dir();
 
