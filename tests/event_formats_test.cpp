@@ -12,6 +12,7 @@
 #include <flatbuffers/flatbuffers.h>
 #include <gtest/gtest.h>
 
+#include "FileDataTable_generated.h"
 #include "IOHeader_generated.h"
 #include "errors/input_error.hpp"
 #include "event_files/aedat4.hpp"
@@ -96,7 +97,11 @@ TEST_F(EventFormats, EveryFormatReadsBackEventForEventWithItsArray) {
       EXPECT_DOUBLE_EQ(rec.events[i].t, events[i].t) << name << " event " << i;
       // aesim's AEDAT 2.0 layout has no polarity bit: a ghost reads back as an event.
       const bool aedat2 = name == "e.aedat" || name == "e.aedat2";
-      const std::uint8_t flags = aedat2 ? std::uint8_t{kNormalEvent} : events[i].flags;
+      // A .npy cannot say who wrote it, so p = 0 reads as a DVS's OFF event, an aesim ghost too.
+      const bool ghost = events[i].flags == kGhostEvent;
+      const std::uint8_t flags = aedat2                      ? std::uint8_t{kNormalEvent}
+                                 : name == "e.npy" && ghost ? std::uint8_t{kOffEvent}
+                                                            : events[i].flags;
       EXPECT_EQ(rec.events[i].flags, flags) << name << " event " << i;
     }
     // .npy cannot carry the array (NumPy refuses extra header keys): the events' span stands in.
@@ -171,7 +176,6 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
     const std::vector<std::uint64_t> header_copy = aligned(data.substr(14, 4 + header_size));
     const dv::IOHeader* h = dv::GetSizePrefixedIOHeader(header_copy.data());
     EXPECT_EQ(h->compression(), c == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE);
-    EXPECT_EQ(h->dataTablePosition(), -1);
     const std::string info = h->infoNode()->str();
     EXPECT_NE(info.find("<attr key=\"typeIdentifier\" type=\"string\">EVTS</attr>"), std::string::npos);
     EXPECT_NE(info.find("<attr key=\"sizeX\" type=\"int\">64</attr>"), std::string::npos);
@@ -181,7 +185,29 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
     ASSERT_GE(data.size(), at + 8);
     EXPECT_EQ(b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) | (b[at + 3] << 24), 0);
     const std::uint32_t size = b[at + 4] | (b[at + 5] << 8) | (b[at + 6] << 16) | (b[at + 7] << 24);
-    EXPECT_EQ(data.size(), at + 8 + size);
+    // The data table follows the last packet, where the header points; it fills the file.
+    ASSERT_EQ(h->dataTablePosition(), static_cast<std::int64_t>(at + 8 + size));
+    // Compressed as the packets are, with no packet header of its own.
+    const std::string table = data.substr(at + 8 + size);
+    if (c == Aedat4Compression::Lz4) {
+      EXPECT_EQ(table.substr(0, 4), std::string("\x04\x22\x4d\x18", 4));
+    }
+    if (c == Aedat4Compression::None) {
+      const std::uint32_t table_size = b[at + 8 + size] | (b[at + 9 + size] << 8) | (b[at + 10 + size] << 16) |
+                                       (static_cast<std::uint32_t>(b[at + 11 + size]) << 24);
+      EXPECT_EQ(table.size(), 4u + table_size);
+      EXPECT_EQ(table.substr(8, 4), "FTAB");
+      const std::vector<std::uint64_t> table_copy = aligned(table);
+      const dv::FileDataTable* t = dv::GetSizePrefixedFileDataTable(table_copy.data());
+      ASSERT_EQ(t->Table()->size(), 1u);
+      const dv::FileDataDefinition* d = t->Table()->Get(0);
+      EXPECT_EQ(d->ByteOffset(), static_cast<std::int64_t>(at + 8));  // the packet's data
+      EXPECT_EQ(d->PacketInfo()->StreamID(), 0);
+      EXPECT_EQ(d->PacketInfo()->Size(), static_cast<std::int32_t>(size));
+      EXPECT_EQ(d->NumElements(), 5);
+      EXPECT_EQ(d->TimestampStart(), 0);
+      EXPECT_EQ(d->TimestampEnd(), 1000000);
+    }
     if (c == Aedat4Compression::Lz4) {
       EXPECT_EQ(data.substr(at + 8, 4), std::string("\x04\x22\x4d\x18", 4));  // an LZ4 frame
     } else {
@@ -228,7 +254,11 @@ TEST_F(EventFormats, AnotherRecordersAedat4KeepsItsPolarityAsEvents) {
   EXPECT_EQ(rec.height, 260);
   EXPECT_TRUE(rec.size_recorded);
   EXPECT_EQ(rec.events[0].x, 345u);
-  EXPECT_EQ(rec.events[0].flags, kNormalEvent);
+  EXPECT_EQ(rec.events[0].flags, kOffEvent);
+  EXPECT_EQ(rec.events[1].flags, kNormalEvent);
+  ASSERT_EQ(rec.skipped.size(), 1u);
+  EXPECT_NE(rec.skipped[0].find("1 packet"), std::string::npos) << rec.skipped[0];
+  EXPECT_NE(rec.skipped[0].find("FRME"), std::string::npos) << rec.skipped[0];
   EXPECT_DOUBLE_EQ(rec.events[1].t, 20e-6);
 }
 
@@ -247,12 +277,25 @@ TEST_F(EventFormats, MalformedFilesAreOneLineErrorsNamingTheFile) {
       EXPECT_EQ(what.find('\n'), std::string::npos) << what;
     }
   };
-  refused(aedat4.substr(0, aedat4.size() - 3), EventFormat::Aedat4, "truncated");
+  // The packets end where the data table starts (IOHeader.dataTablePosition).
+  const auto* b = reinterpret_cast<const std::uint8_t*>(aedat4.data());
+  const std::uint32_t header_size = b[14] | (b[15] << 8) | (b[16] << 16) | (b[17] << 24);
+  const std::vector<std::uint64_t> header_copy = aligned(aedat4.substr(14, 4 + header_size));
+  const auto packets_end = static_cast<std::size_t>(dv::GetSizePrefixedIOHeader(header_copy.data())->dataTablePosition());
+  ASSERT_LT(packets_end, aedat4.size());
+  refused(aedat4.substr(0, packets_end - 3), EventFormat::Aedat4, "truncated");
   refused(aedat4.substr(0, 20), EventFormat::Aedat4, "truncated in the IOHeader");
   refused(std::string("#!AER-DAT4.0\r\n\x08\x00\x00\x00garbage!", 26), EventFormat::Aedat4, "not a valid FlatBuffer");
   std::string corrupt = aedat4;
-  for (std::size_t i = corrupt.size() - 20; i < corrupt.size(); ++i) corrupt[i] = '\xff';
+  for (std::size_t i = packets_end - 20; i < packets_end; ++i) corrupt[i] = '\xff';
   refused(corrupt, EventFormat::Aedat4, "packet 0");
+  // A packet of a stream the header does not declare: its bytes cannot be told from damage.
+  std::string stray = aedat4;
+  stray[header_size + 18] = '\x07';
+  refused(stray, EventFormat::Aedat4, "stream 7, which the header does not declare");
+  // A damaged data table costs nothing: it is an index of packets aesim reads in order (DV too
+  // rebuilds a missing one).
+  EXPECT_EQ(decode_events(aedat4.substr(0, aedat4.size() - 3), "cut table", EventFormat::Aedat4).events.size(), 5u);
   refused("#!AER-DAT2.0\r\n", EventFormat::Aedat4, "not AEDAT 4.0");
   refused(npy.substr(0, npy.size() - 1), EventFormat::Npy, "truncated");
   std::string other_dtype = npy;
@@ -268,6 +311,16 @@ TEST_F(EventFormats, MalformedFilesAreOneLineErrorsNamingTheFile) {
     ADD_FAILURE() << "accepted a fake .h5";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("not an HDF5 file"), std::string::npos) << e.what();
+  }
+  // A recording in a repository cloned without Git LFS is a pointer file (the spec's three lines).
+  std::ofstream(dir_ / "pointer.aedat4") << "version https://git-lfs.github.com/spec/v1\n"
+                                            "oid sha256:f23eb34e1eacadf059cf0b46441c1bd4d05cf1b0bc4b3c8a0e4a3d1bcb5d2c97\n"
+                                            "size 1191471\n";
+  try {
+    load_events((dir_ / "pointer.aedat4").string());
+    ADD_FAILURE() << "accepted a Git LFS pointer";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Git LFS pointer"), std::string::npos) << e.what();
   }
 }
 

@@ -40,7 +40,7 @@ nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* giv
   }
   const std::optional<ArraySize> size =
       opt.size.empty() ? std::nullopt : std::optional<ArraySize>(parse_array_size(opt.size, "--size"));
-  const EventRecording rec = given ? *given : load_events(opt.events, size);
+  const EventRecording rec = given ? *given : load_events(opt.events, size, opt.layout);
   // The size scales events onto the templates: guessed from the events it would change the
   // decision with the events that happened to fire (a CSV records no size).
   if (!rec.size_recorded) {

@@ -48,14 +48,17 @@ void add_recon(CLI::App& app, int& status) {
       ->capture_default_str();
   cmd->add_option("-o,--output", opt->output, "Output image (.png or .pgm)")->required();
   cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT (an AEDAT header records it; a CSV does not)");
+  cmd->add_option("--layout", opt->layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");
   cmd->callback([opt, &status] { status = recon_command(*opt); });
 }
 
 void add_info(CLI::App& app, int& status) {
   auto path = std::make_shared<std::string>();
+  auto layout = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("info", "Counts, time span, rate and per-tile breakdown of an event file");
   cmd->add_option("EVENTS", *path, "Event file (.aedat, .aedat4, .npy, .h5 or .csv)")->required();
-  cmd->callback([path, &status] { status = info_command(*path); });
+  cmd->add_option("--layout", *layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");
+  cmd->callback([path, layout, &status] { status = info_command(*path, *layout); });
 }
 
 void add_sweep(CLI::App& app, int& status) {
@@ -166,6 +169,7 @@ void add_classify(CLI::App& app, int& status) {
   cmd->add_option("EVENTS", opt->events, "Event file (.aedat, .aedat4, .npy, .h5 or .csv)")->required();
   cmd->add_option("--templates", opt->templates, "Folder of binary .pgm templates (default scenes/templates/letters)");
   cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT: needed for a CSV, which records none");
+  cmd->add_option("--layout", opt->layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");
   cmd->add_option("--k", opt->classifier.k, "A winner leads the second score by at least K * r_max")->capture_default_str();
   cmd->add_option("--max-events", opt->classifier.max_events, "Restart after this many events without a decision")
       ->capture_default_str();

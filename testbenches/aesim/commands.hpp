@@ -17,7 +17,7 @@ namespace aesim {
 
 struct ClassifyOptions {
   // The time estimate's defaults are the paper's: 100 cycles per template on a 57.6 MHz processor.
-  std::string events, templates, clock = "57.6MHz", size;
+  std::string events, templates, clock = "57.6MHz", size, layout;
   ClassifierOptions classifier;
   bool no_ranks = false, json = false;
   double cycles_per_template = 100;
@@ -56,7 +56,7 @@ struct EmulatedRun {
 EmulatedRun emulate_frames(const EmulateOptions& opt, std::vector<Image> given = {});
 
 struct ReconOptions {
-  std::string events, output, window, mode = "histogram", size;
+  std::string events, output, window, mode = "histogram", size, layout;
   long long count = -1;
 };
 
@@ -101,7 +101,7 @@ int run_command(RunOptions opt);
 int calibrate_command(const CalibrateOptions& opt);
 int verify_command(const VerifyCommandOptions& opt);
 int recon_command(const ReconOptions& opt);
-int info_command(const std::string& path);
+int info_command(const std::string& path, const std::string& layout = "");
 int sweep_command(SweepOptions opt);
 int compare_command(CompareOptions opt);
 int emulate_command(EmulateOptions opt);

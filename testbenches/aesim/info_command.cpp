@@ -9,15 +9,16 @@
 
 namespace aesim {
 
-int info_command(const std::string& path) {
-  const EventRecording rec = load_events(path);
+int info_command(const std::string& path, const std::string& layout) {
+  const EventRecording rec = load_events(path, std::nullopt, layout);
   const std::size_t n = rec.events.size();
   const double span = n > 1 ? rec.events.back().t - rec.events.front().t : 0.0;
   std::vector<std::size_t> per_tile(static_cast<std::size_t>(std::max(rec.tiles, 1)), 0);
-  std::size_t ghosts = 0;
+  std::size_t ghosts = 0, off = 0;
   for (const AddressEvent& e : rec.events) {
     if (e.tile < per_tile.size()) ++per_tile[e.tile];
     ghosts += (e.flags & kGhostEvent) ? 1 : 0;
+    off += (e.flags & kOffEvent) ? 1 : 0;
   }
   fmt::print("{}: {} events, array {}x{}{}, {} tiles\n", path, n, rec.width, rec.height,
              rec.size_recorded ? "" : " (not recorded in the file: the span of its events)", rec.tiles);
@@ -27,6 +28,8 @@ int info_command(const std::string& path) {
   }
   if (span > 0) fmt::print("  rate {}\n", format_si(static_cast<double>(n) / span, "events/s"));
   if (ghosts > 0) fmt::print("  ghost events {}\n", ghosts);
+  if (off > 0) fmt::print("  OFF events {} (polarity as contrast: a recording of another tool's)\n", off);
+  for (const std::string& s : rec.skipped) fmt::print("  skipped {} (streams other than the events)\n", s);
   for (std::size_t t = 0; t < per_tile.size() && n > 0; ++t) {
     fmt::print("  tile {}: {} events ({:.1f} %){}\n", t, per_tile[t], 100.0 * per_tile[t] / n,
                span > 0 ? ", " + format_si(per_tile[t] / span, "events/s") : "");

@@ -25,7 +25,7 @@ int recon_command(const ReconOptions& opt) {
 
   const std::optional<ArraySize> size =
       opt.size.empty() ? std::nullopt : std::optional<ArraySize>(parse_array_size(opt.size, "--size"));
-  const EventRecording rec = load_events(opt.events, size);
+  const EventRecording rec = load_events(opt.events, size, opt.layout);
   if (!rec.size_recorded && rec.width > 0) {
     // SPEC's `aesim recon EVENTS -o IMAGE` keeps working on a CSV, which records no size; the
     // image then spans the events that fired, which may be smaller than the array.
@@ -39,7 +39,9 @@ int recon_command(const ReconOptions& opt) {
 
   const ReconMode mode = opt.mode == "histogram" ? ReconMode::Histogram : ReconMode::Interval;
   OutputFiles files;
-  write_image(files.open(opt.output), opt.output, reconstruct(chosen, rec.width, rec.height, mode));
+  Image image = reconstruct(chosen, rec.width, rec.height, mode);
+  scale_to_percentile(image, 99.5);  // a recording's hot pixels would leave the rest black
+  write_image(files.open(opt.output), opt.output, image);
   files.commit();
   fmt::print("aesim recon: {} of {} events, {} reconstruction {}x{} -> {}\n", chosen.size(), rec.events.size(),
              opt.mode, rec.width, rec.height, opt.output);

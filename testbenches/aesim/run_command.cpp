@@ -143,11 +143,8 @@ int run_command(RunOptions opt) {
   files.commit();
 
   const TileCounters total = result.log.totals();
-  if (events && layout != AedatLayout::Aesim && events->zero_stamps() > 0) {
-    std::fprintf(stderr,
-                 "aesim: warning: %llu events in %s are stamped 0 us; jAER's reader skips such an event (it reads the "
-                 "next one in its place); aesim's readers keep them\n",
-                 static_cast<unsigned long long>(events->zero_stamps()), opt.out.c_str());
+  if (events && !events->reader_warning().empty()) {
+    std::fprintf(stderr, "aesim: warning: %s: %s\n", opt.out.c_str(), events->reader_warning().c_str());
   }
   if (events && events->off_array() > 0) {
     std::fprintf(stderr,

@@ -2,17 +2,20 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "scene/scene.hpp"
 #include "emulator/y4m.hpp"
+#include "event_files/dsec_h5.hpp"
 #include "event_files/event_file.hpp"
 #include "scene/netpbm.hpp"
 #include "scene/exr_image.hpp"
@@ -73,6 +76,19 @@ int aedat4(const std::uint8_t* data, std::size_t size) {
 
 int npy(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.npy", EventFormat::Npy); });
+}
+
+int h5(const std::uint8_t* data, std::size_t size) {
+  // libhdf5 reads files, not memory: the bytes go to a file of this process's own (in memory on
+  // Linux), read by the DSEC reader under the fuzzer's limits.
+  static const std::string path = fmt::format("/dev/shm/aesim-fuzz-{}.h5", ::getpid());
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  }
+  const int r = expect_result_or_input_error([&] { read_dsec_h5(path); });
+  std::remove(path.c_str());
+  return r;
 }
 
 int set_values(const std::uint8_t* data, std::size_t size) {

@@ -16,6 +16,7 @@ int aedat(const std::uint8_t* data, std::size_t size);         // AEDAT 2.0 even
 int events_csv(const std::uint8_t* data, std::size_t size);    // event CSV files
 int aedat4(const std::uint8_t* data, std::size_t size);        // AEDAT 4.0 event files (FlatBuffers, LZ4)
 int npy(const std::uint8_t* data, std::size_t size);           // NumPy .npy event files
+int h5(const std::uint8_t* data, std::size_t size);            // DSEC HDF5 event files (through libhdf5)
 int set_values(const std::uint8_t* data, std::size_t size);    // --set key=value lines with units
 int sensor_toml(const std::uint8_t* data, std::size_t size);   // sensor presets and scene.toml
 int sweep_spec(const std::uint8_t* data, std::size_t size);    // sweep specs
@@ -32,6 +33,6 @@ inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
                                       {"sweep_spec", sweep_spec}, {"receiver_toml", receiver_toml},
                                       {"pixel_deck", pixel_deck}, {"photo", photo},
                                       {"aedat4", aedat4},         {"npy", npy},
-                                      {"exr", exr}};
+                                      {"exr", exr},               {"h5", h5}};
 
 }  // namespace aesim::fuzz

@@ -19,6 +19,7 @@ sys.path.insert(0, os.environ["AESIM_FBS_PYTHON"])
 from dv.EventPacket import EventPacket  # noqa: E402  (flatc's code)
 from dv.IOHeader import IOHeader  # noqa: E402
 from dv.CompressionType import CompressionType  # noqa: E402
+from dv.FileDataTable import FileDataTable  # noqa: E402
 
 AESIM = os.environ["AESIM_BINARY"]
 SCENE = os.path.join(os.environ["AESIM_SOURCE_DIR"], "scenes", "natural.pgm")
@@ -88,27 +89,46 @@ def test_aedat4_read_with_flatcs_python_code(run, name):
     pos += 4 + size
     compressed = header.Compression() == CompressionType.LZ4
     assert compressed == (name == "e.aedat4")
-    assert header.DataTablePosition() == -1
+    table_at = header.DataTablePosition()
+    assert pos < table_at < len(data)
     info = ET.fromstring(header.InfoNode().decode())
     stream = info.find("./node[@name='outInfo']/node[@name='0']")
     assert stream.find("./attr[@key='typeIdentifier']").text == "EVTS"
     assert stream.find("./node[@name='info']/attr[@key='sizeX']").text == "64"
-    xs, ys, ts, ps = [], [], [], []
-    while pos < len(data):
-        stream_id = int.from_bytes(data[pos:pos + 4], "little")
-        body_size = int.from_bytes(data[pos + 4:pos + 8], "little")
-        body = data[pos + 8:pos + 8 + body_size]
-        pos += 8 + body_size
-        assert stream_id == 0
+    def decode(body, into):
         if compressed:
             body = lz4.frame.decompress(body)
         assert body[8:12] == b"EVTS"
         packet = EventPacket.GetRootAs(body[4:], 0)  # size-prefixed
         for i in range(packet.ElementsLength()):
             e = packet.Elements(i)
-            xs.append(e.X())
-            ys.append(e.Y())
-            ts.append(e.Timestamp())
-            ps.append(e.Polarity())
-    assert pos == len(data)
-    expect_same(csv, xs, ys, ts, ps)
+            into.append((e.X(), e.Y(), e.Timestamp(), e.Polarity()))
+        return packet.ElementsLength()
+
+    # Read in order, as DV's and tonic's readers do: packets up to the data table.
+    in_order = []
+    while pos < table_at:
+        stream_id = int.from_bytes(data[pos:pos + 4], "little")
+        body_size = int.from_bytes(data[pos + 4:pos + 8], "little")
+        assert stream_id == 0
+        decode(data[pos + 8:pos + 8 + body_size], in_order)
+        pos += 8 + body_size
+    assert pos == table_at
+    expect_same(csv, *zip(*in_order))
+
+    # Read through the data table, as aestream's and dv-processing's readers seek: each entry
+    # gives where a packet's data start, its size, its element count and its first and last stamp.
+    table_bytes = data[table_at:]
+    if compressed:
+        table_bytes = lz4.frame.decompress(table_bytes)
+    table = FileDataTable.GetRootAs(table_bytes[4:], 0)  # size-prefixed
+    by_table = []
+    for k in range(table.TableLength()):
+        entry = table.Table(k)
+        at, size = entry.ByteOffset(), entry.PacketInfo().Size()
+        assert entry.PacketInfo().StreamId() == 0
+        assert int.from_bytes(data[at - 4:at], "little") == size  # the packet's own header
+        first = len(by_table)
+        assert decode(data[at:at + size], by_table) == entry.NumElements()
+        assert (entry.TimestampStart(), entry.TimestampEnd()) == (by_table[first][2], by_table[-1][2])
+    assert by_table == in_order

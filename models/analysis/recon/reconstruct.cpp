@@ -15,6 +15,19 @@ void normalise_to_peak(Image& img) {
 
 }  // namespace
 
+void scale_to_percentile(Image& img, double percentile) {
+  std::vector<double> lit;
+  for (double v : img.pixels) {
+    if (v > 0) lit.push_back(v);
+  }
+  if (lit.empty()) return;
+  const auto at = static_cast<std::size_t>(std::clamp(percentile / 100.0, 0.0, 1.0) * static_cast<double>(lit.size() - 1));
+  std::nth_element(lit.begin(), lit.begin() + static_cast<long>(at), lit.end());
+  const double level = lit[at];
+  if (!(level > 0)) return;
+  for (double& v : img.pixels) v = std::min(1.0, v / level);
+}
+
 Image histogram_image(const std::vector<std::uint32_t>& counts, int width, int height) {
   Image img;
   img.width = width;

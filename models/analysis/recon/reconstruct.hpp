@@ -10,6 +10,10 @@ namespace aesim {
 
 enum class ReconMode { Histogram, Interval };
 
+// Scales an image for viewing: the `percentile` of its lit (non-zero) pixels becomes 1, brighter
+// ones are clipped to 1. A real recording's few hot pixels would otherwise leave the rest black.
+void scale_to_percentile(Image& img, double percentile);
+
 // Brightness images from events, normalised so the brightest pixel is 1.
 //  - Histogram: events per pixel. Needs many events per pixel; unbiased by lost events only if
 //    losses hit all pixels alike.

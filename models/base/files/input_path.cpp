@@ -1,6 +1,8 @@
 #include "files/input_path.hpp"
 
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include <fmt/format.h>
 
@@ -45,8 +47,15 @@ std::string not_a_file(const std::string& path) {
 }
 
 void require_input_file(const std::string& path, const std::string& what) {
-  if (is_input_file(path, what)) return;
-  throw InputError(fmt::format("{} '{}': {}", what, path, not_a_file(path)));
+  if (!is_input_file(path, what)) throw InputError(fmt::format("{} '{}': {}", what, path, not_a_file(path)));
+  // A repository cloned without Git LFS holds, in place of each large file, a few lines naming it.
+  std::ifstream in(path, std::ios::binary);
+  char start[40] = {};
+  in.read(start, sizeof start);
+  static constexpr char kLfs[] = "version https://git-lfs.github.com/spec/";
+  if (in.gcount() == static_cast<std::streamsize>(sizeof start) && std::memcmp(start, kLfs, sizeof start) == 0) {
+    throw InputError(fmt::format("{} '{}': a Git LFS pointer, not the file itself (fetch it with 'git lfs pull')", what, path));
+  }
 }
 
 }  // namespace aesim

@@ -16,6 +16,13 @@
 
 #include <fmt/format.h>
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(undefined_behavior_sanitizer)
+#include <sanitizer/common_interface_defs.h>
+#define AESIM_SANITIZED 1
+#endif
+#endif
+
 extern char** environ;
 
 namespace aesim {
@@ -135,6 +142,39 @@ std::optional<int> wait_child_for(pid_t pid, double seconds) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
+}
+
+IsolatedWork fork_isolated(const std::function<void(int fd)>& work) {
+  int ends[2];
+  if (::pipe2(ends, O_CLOEXEC) != 0) throw std::runtime_error(fmt::format("cannot make a pipe: {}", std::strerror(errno)));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int err = errno;
+    ::close(ends[0]);
+    ::close(ends[1]);
+    throw std::runtime_error(fmt::format("cannot fork: {}", std::strerror(err)));
+  }
+  if (pid == 0) {
+    ::close(ends[0]);
+    ::setpgid(0, 0);
+    // A crash here ends this copy with its signal: no handler of the parent's (aesim's cleanup,
+    // a sanitizer's report-and-die hooks) runs in it.
+    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGPIPE}) std::signal(sig, SIG_DFL);
+#ifdef AESIM_SANITIZED
+    __sanitizer_set_death_callback(nullptr);
+#endif
+    int status = 0;
+    try {
+      work(ends[1]);
+    } catch (...) {
+      status = 1;
+    }
+    ::close(ends[1]);
+    ::_exit(status);
+  }
+  ::close(ends[1]);
+  remember_child(pid);
+  return {pid, ends[0]};
 }
 
 int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output) {

@@ -1,9 +1,11 @@
 #pragma once
 #include <sys/types.h>
 
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aesim {
@@ -12,6 +14,9 @@ namespace aesim {
 // and the folder it runs in (the caller's when empty), so tools that take file names in scripts
 // (yosys, ABC) need no paths at all.
 struct ChildOutput {
+  ChildOutput() = default;
+  ChildOutput(std::string out, std::string err, std::string dir = {})
+      : stdout_path(std::move(out)), stderr_path(std::move(err)), working_dir(std::move(dir)) {}
   std::string stdout_path, stderr_path;
   std::string working_dir;
 };
@@ -30,6 +35,17 @@ std::optional<int> wait_child_for(pid_t pid, double seconds);
 
 // spawn_child then wait_child.
 int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output = {});
+
+// Runs `work` in a forked copy of this process, for a call into a library that can crash on
+// hostile input (HDF5 1.10 dereferences null on some corrupt files): `work` writes its answer to
+// the pipe it is given and the copy exits, so a crash costs the copy, never the caller. The
+// caller reads `fd` (closing it) and then wait_child(pid): 0 when `work` returned, 128 + the
+// signal that ended it otherwise.
+struct IsolatedWork {
+  pid_t pid = -1;
+  int fd = -1;
+};
+IsolatedWork fork_isolated(const std::function<void(int fd)>& work);
 
 // Sends `sig` to every child spawn_child started that no wait has reaped yet: a signal handler
 // calls it (it is async-signal-safe), so that aesim stopped by a signal leaves no compiler or

@@ -1,6 +1,8 @@
 #include "event_files/aedat.hpp"
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -27,6 +29,36 @@ constexpr std::size_t kBufferBytes = std::size_t(1) << 16;
 
 std::uint32_t get_be32(const unsigned char* p) {
   return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
+}
+
+// Header lines hold printable ASCII only: jAER counts the header's length in characters it
+// decoded (a UTF-8 character is one of them, and two or three bytes), and a line break would end
+// the line. Anything else, and the backslash, is written \xNN.
+std::string escape_header_text(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 32 || u > 126 || c == '\\') {
+      out += fmt::format("\\x{:02X}", u);
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string unescape_header_text(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\\' && i + 3 < text.size() && text[i + 1] == 'x' && std::isxdigit(static_cast<unsigned char>(text[i + 2])) &&
+        std::isxdigit(static_cast<unsigned char>(text[i + 3]))) {
+      out += static_cast<char>(std::stoi(text.substr(i + 2, 2), nullptr, 16));
+      i += 3;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -66,19 +98,30 @@ std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std:
   h.push_back(fmt::format("# aesim.layout.xbits: {}", map.xbits()));
   h.push_back(fmt::format("# aesim.layout.ybits: {}", map.ybits()));
   h.push_back(fmt::format("# aesim.layout.tiles: {}", map.tiles()));
-  for (const auto& [key, value] : sensor) h.push_back(fmt::format("# aesim.sensor.{}: {}", key, value));
+  h.push_back(fmt::format("# aesim.timestamp_offset_us: {}", kAedatStampOffsetUs));
+  for (const auto& [key, value] : sensor) {
+    h.push_back(fmt::format("# aesim.sensor.{}: {}", escape_header_text(key), escape_header_text(value)));
+  }
+  // jAER's own writer ends its header so, and jAER's reader stops there: without it, a first event
+  // whose address begins with the byte '#' (0x23) is taken for a header line.
+  h.push_back("#End Of ASCII Header");
   return h;
 }
 
 void write_aedat(std::ostream& out, const std::vector<std::string>& header,
                  const std::vector<AedatRecord>& records) {
-  for (const std::string& line : header) out << line << "\r\n";
+  std::uint32_t offset = 0;
+  const std::string declared = "# aesim.timestamp_offset_us: ";
+  for (const std::string& line : header) {
+    out << line << "\r\n";
+    if (line.rfind(declared, 0) == 0) offset = static_cast<std::uint32_t>(std::stoul(line.substr(declared.size())));
+  }
   std::vector<char> buffer;
   buffer.reserve(kBufferBytes);
   for (const AedatRecord& r : records) {
     buffer.resize(buffer.size() + 8);
     put_be32(buffer.data() + buffer.size() - 8, r.address);
-    put_be32(buffer.data() + buffer.size() - 4, static_cast<std::uint32_t>(r.timestamp_us));
+    put_be32(buffer.data() + buffer.size() - 4, static_cast<std::uint32_t>(r.timestamp_us) + offset);
     if (buffer.size() >= kBufferBytes) {
       out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
       buffer.clear();
@@ -105,14 +148,24 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
     AedatRecord r = aedat_record(first[i], bus_bits_, stamps_);
     if (layout_ != AedatLayout::Aesim) r.address = jaer_address(layout_, chip_, rows_, first[i]);
-    zero_stamps_ += r.timestamp_us == 0 ? 1 : 0;
     // Packed into a buffer of fixed size (growing a vector by 8 bytes an event cost a fifth of
     // the writing).
+    if (!first_written_) {
+      first_written_ = true;
+      first_is_hash_ = (r.address >> 24) == '#';
+    }
     put_be32(buffer_.data() + used_, r.address);
-    put_be32(buffer_.data() + used_ + 4, static_cast<std::uint32_t>(r.timestamp_us));
+    put_be32(buffer_.data() + used_ + 4, static_cast<std::uint32_t>(r.timestamp_us) + kAedatStampOffsetUs);
     used_ += 8;
     if (used_ == buffer_.size()) flush();
   }
+}
+
+std::string AedatWriter::reader_warning() const {
+  if (!first_is_hash_) return "";
+  return "its first event's address begins with the byte '#' (0x23): jAER and aesim end the header at "
+         "'#End Of ASCII Header', but a reader that takes every line starting with '#' for header (tonic's "
+         "read_aedat_header_from_file) will misread the events";
 }
 
 void AedatWriter::flush() {
@@ -130,7 +183,8 @@ AedatFile decode_aedat(const std::string& data, const std::string& path) {
   }
   AedatFile file;
   std::size_t pos = 0;
-  while (pos < data.size() && data[pos] == '#') {
+  bool ended = false;
+  while (pos < data.size() && data[pos] == '#' && !ended) {
     const std::size_t eol = data.find('\n', pos);
     if (eol == std::string::npos) throw InputError(fmt::format("event file '{}': unterminated header line", path));
     std::string line = data.substr(pos, eol - pos);
@@ -139,11 +193,21 @@ AedatFile decode_aedat(const std::string& data, const std::string& path) {
     if (line.rfind(prefix, 0) == 0) {
       const std::size_t colon = line.find(": ");
       if (colon != std::string::npos) {
-        file.metadata[line.substr(prefix.size(), colon - prefix.size())] = line.substr(colon + 2);
+        file.metadata[unescape_header_text(line.substr(prefix.size(), colon - prefix.size()))] =
+            unescape_header_text(line.substr(colon + 2));
       }
     }
+    ended = line == "#End Of ASCII Header" || line == "# End Of ASCII Header";
     file.header.push_back(std::move(line));
     pos = eol + 1;
+  }
+  std::int64_t offset = 0;
+  if (const auto it = file.metadata.find("timestamp_offset_us"); it != file.metadata.end()) {
+    char* end = nullptr;
+    offset = std::strtoll(it->second.c_str(), &end, 10);
+    if (end == it->second.c_str() || *end != '\0' || offset < 0 || offset > 1000000) {
+      throw InputError(fmt::format("event file '{}': aesim.timestamp_offset_us '{}' is not a small count of us", path, it->second));
+    }
   }
   const std::size_t bytes = data.size() - pos;
   if (bytes % 8 != 0) {
@@ -154,7 +218,7 @@ AedatFile decode_aedat(const std::string& data, const std::string& path) {
   file.records.resize(bytes / 8);
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     file.records[i].address = get_be32(p + 8 * i);
-    file.records[i].timestamp_us = static_cast<std::int32_t>(get_be32(p + 8 * i + 4));
+    file.records[i].timestamp_us = static_cast<std::int32_t>(get_be32(p + 8 * i + 4)) - static_cast<std::int32_t>(offset);
     if (file.records[i].timestamp_us < 0) {
       throw InputError(fmt::format("event file '{}': event {} has a negative timestamp ({} us)", path, i,
                                    file.records[i].timestamp_us));

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <memory>
+#include <string_view>
 
 #include <flatbuffers/flatbuffers.h>
 #include <fmt/format.h>
 #include <lz4frame.h>
 
+#include "FileDataTable_generated.h"
 #include "IOHeader_generated.h"
 #include "errors/input_error.hpp"
 #include "event_files/event_stamps.hpp"
@@ -112,6 +115,17 @@ std::vector<std::pair<std::string, std::string>> xml_attrs(const std::string& xm
   return out;
 }
 
+// One LZ4 frame of `size` bytes into `out`; returns its size.
+std::size_t lz4_frame(const char* data, std::size_t size, std::vector<char>& out) {
+  LZ4F_preferences_t prefs;
+  std::memset(&prefs, 0, sizeof(prefs));
+  prefs.frameInfo.contentSize = size;
+  out.resize(LZ4F_compressFrameBound(size, &prefs));
+  const std::size_t packed = LZ4F_compressFrame(out.data(), out.size(), data, size, &prefs);
+  if (LZ4F_isError(packed)) throw std::runtime_error(std::string("LZ4 compression failed: ") + LZ4F_getErrorName(packed));
+  return packed;
+}
+
 // FlatBuffers reads its scalars in place and needs them aligned; in a file they lie wherever the
 // previous bytes end (the IOHeader starts at byte 14), so each buffer is read from a copy.
 class AlignedCopy {
@@ -147,13 +161,31 @@ Aedat4Compression parse_aedat4_compression(const std::string& text) {
 
 Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
     : out_(out), stamps_(spec.tick), compression_(spec.compression) {
+  const std::streamoff start = out_.tellp();
   out_.write(kAedat4Magic, static_cast<std::streamsize>(kAedat4MagicBytes));
+  // dataTablePosition is known only at the end: written now as a value no file holds, found in the
+  // header's bytes, and patched there when the table is written.
+  constexpr std::int64_t kPlaceholder = 0x7A65'5369'6D41'6154;
   flatbuffers::FlatBufferBuilder fbb;
+  fbb.ForceDefaults(true);
   const auto info = fbb.CreateString(info_node(spec));
   const auto header = dv::CreateIOHeader(
-      fbb, compression_ == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE, -1, info);
+      fbb, compression_ == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE, kPlaceholder, info);
   dv::FinishSizePrefixedIOHeaderBuffer(fbb, header);
-  out_.write(reinterpret_cast<const char*>(fbb.GetBufferPointer()), static_cast<std::streamsize>(fbb.GetSize()));
+  const char* bytes = reinterpret_cast<const char*>(fbb.GetBufferPointer());
+  const std::string_view view(bytes, fbb.GetSize());
+  char pattern[8];
+  std::memcpy(pattern, &kPlaceholder, 8);  // FlatBuffers stores little-endian, as this machine does
+  const auto at = view.find(std::string_view(pattern, 8));
+  if (start >= 0 && at != std::string_view::npos) {
+    table_field_at_ = static_cast<std::int64_t>(start) + static_cast<std::int64_t>(kAedat4MagicBytes + at);
+  }
+  std::string header_bytes(view);
+  if (at != std::string_view::npos) {
+    const std::int64_t none = -1;
+    std::memcpy(header_bytes.data() + at, &none, 8);
+  }
+  out_.write(header_bytes.data(), static_cast<std::streamsize>(header_bytes.size()));
   pending_.reserve(kAedat4PacketEvents);
 }
 
@@ -169,7 +201,10 @@ void Aedat4Writer::events(const AddressEvent* first, std::size_t count) {
 }
 
 void Aedat4Writer::write_packet() {
-  if (pending_.empty()) return;
+  // An empty run still gets one (empty) packet: readers that gather the event packets (tonic's)
+  // fail on a file with none.
+  if (pending_.empty() && any_packet_) return;
+  any_packet_ = true;
   flatbuffers::FlatBufferBuilder fbb(pending_.size() * sizeof(dv::Event) + 64);
   std::vector<dv::Event> elements;
   elements.reserve(pending_.size());
@@ -179,22 +214,51 @@ void Aedat4Writer::write_packet() {
   const char* body = reinterpret_cast<const char*>(fbb.GetBufferPointer());
   std::size_t size = fbb.GetSize();
   if (compression_ == Aedat4Compression::Lz4) {
-    LZ4F_preferences_t prefs;
-    std::memset(&prefs, 0, sizeof(prefs));
-    prefs.frameInfo.contentSize = size;
-    body_.resize(LZ4F_compressFrameBound(size, &prefs));
-    const std::size_t packed = LZ4F_compressFrame(body_.data(), body_.size(), body, size, &prefs);
-    if (LZ4F_isError(packed)) throw std::runtime_error(std::string("LZ4 compression failed: ") + LZ4F_getErrorName(packed));
+    size = lz4_frame(body, size, body_);
     body = body_.data();
-    size = packed;
   }
+  const std::streamoff at = out_.tellp();
   put_le32(out_, 0);  // stream id
   put_le32(out_, static_cast<std::uint32_t>(size));
   out_.write(body, static_cast<std::streamsize>(size));
+  written_.push_back({at < 0 ? -1 : static_cast<std::int64_t>(at) + 8, static_cast<std::int64_t>(size),
+                      static_cast<std::int64_t>(pending_.size()), pending_.empty() ? 0 : pending_.front().t_us,
+                      pending_.empty() ? 0 : pending_.back().t_us});
   pending_.clear();
 }
 
-void Aedat4Writer::finish() { write_packet(); }
+void Aedat4Writer::finish() {
+  write_packet();
+  write_data_table();
+}
+
+// DV's FileDataTable after the last packet, compressed as the packets are, and the header's
+// dataTablePosition set to it: readers that seek (aestream) find the packets through it.
+void Aedat4Writer::write_data_table() {
+  const std::streamoff position = out_.tellp();
+  if (table_field_at_ < 0 || position < 0) return;  // an output that cannot seek keeps -1: readers walk the packets
+  flatbuffers::FlatBufferBuilder fbb;
+  std::vector<flatbuffers::Offset<dv::FileDataDefinition>> entries;
+  for (const Written& w : written_) {
+    const dv::PacketHeader info(0, static_cast<std::int32_t>(w.size));
+    entries.push_back(dv::CreateFileDataDefinition(fbb, w.offset, &info, w.elements, w.first_us, w.last_us));
+  }
+  dv::FinishSizePrefixedFileDataTableBuffer(fbb, dv::CreateFileDataTable(fbb, fbb.CreateVector(entries)));
+  const char* body = reinterpret_cast<const char*>(fbb.GetBufferPointer());
+  std::size_t size = fbb.GetSize();
+  if (compression_ == Aedat4Compression::Lz4) {
+    size = lz4_frame(body, size, body_);
+    body = body_.data();
+  }
+  out_.write(body, static_cast<std::streamsize>(size));
+  const std::streamoff end = out_.tellp();
+  const std::int64_t value = static_cast<std::int64_t>(position);
+  char le[8];
+  std::memcpy(le, &value, 8);
+  out_.seekp(table_field_at_);
+  out_.write(le, 8);
+  out_.seekp(end);
+}
 
 PolarityRecording decode_aedat4(const std::string& data, const std::string& label) {
   if (data.compare(0, kAedat4MagicBytes, kAedat4Magic) != 0) {
@@ -221,10 +285,25 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
   }
   const bool lz4 = compression != dv::CompressionType_NONE;
   pos += 4 + header_size;
+  // Packets run up to the data table, where the header says it lies (DV writes one at the end).
+  std::size_t packets_end = data.size();
+  const std::int64_t table = header->dataTablePosition();
+  if (table >= 0) {
+    if (static_cast<std::uint64_t>(table) > data.size()) {
+      throw InputError(fmt::format("event file '{}': truncated: its header puts the data table at byte {}, past the end "
+                                   "({} bytes)", label, table, data.size()));
+    }
+    if (static_cast<std::uint64_t>(table) < pos) {
+      throw InputError(fmt::format("event file '{}': dataTablePosition {} lies inside the header", label, table));
+    }
+    packets_end = static_cast<std::size_t>(table);
+  }
 
   // The events stream: the first output node whose type is EVTS; its info gives the array size.
+  // Every stream the header declares, with its type, so that other streams' packets are counted.
   PolarityRecording rec;
   long events_stream = -1;
+  std::map<long, std::string> declared;
   const std::string xml = header->infoNode() ? header->infoNode()->str() : "";
   for (std::size_t node = xml.find("<node name=\""); node != std::string::npos;
        node = xml.find("<node name=\"", node + 1)) {
@@ -236,16 +315,18 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
     std::size_t next = xml.find("<node name=\"", name_end);
     while (next != std::string::npos && xml.compare(next + 12, 4, "info") == 0) next = xml.find("<node name=\"", next + 1);
     const auto attrs = xml_attrs(xml.substr(node, next == std::string::npos ? std::string::npos : next - node));
-    const bool evts = std::any_of(attrs.begin(), attrs.end(),
-                                  [](const auto& a) { return a.first == "typeIdentifier" && a.second == "EVTS"; });
-    if (!evts) continue;
+    std::string type;
+    for (const auto& [key, value] : attrs) {
+      if (key == "typeIdentifier") type = value;
+    }
+    declared.emplace(std::stol(name), type);
+    if (type != "EVTS" || events_stream >= 0) continue;
     events_stream = std::stol(name);
     for (const auto& [key, value] : attrs) {
       if (key == "sizeX") rec.width = parse_size(value, label, "sizeX");
       if (key == "sizeY") rec.height = parse_size(value, label, "sizeY");
       if (key.rfind("aesim.sensor.", 0) == 0) rec.sensor[key.substr(13)] = value;
     }
-    break;
   }
   if (events_stream < 0) throw InputError(fmt::format("event file '{}': no stream of events (EVTS) in its header", label));
 
@@ -257,15 +338,27 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
     if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) throw std::bad_alloc();
     dctx.reset(ctx);
   }
-  for (std::size_t packet = 0; pos < data.size(); ++packet) {
-    if (data.size() - pos < 8) throw InputError(fmt::format("event file '{}': packet {} is truncated", label, packet));
+  std::map<long, SkippedPackets> skipped;
+  for (std::size_t packet = 0; pos < packets_end; ++packet) {
+    if (packets_end - pos < 8) throw InputError(fmt::format("event file '{}': packet {} is truncated", label, packet));
     const std::int32_t stream = static_cast<std::int32_t>(get_le32(bytes + pos));
     const std::uint64_t size = get_le32(bytes + pos + 4);
     pos += 8;
-    if (size > data.size() - pos) throw InputError(fmt::format("event file '{}': packet {} is truncated", label, packet));
+    if (size > packets_end - pos) throw InputError(fmt::format("event file '{}': packet {} is truncated", label, packet));
     const char* body = data.data() + pos;
     pos += size;
-    if (stream != events_stream) continue;
+    const auto kind = declared.find(stream);
+    if (kind == declared.end()) {
+      throw InputError(fmt::format("event file '{}': packet {} belongs to stream {}, which the header does not declare",
+                                   label, packet, stream));
+    }
+    if (stream != events_stream) {
+      SkippedPackets& s = skipped[stream];
+      s.type = kind->second.empty() ? "stream " + std::to_string(stream) : kind->second;
+      ++s.packets;
+      s.bytes += size;
+      continue;
+    }
     std::size_t body_size = size;
     if (lz4) {
       plain.clear();
@@ -304,15 +397,21 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
     }
     const dv::EventPacket* p = dv::GetSizePrefixedEventPacket(aligned.data());
     if (!p->elements()) continue;
-    for (const dv::Event* e : *p->elements()) {
+    // The verifier checks the vector's length word, 4-byte aligned; its 16-byte events may still
+    // sit off their 8-byte alignment in a crafted file, so each is copied out before it is read.
+    const std::uint8_t* raw = p->elements()->Data();
+    for (flatbuffers::uoffset_t i = 0; i < p->elements()->size(); ++i) {
+      dv::Event e;
+      std::memcpy(static_cast<void*>(&e), raw + i * sizeof(dv::Event), sizeof(dv::Event));
       PolarityEvent out;
-      out.t_us = e->timestamp();
-      out.x = e->x();
-      out.y = e->y();
-      out.on = e->polarity();
+      out.t_us = e.timestamp();
+      out.x = e.x();
+      out.y = e.y();
+      out.on = e.polarity();
       rec.events.push_back(out);
     }
   }
+  for (auto& [stream, s] : skipped) rec.skipped.push_back(s);
   return rec;
 }
 

@@ -24,6 +24,7 @@ class Aedat4Writer : public EventFileWriter {
 
  private:
   void write_packet();
+  void write_data_table();
   std::ostream& out_;
   MicrosecondStamps stamps_;
   Aedat4Compression compression_;
@@ -34,6 +35,14 @@ class Aedat4Writer : public EventFileWriter {
   };
   std::vector<Pending> pending_;
   std::vector<char> body_;
+  // The data table DV writes at the end: one entry a packet, and where the header's
+  // dataTablePosition lies in the file, to be patched (-1 when the output cannot seek).
+  struct Written {
+    std::int64_t offset, size, elements, first_us, last_us;
+  };
+  std::vector<Written> written_;
+  std::int64_t table_field_at_ = -1;
+  bool any_packet_ = false;
 };
 
 // A polarity event as the field's formats carry it.
@@ -43,16 +52,25 @@ struct PolarityEvent {
   bool on = true;
 };
 
+// Packets of streams other than the events (DV's IMU, triggers, frames), counted.
+struct SkippedPackets {
+  std::string type;  // the stream's typeIdentifier (IMUS, TRIG, FRME, ...)
+  std::uint64_t packets = 0, bytes = 0;
+};
+
 // What an event file of the polarity formats (AEDAT 4.0, .npy, .h5) holds. width and height are 0
 // when the file records none; `sensor` holds aesim's parameters when aesim wrote it.
 struct PolarityRecording {
   std::vector<PolarityEvent> events;
   int width = 0, height = 0;
   std::map<std::string, std::string> sensor;
+  std::vector<SkippedPackets> skipped;  // other streams' packets, by stream
 };
 
-// Reads the events stream (the first of type EVTS) of an AEDAT 4.0 file; other streams are skipped.
-// Throws InputError naming `label` on anything malformed.
+// Reads the events stream (the first of type EVTS) of an AEDAT 4.0 file, up to its data table
+// (dataTablePosition) when it has one; other streams' packets are skipped and counted, a packet of
+// a stream the header does not declare is an error. Throws InputError naming `label` on anything
+// malformed.
 PolarityRecording decode_aedat4(const std::string& data, const std::string& label);
 
 }  // namespace aesim

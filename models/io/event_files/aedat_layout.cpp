@@ -1,5 +1,7 @@
 #include "event_files/aedat_layout.hpp"
 
+#include <cctype>
+
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
@@ -46,6 +48,15 @@ JaerChip jaer_chip(AedatLayout layout, const AddressMap& map) {
                                  "(use aesim)", map.cols(), map.rows()));
   }
   return {};
+}
+
+std::optional<JaerRecordingChip> jaer_recording_chip(const std::string& name) {
+  std::string n;
+  for (char c : name) n += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (n.find("dvs128") != std::string::npos) return JaerRecordingChip{AedatLayout::Dvs128, kDvs128};
+  if (n.find("davis240") != std::string::npos) return JaerRecordingChip{AedatLayout::Davis, kDavis240};
+  if (n.find("davis346") != std::string::npos) return JaerRecordingChip{AedatLayout::Davis, kDavis346};
+  return std::nullopt;
 }
 
 std::uint32_t jaer_address(AedatLayout layout, const JaerChip& chip, int rows, const AddressEvent& e) {

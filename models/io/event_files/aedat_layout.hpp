@@ -35,6 +35,15 @@ JaerChip jaer_chip(AedatLayout layout, const AddressMap& map);
 // The word of an output event (x, y global, flags) in a jAER layout.
 std::uint32_t jaer_address(AedatLayout layout, const JaerChip& chip, int rows, const AddressEvent& e);
 
+// The chip of a jAER recording: named by its "# AEChip:" header line (a Java class, e.g.
+// eu.seebetter.ini.chips.davis.DAVIS240C) or by the user (dvs128, davis240c, davis346); nullopt
+// for a chip aesim cannot decode.
+struct JaerRecordingChip {
+  AedatLayout layout;
+  JaerChip chip;
+};
+std::optional<JaerRecordingChip> jaer_recording_chip(const std::string& name);
+
 // And back, as jAER's extractor would read it, then turned to aesim's coordinates: the pixel and
 // whether the event was a ghost; nullopt for a word that is not a DVS event of the array.
 struct JaerPixel {

@@ -45,7 +45,56 @@ ArrayParams recorded_array(const std::map<std::string, std::string>& sensor_keys
   return sensor.array;
 }
 
-EventRecording from_aedat(const AedatFile& file, const std::string& path) {
+// A jAER recording (no aesim keys in its header): the chip's words decoded as jAER's extractor does,
+// DVS events kept with their polarity as contrast, APS samples and special (IMU) words counted.
+EventRecording from_jaer(const AedatFile& file, const std::string& path, const std::string& layout) {
+  std::string named = layout;
+  for (const std::string& line : file.header) {
+    if (named.empty() && line.rfind("# AEChip:", 0) == 0) named = line.substr(9);
+  }
+  while (!named.empty() && named.front() == ' ') named.erase(named.begin());
+  if (named.empty()) {
+    throw InputError(fmt::format("event file '{}': AEDAT 2.0 with neither aesim's header keys nor a '# AEChip:' line: "
+                                 "name its chip with --layout dvs128, davis240c or davis346",
+                                 path));
+  }
+  const std::optional<JaerRecordingChip> chip = jaer_recording_chip(named);
+  if (!chip) {
+    throw InputError(fmt::format("event file '{}': jAER chip '{}': aesim decodes DVS128, DAVIS240C and Davis346 words "
+                                 "(--layout dvs128, davis240c or davis346)",
+                                 path, named));
+  }
+  EventRecording rec;
+  rec.width = chip->chip.width;
+  rec.height = chip->chip.height;
+  rec.tiles = 1;
+  rec.size_recorded = true;
+  std::uint64_t aps = 0, special = 0;
+  for (const AedatRecord& r : file.records) {
+    const bool dvs = chip->layout == AedatLayout::Dvs128 ? (r.address >> 15) == 0 : !(r.address >> 31) && !(r.address & (1u << 10));
+    if (!dvs) {
+      ((chip->layout == AedatLayout::Davis && (r.address >> 31)) ? aps : special) += 1;
+      continue;
+    }
+    const auto j = decode_jaer_address(chip->layout, chip->chip, rec.height, rec.width, r.address);
+    if (!j) {
+      ++special;
+      continue;
+    }
+    AddressEvent e;
+    e.t = r.timestamp_us * 1e-6;
+    e.x = j->pixel.x;
+    e.y = j->pixel.y;
+    e.flags = j->ghost ? kOffEvent : kNormalEvent;  // jAER's OFF: contrast, not a collision
+    rec.events.push_back(e);
+  }
+  if (aps) rec.skipped.push_back(fmt::format("{} APS (frame) samples", aps));
+  if (special) rec.skipped.push_back(fmt::format("{} special and IMU words", special));
+  return rec;
+}
+
+EventRecording from_aedat(const AedatFile& file, const std::string& path, const std::string& jaer_layout) {
+  if (!file.metadata.count("sensor.array.rows")) return from_jaer(file, path, jaer_layout);
   std::map<std::string, std::string> sensor_keys;
   for (const auto& [key, value] : file.metadata) {
     if (key.rfind("sensor.", 0) == 0) sensor_keys[key.substr(7)] = value;
@@ -106,7 +155,7 @@ EventRecording from_csv(std::vector<AddressEvent> events, const std::string& pat
 // is a ghost (SPEC section 5); so in a .npy, which cannot say who wrote it. In another recorder's
 // AEDAT 4.0 or HDF5 file polarity is a camera's ON/OFF and every event counts as a normal one;
 // the size is the file's (AEDAT 4.0's sizeX/sizeY) or, when it records none, the events' span.
-EventRecording from_polarity(const PolarityRecording& in, const std::string& path, bool npy = false) {
+EventRecording from_polarity(const PolarityRecording& in, const std::string& path) {
   EventRecording rec;
   rec.events.reserve(in.events.size());
   std::int64_t last = 0;
@@ -144,10 +193,14 @@ EventRecording from_polarity(const PolarityRecording& in, const std::string& pat
     e.t = static_cast<double>(p.t_us) * 1e-6;
     e.x = static_cast<std::uint32_t>(p.x);
     e.y = static_cast<std::uint32_t>(p.y);
-    e.flags = npy && !p.on ? kGhostEvent : kNormalEvent;
+    // Not aesim's file: its polarity is a camera's contrast, kept as ON and OFF.
+    e.flags = p.on ? kNormalEvent : kOffEvent;
     events.push_back(e);
   }
   rec = from_csv(std::move(events), path);
+  for (const SkippedPackets& s : in.skipped) {
+    rec.skipped.push_back(fmt::format("{} packets of {} ({} bytes)", s.packets, s.type, s.bytes));
+  }
   if (in.width > 0 && in.height > 0) {
     if (rec.width > in.width || rec.height > in.height) {
       throw InputError(fmt::format("event file '{}': events reach ({}, {}), outside its {}x{} array", path,
@@ -181,7 +234,7 @@ ArraySize parse_array_size(const std::string& text, const std::string& option) {
   return ArraySize{static_cast<int>(w), static_cast<int>(h)};
 }
 
-EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size) {
+EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size, const std::string& layout) {
   const std::string ext = std::filesystem::path(path).extension().string();
   EventRecording rec;
   EventFileFormat format;
@@ -192,9 +245,9 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
   }
   switch (format) {
     case EventFileFormat::Csv: rec = from_csv(read_events_csv(path), path); break;
-    case EventFileFormat::Aedat2: rec = from_aedat(read_aedat(path), path); break;
+    case EventFileFormat::Aedat2: rec = from_aedat(read_aedat(path), path, layout); break;
     case EventFileFormat::Aedat4: rec = from_polarity(decode_aedat4(read_whole(path), path), path); break;
-    case EventFileFormat::Npy: rec = from_polarity(decode_npy(read_whole(path), path), path, true); break;
+    case EventFileFormat::Npy: rec = from_polarity(decode_npy(read_whole(path), path), path); break;
     case EventFileFormat::Hdf5: rec = from_polarity(read_dsec_h5(path), path); break;
   }
   if (!size) return rec;
@@ -216,9 +269,9 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
 }
 
 EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format) {
-  if (format == EventFormat::Aedat2) return from_aedat(decode_aedat(data, label), label);
+  if (format == EventFormat::Aedat2) return from_aedat(decode_aedat(data, label), label, "");
   if (format == EventFormat::Aedat4) return from_polarity(decode_aedat4(data, label), label);
-  if (format == EventFormat::Npy) return from_polarity(decode_npy(data, label), label, true);
+  if (format == EventFormat::Npy) return from_polarity(decode_npy(data, label), label);
   std::istringstream in(data);
   return from_csv(parse_events_csv(in, label), label);
 }

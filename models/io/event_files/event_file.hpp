@@ -22,11 +22,14 @@ struct EventRecording {
   std::vector<AddressEvent> events;  // t in seconds
   int width = 0, height = 0, tiles = 0;
   bool size_recorded = false;
+  std::vector<std::string> skipped;  // other streams' packets, in words ("12 packets of IMUS (3400 bytes)")
 };
 
 // `size`, when given, is the array's: a CSV takes it (its events must lie within), an AEDAT
-// file's header must agree with it. Throws InputError naming the file.
-EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size = std::nullopt);
+// file's header must agree with it. `layout` names the chip of a jAER AEDAT 2.0 recording whose
+// header has no "# AEChip:" line (dvs128, davis240c, davis346). Throws InputError naming the file.
+EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size = std::nullopt,
+                           const std::string& layout = "");
 
 // The same from a file's bytes; `label` names it in messages.
 enum class EventFormat { Aedat2, Aedat4, Npy, Csv };

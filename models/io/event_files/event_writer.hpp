@@ -18,8 +18,8 @@ class EventFileWriter : public EventStream {
  public:
   // Writes what is buffered and completes the file (counts, indices); the file is whole after it.
   virtual void finish() = 0;
-  // Events stamped 0 us (only the jAER layouts of AEDAT 2.0 care: jAER's reader skips them).
-  virtual std::uint64_t zero_stamps() const { return 0; }
+  // A warning for readers of the file that would misread it, empty when none would.
+  virtual std::string reader_warning() const { return ""; }
   // Events left out because they name no pixel of the array (see OnArrayEvents).
   virtual std::uint64_t off_array() const { return 0; }
 };

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "array/address_map.hpp"
@@ -23,8 +24,8 @@ class OnArrayEvents : public EventFileWriter {
   void events(const AddressEvent* first, std::size_t count) override;
   void truth(const TruthRecord* first, std::size_t count) override { writer_->truth(first, count); }
   void finish() override { writer_->finish(); }
-  std::uint64_t zero_stamps() const override { return writer_->zero_stamps(); }
   std::uint64_t off_array() const override { return off_array_; }
+  std::string reader_warning() const override { return writer_->reader_warning(); }
 
  private:
   std::unique_ptr<EventFileWriter> writer_;

@@ -121,6 +121,17 @@ class OutputFiles::FileBuffer : public std::streambuf {
     return traits_type::not_eof(ch);
   }
   int sync() override { return drain() ? 0 : -1; }
+  // Seeking, for writers that patch what they wrote first (AEDAT 4.0's header); a device or FIFO
+  // cannot seek, and says so by -1.
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+    if (!drain()) return pos_type(off_type(-1));
+    const int whence = dir == std::ios_base::beg ? SEEK_SET : dir == std::ios_base::cur ? SEEK_CUR : SEEK_END;
+    const off_t at = ::lseek(fd_, static_cast<off_t>(off), whence);
+    return at < 0 ? pos_type(off_type(-1)) : pos_type(static_cast<off_type>(at));
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
+    return seekoff(off_type(pos), std::ios_base::beg, which);
+  }
 
  private:
   bool drain() {

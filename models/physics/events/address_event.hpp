@@ -3,7 +3,9 @@
 
 namespace aesim {
 
-enum EventFlags : std::uint8_t { kNormalEvent = 0, kGhostEvent = 1 };
+// A ghost is aesim's collision-corrupted event (p = 0 in aesim's own files). An OFF event is a
+// recording of another tool's: polarity as contrast (light falling), as DVS cameras mean it.
+enum EventFlags : std::uint8_t { kNormalEvent = 0, kGhostEvent = 1, kOffEvent = 2 };
 
 // One address event: a pixel firing on its way to the receiver, or the event the receiver got.
 struct AddressEvent {

@@ -1,0 +1,187 @@
+// aesim's event files as other readers parse them, each reader's rule written out here from its
+// source (jAER's AEFileInputStream.readHeader, tonic's read_aedat_header_from_file, jAER's
+// DavisBaseCamera address extractor), and recordings laid out as those tools write them.
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "errors/input_error.hpp"
+#include "event_files/aedat.hpp"
+#include "event_files/aedat_layout.hpp"
+#include "event_files/event_file.hpp"
+#include "event_files/event_writer.hpp"
+#include "output/atomic_file.hpp"
+#include "support/temp_dir_test.hpp"
+
+namespace aesim {
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// jAER: a line is header while it starts with '#'; the line "#End Of ASCII Header" (any case)
+// ends the header whatever follows. Returns where the events start.
+std::size_t jaer_data_start(const std::string& data) {
+  std::size_t pos = 0;
+  while (pos < data.size()) {
+    const std::size_t eol = std::min(data.find('\n', pos), data.size());
+    std::string line = data.substr(pos, eol - pos);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (lower(line.substr(1)) == "end of ascii header") return eol + 1;
+    if (data[pos] != '#') return pos;
+    pos = eol + 1;
+  }
+  return pos;
+}
+
+// tonic: every line starting with '#' is header, whatever it says.
+std::size_t tonic_data_start(const std::string& data) {
+  std::size_t pos = 0;
+  while (pos < data.size() && data[pos] == '#') {
+    const std::size_t eol = data.find('\n', pos);
+    if (eol == std::string::npos) return data.size();  // all of it taken for header
+    pos = eol + 1;
+  }
+  return pos;
+}
+
+std::uint32_t be32(const std::string& data, std::size_t at) {
+  const auto* p = reinterpret_cast<const unsigned char*>(data.data() + at);
+  return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
+}
+
+// One event at (0, row), stamped 0, in the jAER DAVIS layout of a 160x160 array.
+std::string davis_file_with_one_event(int row, std::string* warning) {
+  ArrayParams array;
+  array.rows = array.cols = 160;
+  const AddressMap map(array);
+  std::ostringstream out;
+  AedatWriter writer(out, aedat_header(map,
+                                       {{"array.rows", "160"}, {"array.cols", "160"}, {"array.tile_rows", "32"},
+                                        {"array.tile_cols", "32"}},
+                                       AedatLayout::Davis), map,
+                     1e-6, AedatLayout::Davis);
+  AddressEvent e = map.event_at({0, static_cast<std::uint32_t>(row)});
+  e.t = 0;
+  writer.events(&e, 1);
+  writer.finish();
+  *warning = writer.reader_warning();
+  return out.str();
+}
+
+TEST(ForeignReaders, JaerFindsEveryEventAfterTheHeaderAndTheFirstStampIsNotZero) {
+  int hash_rows = 0;
+  for (int row = 0; row < 160; ++row) {
+    std::string warning;
+    const std::string data = davis_file_with_one_event(row, &warning);
+    const std::size_t start = jaer_data_start(data);
+    ASSERT_EQ(start, data.size() - 8) << "row " << row;
+    // jAER reads a record stamped 0 as no event: the first microsecond is stamped 1.
+    EXPECT_EQ(be32(data, start + 4), 1u) << "row " << row;
+    const bool hash = data[start] == '#';
+    hash_rows += hash ? 1 : 0;
+    // A reader that stops only at a line not starting with '#' misreads exactly these files, and
+    // the writer says so.
+    EXPECT_EQ(tonic_data_start(data) != start, hash) << "row " << row;
+    EXPECT_EQ(!warning.empty(), hash) << "row " << row;
+    const EventRecording back = decode_events(data, "one.aedat", EventFormat::Aedat2);
+    ASSERT_EQ(back.events.size(), 1u) << "row " << row;
+    EXPECT_EQ(back.events[0].y, static_cast<std::uint32_t>(row));
+    EXPECT_EQ(back.events[0].x, 0u);
+    EXPECT_EQ(back.events[0].t, 0.0);
+  }
+  // DAVIS words carry y (jAER's, from the bottom) in bits 22-30: the first byte is '#' (35)
+  // for y = 140..143, rows 16..19 of a 160-row array.
+  EXPECT_EQ(hash_rows, 4);
+}
+
+TEST(ForeignReaders, HeaderTextIsPrintableAsciiAndReadsBackAsWritten) {
+  const AddressMap map{ArrayParams{}};
+  const std::map<std::string, std::string> sensor = {{"scene.note", "caf\xc3\xa9\r\nline two \\x41"}, {"pixel.c_int", "1e-13"}};
+  const std::vector<std::string> header = aedat_header(map, sensor);
+  for (const std::string& line : header) {
+    for (const char c : line) {
+      EXPECT_TRUE(c >= 32 && c <= 126) << "byte " << static_cast<int>(static_cast<unsigned char>(c)) << " in " << line;
+    }
+  }
+  std::ostringstream out;
+  write_aedat(out, header, {});
+  const AedatFile back = decode_aedat(out.str(), "text.aedat");
+  EXPECT_EQ(back.metadata.at("sensor.scene.note"), sensor.at("scene.note"));
+  EXPECT_EQ(back.metadata.at("sensor.pixel.c_int"), "1e-13");
+}
+
+// A DAVIS240C recording as jAER writes it: polarity events between APS samples and special words.
+TEST(ForeignReaders, JaerDavisRecordingGivesItsPolarityEventsAndCountsTheRest) {
+  std::string file = "#!AER-DAT2.0\r\n# This is a raw AE data file - do not edit\r\n"
+                     "# AEChip: eu.seebetter.ini.chips.davis.DAVIS240C\r\n#End Of ASCII Header\r\n";
+  const auto record = [&](std::uint32_t address, std::uint32_t stamp) {
+    for (const std::uint32_t v : {address, stamp}) {
+      for (int shift = 24; shift >= 0; shift -= 8) file += static_cast<char>(v >> shift);
+    }
+  };
+  // jAER's DAVIS word: y (from the bottom) << 22, the raw x (x flipped: 239 - x) << 12, ON << 11;
+  // bit 31 an APS sample, bit 10 a special event.
+  record((20u << 22) | (10u << 12) | (1u << 11), 1000);  // ON at jAER (229, 20)
+  record(0x80000000u | (5u << 22), 1500);                 // APS
+  record((0u << 22) | (0u << 12), 2000);                  // OFF at jAER (239, 0)
+  record(1u << 10, 2500);                                 // special
+  const EventRecording rec = decode_events(file, "davis.aedat", EventFormat::Aedat2);
+  EXPECT_EQ(rec.width, 240);
+  EXPECT_EQ(rec.height, 180);
+  ASSERT_EQ(rec.events.size(), 2u);
+  // aesim's y counts from the top.
+  EXPECT_EQ(rec.events[0].x, 229u);
+  EXPECT_EQ(rec.events[0].y, 159u);
+  EXPECT_EQ(rec.events[0].flags, kNormalEvent);
+  EXPECT_DOUBLE_EQ(rec.events[0].t, 1e-3);
+  EXPECT_EQ(rec.events[1].x, 239u);
+  EXPECT_EQ(rec.events[1].y, 179u);
+  EXPECT_EQ(rec.events[1].flags, kOffEvent);
+  ASSERT_EQ(rec.skipped.size(), 2u);
+  EXPECT_EQ(rec.skipped[0], "1 APS (frame) samples");
+  EXPECT_EQ(rec.skipped[1], "1 special and IMU words");
+  // Without a chip line the words cannot be decoded: the error says how to name the chip.
+  std::string anonymous = file;
+  anonymous.replace(anonymous.find("# AEChip"), anonymous.find("#End") - anonymous.find("# AEChip"), "");
+  try {
+    decode_events(anonymous, "anon.aedat", EventFormat::Aedat2);
+    ADD_FAILURE() << "decoded words of no named chip";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--layout"), std::string::npos) << e.what();
+  }
+}
+
+class EmptyRuns : public testing::TempDirTest {};
+
+// A run that delivers no event still writes a file each reader opens: DV's AEDAT 4.0 readers
+// expect a packet, so an empty one is written.
+TEST_F(EmptyRuns, EveryFormatWritesAFileThatReadsBackEmptyWithItsArray) {
+  for (const std::string name : {"e.aedat", "e.aedat4", "e.npy", "e.h5"}) {
+    EventFileSpec spec;
+    spec.sensor = {{"array.rows", "64"}, {"array.cols", "64"}, {"array.tile_rows", "32"}, {"array.tile_cols", "32"}};
+    spec.duration = 0.01;
+    const std::string path = (dir_ / name).string();
+    {
+      OutputFiles files;
+      auto writer = open_event_writer(files, path, spec);
+      writer->finish();
+      writer.reset();
+      files.commit();
+    }
+    const EventRecording rec = load_events(path, ArraySize{64, 64});
+    EXPECT_TRUE(rec.events.empty()) << name;
+    EXPECT_EQ(rec.width, 64) << name;
+  }
+}
+
+}  // namespace
+}  // namespace aesim
