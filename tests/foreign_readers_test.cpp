@@ -58,8 +58,8 @@ std::uint32_t be32(const std::string& data, std::size_t at) {
   return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
 }
 
-// One event at (0, row), stamped 0, in the jAER DAVIS layout of a 160x160 array.
-std::string davis_file_with_one_event(int row, std::string* warning) {
+// One event at (0, row) at `t`, in the jAER DAVIS layout of a 160x160 array.
+std::string davis_file_with_one_event(int row, double t, std::string* warning) {
   ArrayParams array;
   array.rows = array.cols = 160;
   const AddressMap map(array);
@@ -70,22 +70,21 @@ std::string davis_file_with_one_event(int row, std::string* warning) {
                                        AedatLayout::Davis), map,
                      1e-6, AedatLayout::Davis);
   AddressEvent e = map.event_at({0, static_cast<std::uint32_t>(row)});
-  e.t = 0;
+  e.t = t;
   writer.events(&e, 1);
   writer.finish();
   *warning = writer.reader_warning();
   return out.str();
 }
 
-TEST(ForeignReaders, JaerFindsEveryEventAfterTheHeaderAndTheFirstStampIsNotZero) {
+TEST(ForeignReaders, JaerFindsEveryEventAfterTheHeader) {
   int hash_rows = 0;
   for (int row = 0; row < 160; ++row) {
     std::string warning;
-    const std::string data = davis_file_with_one_event(row, &warning);
+    const std::string data = davis_file_with_one_event(row, 25e-6, &warning);
     const std::size_t start = jaer_data_start(data);
     ASSERT_EQ(start, data.size() - 8) << "row " << row;
-    // jAER reads a record stamped 0 as no event: the first microsecond is stamped 1.
-    EXPECT_EQ(be32(data, start + 4), 1u) << "row " << row;
+    EXPECT_EQ(be32(data, start + 4), 25u) << "row " << row;
     const bool hash = data[start] == '#';
     hash_rows += hash ? 1 : 0;
     // A reader that stops only at a line not starting with '#' misreads exactly these files, and
@@ -96,11 +95,20 @@ TEST(ForeignReaders, JaerFindsEveryEventAfterTheHeaderAndTheFirstStampIsNotZero)
     ASSERT_EQ(back.events.size(), 1u) << "row " << row;
     EXPECT_EQ(back.events[0].y, static_cast<std::uint32_t>(row));
     EXPECT_EQ(back.events[0].x, 0u);
-    EXPECT_EQ(back.events[0].t, 0.0);
+    EXPECT_DOUBLE_EQ(back.events[0].t, 25e-6);
   }
   // DAVIS words carry y (jAER's, from the bottom) in bits 22-30: the first byte is '#' (35)
   // for y = 140..143, rows 16..19 of a 160-row array.
   EXPECT_EQ(hash_rows, 4);
+}
+
+// jAER's reader takes a record stamped 0 for nothing and reads the next in its place (SPEC's
+// stamps are kept, so the writer says how many there are).
+TEST(ForeignReaders, RecordsStampedZeroAreNamedForJaer) {
+  std::string warning;
+  const std::string data = davis_file_with_one_event(0, 0.4e-6, &warning);
+  EXPECT_EQ(be32(data, data.size() - 4), 0u);
+  EXPECT_NE(warning.find("1 events are stamped 0 us"), std::string::npos) << warning;
 }
 
 TEST(ForeignReaders, HeaderTextIsPrintableAsciiAndReadsBackAsWritten) {

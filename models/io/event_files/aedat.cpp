@@ -98,7 +98,6 @@ std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std:
   h.push_back(fmt::format("# aesim.layout.xbits: {}", map.xbits()));
   h.push_back(fmt::format("# aesim.layout.ybits: {}", map.ybits()));
   h.push_back(fmt::format("# aesim.layout.tiles: {}", map.tiles()));
-  h.push_back(fmt::format("# aesim.timestamp_offset_us: {}", kAedatStampOffsetUs));
   for (const auto& [key, value] : sensor) {
     h.push_back(fmt::format("# aesim.sensor.{}: {}", escape_header_text(key), escape_header_text(value)));
   }
@@ -110,18 +109,13 @@ std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std:
 
 void write_aedat(std::ostream& out, const std::vector<std::string>& header,
                  const std::vector<AedatRecord>& records) {
-  std::uint32_t offset = 0;
-  const std::string declared = "# aesim.timestamp_offset_us: ";
-  for (const std::string& line : header) {
-    out << line << "\r\n";
-    if (line.rfind(declared, 0) == 0) offset = static_cast<std::uint32_t>(std::stoul(line.substr(declared.size())));
-  }
+  for (const std::string& line : header) out << line << "\r\n";
   std::vector<char> buffer;
   buffer.reserve(kBufferBytes);
   for (const AedatRecord& r : records) {
     buffer.resize(buffer.size() + 8);
     put_be32(buffer.data() + buffer.size() - 8, r.address);
-    put_be32(buffer.data() + buffer.size() - 4, static_cast<std::uint32_t>(r.timestamp_us) + offset);
+    put_be32(buffer.data() + buffer.size() - 4, static_cast<std::uint32_t>(r.timestamp_us));
     if (buffer.size() >= kBufferBytes) {
       out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
       buffer.clear();
@@ -155,17 +149,26 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
       first_is_hash_ = (r.address >> 24) == '#';
     }
     put_be32(buffer_.data() + used_, r.address);
-    put_be32(buffer_.data() + used_ + 4, static_cast<std::uint32_t>(r.timestamp_us) + kAedatStampOffsetUs);
+    zero_stamps_ += r.timestamp_us == 0 ? 1 : 0;
+    put_be32(buffer_.data() + used_ + 4, static_cast<std::uint32_t>(r.timestamp_us));
     used_ += 8;
     if (used_ == buffer_.size()) flush();
   }
 }
 
 std::string AedatWriter::reader_warning() const {
-  if (!first_is_hash_) return "";
-  return "its first event's address begins with the byte '#' (0x23): jAER and aesim end the header at "
-         "'#End Of ASCII Header', but a reader that takes every line starting with '#' for header (tonic's "
-         "read_aedat_header_from_file) will misread the events";
+  std::string warning;
+  if (first_is_hash_) {
+    warning = "its first event's address begins with the byte '#' (0x23): jAER and aesim end the header at "
+              "'#End Of ASCII Header', but a reader that takes every line starting with '#' for header (tonic's "
+              "read_aedat_header_from_file) will misread the events";
+  }
+  if (layout_ != AedatLayout::Aesim && zero_stamps_ > 0) {
+    warning += fmt::format("{}{} events are stamped 0 us; jAER's reader skips such a record (it reads the next one "
+                           "in its place); aesim's readers keep them",
+                           warning.empty() ? "" : "; ", zero_stamps_);
+  }
+  return warning;
 }
 
 void AedatWriter::flush() {
@@ -201,14 +204,6 @@ AedatFile decode_aedat(const std::string& data, const std::string& path) {
     file.header.push_back(std::move(line));
     pos = eol + 1;
   }
-  std::int64_t offset = 0;
-  if (const auto it = file.metadata.find("timestamp_offset_us"); it != file.metadata.end()) {
-    char* end = nullptr;
-    offset = std::strtoll(it->second.c_str(), &end, 10);
-    if (end == it->second.c_str() || *end != '\0' || offset < 0 || offset > 1000000) {
-      throw InputError(fmt::format("event file '{}': aesim.timestamp_offset_us '{}' is not a small count of us", path, it->second));
-    }
-  }
   const std::size_t bytes = data.size() - pos;
   if (bytes % 8 != 0) {
     throw InputError(fmt::format("event file '{}': truncated ({} bytes after the header is not a whole number of "
@@ -218,7 +213,7 @@ AedatFile decode_aedat(const std::string& data, const std::string& path) {
   file.records.resize(bytes / 8);
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     file.records[i].address = get_be32(p + 8 * i);
-    file.records[i].timestamp_us = static_cast<std::int32_t>(get_be32(p + 8 * i + 4)) - static_cast<std::int32_t>(offset);
+    file.records[i].timestamp_us = static_cast<std::int32_t>(get_be32(p + 8 * i + 4));
     if (file.records[i].timestamp_us < 0) {
       throw InputError(fmt::format("event file '{}': event {} has a negative timestamp ({} us)", path, i,
                                    file.records[i].timestamp_us));

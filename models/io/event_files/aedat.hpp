@@ -35,8 +35,6 @@ std::map<std::string, std::string> sensor_metadata(const nlohmann::json& sensor)
 // layout adds the "# AEChip:" line naming the chip jAER decodes the words as).
 std::vector<std::string> aedat_header(const AddressMap& map, const std::map<std::string, std::string>& sensor,
                                       AedatLayout layout = AedatLayout::Aesim);
-// Writes `records` under `header`, each stamp plus the offset the header declares
-// (aesim.timestamp_offset_us, none when it declares none): decode_aedat reads the same records back.
 void write_aedat(std::ostream& out, const std::vector<std::string>& header,
                  const std::vector<AedatRecord>& records);
 AedatFile read_aedat(const std::string& path);
@@ -53,6 +51,8 @@ class AedatWriter : public EventFileWriter {
   // Writes what the buffer holds; the destructor does it too.
   void flush();
   void finish() override { flush(); }
+  // The first address beginning with '#' (tonic's header rule misreads the file); in jAER's
+  // layouts, records stamped 0 us (jAER's reader skips each, reading the next in its place).
   std::string reader_warning() const override;
 
  private:
@@ -63,21 +63,16 @@ class AedatWriter : public EventFileWriter {
   JaerChip chip_;
   int rows_;
   bool first_written_ = false, first_is_hash_ = false;
+  std::uint64_t zero_stamps_ = 0;
   std::vector<char> buffer_;  // kBufferBytes, a multiple of the 8-byte record
   std::size_t used_ = 0;
 };
 
 [[noreturn]] void throw_aedat_stamp_overflow(double t);
 // The AEDAT record of a delivered event (timestamp in whole microseconds of receiver ticks).
-// Every AEDAT 2.0 stamp is written 1 us late, and the header says so (aesim.timestamp_offset_us,
-// which aesim's reader takes off again): jAER's reader takes a record stamped 0 for a gap and reads
-// the next record in its place, so an event of the first microsecond would be lost.
-inline constexpr std::int32_t kAedatStampOffsetUs = 1;
-
-// The record keeps the event's own stamp; the offset is added where the bytes are written.
 inline AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, const MicrosecondStamps& stamps) {
   const std::uint64_t stamp = stamps(e.t);
-  if (stamp + kAedatStampOffsetUs > 0x7FFFFFFFu) throw_aedat_stamp_overflow(e.t);
+  if (stamp > 0x7FFFFFFFu) throw_aedat_stamp_overflow(e.t);
   AedatRecord r;
   r.address = (e.tile << bus_bits) | e.bus_address;
   r.timestamp_us = static_cast<std::int32_t>(stamp);
