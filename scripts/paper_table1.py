@@ -395,9 +395,9 @@ def main():
           f"strokes' cores and enters after them (the clean A needs {clean_letters['A'][0][1]} events at "
           f"K = {k_bound}). O and Q decide after most of a pass over their pixels, as in the paper.",
         f"- **Largest overlap**: letters {cl_worst[0]:.2f} ({cl_worst[1]} inside {cl_worst[2]}), hand signs "
-        f"{hs_worst[0]:.2f} ({hs_worst[1]} inside {hs_worst[2]}). The earlier hand-sign set had the fist wholly "
-        "inside palm, point, rock and victory (overlap 1.00), which no K can tell apart; the set was redrawn "
-        "(scenes/README.md says how).",
+        f"{hs_worst[0]:.2f} ({hs_worst[1]} inside {hs_worst[2]}). A sign wholly inside another (overlap 1.00) "
+        "ties it over every full pass under ranks, which no K can tell apart; the signs are drawn so that none "
+        "is (scenes/README.md says how).",
         "- **Noise, warps and centring** are ours: the paper's exact distortions and images are not published. "
         "The restart after 1000 events is the paper's; an instance not decided within 1000 events starts over.",
         ""]

@@ -1,4 +1,4 @@
-// AEDAT 2.0 and the address layout (SPEC sections 2 and 5).
+// AEDAT 2.0 and the address layout (docs/reference.md sections 2 and 5).
 #include <filesystem>
 #include <fstream>
 #include <sstream>

@@ -54,7 +54,7 @@ TEST_F(CliTest, DefaultRunWritesEveryOutputUnderOut) {
   EXPECT_EQ(summary["events_ghost"], 0);
   EXPECT_EQ(summary["fidelity"], "event");
   EXPECT_EQ(summary["sensor"]["pixel"]["c_int"].get<double>(), 100e-15);
-  // CSV rows match the summary's count, and the header is SPEC's.
+  // CSV rows match the summary's count, and the header is the reference's (docs/reference.md).
   const std::string csv = slurp(dir_ / "out" / "events.csv");
   EXPECT_EQ(csv.rfind("t_us,x,y,tile,flags\n", 0), 0u);
   EXPECT_EQ(static_cast<double>(std::count(csv.begin(), csv.end(), '\n') - 1),
@@ -182,7 +182,7 @@ TEST_F(CliTest, TruthHasEveryFiredEventAndVcdHoldsTheWindow) {
   EXPECT_GT(stamps, 20u);
 }
 
-// The README's convention: at the cycle fidelity an event's stamp is the ticks completed by its
+// The stamp convention (docs/modelling_choices.md): at the cycle fidelity an event's stamp is the ticks completed by its
 // latch edge, floor(t_deliver / tick). Every delivered row of the truth file must appear in the
 // events file with exactly that t_us (1 us tick, 50 clock cycles: 1 latch in 50 falls on a tick
 // edge, the case an off-by-one stamp gets wrong).
@@ -340,7 +340,7 @@ TEST_F(CliTest, ClassifyAndReconTakeTheArraySizeFromTheHeaderOrSize) {
   EXPECT_EQ(nlohmann::json::parse(sized.out)["events_used"], nlohmann::json::parse(from_aedat.out)["events_used"]);
   EXPECT_EQ(aesim("classify d.aedat --size 32x32").status, 2);  // disagrees with the header
   EXPECT_EQ(aesim("classify d.csv --size 16x16").status, 2);    // events outside it
-  // recon: SPEC's form still works on a CSV, with a warning; --size gives the array's image.
+  // recon: the reference's form still works on a CSV, with a warning; --size gives the array's image.
   const Outcome spanned = aesim("recon d.csv -o spanned.pgm");
   ASSERT_EQ(spanned.status, 0) << spanned.err;
   EXPECT_NE(spanned.err.find("records no array size"), std::string::npos) << spanned.err;

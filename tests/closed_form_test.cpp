@@ -1,4 +1,4 @@
-// Whole-array runs against SPEC section 1: eq. 2 in closed form, frame boundaries, mismatch,
+// Whole-array runs against docs/reference.md section 1: eq. 2 in closed form, frame boundaries, mismatch,
 // zero and vanishing light.
 #include <cmath>
 #include <map>

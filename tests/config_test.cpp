@@ -1,4 +1,4 @@
-// SI values, presets, --set overrides and validation (SPEC section 3).
+// SI values, presets, --set overrides and validation (docs/reference.md section 3).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-// The field's event files (SPEC section 5): AEDAT 4.0, NumPy .npy with tonic's dtype and HDF5 in
+// The field's event files (docs/reference.md section 5): AEDAT 4.0, NumPy .npy with tonic's dtype and HDF5 in
 // the DSEC layout, each checked at the byte level against its published layout and read back by
 // every command that reads events. (tests/python reads them with NumPy, h5py and FlatBuffers'
 // Python code: readers that are not aesim's.)

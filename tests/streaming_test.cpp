@@ -311,7 +311,7 @@ TEST(Streaming, ARunWithoutRecordsCountsTheSame) {
   EXPECT_EQ(counted.log.output_per_pixel(), kept.log.output_per_pixel());
 }
 
-// The CSV writer's integer path against formatting each timestamp as a double (the SPEC's
+// The CSV writer's integer path against formatting each timestamp as a double (the reference's
 // definition: t_us with as many decimals as the tick resolves), over ticks that are and are not
 // whole decimal units.
 TEST(Streaming, CsvIntegerTimestampsMatchTheDecimalDefinition) {

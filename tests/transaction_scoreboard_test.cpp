@@ -236,7 +236,7 @@ TEST(TransactionScoreboard, DropsNeedAStalledOutputAndAnExactCount) {
   EXPECT_EQ(h.sb.first_failure()->check, "lost");
 }
 
-// SPEC section 6, timing around a reset: the lower latency bound counts from Req rising, the upper
+// docs/reference.md section 6, timing around a reset: the lower latency bound counts from Req rising, the upper
 // from the later of Req rising and the reset's release (here edge 5, after reset on edges 1..4).
 TEST(TransactionScoreboard, AReqHeldThroughResetIsTimedFromItsRiseAndFromTheRelease) {
   auto held = [](std::uint64_t rise_after_edge) {
@@ -278,7 +278,7 @@ TEST(TransactionScoreboard, AReqHeldThroughResetIsTimedFromItsRiseAndFromTheRele
   }
 }
 
-// SPEC section 6: a beat taken at the edge where Ack rises (a valid that follows the synchronised
+// docs/reference.md section 6: a beat taken at the edge where Ack rises (a valid that follows the synchronised
 // Req) belongs to that transaction, as does one taken before it.
 TEST(TransactionScoreboard, ABeatOnOrBeforeTheAckEdgeBelongsToItsTransaction) {
   for (int before : {0, 1}) {

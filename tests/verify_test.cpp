@@ -246,7 +246,8 @@ TEST_F(VerifyTest, FormalProvesTheHandshakeOfEveryReceiver) {
     EXPECT_NE(o.out.find("formal: 12 properties"), std::string::npos) << o.out;
   }
   // The third receiver, with no FIFO, has every property proved, its stamps and beats included.
-  for (const auto& v : report("formal0")["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
+  const nlohmann::json third = report("formal0");
+  for (const auto& v : third["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
   // A second run is the cache's.
   ASSERT_EQ(verify(kThird + "/pkt_rx.toml --formal --out formal_again").status, 0);
   EXPECT_EQ(report("formal_again")["formal_run"]["cached"], true);

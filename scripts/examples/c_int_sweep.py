@@ -1,4 +1,4 @@
-"""The README's Python example: sweep the integration capacitance of the ALOHA pixel from Python,
+"""The Python example of docs/python.md: sweep the integration capacitance of the ALOHA pixel from Python,
 and plot what a sizing engineer looks at: the event rate against eq. 2, and what the shared bus
 delivers of it.
 

@@ -27,7 +27,7 @@ int recon_command(const ReconOptions& opt) {
       opt.size.empty() ? std::nullopt : std::optional<ArraySize>(parse_array_size(opt.size, "--size"));
   const EventRecording rec = load_events(opt.events, size, opt.layout);
   if (!rec.size_recorded && rec.width > 0) {
-    // SPEC's `aesim recon EVENTS -o IMAGE` keeps working on a CSV, which records no size; the
+    // the reference's `aesim recon EVENTS -o IMAGE` keeps working on a CSV, which records no size; the
     // image then spans the events that fired, which may be smaller than the array.
     std::fprintf(stderr, "aesim recon: warning: '%s' records no array size; the image spans its events (%dx%d); give "
                          "--size WIDTHxHEIGHT for the array's\n", opt.events.c_str(), rec.width, rec.height);

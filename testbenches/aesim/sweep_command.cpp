@@ -39,7 +39,7 @@ namespace aesim {
 namespace fs = std::filesystem;
 namespace {
 
-// The SPEC section 5 summary columns, then aesim's extra ones, in this order.
+// The docs/reference.md section 5 summary columns, then aesim's extra ones, in this order.
 const char* const kSummaryColumns[] = {
     "events_fired", "events_delivered", "events_collided", "events_ghost", "events_dropped",
     "offered_load", "throughput", "tau_s", "sim_time_s", "wall_time_s", "fidelity",

@@ -1,4 +1,4 @@
-// The Python module `aesim` (SPEC section 8): run, emulate, classify and sweep as the commands do
+// The Python module `aesim` (docs/reference.md section 8): run, emulate, classify and sweep as the commands do
 // them, through the same library (the commands' own functions where they exist), with results as
 // NumPy arrays filled in one pass and errors as the command line's one-line messages.
 #include <pybind11/numpy.h>
@@ -374,7 +374,7 @@ extern "C" __attribute__((visibility("default"))) int sc_main(int, char*[]) { re
 PYBIND11_MODULE(aesim, m) {
   using namespace aesim;
   setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
-  m.doc() = "aesim: the address-event imager simulator (SPEC section 8). Same library as the aesim program.";
+  m.doc() = "aesim: the address-event imager simulator (docs/reference.md section 8). Same library as the aesim program.";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

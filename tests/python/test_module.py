@@ -1,4 +1,4 @@
-"""The Python module (SPEC section 8) against the aesim program: the same library, so the same
+"""The Python module (docs/reference.md section 8) against the aesim program: the same library, so the same
 events, decisions and messages; a scene given as an array; the GIL released during a run; Ctrl-C.
 
 Environment: AESIM_BINARY, AESIM_SOURCE_DIR, and PYTHONPATH holding the built module.

@@ -11,7 +11,7 @@
 
 namespace aesim {
 
-// Summary JSON of SPEC section 5. offered_load G = fired rate per bus * tau and throughput
+// Summary JSON of docs/reference.md section 5. offered_load G = fired rate per bus * tau and throughput
 // S = successfully delivered (non-ghost) rate per bus * tau, both averaged over the buses.
 // With the log's per-pixel counts it adds the sizing metrics (pixel rates, dynamic range covered,
 // power); with the scene the array saw (`scene`, values of full scale), the PSNR of the histogram

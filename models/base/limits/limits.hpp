@@ -4,7 +4,7 @@
 
 namespace aesim {
 
-// What aesim handles at most, stated once; the README's Reliability section lists them. Each is
+// What aesim handles at most, stated once; the docs/reliability.md lists them. Each is
 // checked before memory is taken for it, so a tiny file cannot ask for a huge allocation.
 constexpr long long kMaxArrayPixels = 1LL << 24;   // pixels in an array or an image: 4096 x 4096
 constexpr int kMaxTiles = 1 << 16;                 // tiles (each has its own bus and receiver)

@@ -149,7 +149,14 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
       first_is_hash_ = (r.address >> 24) == '#';
     }
     put_be32(buffer_.data() + used_, r.address);
-    zero_stamps_ += r.timestamp_us == 0 ? 1 : 0;
+    // jAER reads the record after one stamped 0 in its place without looking at its stamp: of a run
+    // of such records it loses every other one.
+    if (jaer_takes_next_) {
+      jaer_takes_next_ = false;
+    } else if (r.timestamp_us == 0) {
+      ++jaer_lost_;
+      jaer_takes_next_ = true;
+    }
     put_be32(buffer_.data() + used_ + 4, static_cast<std::uint32_t>(r.timestamp_us));
     used_ += 8;
     if (used_ == buffer_.size()) flush();
@@ -163,10 +170,10 @@ std::string AedatWriter::reader_warning() const {
               "'#End Of ASCII Header', but a reader that takes every line starting with '#' for header (tonic's "
               "read_aedat_header_from_file) will misread the events";
   }
-  if (layout_ != AedatLayout::Aesim && zero_stamps_ > 0) {
-    warning += fmt::format("{}{} events are stamped 0 us; jAER's reader skips such a record (it reads the next one "
-                           "in its place); aesim's readers keep them",
-                           warning.empty() ? "" : "; ", zero_stamps_);
+  if (layout_ != AedatLayout::Aesim && jaer_lost_ > 0) {
+    warning += fmt::format("{}jAER's reader will lose {} events stamped 0 us (it reads the record after such "
+                           "an event in its place); aesim's readers keep them",
+                           warning.empty() ? "" : "; ", jaer_lost_);
   }
   return warning;
 }

@@ -52,7 +52,7 @@ class AedatWriter : public EventFileWriter {
   void flush();
   void finish() override { flush(); }
   // The first address beginning with '#' (tonic's header rule misreads the file); in jAER's
-  // layouts, records stamped 0 us (jAER's reader skips each, reading the next in its place).
+  // layouts, the events stamped 0 us that jAER's reader will lose.
   std::string reader_warning() const override;
 
  private:
@@ -63,7 +63,8 @@ class AedatWriter : public EventFileWriter {
   JaerChip chip_;
   int rows_;
   bool first_written_ = false, first_is_hash_ = false;
-  std::uint64_t zero_stamps_ = 0;
+  bool jaer_takes_next_ = false;
+  std::uint64_t jaer_lost_ = 0;
   std::vector<char> buffer_;  // kBufferBytes, a multiple of the 8-byte record
   std::size_t used_ = 0;
 };

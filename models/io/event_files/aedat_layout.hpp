@@ -8,7 +8,7 @@
 
 namespace aesim {
 
-// How an AEDAT 2.0 address word encodes an event (SPEC section 5, --aedat-layout):
+// How an AEDAT 2.0 address word encodes an event (docs/reference.md section 5, --aedat-layout):
 //  - aesim: (tile << bus_bits) | bus_address, y = 0 at the top, no polarity; aesim's own readers.
 //  - dvs128, davis: jAER's DVS128 and DAVIS words, so that jAER's viewers decode the pixels. jAER
 //    puts y = 0 at the bottom (an array of R rows is written with y_jAER = R - 1 - y, at the

@@ -176,6 +176,12 @@ void DsecWriter::flush() {
   p_.clear();
 }
 
+std::string DsecWriter::reader_warning() const {
+  return count_ == 0 ? "it holds no events, and DSEC's EventSlicer cannot open a file without a last stamp "
+                       "(h5py and aesim's readers can)"
+                     : "";
+}
+
 void DsecWriter::finish() {
   flush();
   while (ms_to_idx_.size() <= ms_total_) ms_to_idx_.push_back(count_);

@@ -22,6 +22,9 @@ class DsecWriter : public EventFileWriter {
   ~DsecWriter() override;
   void events(const AddressEvent* first, std::size_t count) override;
   void finish() override;
+  // With no events: DSEC's EventSlicer reads the last stamp when it opens a file, so it cannot open
+  // this one (h5py and aesim can).
+  std::string reader_warning() const override;
 
  private:
   void flush();

@@ -152,7 +152,7 @@ EventRecording from_csv(std::vector<AddressEvent> events, const std::string& pat
 }
 
 // Events of the polarity formats. A file aesim wrote records its array (and tiles), and polarity 0
-// is a ghost (SPEC section 5); so in a .npy, which cannot say who wrote it. In another recorder's
+// is a ghost (docs/reference.md section 5); so in a .npy, which cannot say who wrote it. In another recorder's
 // AEDAT 4.0 or HDF5 file polarity is a camera's ON/OFF and every event counts as a normal one;
 // the size is the file's (AEDAT 4.0's sizeX/sizeY) or, when it records none, the events' span.
 EventRecording from_polarity(const PolarityRecording& in, const std::string& path) {

@@ -24,7 +24,7 @@ class EventFileWriter : public EventStream {
   virtual std::uint64_t off_array() const { return 0; }
 };
 
-// The event file formats, chosen by the output's extension (SPEC section 5); a name without an
+// The event file formats, chosen by the output's extension (docs/reference.md section 5); a name without an
 // extension is AEDAT 2.0.
 enum class EventFileFormat { Aedat2, Aedat4, Npy, Hdf5, Csv };
 // Throws InputError naming `option` for an extension aesim does not write.

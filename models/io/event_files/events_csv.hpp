@@ -9,7 +9,7 @@
 
 namespace aesim {
 
-// Events CSV (SPEC section 5): header t_us,x,y,tile,flags. t_us is the receiver timestamp in
+// Events CSV (docs/reference.md section 5): header t_us,x,y,tile,flags. t_us is the receiver timestamp in
 // microseconds, printed with as many decimals as receiver.tick resolves (none at 1 us).
 void write_events_csv(std::ostream& out, const std::vector<AddressEvent>& events, double tick);
 

@@ -11,7 +11,7 @@ struct PixelAddress {
   std::uint32_t x = 0, y = 0;  // global, (0, 0) top-left
 };
 
-// SPEC section 2: tiles row-major from the top-left, bus address (y_local << xbits) | x_local,
+// docs/reference.md section 2: tiles row-major from the top-left, bus address (y_local << xbits) | x_local,
 // AEDAT address (tile << bus_bits) | bus address. Arrays that are not a whole number of tiles
 // get narrower tiles on the right and bottom edges, with the same address widths.
 class AddressMap {

@@ -13,7 +13,7 @@ namespace aesim {
 
 enum class InitialState { Reset, Random };
 enum class BusAccess { Aloha, Arbitrated, Ideal };
-// Event, Cycle and Queue are SPEC's rungs; PixelProcesses and FixedStep are the baselines a
+// Event, Cycle and Queue are the reference's rungs; PixelProcesses and FixedStep are the baselines a
 // SystemC engineer would write first (one process per pixel with exact times, the same results
 // as Event; every pixel integrated on a clock of period sim.step).
 enum class Fidelity { Queue, Event, Cycle, Auto, PixelProcesses, FixedStep };
@@ -23,7 +23,7 @@ enum class FullPolicy { Drop, Hold };
 struct ResolvedConfig;
 
 // The sections of a configuration, each the parameters of one part of the sensor or of the run, in
-// SI units; field names are the keys of SPEC section 3. The models take the sections they need.
+// SI units; field names are the keys of docs/reference.md section 3. The models take the sections they need.
 struct PixelParams {
   double c_int = 100e-15;   // F, integration capacitance
   double dv_int = 1.0;      // V, swing at which the pixel fires
@@ -36,7 +36,7 @@ struct PixelParams {
   TransferCurve transfer;   // measured period against photocurrent (aesim calibrate); empty: eq. 2
   // The charge a pixel collects between firings (eq. 2's c_int * dv_int), before mismatch.
   double threshold_charge() const { return c_int * dv_int; }
-  // The current the pixel integrates at scene value v: i_dark + i_max * v (SPEC section 1), or
+  // The current the pixel integrates at scene value v: i_dark + i_max * v (docs/reference.md section 1), or
   // with a transfer table the current that fires with the table's period (transfer_curve.hpp).
   double integrating_current(double v) const { return integrating_current_at(i_max * v); }
   // The same for a photocurrent (A) rather than a scene value.

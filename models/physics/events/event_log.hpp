@@ -22,7 +22,7 @@ inline unsigned ones(std::uint32_t v) {
   return (((v + (v >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
 }
 
-// Counters of SPEC section 5, per tile. `collided` counts fired events lost to collisions,
+// Counters of docs/reference.md section 5, per tile. `collided` counts fired events lost to collisions,
 // whether detected (Fate::Collided, Fate::Absorbed) or not (Fate::Ghost); `ghost` counts the wrong events the
 // receiver output for undetected collisions; `delivered` counts every output event, ghosts too.
 struct TileCounters {

@@ -5,7 +5,7 @@
 
 namespace aesim {
 
-// Photographs as scenes (SPEC section 1): code values are decoded to linear light, colour is
+// Photographs as scenes (docs/reference.md section 1): code values are decoded to linear light, colour is
 // reduced to Rec. 709 / sRGB luminance (Y = 0.2126 R + 0.7152 G + 0.0722 B, in linear light), and
 // the result is normalised to full scale (the brightest code, 255 or 65535, is 1).
 //  - PNG: 8 or 16 bit; grey, RGB, palette, with or without alpha (alpha is ignored: the scene is

@@ -8,7 +8,7 @@
 
 namespace aesim {
 
-// The current every pixel integrates in every frame: I = i_dark + i_max * v (SPEC section 1), or
+// The current every pixel integrates in every frame: I = i_dark + i_max * v (docs/reference.md section 1), or
 // with pixel.transfer the current that fires with the table's period (pixel/transfer_curve.hpp).
 // Frame k starts at boundary k (time k * frame_period); boundary 0 is t = 0.
 //

@@ -14,7 +14,7 @@ struct SweepPoint {
   std::vector<std::pair<std::string, std::string>> sets;  // fixed [set] first, then the group's values
 };
 
-// A sweep spec (TOML), documented in the README:
+// A sweep spec (TOML), documented in docs/sweeps.md:
 //   sensor = "aloha"   duration = "2s"   jobs = 0   chart = "../charts/collisions.gp"
 //   [set]       "key" = value, ...                    overrides for every point
 //   [[group]]   name = "...", scene = [...], "key" = value | [values] | {from, to, points, scale}

@@ -4,7 +4,7 @@
 
 namespace aesim {
 
-// A team's pixel netlist as `aesim calibrate` takes it (SPEC section 7): a deck that defines
+// A team's pixel netlist as `aesim calibrate` takes it (docs/reference.md section 7): a deck that defines
 // `.subckt NAME vdd out gnd params: iph=...`, its models and includes its own.
 struct PixelDeck {
   std::string path;      // absolute, as the generated testbench .include's it

@@ -6,7 +6,7 @@
 namespace aesim {
 
 // What one transient says about the pixel, all from crossings interpolated linearly between
-// ngspice's time points. A firing is a rising crossing of `out` through vdd/2 (SPEC section 7).
+// ngspice's time points. A firing is a rising crossing of `out` through vdd/2 (docs/reference.md section 7).
 struct FiringMeasure {
   std::vector<double> fires;  // s, every firing
   // Means over the firings after the first (the first starts from ngspice's all-zero state, not

@@ -7,7 +7,7 @@
 
 namespace aesim {
 
-// The base preset with the pixel fitted (SPEC section 7): pixel.c_int (the threshold charge at the
+// The base preset with the pixel fitted (docs/reference.md section 7): pixel.c_int (the threshold charge at the
 // base's dv_int), t_reset, i_dark and transfer; power.vdd, e_pixel_event (supply energy per firing
 // beyond c_int * dv_int * vdd) and p_static_pixel (the supply's current between firings); and
 // pixel.mismatch when Monte Carlo runs measured it.

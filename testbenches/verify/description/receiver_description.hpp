@@ -15,7 +15,7 @@ struct PortRef {
   std::string text() const;  // as the description wrote it
 };
 
-// A team's receiver RTL as its description file (SPEC section 6) says: how to build it, which of
+// A team's receiver RTL as its description file (docs/reference.md section 6) says: how to build it, which of
 // its ports plays which role, and what it promises. Paths are absolute (relative ones in the file
 // are taken from the file's folder).
 struct ReceiverDescription {
@@ -62,7 +62,7 @@ struct ReceiverDescription {
   const PortRef& ref(const std::string& role) const { return ports.at(role); }
 };
 
-// The roles of SPEC section 6, required ones first; `optional` says which may be left out.
+// The roles of docs/reference.md section 6, required ones first; `optional` says which may be left out.
 struct PortRole {
   const char* name;
   bool input;  // driven by aesim

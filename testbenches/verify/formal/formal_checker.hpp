@@ -16,7 +16,7 @@ struct FormalProperty {
   std::string text;  // what it asserts, in words
 };
 
-// The formal checker of a receiver (SPEC section 6, --formal): a module aesim_formal_top that
+// The formal checker of a receiver (docs/reference.md section 6, --formal): a module aesim_formal_top that
 // instantiates the team's top with the description's parameters (and its [formal] overrides; the
 // description's [inputs] are taken as they are, so the caller applies [formal] inputs),
 // drives its inputs from free inputs under the sender's assumptions, and asserts the description's

@@ -41,7 +41,7 @@ struct FormalOptions {
   double property_seconds = 20;  // a proof or bounded check past this is stopped
 };
 
-// The formal check of SPEC section 6: the checker (formal_checker) and the team's RTL read by yosys
+// The formal check of docs/reference.md section 6: the checker (formal_checker) and the team's RTL read by yosys
 // (read_verilog -formal, -sv for .sv files), one AIGER model per property, each checked by ABC:
 // a bounded check to the checker's depth (bmc3), then an unbounded proof (pdr); a counterexample
 // simulated by yosys (sim) into a VCD; and a

@@ -8,7 +8,7 @@
 
 namespace aesim {
 
-// The one rule a receiver's stamps follow for a whole run (SPEC section 6): the stamp of every
+// The one rule a receiver's stamps follow for a whole run (docs/reference.md section 6): the stamp of every
 // transaction is ticks(p) mod 2^bits, the ticks completed since the last reset at one fixed edge p
 // of the transaction, where
 //   ticks(e) = floor((e - r) / N)  (0 for e <= r), e counting rising edges, r the last edge of the
