@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <ostream>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -27,6 +28,8 @@ struct CosimCase {
   unsigned ready_every;  // the consumer is ready one cycle in this many (1: always)
   double duration;
 };
+
+void PrintTo(const CosimCase& c, std::ostream* os) { *os << c.name; }
 
 class Cosim : public ::testing::TestWithParam<CosimCase> {};
 

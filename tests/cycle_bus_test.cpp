@@ -1,6 +1,7 @@
 // The cycle fidelity: a clocked wired-OR bus, Req/Ack and the reference receiver, on
 // hand-computed timings, protocol invariants, and against the event fidelity at low load.
 #include <algorithm>
+#include <ostream>
 #include <cmath>
 #include <set>
 #include <systemc>
@@ -290,6 +291,8 @@ struct DomainCase {
   bool contention_detect;
   bool free_running;
 };
+
+void PrintTo(const DomainCase& c, std::ostream* os) { *os << c.name; }
 
 class ClockDomain : public ::testing::TestWithParam<DomainCase> {};
 

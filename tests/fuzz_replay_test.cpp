@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,10 @@
 #include "fuzz/fuzz_targets.hpp"
 
 namespace aesim {
+namespace fuzz {
+// CTest lists a case by its parameter's printout: the target's name, not its bytes.
+void PrintTo(const Target& t, std::ostream* os) { *os << t.name; }
+}  // namespace fuzz
 namespace {
 namespace fs = std::filesystem;
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <ostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -321,6 +322,9 @@ struct Mutant {
   const char* description;
   const char* check;  // the first check it must fail
 };
+
+// CTest lists a case by its parameter's printout: the mutant's name, not its bytes.
+void PrintTo(const Mutant& m, std::ostream* os) { *os << m.name << " (" << m.check << ")"; }
 
 class MutantTest : public VerifyTest, public ::testing::WithParamInterface<Mutant> {};
 
