@@ -1,4 +1,5 @@
 // The aesim program as a user meets it: default run, outputs, bad input, reproducibility.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "config/sensor_config.hpp"
 #include "scene/netpbm.hpp"
 #include "support/csv_rows.hpp"
 #include "support/temp_dir_test.hpp"
@@ -381,6 +383,47 @@ TEST_F(CliTest, ReconAndInfoRejectBadInput) {
   EXPECT_EQ(aesim("info bad.aedat").status, 2);
   EXPECT_EQ(aesim("recon bad.aedat --mode sideways -o r.png").status, 2);
   EXPECT_FALSE(fs::exists(dir_ / "r.png"));
+}
+
+// docs/configuration_keys.md's table is what `aesim config keys --markdown` prints: every key the
+// program accepts, with unit, the aloha preset's value and meaning; no key missing, none invented.
+TEST_F(CliTest, KeyReferenceIsTheProgramsOwn) {
+  const Outcome o = aesim("config keys --markdown");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string doc = slurp(std::string(AESIM_SOURCE_DIR) + "/docs/configuration_keys.md");
+  const auto table = doc.find("| key |");
+  ASSERT_NE(table, std::string::npos);
+  EXPECT_EQ(doc.substr(table), o.out) << "regenerate the table with `aesim config keys --markdown`";
+  std::size_t rows = 0;
+  for (const std::string& key : SensorConfig::keys()) {
+    EXPECT_NE(o.out.find("| `" + key + "` |"), std::string::npos) << key;
+    ++rows;
+  }
+  EXPECT_EQ(static_cast<std::size_t>(std::count(o.out.begin(), o.out.end(), '\n')), rows + 2);
+  // The plain listing carries each key once too, and another preset's values.
+  const Outcome plain = aesim("config keys --sensor aesim_pixel");
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_NE(plain.out.find("pixel.transfer"), std::string::npos);
+  EXPECT_NE(plain.out.find("table of"), std::string::npos) << plain.out;
+}
+
+// A slip names what was meant; no command at all lists the commands. One line, exit 2.
+TEST_F(CliTest, MistypedNamesGetTheNearestAndNoCommandListsThem) {
+  struct Case {
+    const char* args;
+    const char* says;
+  } cases[] = {{"run --set pixel.cint=50fF", "unknown key 'pixel.cint', did you mean 'pixel.c_int'?"},
+               {"run --set c_int=50fF", "did you mean 'pixel.c_int'?"},
+               {"rnu", "unknown command 'rnu', did you mean 'run'?"},
+               {"frobnicate", "unknown command 'frobnicate' (commands: run, recon,"},
+               {"", "a command is required (run, recon,"}};
+  for (const Case& c : cases) {
+    const Outcome o = aesim(c.args);
+    EXPECT_EQ(o.status, 2) << c.args;
+    EXPECT_NE(o.err.find(c.says), std::string::npos) << c.args << ": " << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << c.args;
+  }
 }
 
 }  // namespace

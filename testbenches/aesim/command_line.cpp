@@ -2,7 +2,11 @@
 // (a header-only library that costs seconds of compile time in every file that uses it).
 #include <CLI/CLI.hpp>
 
+#include <fmt/format.h>
+
 #include "commands.hpp"
+#include "errors/input_error.hpp"
+#include "text/nearest_name.hpp"
 
 namespace aesim {
 namespace {
@@ -203,10 +207,31 @@ void add_report(CLI::App& app, int& status) {
   cmd->callback([opt, &status] { status = bandwidth_command(*opt); });
 }
 
+void add_config(CLI::App& app, int& status) {
+  CLI::App* config = app.add_subcommand("config", "The configuration keys");
+  config->require_subcommand(1);
+  auto sensor = std::make_shared<std::string>("aloha");
+  auto markdown = std::make_shared<bool>(false);
+  CLI::App* cmd = config->add_subcommand("keys", "Every key --set takes: unit, value in a preset, meaning");
+  cmd->add_option("--sensor", *sensor, "Preset whose values are listed (a name in models/sensors or a .toml file)")
+      ->capture_default_str();
+  cmd->add_flag("--markdown", *markdown, "A Markdown table (docs/configuration_keys.md)");
+  cmd->callback([sensor, markdown, &status] { status = config_keys_command(*sensor, *markdown); });
+}
+
+// "aesim" alone or "aesim rnu": the commands there are, and the one meant.
+std::string command_list(const CLI::App& app) {
+  std::string list;
+  for (const CLI::App* sub : app.get_subcommands({})) list += (list.empty() ? "" : ", ") + sub->get_name();
+  return list;
+}
+
 }  // namespace
 
 int run_command_line(int argc, char** argv) {
-  CLI::App app{"aesim: cycle-level simulator of address-event (ALOHA) image sensors", "aesim"};
+  CLI::App app{"aesim: simulator of address-event image sensors (ALOHA and arbitrated buses), from an event-level "
+               "model to a cycle-level SystemC one with the receiver's RTL in the loop",
+               "aesim"};
   app.require_subcommand(1);
   int status = 0;
   add_run(app, status);
@@ -219,6 +244,19 @@ int run_command_line(int argc, char** argv) {
   add_emulate(app, status);
   add_classify(app, status);
   add_report(app, status);
+  add_config(app, status);
+  if (argc < 2) {
+    throw InputError(fmt::format("a command is required ({}); `aesim run` simulates the default scene, `aesim "
+                                 "--help` says more", command_list(app)));
+  }
+  if (argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+      throw InputError(fmt::format("unknown command '{}'{} (commands: {})", argv[1], did_you_mean(argv[1], names),
+                                   command_list(app)));
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

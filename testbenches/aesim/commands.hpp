@@ -107,6 +107,9 @@ int compare_command(CompareOptions opt);
 int emulate_command(EmulateOptions opt);
 int classify_command(ClassifyOptions opt);
 int bandwidth_command(const BandwidthOptions& opt);
+// `aesim config keys`: every configuration key with its unit, its value in `sensor` and its
+// meaning; as a Markdown table with `markdown` (docs/configuration_keys.md is that table).
+int config_keys_command(const std::string& sensor, bool markdown);
 
 // Parses the command line and runs the command it names; CLI11's own errors (and --help) end
 // here with their status, aesim's exceptions pass through to main().

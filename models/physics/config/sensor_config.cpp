@@ -15,6 +15,7 @@
 #include "files/input_path.hpp"
 #include "files/toml_file.hpp"
 #include "text/ascii_case.hpp"
+#include "text/nearest_name.hpp"
 #include "power/power_model.hpp"
 #include "units/si_units.hpp"
 
@@ -24,6 +25,8 @@ namespace {
 struct KeySpec {
   std::function<void(SensorConfig&, const std::string&)> set;
   std::function<nlohmann::json(const SensorConfig&)> get;
+  std::string unit;     // SI unit, or the names an enumeration takes ("aloha|arbitrated|ideal")
+  std::string meaning;  // one line, for `aesim config keys` and docs/configuration_keys.md
 };
 
 using Json = nlohmann::json;
@@ -73,15 +76,16 @@ const std::vector<std::pair<const char*, Fidelity>> kFidelity = {{"queue", Fidel
 const std::map<std::string, KeySpec>& registry() {
   static const std::map<std::string, KeySpec> table = [] {
     std::map<std::string, KeySpec> t;
-    auto real = [&t](const std::string& key, const char* unit, auto field) {
+    auto real = [&t](const std::string& key, const char* unit, auto field, const char* meaning) {
       t[key] = {[key, unit, field](SensorConfig& c, const std::string& v) {
                   field(c) = parse_si(v, unit, key);
                 },
                 [field](const SensorConfig& c) {
                   return Json(field(c));
-                }};
+                },
+                unit, meaning};
     };
-    auto integer = [&t](const std::string& key, auto field) {
+    auto integer = [&t](const std::string& key, auto field, const char* meaning) {
       t[key] = {[key, field](SensorConfig& c, const std::string& v) {
                   const long long n = parse_integer(v, key);
                   if (n < 0 || n > (1LL << 30)) {
@@ -91,31 +95,43 @@ const std::map<std::string, KeySpec>& registry() {
                 },
                 [field](const SensorConfig& c) {
                   return Json(field(c));
-                }};
+                },
+                "", meaning};
     };
-    auto boolean = [&t](const std::string& key, auto field) {
+    auto boolean = [&t](const std::string& key, auto field, const char* meaning) {
       t[key] = {[key, field](SensorConfig& c, const std::string& v) { field(c) = parse_bool(v, key); },
                 [field](const SensorConfig& c) {
                   return Json(field(c));
-                }};
+                },
+                "true|false", meaning};
     };
-    auto enumerated = [&t](const std::string& key, auto field, const auto& names) {
+    auto enumerated = [&t](const std::string& key, auto field, const auto& names, const char* meaning) {
+      std::string allowed;
+      for (const auto& entry : names) allowed += (allowed.empty() ? "" : "|") + std::string(entry.first);
       t[key] = {[key, field, &names](SensorConfig& c, const std::string& v) {
                   field(c) = parse_enum(v, key, names);
                 },
                 [field](const SensorConfig& c) {
                   return Json(to_string(field(c)));
-                }};
+                },
+                allowed, meaning};
     };
-    real("pixel.c_int", "F", [](auto& c) -> auto& { return c.pixel.c_int; });
-    real("pixel.dv_int", "V", [](auto& c) -> auto& { return c.pixel.dv_int; });
-    real("pixel.i_max", "A", [](auto& c) -> auto& { return c.pixel.i_max; });
-    real("pixel.i_dark", "A", [](auto& c) -> auto& { return c.pixel.i_dark; });
-    real("pixel.t_reset", "s", [](auto& c) -> auto& { return c.pixel.t_reset; });
-    real("pixel.mismatch", "", [](auto& c) -> auto& { return c.pixel.mismatch; });
-    boolean("pixel.shot_noise", [](auto& c) -> auto& { return c.pixel.shot_noise; });
-    enumerated("pixel.initial", [](auto& c) -> auto& { return c.pixel.initial; },
-               kInitial);
+    real("pixel.c_int", "F", [](auto& c) -> auto& { return c.pixel.c_int; },
+         "integration capacitance (eq. 2: a firing every c_int * dv_int / I_ph)");
+    real("pixel.dv_int", "V", [](auto& c) -> auto& { return c.pixel.dv_int; },
+         "voltage swing from reset to the comparator's threshold");
+    real("pixel.i_max", "A", [](auto& c) -> auto& { return c.pixel.i_max; },
+         "photocurrent of full-scale light (a scene value of 1); set from light.lux when that is set");
+    real("pixel.i_dark", "A", [](auto& c) -> auto& { return c.pixel.i_dark; },
+         "dark current, added to every pixel's photocurrent");
+    real("pixel.t_reset", "s", [](auto& c) -> auto& { return c.pixel.t_reset; },
+         "reset time after each firing, during which the pixel does not integrate");
+    real("pixel.mismatch", "", [](auto& c) -> auto& { return c.pixel.mismatch; },
+         "relative standard deviation of each pixel's threshold charge (fixed-pattern noise)");
+    boolean("pixel.shot_noise", [](auto& c) -> auto& { return c.pixel.shot_noise; },
+            "Poisson photon shot noise on each integration");
+    enumerated("pixel.initial", [](auto& c) -> auto& { return c.pixel.initial; }, kInitial,
+               "charge at time 0: reset (all empty, a global reset) or random (a sensor that has been running)");
     t["pixel.transfer"] = {[](SensorConfig& c, const std::string& v) {
                              c.pixel.transfer = transfer_from_text(v, "pixel.transfer");
                            },
@@ -125,46 +141,70 @@ const std::map<std::string, KeySpec>& registry() {
                              if (c.pixel.transfer.charge > 0) table["charge"] = c.pixel.transfer.charge;
                              if (c.pixel.transfer.t_reset >= 0) table["t_reset"] = c.pixel.transfer.t_reset;
                              return table;
-                           }};
-    integer("array.rows", [](auto& c) -> auto& { return c.array.rows; });
-    integer("array.cols", [](auto& c) -> auto& { return c.array.cols; });
-    integer("array.tile_rows", [](auto& c) -> auto& { return c.array.tile_rows; });
-    integer("array.tile_cols", [](auto& c) -> auto& { return c.array.tile_cols; });
-    enumerated("bus.access", [](auto& c) -> auto& { return c.bus.access; }, kAccess);
-    real("bus.t_event", "s", [](auto& c) -> auto& { return c.bus.t_event; });
-    boolean("bus.contention_detect",
-            [](auto& c) -> auto& { return c.bus.contention_detect; });
-    real("receiver.clock", "Hz", [](auto& c) -> auto& { return c.receiver.clock; });
-    real("receiver.tick", "s", [](auto& c) -> auto& { return c.receiver.tick; });
-    integer("receiver.fifo_depth", [](auto& c) -> auto& { return c.receiver.fifo_depth; });
-    enumerated("receiver.model", [](auto& c) -> auto& { return c.receiver.model; }, kReceiverModel);
-    enumerated("receiver.full_policy", [](auto& c) -> auto& { return c.receiver.full_policy; }, kFullPolicy);
-    real("sim.duration", "s", [](auto& c) -> auto& { return c.sim.duration; });
+                           },
+                           "table",
+                           "measured firing period against photocurrent (aesim calibrate), or none for eq. 2"};
+    integer("array.rows", [](auto& c) -> auto& { return c.array.rows; }, "pixel rows of the whole array");
+    integer("array.cols", [](auto& c) -> auto& { return c.array.cols; }, "pixel columns of the whole array");
+    integer("array.tile_rows", [](auto& c) -> auto& { return c.array.tile_rows; },
+            "pixel rows of one tile (a tile has its own bus and receiver)");
+    integer("array.tile_cols", [](auto& c) -> auto& { return c.array.tile_cols; }, "pixel columns of one tile");
+    enumerated("bus.access", [](auto& c) -> auto& { return c.bus.access; }, kAccess,
+               "aloha (no arbiter: overlapping requests collide), arbitrated (queued) or ideal (no loss)");
+    real("bus.t_event", "s", [](auto& c) -> auto& { return c.bus.t_event; },
+         "duration of one bus transaction (tau) at the event fidelity");
+    boolean("bus.contention_detect", [](auto& c) -> auto& { return c.bus.contention_detect; },
+            "the bus flags a collision so the receiver can drop the corrupt address");
+    real("receiver.clock", "Hz", [](auto& c) -> auto& { return c.receiver.clock; },
+         "receiver clock (cycle fidelity: the handshake's timing)");
+    real("receiver.tick", "s", [](auto& c) -> auto& { return c.receiver.tick; }, "timestamp resolution");
+    integer("receiver.fifo_depth", [](auto& c) -> auto& { return c.receiver.fifo_depth; },
+            "receiver FIFO words (cycle fidelity)");
+    enumerated("receiver.model", [](auto& c) -> auto& { return c.receiver.model; }, kReceiverModel,
+               "cycle fidelity's receiver: the C++ reference or the Verilog RTL through Verilator");
+    enumerated("receiver.full_policy", [](auto& c) -> auto& { return c.receiver.full_policy; }, kFullPolicy,
+               "a full FIFO drops the new address, or holds Ack until a word frees");
+    real("sim.duration", "s", [](auto& c) -> auto& { return c.sim.duration; }, "simulated time");
     t["sim.seed"] = {[](SensorConfig& c, const std::string& v) {
                        const long long n = parse_integer(v, "sim.seed");
                        if (n < 0) throw InputError("sim.seed: must not be negative (got '" + v + "')");
                        c.sim.seed = static_cast<std::uint64_t>(n);
                      },
-                     [](const SensorConfig& c) { return Json(c.sim.seed); }};
-    enumerated("sim.fidelity", [](auto& c) -> auto& { return c.sim.fidelity; },
-               kFidelity);
-    integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; });
-    real("sim.step", "s", [](auto& c) -> auto& { return c.sim.step; });
-    real("sim.max_events", "", [](auto& c) -> auto& { return c.sim.max_events; });
-    real("power.vdd", "V", [](auto& c) -> auto& { return c.power.vdd; });
-    real("power.e_pixel_event", "J", [](auto& c) -> auto& { return c.power.e_pixel_event; });
-    real("power.c_bus_line", "F", [](auto& c) -> auto& { return c.power.c_bus_line; });
-    real("power.e_receiver_event", "J", [](auto& c) -> auto& { return c.power.e_receiver_event; });
-    real("power.p_static_pixel", "W", [](auto& c) -> auto& { return c.power.p_static_pixel; });
-    real("light.lux", "lx", [](auto& c) -> auto& { return c.light.lux; });
-    real("light.responsivity", "A/W", [](auto& c) -> auto& { return c.light.responsivity; });
-    real("light.efficacy", "lm/W", [](auto& c) -> auto& { return c.light.efficacy; });
-    real("light.pixel_area", "m2", [](auto& c) -> auto& { return c.light.pixel_area; });
-    real("light.fill_factor", "", [](auto& c) -> auto& { return c.light.fill_factor; });
-    real("analysis.window", "s", [](auto& c) -> auto& { return c.analysis.window; });
-    integer("analysis.min_events", [](auto& c) -> auto& { return c.analysis.min_events; });
-    real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; });
-    boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; });
+                     [](const SensorConfig& c) { return Json(c.sim.seed); }, "",
+                     "seed of every random stream (mismatch, initial charge, shot noise)"};
+    enumerated("sim.fidelity", [](auto& c) -> auto& { return c.sim.fidelity; }, kFidelity,
+               "the rung that simulates the run; auto chooses the fastest exact one");
+    integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; },
+            "event fidelity: tiles simulated in parallel on this many threads (0: all cores)");
+    real("sim.step", "s", [](auto& c) -> auto& { return c.sim.step; }, "time step of the fixed_step baseline");
+    real("sim.max_events", "", [](auto& c) -> auto& { return c.sim.max_events; },
+         "the most work a run may ask for, in events, estimated before it starts");
+    real("power.vdd", "V", [](auto& c) -> auto& { return c.power.vdd; }, "supply voltage of the power estimate");
+    real("power.e_pixel_event", "J", [](auto& c) -> auto& { return c.power.e_pixel_event; },
+         "energy of a firing beyond recharging c_int (comparator, logic)");
+    real("power.c_bus_line", "F", [](auto& c) -> auto& { return c.power.c_bus_line; },
+         "capacitance of one bus line, charged per transaction for each 1 bit, Req and Ack");
+    real("power.e_receiver_event", "J", [](auto& c) -> auto& { return c.power.e_receiver_event; },
+         "receiver energy per bus transaction");
+    real("power.p_static_pixel", "W", [](auto& c) -> auto& { return c.power.p_static_pixel; },
+         "static power of one pixel (comparator and amplifier bias)");
+    real("light.lux", "lx", [](auto& c) -> auto& { return c.light.lux; },
+         "illuminance of full-scale light; above 0 it sets pixel.i_max");
+    real("light.responsivity", "A/W", [](auto& c) -> auto& { return c.light.responsivity; },
+         "photodiode responsivity");
+    real("light.efficacy", "lm/W", [](auto& c) -> auto& { return c.light.efficacy; },
+         "luminous efficacy of the light (683 lm/W: 555 nm)");
+    real("light.pixel_area", "m2", [](auto& c) -> auto& { return c.light.pixel_area; }, "area of one pixel");
+    real("light.fill_factor", "", [](auto& c) -> auto& { return c.light.fill_factor; },
+         "fraction of the pixel's area that collects light");
+    real("analysis.window", "s", [](auto& c) -> auto& { return c.analysis.window; },
+         "readout window of the dynamic range and the reconstruction's PSNR");
+    integer("analysis.min_events", [](auto& c) -> auto& { return c.analysis.min_events; },
+            "a pixel counts as covered when it fires at least this often within the window");
+    real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; },
+         "frames per second of a frame folder or video");
+    boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; },
+            "after the last frame, repeat the sequence (or hold the last frame)");
     return t;
   }();
   return table;
@@ -202,7 +242,7 @@ const char* to_string(Fidelity v) {
 void SensorConfig::set(const std::string& key, const std::string& value) {
   const auto& table = registry();
   const auto it = table.find(key);
-  if (it == table.end()) throw InputError(fmt::format("unknown key '{}'", key));
+  if (it == table.end()) throw InputError(fmt::format("unknown key '{}'{}", key, did_you_mean(key, keys())));
   it->second.set(*this, value);
 }
 
@@ -212,6 +252,12 @@ nlohmann::json SensorConfig::to_json() const {
     const auto dot = key.find('.');
     out[key.substr(0, dot)][key.substr(dot + 1)] = spec.get(*this);
   }
+  return out;
+}
+
+std::vector<KeyInfo> SensorConfig::key_table() {
+  std::vector<KeyInfo> out;
+  for (const auto& [key, spec] : registry()) out.push_back({key, spec.unit, spec.meaning});
   return out;
 }
 

@@ -93,6 +93,11 @@ struct SceneParams {
   bool loop = false;         // after the last frame: repeat the sequence, or hold the last frame
 };
 
+// One configuration key as `aesim config keys` lists it.
+struct KeyInfo {
+  std::string key, unit, meaning;
+};
+
 // Every parameter of a run: one member per section ("pixel.c_int" is pixel.c_int).
 struct SensorConfig {
   PixelParams pixel;
@@ -116,6 +121,8 @@ struct SensorConfig {
   ResolvedConfig resolved() const;
 
   static const std::vector<std::string>& keys();
+  // Every key with its unit (or the names it takes) and meaning, in key order.
+  static std::vector<KeyInfo> key_table();
 };
 
 // A configuration ready to run: validated, its derived values filled in. Only

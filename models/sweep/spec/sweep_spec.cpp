@@ -10,6 +10,7 @@
 
 #include "files/data_dir.hpp"
 #include "errors/input_error.hpp"
+#include "text/nearest_name.hpp"
 #include "files/input_path.hpp"
 #include "files/toml_file.hpp"
 #include "config/sensor_config.hpp"
@@ -175,7 +176,7 @@ SweepSpec load_sweep_spec(const std::string& path) {
       else {
         const auto& known = SensorConfig::keys();
         if (std::find(known.begin(), known.end(), key) == known.end()) {
-          throw InputError(fmt::format("{}: unknown key", where));
+          throw InputError(fmt::format("{}: unknown key{}", where, did_you_mean(key, known)));
         }
         axes.emplace_back(key, expand_values(value, where));
       }

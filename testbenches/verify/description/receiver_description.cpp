@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
+#include "text/nearest_name.hpp"
 #include "files/input_path.hpp"
 #include "files/toml_file.hpp"
 #include "units/si_units.hpp"
@@ -169,7 +170,9 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   for (const auto& [key, value] : root.as_table()) {
     static const char* known[] = {"top", "sources", "include_dirs", "defines", "parameters", "clock",
                                   "reset", "ports", "inputs", "behaviour", "formal"};
-    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) r.fail(key, "unknown key");
+    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) {
+      r.fail(key, "unknown key" + did_you_mean(key, {std::begin(known), std::end(known)}));
+    }
     (void)value;
   }
   d.top = r.identifier(r.string_of(r.need(root, "top", "top"), "top"), "top");
@@ -268,7 +271,9 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   for (const auto& [key, value] : behaviour.as_table()) {
     static const char* known[] = {"collisions", "full", "timestamp_tick", "timestamp_bits", "timestamp_offset_cycles",
                                   "ack_latency_cycles", "synchroniser_flops"};
-    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) r.fail("behaviour." + key, "unknown key");
+    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) {
+      r.fail("behaviour." + key, "unknown key" + did_you_mean(key, {std::begin(known), std::end(known)}));
+    }
     (void)value;
   }
   const std::string collisions = r.string_of(r.need(behaviour, "collisions", "behaviour.collisions"), "behaviour.collisions");
