@@ -63,6 +63,7 @@ TEST_F(SweepTest, BadSpecsAreOneLineErrorsWithExitTwo) {
       {"[[group]]\nscene = \"no/such.pgm\"\n", "not found"},
       {"colour = 3\n[[group]]\nname = \"x\"\n", "colour"},
       {"[[group\n", "malformed TOML"},
+      {"chart = \"no_such.gp\"\n[[group]]\nname = \"x\"\n", "chart script 'no_such.gp' is neither in the spec's folder"},
   };
   for (const auto& [text, needle] : cases) {
     std::string err;
@@ -235,6 +236,20 @@ TEST_F(SweepTest, AJournalOfAnotherSweepIsNotResumed) {
   std::string err;
   EXPECT_EQ(aesim("sweep " + a + " -o x.csv --no-chart", &err), 2);
   EXPECT_NE(err.find("different sweep"), std::string::npos) << err;
+}
+
+// A shipped spec copied next to the user's own files still finds its scenes and its chart (they
+// are named from the aesim tree), and draws the chart beside its CSV.
+TEST_F(SweepTest, AShippedSpecCopiedElsewhereFindsItsScenesAndChart) {
+  fs::create_directories(dir_ / "mine");
+  fs::copy_file(std::string(AESIM_SOURCE_DIR) + "/scripts/sweeps/collisions.toml", dir_ / "mine" / "collisions.toml");
+  std::string err;
+  ASSERT_EQ(aesim("sweep mine/collisions.toml -o mine/c.csv", &err), 0) << err;
+  EXPECT_GT(read_csv(dir_ / "mine" / "c.csv").size(), 80u);
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "mine" / "c.png"));
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "mine" / "c.svg"));
+  }
 }
 
 }  // namespace

@@ -6,6 +6,8 @@ set datafile columnheaders
 set logscale x
 set xrange [0.005:8]
 set key outside bottom center horizontal maxrows 4 font ",9"
+# Room under the axis title for the four rows of the key.
+set bmargin 8
 set grid
 pure(g) = g * exp(-2 * g)
 slotted(g) = g * exp(-g)
@@ -14,8 +16,8 @@ pt(i) = i == 1 ? 7 : i == 2 ? 5 : i == 3 ? 6 : i == 4 ? 4 : i == 5 ? 9 : 11
 g_of(i) = strcol("group") eq name(i) ? column("offered_load") : NaN
 
 do for [format in "png svg"] {
-  if (format eq "png") { set terminal pngcairo size 1400,620 font ",11"; set output png }
-  if (format eq "svg") { set terminal svg size 1400,620 dynamic font ",11"; set output svg }
+  if (format eq "png") { set terminal pngcairo size 1400,700 font ",11"; set output png }
+  if (format eq "svg") { set terminal svg size 1400,700 dynamic font ",11"; set output svg }
   set multiplot layout 1,2 title "ALOHA bus of the aloha sensor: simulation against theory (each point a 2 s run)"
   set xlabel "offered load G per bus (fired events x tau)"
   set ylabel "throughput S (delivered events x tau)"

@@ -1,5 +1,7 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -181,6 +183,21 @@ int run_command(RunOptions opt) {
               static_cast<unsigned long long>(total.ghost));
   std::printf("  bus load per tile: G = %.4g offered, S = %.4g delivered\n", summary["offered_load"].get<double>(),
               summary["throughput"].get<double>());
+  // The figures a pixel is sized by (docs/sizing.md), which otherwise sit only in the summary.
+  const auto figure = [&summary](const char* key) {
+    const nlohmann::json& v = summary[key];
+    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  const double psnr = figure("psnr_db");
+  std::printf("  sizing: power %s (%s per tile, %s of it static), PSNR %s and %.1f %% of pixels firing %d+ times "
+              "within the %s readout window\n",
+              format_si(figure("power_w"), "W").c_str(), format_si(figure("power_per_tile_w"), "W").c_str(),
+              format_si(figure("power_static_w"), "W").c_str(),
+              std::isfinite(psnr) ? fmt::format("{:.1f} dB", psnr).c_str()
+              : std::isinf(psnr)  ? "infinite (the reconstruction equals the scene)"
+                                  : "not computed",
+              100.0 * figure("dynamic_range_covered"), config.analysis.min_events,
+              format_si(config.analysis.window, "s").c_str());
   std::string written;
   for (const std::string* path : {&opt.out, &opt.csv, &opt.recon, &opt.summary, &opt.truth, &opt.vcd}) {
     if (!path->empty()) written += (written.empty() ? "" : ", ") + *path;

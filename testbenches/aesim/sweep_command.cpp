@@ -287,17 +287,26 @@ bool launched_by_mpirun() {
 }
 
 // Draws the spec's chart from the CSV's temporary file into temporaries of STEM.png and STEM.svg,
-// committed with the CSV. gnuplot gets the paths as arguments (`gnuplot -c SCRIPT CSV PNG SVG`,
-// read as ARG1..ARG3), never inside a command or an expression. Returns false if gnuplot is absent.
-bool draw_chart(OutputFiles& files, const std::string& script, const std::string& csv, const std::string& stem) {
+// committed with the CSV. gnuplot gets the paths and labels as arguments, never inside a command or
+// an expression: `gnuplot -c SCRIPT CSV PNG SVG SENSOR PSNR_MIN POWER_PER_TILE_MAX` (ARG1..ARG6;
+// the bounds in dB and W, empty when the spec has no such constraint). Returns false if gnuplot is
+// absent.
+bool draw_chart(OutputFiles& files, const SweepSpec& spec, const std::string& csv, const std::string& stem) {
   if (!program_available("gnuplot")) {
     std::fprintf(stderr, "aesim sweep: gnuplot not found; chart skipped (apt-get install gnuplot-nox)\n");
     return false;
   }
+  std::string psnr_min, power_max;
+  for (const Constraint& c : spec.constraints) {
+    if (c.column == "psnr_db" && !c.at_most) psnr_min = fmt::format("{:.17g}", c.bound);
+    if (c.column == "power_per_tile_w" && c.at_most) power_max = fmt::format("{:.17g}", c.bound);
+  }
+  const std::string sensor = fs::path(spec.sensor).stem().string();
   files.flush();
   const std::string png = files.adopt(stem + ".png"), svg = files.adopt(stem + ".svg");
-  if (run_child("gnuplot", {"-c", script, files.temp_path(csv), png, svg}) != 0) {
-    throw OutputError(fmt::format("gnuplot failed on the chart script '{}' (its message above); no output written", script));
+  if (run_child("gnuplot", {"-c", spec.chart, files.temp_path(csv), png, svg, sensor, psnr_min, power_max}) != 0) {
+    throw OutputError(
+        fmt::format("gnuplot failed on the chart script '{}' (its message above); no output written", spec.chart));
   }
   return true;
 }
@@ -385,7 +394,8 @@ int sweep_command(SweepOptions opt) {
   csv << "group,scene";
   for (const std::string& k : spec.swept_keys) csv << ',' << k;
   for (const char* c : kSummaryColumns) csv << ',' << c;
-  csv << ",theory_throughput,theory_collision_fraction" << (spec.constraints.empty() ? "" : ",feasible") << "\n";
+  csv << ",theory_throughput,theory_collision_fraction" << (spec.constraints.empty() ? "" : ",feasible,recommended")
+      << "\n";
   // A design is the swept values without the operating conditions (the scene and light.* keys):
   // it must work on every scene in every light, so it is judged on its worst case across them.
   std::vector<DesignPoint> per_point;
@@ -417,11 +427,15 @@ int sweep_command(SweepOptions opt) {
     for (const char* c : kSummaryColumns) csv << ',' << cell(s[c]);
     const double g = s["offered_load"];
     csv << ',' << fmt::format("{:.17g}", g * std::exp(-2 * g)) << ',' << fmt::format("{:.17g}", 1 - std::exp(-2 * g));
-    if (!spec.constraints.empty()) csv << ',' << (design_feasible[per_point[i].label] ? 1 : 0);
+    if (!spec.constraints.empty()) {
+      const bool recommended = analysis.recommended >= 0 &&
+                               per_point[i].label == design[static_cast<std::size_t>(analysis.recommended)].label;
+      csv << ',' << (design_feasible[per_point[i].label] ? 1 : 0) << ',' << (recommended ? 1 : 0);
+    }
     csv << '\n';
   }
   if (!spec.constraints.empty()) files.open(report_path) << sizing_report(design, spec.constraints, analysis);
-  const bool drawn = chart && draw_chart(files, spec.chart, opt.output, stem);
+  const bool drawn = chart && draw_chart(files, spec, opt.output, stem);
   files.commit();
   std::error_code ignored;
   fs::remove(journal, ignored);  // complete: the CSV holds it all

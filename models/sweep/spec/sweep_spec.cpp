@@ -117,9 +117,15 @@ SweepSpec load_sweep_spec(const std::string& path) {
     if (key == "sensor") spec.sensor = scalar_text(value, where);
     else if (key == "duration") spec.duration = scalar_text(value, where);
     else if (key == "chart") {
-      spec.chart = resolve_path(scalar_text(value, where), dir);
+      const std::string given = scalar_text(value, where);
+      spec.chart = resolve_path(given, dir);
       if (!is_input_file(spec.chart, "chart script")) {
-        throw InputError(fmt::format("{}: chart script '{}': {}", where, spec.chart, not_a_file(spec.chart)));
+        if (fs::path(given).is_absolute()) {
+          throw InputError(fmt::format("{}: chart script '{}': {}", where, spec.chart, not_a_file(spec.chart)));
+        }
+        throw InputError(fmt::format("{}: chart script '{}' is neither in the spec's folder '{}' nor in the aesim tree "
+                                     "'{}' (the shipped charts are scripts/charts/NAME.gp)",
+                                     where, given, dir.string(), data_dir()));
       }
     }
     else if (key == "jobs") {
