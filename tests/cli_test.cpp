@@ -44,6 +44,7 @@ TEST_F(CliTest, DefaultRunWritesEveryOutputUnderOut) {
   }
   EXPECT_NE(o.out.find("fired"), std::string::npos);
   EXPECT_NE(o.out.find("out/events.aedat"), std::string::npos);
+  EXPECT_NE(o.out.find("sizing: power "), std::string::npos) << o.out;
   const auto summary = nlohmann::json::parse(slurp(dir_ / "out" / "summary.json"));
   for (const char* key : {"events_fired", "events_delivered", "events_collided", "events_ghost", "events_dropped",
                           "offered_load", "throughput", "tau_s", "sim_time_s", "wall_time_s", "fidelity", "sensor"}) {

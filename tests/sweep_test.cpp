@@ -1,10 +1,13 @@
 // aesim sweep: spec expansion, bad specs, and a small sweep end to end.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "errors/input_error.hpp"
@@ -250,6 +253,42 @@ TEST_F(SweepTest, AShippedSpecCopiedElsewhereFindsItsScenesAndChart) {
     EXPECT_TRUE(fs::is_regular_file(dir_ / "mine" / "c.png"));
     EXPECT_TRUE(fs::is_regular_file(dir_ / "mine" / "c.svg"));
   }
+}
+
+// With constraints, the CSV marks the recommended design's rows: one design (the same swept values)
+// in every condition (2 scenes x 3 illuminances), every one of its rows feasible, and it is the
+// design the report recommends.
+TEST_F(SweepTest, TheRecommendedDesignIsMarkedOnEveryRowOfIt) {
+  std::string err;
+  ASSERT_EQ(aesim("sweep " + std::string(AESIM_SOURCE_DIR) + "/scripts/sweeps/sizing.toml -o s.csv --no-chart", &err), 0)
+      << err;
+  const auto rows = read_csv(dir_ / "s.csv");
+  ASSERT_GT(rows.size(), 1u);
+  const auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  const std::size_t rec = col("recommended"), feas = col("feasible"), c_int = col("pixel.c_int"),
+                    dv = col("pixel.dv_int"), tau = col("bus.t_event");
+  ASSERT_LT(rec, rows[0].size());
+  std::set<std::string> designs;
+  std::size_t marked = 0;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    if (rows[r][rec] != "1") continue;
+    ++marked;
+    EXPECT_EQ(rows[r][feas], "1") << "row " << r;
+    designs.insert(rows[r][c_int] + " " + rows[r][dv] + " " + rows[r][tau]);
+  }
+  EXPECT_EQ(marked, 6u);
+  ASSERT_EQ(designs.size(), 1u);
+  const std::string report = testing::slurp(dir_ / "s.report.md");
+  const std::string recommendation = report.substr(report.find("## Recommendation"));
+  std::istringstream design(*designs.begin());
+  double c = 0, v = 0, t = 0;
+  design >> c >> v >> t;
+  EXPECT_NE(recommendation.find(fmt::format("pixel.c_int={}fF", std::lround(c * 1e15))), std::string::npos)
+      << recommendation.substr(0, 200);
+  EXPECT_NE(recommendation.find(fmt::format("bus.t_event={}ns", std::lround(t * 1e9))), std::string::npos)
+      << recommendation.substr(0, 200);
 }
 
 }  // namespace
