@@ -38,7 +38,9 @@ int run_command(RunOptions opt) {
     opt.recon = "out/recon.png";
     opt.summary = "out/summary.json";
   }
-  if (opt.scene.empty()) opt.scene = data_dir() + "/scenes/letters/A.pgm";
+  // The default scene is named as the README names it, wherever the tree is.
+  const bool default_scene = opt.scene.empty();
+  if (default_scene) opt.scene = data_dir() + "/scenes/letters/A.pgm";
   const SceneFiles scene_files = find_scene(opt.scene);
   const ResolvedConfig config =
       configure_run(load_sensor(opt.sensor), scene_files, command_settings(opt.sets, opt.duration, opt.max_events));
@@ -166,10 +168,12 @@ int run_command(RunOptions opt) {
                  "several firings): their firing times are quantised to the step\n",
                  format_si(config.sim.step, "s").c_str(), static_cast<unsigned long long>(result.facts.multi_fire_steps));
   }
-  std::printf("aesim run: sensor %s, %dx%d pixels in %d tiles of %dx%d, scene %s (%dx%d%s)\n",
+  std::printf("aesim run: sensor %s, %dx%d pixels in %d tiles of %dx%d, scene %s (%dx%d%s%s)\n",
               opt.sensor.c_str(), map.cols(), map.rows(), map.tiles(), config.array.tile_cols,
-              config.array.tile_rows, opt.scene.c_str(), scene.source_width, scene.source_height,
-              scene.frames.size() > 1 ? fmt::format(", {} frames", scene.frames.size()).c_str() : "");
+              config.array.tile_rows, default_scene ? "scenes/letters/A.pgm" : opt.scene.c_str(),
+              scene.source_width, scene.source_height,
+              scene.frames.size() > 1 ? fmt::format(", {} frames", scene.frames.size()).c_str() : "",
+              default_scene ? ", the default" : "");
   std::printf("  simulated %s at fidelity %s%s, bus %s (tau %s%s), in %.3g s wall time\n",
               format_si(config.sim.duration, "s").c_str(), to_string(fidelity),
               config.sim.fidelity == Fidelity::Auto ? " (chosen by auto)" : "", to_string(config.bus.access),

@@ -8,6 +8,7 @@ With --python-path (the folder of the built `aesim` module), `scripts/python` co
 """
 import os
 import pathlib
+import re
 import shlex
 import shutil
 import subprocess
@@ -38,6 +39,20 @@ def shell_blocks(path):
         lines.append(pending + line)
         pending = ""
     return lines
+
+
+def printed_example(source):
+    """The README's copy of what `scripts/aesim` prints, or None."""
+    text = (source / "README.md").read_text(encoding="utf-8")
+    at = text.find("`scripts/aesim` prints")
+    if at < 0:
+        return None
+    start = text.index("```\n", at) + 4
+    return text[start:text.index("```\n", start)]
+
+
+def without_wall_time(text):
+    return re.sub(r"in [0-9.e+-]+ s wall time", "in (wall time) s wall time", text)
 
 
 def commands(source):
@@ -91,6 +106,11 @@ def main():
             if r.returncode != 0:
                 failed += 1
                 print("  " + r.stderr.strip().replace("\n", "\n  "))
+            if page.name == "README.md" and args == ["aesim", "run"]:
+                shown = printed_example(source)
+                if shown is None or without_wall_time(shown) != without_wall_time(r.stdout):
+                    failed += 1
+                    print("  the README's copy of its output differs from the program's:\n" + r.stdout)
     print(f"{len(found) - failed} of {len(found)} documented commands ran")
     return 1 if failed else 0
 
