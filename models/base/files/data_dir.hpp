@@ -3,8 +3,9 @@
 
 namespace aesim {
 
-// Root of the aesim source tree, where the presets (models/sensors) and scenes/ live.
-// AESIM_DATA_DIR in the environment overrides the location compiled in.
+// Where the presets (models/sensors), the shipped circuits, scenes/ and the chart scripts live:
+// $AESIM_DATA_DIR when set; else PREFIX/share/aesim when this code runs installed (from
+// PREFIX/lib or PREFIX/bin); else the source tree it was built from.
 std::string data_dir();
 
 }  // namespace aesim

@@ -4,51 +4,14 @@
 
 #include <fmt/format.h>
 
-#include "array/schedule_driver.hpp"
-#include "cosim/rtl_receiver.hpp"
 #include "errors/input_error.hpp"
 #include "kernel/systemc_kernel.hpp"
+#include "rungs/cycle_array.hpp"
 #include "rungs/rung.hpp"
 #include "tile/cycle_tile.hpp"
 
 namespace aesim {
 namespace {
-
-// The array at the cycle fidelity: a CycleTile per tile, fed by one process from the tiles'
-// firing schedules.
-class CycleArray : public sc_core::sc_module {
- public:
-  CycleArray(const sc_core::sc_module_name& name, const RungRun& run, const CycleOptions& options)
-      : sc_module(name) {
-    std::vector<EventBus*> buses;
-    for (int t = 0; t < run.map.tiles(); ++t) {
-      tiles_.push_back(std::make_unique<CycleTile>(fmt::format("tile{}", t).c_str(), static_cast<std::uint32_t>(t),
-                                                   run.map, run.config, run.log, run.vcd, options));
-      buses.push_back(&tiles_.back()->bus());
-    }
-    driver_ = std::make_unique<ScheduleDriver>("schedule", run.config.pixel, run.config.sim, run.photocurrents, run.map, std::move(buses));
-    for (std::size_t t = 0; t < tiles_.size(); ++t) {
-      tiles_[t]->set_next_firing([driver = driver_.get(), t] { return driver->next_firing_ps(t); });
-    }
-  }
-  const std::vector<std::unique_ptr<CycleTile>>& tiles() const { return tiles_; }
-
- private:
-  std::vector<std::unique_ptr<CycleTile>> tiles_;
-  std::unique_ptr<ScheduleDriver> driver_;
-};
-
-// The request's options, with the RTL receiver when receiver.model asks for it and the request
-// names no receiver of its own.
-CycleOptions cycle_options(const RungRun& run) {
-  CycleOptions options = run.request.cycle;
-  if (!options.receiver && run.config.receiver.model == ReceiverModel::Rtl) {
-    options.receiver = rtl_receiver_factory(run.config.receiver.full_policy, run.request.rtl_trace_path,
-                                            sc_core::sc_time(run.request.vcd_from, sc_core::SC_SEC),
-                                            sc_core::sc_time(run.request.vcd_to, sc_core::SC_SEC));
-  }
-  return options;
-}
 
 // sim.fidelity=cycle: the tiles' real wires, Req/Ack, and a clocked receiver (the reference model
 // or the Verilated RTL) under SystemC.

@@ -1,0 +1,7 @@
+#include "aesim/version.hpp"
+
+namespace aesim {
+
+const char* version() { return kVersion; }
+
+}  // namespace aesim

@@ -1,0 +1,76 @@
+#include "embed/imager.hpp"
+
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/data_dir.hpp"
+#include "rungs/cycle_array.hpp"
+#include "rungs/run_budget.hpp"
+#include "scene/photocurrents.hpp"
+
+namespace aesim {
+
+// What the array's modules refer to for the whole simulation, made before them.
+struct Imager::Run {
+  ResolvedConfig config;
+  Photocurrents photocurrents;
+  AddressMap map;
+  SimulationRequest request;
+  EventLog log;
+};
+
+namespace {
+
+ResolvedConfig imager_config(const ImagerSpec& spec, const SceneFiles& scene) {
+  ResolvedConfig config = configure_run(load_sensor(spec.sensor), scene, spec.settings);
+  if (config.sim.fidelity != Fidelity::Cycle && config.sim.fidelity != Fidelity::Auto) {
+    throw InputError(fmt::format("sim.fidelity={}: an Imager is the cycle fidelity (use simulate() for the others)",
+                                 to_string(config.sim.fidelity)));
+  }
+  rung_for(Fidelity::Cycle).check(config);
+  return config;
+}
+
+}  // namespace
+
+Imager::Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name) {
+  const SceneFiles scene = find_scene(spec.scene.empty() ? data_dir() + "/scenes/letters/A.pgm" : spec.scene);
+  ResolvedConfig config = imager_config(spec, scene);
+  Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
+  check_work(config, photocurrents, Fidelity::Cycle);
+  const AddressMap map(config.array);
+  run_.reset(new Run{std::move(config), std::move(photocurrents), map, SimulationRequest{},
+                     EventLog(map.tiles(), LogOutputs{true, false, nullptr})});
+  run_->log.count_pixels(run_->map, run_->config.analysis.window);
+  const RungRun rung_run{run_->config, run_->photocurrents, run_->map, run_->request, run_->log, nullptr};
+  array_ = std::make_unique<CycleArray>("array", rung_run, cycle_options(rung_run));
+}
+
+Imager::~Imager() = default;
+
+const ResolvedConfig& Imager::config() const { return run_->config; }
+
+double Imager::tick() const { return rung_for(Fidelity::Cycle).tick(run_->config); }
+
+void Imager::finish() {
+  if (finished_) return;
+  if (sc_core::sc_get_status() == sc_core::SC_ELABORATION) {
+    throw InputError("Imager::events(): the simulation has not run yet (call sc_start() first)");
+  }
+  run_->log.finish();
+  finished_ = true;
+}
+
+const std::vector<AddressEvent>& Imager::events() {
+  finish();
+  return run_->log.events();
+}
+
+std::vector<TileCounters> Imager::tiles() {
+  finish();
+  return run_->log.tiles();
+}
+
+}  // namespace aesim

@@ -1,0 +1,59 @@
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <systemc>
+
+#include "config/sensor_config.hpp"
+#include "events/address_event.hpp"
+#include "events/event_log.hpp"
+#include "scene/scene.hpp"
+
+namespace aesim {
+
+class CycleArray;
+
+// What an Imager is built from, as `aesim run` takes it: a preset, a scene, --set settings.
+struct ImagerSpec {
+  std::string sensor = "aloha";   // a preset's name (models/sensors) or a .toml file
+  std::string scene;              // an image file or a frame folder; empty: scenes/letters/A.pgm
+  std::vector<Setting> settings;  // {"pixel.c_int", "50fF"}, ... applied in order (later wins)
+};
+
+// The imager at the cycle fidelity as a SystemC module for the caller's own sc_main: the pixels
+// of every tile firing onto their tile's clocked ALOHA bus (Req/Ack, 10-bit address, contention)
+// and the tile's receiver (the reference model, or the receiver RTL with receiver.model=rtl). It
+// is built in the current simulation context and runs under the caller's sc_start(); once the
+// scene's sim.duration is simulated and the last handshake is done, it stops its processes and
+// clocks, so a plain sc_start() returns. The same preset, scene and settings give the same events
+// as `aesim run --set sim.fidelity=cycle`, event for event.
+//
+// Bad input (an unknown key, a scene that does not read, a fidelity other than cycle) throws
+// InputError naming it, from the constructor, before anything is elaborated.
+class Imager : public sc_core::sc_module {
+ public:
+  Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec);
+  ~Imager() override;
+  Imager(const Imager&) = delete;
+  Imager& operator=(const Imager&) = delete;
+
+  // The configuration the run uses (the preset with the settings applied and resolved).
+  const ResolvedConfig& config() const;
+  // The receivers' timestamp resolution, s (receiver.tick): the step of the delivered stamps.
+  double tick() const;
+
+  // After sc_start() has returned with the run done: what the receivers delivered, in (time,
+  // tile, address) order, each `t` the delivery time; and each tile's counters.
+  const std::vector<AddressEvent>& events();
+  std::vector<TileCounters> tiles();
+
+ private:
+  struct Run;
+  std::unique_ptr<Run> run_;
+  std::unique_ptr<CycleArray> array_;
+  bool finished_ = false;
+  void finish();
+};
+
+}  // namespace aesim

@@ -1,0 +1,37 @@
+#include "rungs/cycle_array.hpp"
+
+#include <fmt/format.h>
+
+#include "array/schedule_driver.hpp"
+#include "cosim/rtl_receiver.hpp"
+
+namespace aesim {
+
+CycleArray::CycleArray(const sc_core::sc_module_name& name, const RungRun& run, const CycleOptions& options)
+    : sc_module(name) {
+  std::vector<EventBus*> buses;
+  for (int t = 0; t < run.map.tiles(); ++t) {
+    tiles_.push_back(std::make_unique<CycleTile>(fmt::format("tile{}", t).c_str(), static_cast<std::uint32_t>(t),
+                                                 run.map, run.config, run.log, run.vcd, options));
+    buses.push_back(&tiles_.back()->bus());
+  }
+  driver_ = std::make_unique<ScheduleDriver>("schedule", run.config.pixel, run.config.sim, run.photocurrents, run.map,
+                                             std::move(buses));
+  for (std::size_t t = 0; t < tiles_.size(); ++t) {
+    tiles_[t]->set_next_firing([driver = driver_.get(), t] { return driver->next_firing_ps(t); });
+  }
+}
+
+CycleArray::~CycleArray() = default;
+
+CycleOptions cycle_options(const RungRun& run) {
+  CycleOptions options = run.request.cycle;
+  if (!options.receiver && run.config.receiver.model == ReceiverModel::Rtl) {
+    options.receiver = rtl_receiver_factory(run.config.receiver.full_policy, run.request.rtl_trace_path,
+                                            sc_core::sc_time(run.request.vcd_from, sc_core::SC_SEC),
+                                            sc_core::sc_time(run.request.vcd_to, sc_core::SC_SEC));
+  }
+  return options;
+}
+
+}  // namespace aesim

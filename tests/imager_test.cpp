@@ -1,0 +1,69 @@
+// The Imager module in a caller's own SystemC context, as a user's sc_main holds it: its events
+// equal simulate()'s at the cycle fidelity, event for event (each test is a process of its own,
+// so each gets the one elaboration and sc_start() SystemC allows a context).
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <systemc>
+
+#include "embed/imager.hpp"
+#include "errors/input_error.hpp"
+#include "run/imager_simulation.hpp"
+#include "scene/photocurrents.hpp"
+
+namespace aesim {
+namespace {
+
+const std::string kScene = std::string(AESIM_SOURCE_DIR) + "/scenes/hdr/window.pfm";
+
+TEST(Imager, RunsInTheCallersKernelWithTheCycleRungsEvents) {
+  ImagerSpec spec;
+  spec.scene = kScene;
+  spec.settings = {{"sim.duration", "300ms"}, {"bus.t_event", "2us"}, {"receiver.clock", "5MHz"}};
+
+  // The reference: simulate() at the cycle fidelity, in a context of its own.
+  std::vector<Setting> settings = spec.settings;
+  settings.push_back({"sim.fidelity", "cycle"});
+  const SceneFiles scene = find_scene(kScene);
+  const ResolvedConfig config = configure_run(load_sensor("aloha"), scene, settings);
+  const Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
+  const SimulationResult reference = simulate(config, photocurrents);
+  ASSERT_GT(reference.log.events().size(), 1000u);
+
+  // The same in the default context, started by the caller as an sc_main would.
+  Imager imager("imager", spec);
+  sc_core::sc_start();
+  EXPECT_EQ(sc_core::sc_get_status(), sc_core::SC_PAUSED);
+  // The kernel starved after the last handshake before sim.duration: nothing runs past it.
+  EXPECT_GT(sc_core::sc_time_stamp().to_seconds(), 0.29);
+  EXPECT_LE(sc_core::sc_time_stamp().to_seconds(), 0.3);
+  const std::vector<AddressEvent>& events = imager.events();
+  ASSERT_EQ(events.size(), reference.log.events().size());
+  std::size_t collided = 0;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const AddressEvent& a = events[i];
+    const AddressEvent& b = reference.log.events()[i];
+    ASSERT_TRUE(a.t == b.t && a.x == b.x && a.y == b.y && a.tile == b.tile && a.flags == b.flags) << "event " << i;
+  }
+  for (const TileCounters& t : imager.tiles()) collided += t.collided;
+  std::size_t reference_collided = 0;
+  for (const TileCounters& t : reference.log.tiles()) reference_collided += t.collided;
+  EXPECT_EQ(collided, reference_collided);
+  EXPECT_GT(collided, 0u);  // 2 us transactions on the HDR scene: the bus is loaded
+  EXPECT_DOUBLE_EQ(imager.tick(), 1e-6);
+}
+
+TEST(Imager, RefusesAnotherFidelityAndBadKeysBeforeElaborating) {
+  ImagerSpec spec;
+  spec.settings = {{"sim.fidelity", "event"}};
+  EXPECT_THROW(Imager("a", spec), InputError);
+  spec.settings = {{"pixel.cint", "1fF"}};
+  EXPECT_THROW(Imager("b", spec), InputError);
+  spec.settings = {};
+  spec.scene = "no/such/scene.pgm";
+  EXPECT_THROW(Imager("c", spec), InputError);
+}
+
+}  // namespace
+}  // namespace aesim
