@@ -1,5 +1,6 @@
 # The out-of-tree example (docs/examples/embed) as a user builds it: aesim installed into a fresh
-# prefix, the example configured with find_package(aesim) against that prefix alone, built, run;
+# prefix, the example configured with find_package(aesim) against that prefix alone, built, run
+# (its own receiver on tile 0, aesim's reference on the others, no protocol violation: exit 0);
 # its events must equal the installed `aesim run --set sim.fidelity=cycle` on the same preset,
 # scene, duration and seed, byte for byte.
 #   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen> -P this

@@ -12,6 +12,8 @@
 #include "event_files/events_csv.hpp"
 #include "events/address_event.hpp"
 #include "events/event_log.hpp"
+#include "receiver/receiver_module.hpp"
+#include "receiver/receiver_signals.hpp"
 #include "run/imager_simulation.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"

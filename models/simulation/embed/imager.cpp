@@ -44,6 +44,7 @@ Imager::Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc
   run_.reset(new Run{std::move(config), std::move(photocurrents), map, SimulationRequest{},
                      EventLog(map.tiles(), LogOutputs{true, false, nullptr})});
   run_->log.count_pixels(run_->map, run_->config.analysis.window);
+  run_->request.cycle.receiver = spec.receiver;
   const RungRun rung_run{run_->config, run_->photocurrents, run_->map, run_->request, run_->log, nullptr};
   array_ = std::make_unique<CycleArray>("array", rung_run, cycle_options(rung_run));
 }
@@ -66,6 +67,12 @@ void Imager::finish() {
 const std::vector<AddressEvent>& Imager::events() {
   finish();
   return run_->log.events();
+}
+
+std::uint64_t Imager::protocol_violations() const {
+  std::uint64_t n = 0;
+  for (const auto& tile : array_->tiles()) n += tile->stats().protocol_violations;
+  return n;
 }
 
 std::vector<TileCounters> Imager::tiles() {

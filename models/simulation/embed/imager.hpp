@@ -8,6 +8,8 @@
 #include "config/sensor_config.hpp"
 #include "events/address_event.hpp"
 #include "events/event_log.hpp"
+#include "receiver/receiver_module.hpp"
+#include "receiver/receiver_signals.hpp"
 #include "scene/scene.hpp"
 
 namespace aesim {
@@ -19,6 +21,12 @@ struct ImagerSpec {
   std::string sensor = "aloha";   // a preset's name (models/sensors) or a .toml file
   std::string scene;              // an image file or a frame folder; empty: scenes/letters/A.pgm
   std::vector<Setting> settings;  // {"pixel.c_int", "50fF"}, ... applied in order (later wins)
+  // Each tile's receiver, made by the caller: a module bound to the tile's ReceiverSignals (clk,
+  // rst_n, the bus's req, addr and contention, ack; the tick count on ts; the output stream
+  // evt_valid/ready/ts/addr/flags; idle, which lets the tile stop the clock). Empty: aesim's own
+  // (the reference model, or the RTL with receiver.model=rtl). reference_receiver_factory()
+  // makes the reference model for the tiles a caller does not replace.
+  ReceiverFactory receiver;
 };
 
 // The imager at the cycle fidelity as a SystemC module for the caller's own sc_main: the pixels
@@ -47,6 +55,9 @@ class Imager : public sc_core::sc_module {
   // tile, address) order, each `t` the delivery time; and each tile's counters.
   const std::vector<AddressEvent>& events();
   std::vector<TileCounters> tiles();
+  // Handshakes that broke the bus's rules (Ack without Req, Ack too early or late, a stream beat
+  // that moved while stalled), over all tiles: 0 for a receiver that keeps them.
+  std::uint64_t protocol_violations() const;
 
  private:
   struct Run;
