@@ -3,8 +3,11 @@
 # (its own receiver on tile 0, aesim's reference on the others, no protocol violation: exit 0);
 # its events must equal the installed `aesim run --set sim.fidelity=cycle` on the same preset,
 # scene, duration and seed, byte for byte.
-#   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen> -P this
-foreach(v BUILD SOURCE WORK GENERATOR)
+# The same source is then built without CMake, from `pkg-config --cflags --libs aesim` of the
+# prefix, and must give the same bytes.
+#   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen>
+#         -DCXX=<C++ compiler> -P this
+foreach(v BUILD SOURCE WORK GENERATOR CXX)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "example_against_run: -D${v}= is required")
   endif()
@@ -43,3 +46,21 @@ if(NOT differ EQUAL 0)
   message(FATAL_ERROR "the example's events differ from aesim run's (${WORK}/example.csv, ${WORK}/run.csv)")
 endif()
 message(STATUS "the example's ${n} rows equal aesim run's")
+
+find_program(PKG_CONFIG pkg-config REQUIRED)
+set(ENV{PKG_CONFIG_PATH} ${prefix}/lib/pkgconfig)
+execute_process(COMMAND ${PKG_CONFIG} --cflags --libs aesim OUTPUT_VARIABLE flags RESULT_VARIABLE status
+                OUTPUT_STRIP_TRAILING_WHITESPACE)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "pkg-config finds no aesim in ${prefix}/lib/pkgconfig")
+endif()
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run("building the example from pkg-config" ${CXX} -std=c++17 -O1 -o ${WORK}/pc_example
+    ${SOURCE}/docs/examples/embed/embed_example.cpp ${flags} -Wl,-rpath,${prefix}/lib)
+execute_process(COMMAND ${WORK}/pc_example ${scene} ${duration} OUTPUT_FILE ${WORK}/pc_example.csv
+                RESULT_VARIABLE status ERROR_QUIET)
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/pc_example.csv ${WORK}/run.csv RESULT_VARIABLE differ)
+if(NOT status EQUAL 0 OR NOT differ EQUAL 0)
+  message(FATAL_ERROR "the example built from pkg-config failed (${status}) or differs from aesim run")
+endif()
+message(STATUS "built from pkg-config, the same rows")
