@@ -1,0 +1,61 @@
+#include "embed/event_source.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "files/data_dir.hpp"
+#include "run/imager_simulation.hpp"
+#include "scene/photocurrents.hpp"
+
+namespace aesim {
+
+std::ostream& operator<<(std::ostream& out, const AddressEvent& e) {
+  return out << fmt::format("{{t {:.12f} s, x {}, y {}, tile {}, flags {}}}", e.t, e.x, e.y, e.tile, e.flags);
+}
+
+struct EventSource::Run {
+  ResolvedConfig config;
+  SimulationResult result;
+};
+
+EventSource::EventSource(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name), out("out") {
+  if (spec.receiver) throw InputError("EventSource: the event fidelity has no clocked receiver to replace (use Imager)");
+  const SceneFiles scene = find_scene(spec.scene.empty() ? data_dir() + "/scenes/letters/A.pgm" : spec.scene);
+  ResolvedConfig config = configure_run(load_sensor(spec.sensor), scene, spec.settings);
+  if (config.sim.fidelity != Fidelity::Event && config.sim.fidelity != Fidelity::Auto) {
+    throw InputError(fmt::format("sim.fidelity={}: an EventSource is the event fidelity (use Imager for the cycle one)",
+                                 to_string(config.sim.fidelity)));
+  }
+  config.sim.fidelity = Fidelity::Event;
+  const Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
+  SimulationResult result = simulate(config, photocurrents);
+  run_.reset(new Run{std::move(config), std::move(result)});
+  SC_THREAD(emit);
+}
+
+EventSource::~EventSource() = default;
+
+const ResolvedConfig& EventSource::config() const { return run_->config; }
+
+double EventSource::tick() const { return run_->result.facts.tick_s; }
+
+const std::vector<AddressEvent>& EventSource::events() const { return run_->result.log.events(); }
+
+std::vector<TileCounters> EventSource::tiles() const { return run_->result.log.tiles(); }
+
+void EventSource::emit() {
+  // Delivery times to the caller's time resolution (SystemC's default: 1 ps), from the start of
+  // the caller's simulation.
+  const double step = sc_core::sc_get_time_resolution().to_seconds();
+  for (const AddressEvent& e : run_->result.log.events()) {
+    const auto at = static_cast<sc_dt::uint64>(std::llround(e.t / step));
+    const sc_dt::uint64 now = sc_core::sc_time_stamp().value();
+    if (at > now) sc_core::wait(sc_core::sc_time::from_value(at - now));
+    if (callback_) callback_(e);
+    if (out.size() > 0) out->write(e);
+  }
+}
+
+}  // namespace aesim
