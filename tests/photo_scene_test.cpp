@@ -55,7 +55,9 @@ std::string encode_png(const PngSpec& s) {
   return out;
 }
 
-std::string encode_jpeg(int width, int height, int components, J_COLOR_SPACE space, const std::vector<unsigned char>& bytes) {
+// With `scans`, a progressive file written with that scan script (libjpeg's own rules apply).
+std::string encode_jpeg(int width, int height, int components, J_COLOR_SPACE space, const std::vector<unsigned char>& bytes,
+                        const std::vector<jpeg_scan_info>* scans = nullptr) {
   jpeg_compress_struct c;
   jpeg_error_mgr err;
   c.err = jpeg_std_error(&err);
@@ -69,6 +71,10 @@ std::string encode_jpeg(int width, int height, int components, J_COLOR_SPACE spa
   c.in_color_space = space;
   jpeg_set_defaults(&c);
   jpeg_set_quality(&c, 100, TRUE);
+  if (scans) {
+    c.scan_info = scans->data();
+    c.num_scans = static_cast<int>(scans->size());
+  }
   jpeg_start_compress(&c, TRUE);
   while (c.next_scanline < c.image_height) {
     JSAMPROW row = const_cast<unsigned char*>(bytes.data()) + c.next_scanline * static_cast<std::size_t>(width) * components;
@@ -186,6 +192,46 @@ TEST(PhotoScene, MalformedAndOversizedFilesAreOneLineErrors) {
   expect_refused([&] { decode_png(huge, "huge.png"); }, "70000x70000 is more than");
   std::vector<unsigned char> cmyk(4 * 64, 9);
   expect_refused([&] { decode_jpeg(encode_jpeg(8, 8, 4, JCS_CMYK, cmyk), "cmyk.jpg"); }, "CMYK");
+}
+
+// A legal progressive JPEG of many scans: each AC coefficient of each of three components in a
+// band of its own, refined bit by bit. Up to 1000 scans decode; past that the file is refused
+// before the decoder spends its time on them (a 280 KB file of 20,000 scans once took 16 s).
+std::vector<jpeg_scan_info> progressive_scans(int refinements) {
+  std::vector<jpeg_scan_info> scans;
+  jpeg_scan_info dc{};
+  dc.comps_in_scan = 3;
+  for (int k = 0; k < 3; ++k) dc.component_index[k] = k;
+  scans.push_back(dc);  // DC of every component, full precision
+  for (int comp = 0; comp < 3; ++comp) {
+    for (int k = 1; k < 64; ++k) {
+      jpeg_scan_info first{};
+      first.comps_in_scan = 1;
+      first.component_index[0] = comp;
+      first.Ss = first.Se = k;
+      first.Al = refinements;
+      scans.push_back(first);
+      for (int a = refinements; a > 0; --a) {
+        jpeg_scan_info refine = first;
+        refine.Ah = a;
+        refine.Al = a - 1;
+        scans.push_back(refine);
+      }
+    }
+  }
+  return scans;
+}
+
+TEST(PhotoScene, AProgressiveJpegOfTooManyScansIsRefused) {
+  std::vector<unsigned char> rgb(16 * 16 * 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<unsigned char>(i * 7);
+  const std::vector<jpeg_scan_info> few = progressive_scans(3), many = progressive_scans(5);
+  ASSERT_EQ(few.size(), 1u + 3 * 63 * 4);   // 757 scans: decoded
+  ASSERT_EQ(many.size(), 1u + 3 * 63 * 6);  // 1135 scans: refused
+  const Image ok = decode_jpeg(encode_jpeg(16, 16, 3, JCS_RGB, rgb, &few), "few.jpg");
+  EXPECT_EQ(ok.width, 16);
+  expect_refused([&] { decode_jpeg(encode_jpeg(16, 16, 3, JCS_RGB, rgb, &many), "many.jpg"); },
+                 "more than 1000 scans");
 }
 
 class PhotoFiles : public testing::TempDirTest {};
