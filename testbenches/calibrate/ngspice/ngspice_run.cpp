@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstring>
@@ -19,9 +20,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A run is a few thousand time steps of a small circuit (a fraction of a second); one that takes
-// this long has collapsed its time step and would never finish.
-constexpr double kRunSeconds = 300;
+// A run is a few thousand time steps of a small circuit (a fraction of a second; a foundry deck's
+// BSIM models a few seconds); one that takes this long has collapsed its time step and would
+// never finish, so the next solver settings are tried.
+constexpr double kRunSeconds = 120;
+
+// ngspice's progress lines ("Reference value : 1.2e-05", "No. of Data Rows : 1234"), which say
+// nothing of why a run failed.
+bool progress_line(const std::string& lower) {
+  for (const char* p : {"reference value", "no. of data rows", "doing analysis", "initial transient solution",
+                        "circuit:", "total analysis time", "binary raw file", "ascii raw file"}) {
+    if (lower.rfind(p, 0) == 0) return true;
+  }
+  return false;
+}
 
 std::string trim(const std::string& s) {
   const auto a = s.find_first_not_of(" \t\r\n");
@@ -48,6 +60,7 @@ std::string first_error(const std::string& log) {
     const std::string t = trim(line);
     if (t.empty()) continue;
     const std::string l = ascii_lower(t);
+    if (progress_line(l)) continue;
     if (lines < 2 && l.rfind("note:", 0) != 0) {
       opening += (lines ? " " : "") + t;
       ++lines;
@@ -65,17 +78,40 @@ std::string first_error(const std::string& log) {
 
 }  // namespace
 
+SolverSettings solver_settings(std::size_t level, double iph, double vdd) {
+  SolverSettings s;  // level 0
+  if (level == 0) return s;
+  s.abstol = std::max(s.abstol, 1e-3 * iph);
+  s.chgtol = std::max(s.chgtol, 1e-2 * s.abstol);  // the ratio level 0 keeps (C per A)
+  s.gmin = std::max(s.gmin, 1e-3 * iph / vdd);
+  if (level >= 2) s.method = "trap";
+  return s;
+}
+
+std::string SolverSettings::label() const {
+  return fmt::format("{}, abstol {:g}, chgtol {:g}, gmin {:g}", method, abstol, chgtol, gmin);
+}
+
+const char* solver_level_text(std::size_t level) {
+  switch (level) {
+    case 0: return "gear, abstol 1e-17, chgtol 1e-19, gmin 1e-18";
+    case 1: return "gear, abstol and gmin x vdd at 1e-3 of the photocurrent";
+    default: return "trap, abstol and gmin x vdd at 1e-3 of the photocurrent";
+  }
+}
+
 std::string testbench_text(const PixelDeck& deck, double vdd, const TransientRequest& r, const std::string& data_path) {
   std::string probe;
   if (!deck.probe.empty()) probe = fmt::format(" v(xpix.{})", deck.probe);
-  // Gear integration: the trapezoidal rule rings on the pixel's fast edges and fakes firings at
-  // slow ramps. Tolerances sized for femtoamps and femtocoulombs (the defaults, 1 pA and 10 fC,
-  // are the size of what is measured), and gmin, the conductance ngspice puts across every
-  // junction (1 pS by default, i.e. picoamps of fake leakage), far below the deck's own leakage.
-  // The deck comes after them, so its own .options win.
+  const SolverSettings solver = solver_settings(r.settings, r.iph, vdd);
+  // First settings: Gear integration (the trapezoidal rule rings on the pixel's fast edges and
+  // fakes firings at slow ramps), tolerances sized for femtoamps and femtocoulombs (the defaults,
+  // 1 pA and 10 fC, are the size of what is measured), and gmin, the conductance ngspice puts
+  // across every junction (1 pS by default, i.e. picoamps of fake leakage), far below the deck's
+  // own leakage. The deck comes after them, so its own .options win.
   return fmt::format(
       "* aesim calibrate: {} at iph = {:.6g} A\n"
-      ".options method=gear reltol=1e-4 abstol=1e-17 chgtol=1e-19 gmin=1e-18 seed={}\n"
+      ".options method={} reltol=1e-4 abstol={:g} chgtol={:g} gmin={:g} seed={}\n"
       ".include \"{}\"\n"
       "Vdd vdd 0 {:.12g}\n"
       "Xpix vdd out 0 {} iph={:.12g}{}\n"
@@ -88,7 +124,8 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "quit 0\n"
       ".endc\n"
       ".end\n",
-      deck.subckt, r.iph, r.seed, deck.path, vdd, deck.subckt, r.iph,
+      deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.path, vdd,
+      deck.subckt, r.iph,
       deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), r.t_max, r.t_stop, r.t_max,
       data_path, probe);
 }
@@ -109,9 +146,7 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   }
   const std::optional<int> status = wait_child_for(pid, kRunSeconds);
   if (!status) {
-    throw InputError(fmt::format("deck '{}': ngspice ran longer than {:.0f} s at iph = {:.3g} A; its time step "
-                                 "collapsed (check the deck's models and initial conditions)",
-                                 deck.given, kRunSeconds, request.iph));
+    throw TransientAborted(fmt::format("ngspice ran longer than {:.0f} s (its time step collapsed)", kRunSeconds));
   }
   // Ended by SIGINT or SIGTERM: a Ctrl-C or a kill reaches ngspice with the rest of the process
   // group, often before this process has seen its own; the signal, not the deck, is why.
@@ -130,8 +165,7 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   }
   const std::string messages = read_all(log);
   if (ascii_lower(messages).find("timestep too small") != std::string::npos) {
-    throw TransientAborted(fmt::format("deck '{}': ngspice stops at iph = {:.3g} A: {}", deck.given, request.iph,
-                                       first_error(messages).empty() ? "timestep too small" : first_error(messages)));
+    throw TransientAborted(first_error(messages).empty() ? "timestep too small" : first_error(messages));
   }
   Waveform w;
   std::ifstream in(data);

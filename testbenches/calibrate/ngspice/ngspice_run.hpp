@@ -9,6 +9,23 @@
 
 namespace aesim {
 
+// ngspice's integration method and tolerances for a transient. Level 0 is the one a pixel is
+// measured with (sized for femtoamps and femtocoulombs). The others are the fallbacks tried, in
+// order, when ngspice gives up on a transient ("timestep too small": a foundry deck's behavioural
+// capacitors and BSIM models under tolerances that tight), each still three decades below what
+// it measures: abstol and gmin x vdd at a thousandth of the photocurrent, so that neither the
+// current error ngspice allows nor the leakage gmin adds moves a period by more than ~0.1 %.
+// Level 1 is Gear with those tolerances, level 2 the trapezoidal rule with them.
+struct SolverSettings {
+  const char* method = "gear";
+  double abstol = 1e-17, chgtol = 1e-19, gmin = 1e-18;
+  std::string label() const;
+};
+inline constexpr std::size_t kSolverLevels = 3;
+SolverSettings solver_settings(std::size_t level, double iph, double vdd);
+// What each level is, for messages and the preset's provenance.
+const char* solver_level_text(std::size_t level);
+
 // One transient of the pixel at a constant photocurrent.
 struct TransientRequest {
   double iph = 0;     // A
@@ -16,6 +33,7 @@ struct TransientRequest {
   double t_max = 0;   // s, ngspice's largest internal step
   unsigned seed = 1;             // ngspice's seed for agauss() and friends
   bool monte_carlo = false;      // sets the deck's `mc` parameter, when it has one
+  std::size_t settings = 0;      // solver_settings() level
 };
 
 // What a run records: the pixel's output, the supply's current (ngspice's sign: negative when the
@@ -36,7 +54,8 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
 Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest& request,
                        const std::filesystem::path& scratch, const std::string& name);
 
-// ngspice gave up part-way ("timestep too small"): a finer maximum step usually gets through.
+// ngspice gave up part-way ("timestep too small", or a time step that collapsed so far that the
+// run would not end): other solver settings or a finer maximum step may get through.
 class TransientAborted : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -75,12 +75,34 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
   if (std::isfinite(c.trip_level)) {
     text += fmt::format("# Probe node '{}' trips the comparator at {:.4g} V.\n", deck.probe, c.trip_level);
   }
+  // The solver settings each point needed, when ngspice gave up on some under the first ones.
+  bool fallback = false;
+  for (std::size_t k = 1; k < c.points_per_settings.size(); ++k) fallback = fallback || c.points_per_settings[k] > 0;
+  std::string left_out, why;
+  for (const CalibrationPoint& p : c.points) {
+    if (p.aborted.empty()) continue;
+    left_out += fmt::format("{}{:.4g}", left_out.empty() ? "" : ", ", p.current);
+    if (why.empty()) why = p.aborted;
+  }
+  if (fallback) {
+    text += "# ngspice gave up on some transients under the first solver settings; the points were measured with:\n";
+    for (std::size_t k = 0; k < c.points_per_settings.size(); ++k) {
+      if (c.points_per_settings[k] > 0) {
+        text += fmt::format("#   {} points: {}\n", c.points_per_settings[k], solver_level_text(k));
+      }
+    }
+  }
+  if (!left_out.empty()) {
+    text += fmt::format("# Left out: ngspice gave up at {} A under every setting ({}).\n", left_out, why);
+  }
   text += "#\n#   photocurrent   period        fit residual  pulse         comparator    supply charge\n";
   std::size_t fitted = 0;
   for (const CalibrationPoint& p : c.points) {
     const bool fired = std::isfinite(p.period);
     text += fmt::format("#   {:<14} {:<13} {:<13} {:<13} {:<13} {}\n", engineering(p.current, "A"),
-                        fired ? engineering(p.period, "s") : std::string("never fired"),
+                        fired                ? engineering(p.period, "s")
+                        : p.aborted.empty() ? std::string("never fired")
+                                            : std::string("gave up"),
                         fired ? fmt::format("{:+.3f} %", 100 * c.fit.residuals[fitted]) : std::string("-"),
                         engineering(p.pulse, "s"), engineering(p.comparator_delay, "s"),
                         engineering(p.supply_charge, "C"));

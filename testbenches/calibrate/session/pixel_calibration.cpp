@@ -57,14 +57,18 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
   r.point.current = current;
   r.point.period = r.point.pulse = r.point.comparator_delay = r.point.supply_charge = kUnmeasured;
   const auto wanted = static_cast<std::size_t>(o.firings + 2);
-  double finer = 1;  // after ngspice gave up on a step, the largest step is cut tenfold, twice at most
+  // After ngspice gives up on a transient: the next solver settings, and past the last, the
+  // largest step cut tenfold, twice at most; then the current is left out.
+  double finer = 1;
+  std::size_t settings = 0;
+  const std::size_t last_settings = kSolverLevels - 1;
   // The first firing starts from ngspice's all-zero state, not from a reset, and may take longer
   // than a period: once a run has seen it, the next runs last that long plus the periods.
   double first_fire = 0;
   for (int run = 0; run < kMaxRuns; ++run) {
     const double t_stop = first_fire > 0 ? first_fire + guess * (o.firings + 1.5) : guess * (o.firings + 2.5);
     TransientRequest request{current, t_stop, guess / kStepsPerPeriod / finer, mc_seed.value_or(kTableSeed),
-                             mc_seed.has_value()};
+                             mc_seed.has_value(), settings};
     try {
       r.wave = run_transient(deck, o.vdd, request, scratch, name);
     } catch (const InputError&) {
@@ -72,11 +76,24 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
       if (interrupt_requested()) throw Interrupted(interrupt_requested());
       throw;
     } catch (const TransientAborted& e) {
-      if (finer >= 100) throw InputError(e.what());
-      finer *= 10;
+      if (interrupt_requested()) throw Interrupted(interrupt_requested());
+      if (settings < last_settings) {
+        // A level whose tolerances are those just tried (a current too small to scale them up)
+        // would fail the same way: the next that differs.
+        const std::string tried = solver_settings(settings, current, o.vdd).label();
+        do {
+          ++settings;
+        } while (settings < last_settings && solver_settings(settings, current, o.vdd).label() == tried);
+      } else if (finer < 100) {
+        finer *= 10;
+      } else {
+        r.point.aborted = e.what();
+        return r;
+      }
       --run;
       continue;
     }
+    r.point.settings = settings;
     r.measure = measure_firings(r.wave, o.vdd);
     ++r.point.runs;
     r.point.simulated += request.t_stop;
@@ -179,14 +196,35 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     }
     return out;
   };
-  if (fired().empty()) {
-    throw InputError(fmt::format("deck '{}': the pixel never fires between {:.3g} A and {:.3g} A (out never rises "
-                                 "through vdd/2 = {:.3g} V)",
-                                 deck.given, o.i_low, o.i_high, o.vdd / 2));
-  }
+  // ngspice's reason for the currents it gave up on under every setting, once each.
+  auto aborted = [&] {
+    std::size_t n = 0;
+    std::string why;
+    for (const PointRun& r : runs) {
+      if (r.point.aborted.empty()) continue;
+      ++n;
+      if (why.empty()) why = r.point.aborted;
+    }
+    return std::make_pair(n, why);
+  };
   if (fired().size() < 3) {
-    throw InputError(fmt::format("deck '{}': the pixel fires at only {} of the {} photocurrents; widen --currents",
-                                 deck.given, fired().size(), o.points));
+    const auto [n_aborted, why] = aborted();
+    const std::string gave_up =
+        n_aborted == 0 ? std::string()
+                       : fmt::format("; ngspice gave up at {} of them under every solver setting ({})", n_aborted, why);
+    if (n_aborted == runs.size()) {
+      throw InputError(fmt::format("deck '{}': ngspice gave up at every one of the {} photocurrents under every solver "
+                                   "setting ({})",
+                                   deck.given, runs.size(), why));
+    }
+    if (fired().empty()) {
+      throw InputError(fmt::format("deck '{}': the pixel never fires between {:.3g} A and {:.3g} A (out never rises "
+                                   "through vdd/2 = {:.3g} V){}",
+                                   deck.given, o.i_low, o.i_high, o.vdd / 2, gave_up));
+    }
+    throw InputError(fmt::format("deck '{}': the pixel fires at only {} of the {} photocurrents{}; a table needs 3: "
+                                 "widen --currents",
+                                 deck.given, fired().size(), runs.size(), gave_up));
   }
   // The model interpolates the table log-log, which bends away from eq. 2 where the dark current
   // or the reset matter (3.6 % between points half a decade apart at the dark current's knee).
@@ -236,9 +274,33 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     }
     c.points.push_back(r.point);
   }
-  std::vector<double> silent;
+  std::vector<double> silent, given_up;
+  std::vector<std::size_t> per_settings(kSolverLevels, 0);
+  std::string why;
   for (const CalibrationPoint& p : c.points) {
-    if (!std::isfinite(p.period)) silent.push_back(p.current);
+    if (!p.aborted.empty()) {
+      given_up.push_back(p.current);
+      if (why.empty()) why = p.aborted;
+    } else if (!std::isfinite(p.period)) {
+      silent.push_back(p.current);
+    } else {
+      ++per_settings[p.settings];
+    }
+  }
+  c.points_per_settings = per_settings;
+  if (!given_up.empty()) {
+    std::string list;
+    for (double i : given_up) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", i);
+    std::fprintf(stderr, "aesim calibrate: warning: ngspice gave up at %zu photocurrents (%s A) under every solver "
+                         "setting (%s); the table leaves them out\n",
+                 given_up.size(), list.c_str(), why.c_str());
+  }
+  for (std::size_t k = 1; k < per_settings.size(); ++k) {
+    if (per_settings[k] > 0) {
+      std::fprintf(stderr, "aesim calibrate: %zu photocurrents measured with fallback settings (%s) after ngspice "
+                           "gave up under tighter ones; the preset says which\n",
+                   per_settings[k], solver_level_text(k));
+    }
   }
   if (!silent.empty()) {
     std::string list;
@@ -267,8 +329,9 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
           const PointRun r = measure_point(deck, o, c.mc_current, static_cast<unsigned>(k + 1), guess, scratch.path(),
                                            fmt::format("mc{:04d}", k));
           if (!std::isfinite(r.point.period)) {
-            throw InputError(fmt::format("deck '{}': Monte Carlo run {} never fires at {:.3g} A", deck.given, k + 1,
-                                         c.mc_current));
+            throw InputError(fmt::format("deck '{}': Monte Carlo run {} never fires at {:.3g} A{}", deck.given, k + 1,
+                                         c.mc_current,
+                                         r.point.aborted.empty() ? "" : " (ngspice gave up: " + r.point.aborted + ")"));
           }
           c.mc_periods[static_cast<std::size_t>(k)] = r.point.period;
         },

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "deck/pixel_deck.hpp"
+#include "ngspice/ngspice_run.hpp"
 #include "fit/transfer_fit.hpp"
 
 namespace aesim {
@@ -28,6 +29,8 @@ struct CalibrationPoint {
   double supply_charge = 0;    // C per firing
   int runs = 0;                // transients it took to size the run
   double simulated = 0;        // s of circuit time simulated
+  std::size_t settings = 0;    // the solver settings level it was measured with (solver_settings())
+  std::string aborted;         // why ngspice gave up on it under every setting ("" when it did not)
 };
 
 struct Calibration {
@@ -41,12 +44,16 @@ struct Calibration {
   std::vector<double> mc_periods;        // s, one per Monte Carlo run
   double mc_current = 0;                 // A
   std::string ngspice;                   // version
+  std::vector<std::size_t> points_per_settings;  // table points measured at each solver_settings() level
   double wall = 0;                       // s
 };
 
 // Runs the deck at every photocurrent (in parallel, `jobs` at a time), each transient sized from a
 // guess of its period and rerun until it holds `firings` periods resolved by ~500 time steps each;
-// adds points where log-log interpolation between neighbours would miss; fits eq. 2. Throws InputError when ngspice rejects the deck or the pixel never fires.
+// adds points where log-log interpolation between neighbours would miss; fits eq. 2. A transient
+// ngspice gives up on is run again under the next solver settings, then with finer steps; a
+// current that still fails is left out with a warning. Throws InputError when ngspice rejects the
+// deck or fewer than three currents fire.
 Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& options);
 
 }  // namespace aesim
