@@ -26,6 +26,7 @@
 #include "measure/firing_measure.hpp"
 #include "ngspice/ngspice_run.hpp"
 #include "pixel/transfer_curve.hpp"
+#include "preset/calibrated_preset.hpp"
 #include "process/child_process.hpp"
 #include "session/pixel_calibration.hpp"
 #include "support/csv_rows.hpp"
@@ -466,6 +467,24 @@ TEST_F(NgspiceTest, SameDeckSameOptionsSameBytesAndTheChart) {
   EXPECT_GT(fs::file_size(dir_ / "a.png"), 1000u);
   EXPECT_TRUE(fs::is_regular_file(dir_ / "a.csv"));
   EXPECT_EQ(slurp(dir_ / "a.png").substr(1, 3), "PNG");
+}
+
+// A circuit whose supply charge per firing is below its threshold charge (it draws the rest
+// through paths that grow with the period) cannot have a negative e_pixel_event: it is 0, and the
+// preset and the command say why and by how much each firing's energy is then overstated.
+TEST(CalibratedPreset, ASupplyChargeBelowTheThresholdChargeIsSaidNotSilentlyClamped) {
+  Calibration c;
+  c.fit.charge = 100e-15;
+  c.supply.charge_per_firing = 60e-15;
+  c.supply.static_current = 1e-9;
+  const SensorConfig config = calibrated_config(load_sensor("aloha"), c, 1.8);
+  EXPECT_EQ(config.power.e_pixel_event, 0.0);
+  const std::string note = per_firing_energy_note(c, 1.8);
+  EXPECT_NE(note.find("4e-14 C below the threshold charge"), std::string::npos) << note;
+  EXPECT_NE(note.find("7.2e-14 J high"), std::string::npos) << note;  // 1.8 V x 40 fC
+  c.supply.charge_per_firing = 130e-15;
+  EXPECT_EQ(per_firing_energy_note(c, 1.8), "");
+  EXPECT_NEAR(calibrated_config(load_sensor("aloha"), c, 1.8).power.e_pixel_event, 1.8 * 30e-15, 1e-27);
 }
 
 // ngspice as a foundry deck makes it behave, standing first on PATH: after its progress lines, it

@@ -115,7 +115,16 @@ SupplyFit fit_supply(const std::vector<double>& period, const std::vector<double
   for (std::size_t k = 0; k < period.size(); ++k) w[k] = charge[k] != 0 ? 1.0 / (charge[k] * charge[k]) : 1.0;
   const double big = *std::max_element(charge.begin(), charge.end());
   const Line l = fit_line(period, charge, w, std::max(0.0, big));
-  return {l.b, std::max(0.0, l.a)};
+  SupplyFit fit{l.b, std::max(0.0, l.a), 0, 0};
+  double sum = 0;
+  for (std::size_t k = 0; k < period.size(); ++k) {
+    if (charge[k] == 0) continue;
+    const double r = (fit.charge_per_firing + fit.static_current * period[k]) / charge[k] - 1;
+    sum += r * r;
+    fit.max_residual = std::max(fit.max_residual, std::fabs(r));
+  }
+  fit.rms_residual = period.empty() ? 0 : std::sqrt(sum / static_cast<double>(period.size()));
+  return fit;
 }
 
 }  // namespace aesim

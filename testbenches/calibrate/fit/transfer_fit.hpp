@@ -24,6 +24,7 @@ PixelFit fit_pixel(const std::vector<double>& current, const std::vector<double>
 struct SupplyFit {
   double charge_per_firing = 0;  // C
   double static_current = 0;     // A
+  double rms_residual = 0, max_residual = 0;  // relative, of the charge per period the line gives
 };
 
 SupplyFit fit_supply(const std::vector<double>& period, const std::vector<double>& charge);

@@ -35,6 +35,17 @@ std::string engineering(double v, const char* unit) {
 
 }  // namespace
 
+std::string per_firing_energy_note(const Calibration& c, double vdd) {
+  const double short_by = c.fit.charge - c.supply.charge_per_firing;
+  if (!(short_by > 0)) return "";
+  return fmt::format(
+      "power.e_pixel_event is 0: the supply's charge per firing, {:.4g} C, is {:.4g} C below the threshold charge the "
+      "power model counts for recharging c_int ({:.4g} C); the circuit draws that charge through paths that grow with "
+      "the period (crowbar current while the node ramps through mid-rail, leakage), which the static part holds, so "
+      "the model's energy per firing is {:.4g} J high",
+      c.supply.charge_per_firing, short_by, c.fit.charge, vdd * short_by);
+}
+
 SensorConfig calibrated_config(SensorConfig base, const Calibration& c, double vdd) {
   base.pixel.c_int = c.fit.charge / base.pixel.dv_int;
   base.pixel.t_reset = c.fit.t_reset;
@@ -64,10 +75,12 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       "#   residuals: rms {:.3f} %, max {:.3f} %. pixel.transfer keeps the measured periods, so the model fires\n"
       "#   with the circuit's period where the circuit departs from eq. 2; its charge and t_reset are the fit's,\n"
       "#   so that a pixel resized from this one (pixel.c_int, dv_int, t_reset) scales from the circuit.\n"
-      "# Supply charge per firing = {:.6g} C + {:.6g} A x period: power.e_pixel_event and power.p_static_pixel.\n",
+      "# Supply charge per firing = {:.6g} C + {:.6g} A x period: power.e_pixel_event and power.p_static_pixel\n"
+      "#   (residuals of that line: rms {:.3f} %, max {:.3f} %).\n",
       deck.given, deck.subckt, deck.hash, c.ngspice, o.vdd, c.points.size(), o.i_low, o.i_high, o.firings, c.refined, base, c.fit.charge,
       c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
-      c.supply.static_current);
+      c.supply.static_current, 100 * c.supply.rms_residual, 100 * c.supply.max_residual);
+  if (const std::string note = per_firing_energy_note(c, o.vdd); !note.empty()) text += "# " + note + ".\n";
   if (c.mismatch) {
     text += fmt::format("# Monte Carlo: {} runs at {:.4g} A: threshold-charge spread (pixel.mismatch) {:.4g}\n",
                         c.mc_periods.size(), c.mc_current, *c.mismatch);
