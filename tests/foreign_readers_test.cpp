@@ -142,6 +142,94 @@ TEST(ForeignReaders, TheEventsJaerLosesToZeroStampsAreCountedAsItLosesThem) {
   }
 }
 
+// AEDAT 3.1 as cAER writes it (libcaer's events/common.h and polarity.h): the header to
+// "#!END-HEADER", then packets of a 28-byte little-endian header and their events.
+struct Aedat31 {
+  std::string data = "#!AER-DAT3.1\r\n#Format: RAW\r\n#Source 1: DAVIS346\r\n#!END-HEADER\r\n";
+  template <typename T>
+  void put(T v) {
+    data.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void packet(std::int16_t type, std::int32_t size, std::int32_t overflow, std::int32_t capacity, std::int32_t number) {
+    put<std::int16_t>(type);
+    put<std::int16_t>(1);  // eventSource
+    put<std::int32_t>(size);
+    put<std::int32_t>(4);  // eventTSOffset
+    put<std::int32_t>(overflow);
+    put<std::int32_t>(capacity);
+    put<std::int32_t>(number);
+    put<std::int32_t>(number);  // eventValid
+  }
+  void polarity(std::uint32_t x, std::uint32_t y, bool on, std::int32_t t_us, bool valid = true) {
+    put<std::uint32_t>((x << 17) | (y << 2) | (on ? 2u : 0u) | (valid ? 1u : 0u));
+    put<std::int32_t>(t_us);
+  }
+};
+
+TEST(ForeignReaders, Aedat31GivesItsValidPolarityEventsWithOverflowedStampsAndCountsTheRest) {
+  Aedat31 f;
+  f.packet(0, 8, 0, 1, 1);  // a SPECIAL event (a timestamp reset, say): skipped, counted
+  f.put<std::uint32_t>(0);
+  f.put<std::int32_t>(5);
+  f.packet(1, 8, 0, 3, 3);
+  f.polarity(345, 259, true, 10);
+  f.polarity(7, 3, false, 20, false);  // not valid: left out
+  f.polarity(0, 0, false, 2147483647);
+  f.packet(1, 8, 1, 2, 1);  // the stamps' 2^31 overflow; one slot of capacity unused
+  f.polarity(12, 34, true, 5);
+  f.polarity(0, 0, true, 0);
+  const EventRecording rec = decode_events(f.data, "rec.aedat", EventFormat::Aedat2);
+  ASSERT_EQ(rec.events.size(), 3u);
+  EXPECT_EQ(rec.events[0].x, 345u);
+  EXPECT_EQ(rec.events[0].y, 259u);
+  EXPECT_EQ(rec.events[0].flags, kNormalEvent);
+  EXPECT_DOUBLE_EQ(rec.events[0].t, 10e-6);
+  EXPECT_EQ(rec.events[1].flags, kOffEvent);
+  EXPECT_DOUBLE_EQ(rec.events[1].t, 2147483647e-6);
+  EXPECT_EQ(rec.events[2].x, 12u);
+  EXPECT_EQ(rec.events[2].y, 34u);
+  EXPECT_DOUBLE_EQ(rec.events[2].t, (2147483648.0 + 5) * 1e-6);
+  ASSERT_EQ(rec.skipped.size(), 2u);
+  EXPECT_EQ(rec.skipped[0], "1 packets of SPECIAL (36 bytes)");
+  EXPECT_EQ(rec.skipped[1], "1 events their recorder marked invalid");
+  // Some writers end the header's lines in LF alone.
+  std::string lf = f.data;
+  lf.replace(lf.find("#!END-HEADER\r\n"), 14, "#!END-HEADER\n");
+  EXPECT_EQ(decode_events(lf, "lf.aedat", EventFormat::Aedat2).events.size(), 3u);
+}
+
+TEST(ForeignReaders, MalformedAedat31IsAnInputErrorReadingNothingPastItsBytes) {
+  const auto refused = [](const std::string& data, const char* says) {
+    try {
+      decode_events(data, "bad.aedat", EventFormat::Aedat2);
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  Aedat31 no_end;
+  no_end.data = "#!AER-DAT3.1\r\n#Format: RAW\r\n";
+  refused(no_end.data, "without its #!END-HEADER");
+  Aedat31 cut;
+  cut.packet(1, 8, 0, 2, 2);
+  cut.polarity(1, 1, true, 1);
+  refused(cut.data, "more than the file holds");
+  Aedat31 huge;
+  huge.packet(1, 8, 0, 2000000000, 1);
+  refused(huge.data, "more than the file holds");
+  Aedat31 wide;
+  wide.packet(1, 12, 0, 1, 1);
+  wide.data.append(12, '\0');
+  refused(wide.data, "polarity events of 12 bytes");
+  Aedat31 half;
+  half.packet(1, 8, 0, 0, 0);
+  half.data.resize(half.data.size() - 3);
+  refused(half.data, "cut short in its header");
+  Aedat31 negative;
+  negative.packet(1, 8, 0, -1, 0);
+  refused(negative.data, "impossible header");
+}
+
 TEST(ForeignReaders, HeaderTextIsPrintableAsciiAndReadsBackAsWritten) {
   const AddressMap map{ArrayParams{}};
   const std::map<std::string, std::string> sensor = {{"scene.note", "caf\xc3\xa9\r\nline two \\x41"}, {"pixel.c_int", "1e-13"}};

@@ -29,7 +29,7 @@ int info_command(const std::string& path, const std::string& layout) {
   if (span > 0) fmt::print("  rate {}\n", format_si(static_cast<double>(n) / span, "events/s"));
   if (ghosts > 0) fmt::print("  ghost events {}\n", ghosts);
   if (off > 0) fmt::print("  OFF events {} (polarity as contrast: a recording of another tool's)\n", off);
-  for (const std::string& s : rec.skipped) fmt::print("  skipped {} (streams other than the events)\n", s);
+  for (const std::string& s : rec.skipped) fmt::print("  left out {}\n", s);
   for (std::size_t t = 0; t < per_tile.size() && n > 0; ++t) {
     fmt::print("  tile {}: {} events ({:.1f} %){}\n", t, per_tile[t], 100.0 * per_tile[t] / n,
                span > 0 ? ", " + format_si(per_tile[t] / span, "events/s") : "");

@@ -65,6 +65,7 @@ struct PolarityRecording {
   int width = 0, height = 0;
   std::map<std::string, std::string> sensor;
   std::vector<SkippedPackets> skipped;  // other streams' packets, by stream
+  std::uint64_t invalid = 0;            // events their producer marked invalid (AEDAT 3.1), left out
 };
 
 // Reads the events stream (the first of type EVTS) of an AEDAT 4.0 file, up to its data table

@@ -13,6 +13,7 @@
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "event_files/aedat.hpp"
+#include "event_files/aedat31.hpp"
 #include "event_files/aedat4.hpp"
 #include "event_files/dsec_h5.hpp"
 #include "event_files/event_writer.hpp"
@@ -201,6 +202,7 @@ EventRecording from_polarity(const PolarityRecording& in, const std::string& pat
   for (const SkippedPackets& s : in.skipped) {
     rec.skipped.push_back(fmt::format("{} packets of {} ({} bytes)", s.packets, s.type, s.bytes));
   }
+  if (in.invalid > 0) rec.skipped.push_back(fmt::format("{} events their recorder marked invalid", in.invalid));
   if (in.width > 0 && in.height > 0) {
     if (rec.width > in.width || rec.height > in.height) {
       throw InputError(fmt::format("event file '{}': events reach ({}, {}), outside its {}x{} array", path,
@@ -245,7 +247,17 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
   }
   switch (format) {
     case EventFileFormat::Csv: rec = from_csv(read_events_csv(path), path); break;
-    case EventFileFormat::Aedat2: rec = from_aedat(read_aedat(path), path, layout); break;
+    case EventFileFormat::Aedat2: {
+      // .aedat holds AEDAT 2.0 (jAER) or 3.1 (cAER, jAER); the first line says which.
+      const std::string data = read_whole(path);
+      if (is_aedat31(data)) {
+        if (!layout.empty()) throw InputError("--layout: jAER's layouts are for AEDAT 2.0 files; this one is AEDAT 3.1");
+        rec = from_polarity(decode_aedat31(data, path), path);
+      } else {
+        rec = from_aedat(decode_aedat(data, path), path, layout);
+      }
+      break;
+    }
     case EventFileFormat::Aedat4: rec = from_polarity(decode_aedat4(read_whole(path), path), path); break;
     case EventFileFormat::Npy: rec = from_polarity(decode_npy(read_whole(path), path), path); break;
     case EventFileFormat::Hdf5: rec = from_polarity(read_dsec_h5(path), path); break;
@@ -269,7 +281,10 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
 }
 
 EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format) {
-  if (format == EventFormat::Aedat2) return from_aedat(decode_aedat(data, label), label, "");
+  if (format == EventFormat::Aedat2) {
+    return is_aedat31(data) ? from_polarity(decode_aedat31(data, label), label)
+                            : from_aedat(decode_aedat(data, label), label, "");
+  }
   if (format == EventFormat::Aedat4) return from_polarity(decode_aedat4(data, label), label);
   if (format == EventFormat::Npy) return from_polarity(decode_npy(data, label), label);
   std::istringstream in(data);
