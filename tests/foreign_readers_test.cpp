@@ -287,6 +287,37 @@ TEST(ForeignReaders, JaerDavisRecordingGivesItsPolarityEventsAndCountsTheRest) {
   }
 }
 
+// A DAVIS camera's 32-bit microsecond counter passes 2^31 (jAER's int32 goes negative) and wraps
+// at 2^32 after 71.6 minutes; IMU and frame samples are stamped otherwise than the events around
+// them. Read as jAER reads them: unsigned, a step back of over half the range a wrap, and events
+// out of order put in time order and counted. aesim's own files keep their strict rules.
+TEST(ForeignReaders, JaerStampsPastTwoToTheThirtyOneAndAcrossAWrapReadInOrder) {
+  std::string file = "#!AER-DAT2.0\r\n# AEChip: eu.seebetter.ini.chips.davis.DAVIS240C\r\n#End Of ASCII Header\r\n";
+  const auto record = [&](std::uint32_t address, std::uint32_t stamp) {
+    for (const std::uint32_t v : {address, stamp}) {
+      for (int shift = 24; shift >= 0; shift -= 8) file += static_cast<char>(v >> shift);
+    }
+  };
+  const std::uint32_t on = (1u << 11);
+  record(on | (1u << 12), 0x7FFFFFF0u);   // just below 2^31 us
+  record(on | (2u << 12), 0x80000010u);   // past it: negative as jAER's int32, read on
+  record(on | (3u << 12), 0x80000008u);   // 8 us earlier than the one before: put in order
+  record(on | (4u << 12), 0xFFFFFFF0u);   // just below 2^32
+  record(on | (5u << 12), 0x00000020u);   // the counter wrapped
+  const EventRecording rec = decode_events(file, "long.aedat", EventFormat::Aedat2);
+  ASSERT_EQ(rec.events.size(), 5u);
+  const double us = 1e-6;
+  EXPECT_DOUBLE_EQ(rec.events[0].t, 2147483632 * us);
+  EXPECT_DOUBLE_EQ(rec.events[1].t, 2147483656 * us);  // 0x80000008: the reordered one
+  EXPECT_EQ(rec.events[1].x, 239u - 3u);
+  EXPECT_DOUBLE_EQ(rec.events[2].t, 2147483664 * us);
+  EXPECT_DOUBLE_EQ(rec.events[3].t, 4294967280 * us);
+  EXPECT_DOUBLE_EQ(rec.events[4].t, (4294967296.0 + 32) * us);
+  EXPECT_EQ(rec.reordered, 1u);
+  EXPECT_EQ(rec.stamp_wraps, 1u);
+  for (std::size_t i = 1; i < rec.events.size(); ++i) EXPECT_LE(rec.events[i - 1].t, rec.events[i].t);
+}
+
 class EmptyRuns : public testing::TempDirTest {};
 
 // A run that delivers no event still writes a file each reader opens: DV's AEDAT 4.0 readers

@@ -30,6 +30,8 @@ int info_command(const std::string& path, const std::string& layout) {
   if (ghosts > 0) fmt::print("  ghost events {}\n", ghosts);
   if (off > 0) fmt::print("  OFF events {} (polarity as contrast: a recording of another tool's)\n", off);
   for (const std::string& s : rec.skipped) fmt::print("  left out {}\n", s);
+  if (rec.reordered > 0) fmt::print("  {} events stamped before the one ahead of them in the file, read in time order\n", rec.reordered);
+  if (rec.stamp_wraps > 0) fmt::print("  stamps wrapped past 2^32 us {} times, unwrapped\n", rec.stamp_wraps);
   for (std::size_t t = 0; t < per_tile.size() && n > 0; ++t) {
     fmt::print("  tile {}: {} events ({:.1f} %){}\n", t, per_tile[t], 100.0 * per_tile[t] / n,
                span > 0 ? ", " + format_si(per_tile[t] / span, "events/s") : "");

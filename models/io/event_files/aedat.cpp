@@ -218,16 +218,29 @@ AedatFile decode_aedat(const std::string& data, const std::string& path) {
   }
   const auto* p = reinterpret_cast<const unsigned char*>(data.data() + pos);
   file.records.resize(bytes / 8);
+  // aesim's own files: int32 stamps, never negative, never going back. Another recorder's (jAER's
+  // DAVIS cameras count 32 bits that pass 2^31 and wrap): unsigned words, and a step back of more
+  // than half the range is a wrap, unwrapped by 2^32; smaller steps back (IMU and frame samples
+  // stamped otherwise) are the decoder's to order.
+  const bool own = file.metadata.count("sensor.array.rows") != 0;
+  std::uint32_t previous = 0;
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     file.records[i].address = get_be32(p + 8 * i);
-    file.records[i].timestamp_us = static_cast<std::int32_t>(get_be32(p + 8 * i + 4));
-    if (file.records[i].timestamp_us < 0) {
-      throw InputError(fmt::format("event file '{}': event {} has a negative timestamp ({} us)", path, i,
-                                   file.records[i].timestamp_us));
+    const std::uint32_t raw = get_be32(p + 8 * i + 4);
+    if (own) {
+      file.records[i].timestamp_us = static_cast<std::int32_t>(raw);
+      if (file.records[i].timestamp_us < 0) {
+        throw InputError(fmt::format("event file '{}': event {} has a negative timestamp ({} us)", path, i,
+                                     file.records[i].timestamp_us));
+      }
+      if (i > 0 && file.records[i].timestamp_us < file.records[i - 1].timestamp_us) {
+        throw InputError(fmt::format("event file '{}': timestamps decrease at event {}", path, i));
+      }
+      continue;
     }
-    if (i > 0 && file.records[i].timestamp_us < file.records[i - 1].timestamp_us) {
-      throw InputError(fmt::format("event file '{}': timestamps decrease at event {}", path, i));
-    }
+    if (i > 0 && raw < previous && previous - raw > 0x80000000u) ++file.stamp_wraps;
+    file.records[i].timestamp_us = static_cast<std::int64_t>(raw) + (static_cast<std::int64_t>(file.stamp_wraps) << 32);
+    previous = raw;
   }
   return file;
 }

@@ -17,7 +17,9 @@ namespace aesim {
 
 struct AedatRecord {
   std::uint32_t address = 0;
-  std::int32_t timestamp_us = 0;
+  // us: a file aesim wrote holds int32 stamps that never go back; another recorder's are read as
+  // jAER reads them, unsigned 32-bit words unwrapped past 2^32 (see decode_aedat).
+  std::int64_t timestamp_us = 0;
 };
 
 // An AEDAT 2.0 (jAER) file: '#' header lines ending in CRLF, then big-endian int32 address and
@@ -27,6 +29,7 @@ struct AedatFile {
   std::vector<std::string> header;  // without the CRLF
   std::map<std::string, std::string> metadata;
   std::vector<AedatRecord> records;
+  std::uint64_t stamp_wraps = 0;  // another recorder's stamps that wrapped past 2^32 us
 };
 
 // Every sensor parameter as "section.key" -> text, for the header.
@@ -76,7 +79,7 @@ inline AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, const 
   if (stamp > 0x7FFFFFFFu) throw_aedat_stamp_overflow(e.t);
   AedatRecord r;
   r.address = (e.tile << bus_bits) | e.bus_address;
-  r.timestamp_us = static_cast<std::int32_t>(stamp);
+  r.timestamp_us = static_cast<std::int64_t>(stamp);
   return r;
 }
 // The AEDAT records of delivered events (timestamps in whole microseconds of receiver ticks).

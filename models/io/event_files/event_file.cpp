@@ -91,6 +91,12 @@ EventRecording from_jaer(const AedatFile& file, const std::string& path, const s
   }
   if (aps) rec.skipped.push_back(fmt::format("{} APS (frame) samples", aps));
   if (special) rec.skipped.push_back(fmt::format("{} special and IMU words", special));
+  rec.stamp_wraps = file.stamp_wraps;
+  for (std::size_t i = 1; i < rec.events.size(); ++i) rec.reordered += rec.events[i].t < rec.events[i - 1].t ? 1 : 0;
+  if (rec.reordered > 0) {
+    std::stable_sort(rec.events.begin(), rec.events.end(),
+                     [](const AddressEvent& a, const AddressEvent& b) { return a.t < b.t; });
+  }
   return rec;
 }
 

@@ -23,6 +23,10 @@ struct EventRecording {
   int width = 0, height = 0, tiles = 0;
   bool size_recorded = false;
   std::vector<std::string> skipped;  // other streams' packets, in words ("12 packets of IMUS (3400 bytes)")
+  // Another recorder's events whose stamps went back (jAER interleaves IMU and frame samples
+  // stamped otherwise): read in time order (a stable sort), and counted here.
+  std::uint64_t reordered = 0;
+  std::uint64_t stamp_wraps = 0;     // jAER stamps that wrapped past 2^32 us, unwrapped
 };
 
 // `size`, when given, is the array's: a CSV takes it (its events must lie within), an AEDAT
