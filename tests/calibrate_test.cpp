@@ -383,6 +383,29 @@ TEST_F(NgspiceTest, APixelThatFiresOnlyAboveItsLeakageIsTabledWhereItFires) {
   EXPECT_LT(std::count(preset.begin(), preset.end(), '\n'), 120) << preset;
 }
 
+// A pixel that never fires is told so after one transient per current, with what the run showed,
+// instead of ever longer runs that cannot end otherwise: the shipped deck with its photocurrent
+// reversed (the node sits at the diode's clamp) and with its output stage replaced by a pull-up
+// (out held high).
+TEST_F(NgspiceTest, APixelThatNeverFiresIsToldSoWithWhatTheRunShowed) {
+  const std::string shipped = slurp(kShippedDeck);
+  std::string reversed = shipped, latched = shipped;
+  reversed.replace(reversed.find("Iph vdd int {iph}"), 17, "Iph int vdd {iph}");
+  latched.replace(latched.find("Mp2 out n1 vdd vdd pch w=1u l=2u"), 32, "");
+  latched.replace(latched.find("Mn2 out n1 gnd gnd nch w=1u l=4u"), 32, "Rpu out vdd 1k");
+  const std::pair<const char*, const char*> cases[] = {{"reversed", "node 'int' settles at"},
+                                                       {"latched", "out latched high (3.3 V)"}};
+  const std::map<std::string, std::string> decks = {{"reversed", reversed}, {"latched", latched}};
+  for (const auto& [name, seen] : cases) {
+    write(std::string(name) + ".cir", decks.at(name));
+    const Outcome o = aesim(std::string("calibrate ") + name + ".cir --subckt aesim_pixel -o " + name + ".toml");
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_NE(o.err.find("never fires between 1e-15 A and 1e-09 A"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find(std::string("at 1e-09 A ") + seen), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(dir_ / (std::string(name) + ".toml")));
+  }
+}
+
 TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
   const std::string ideal = slurp(kIdealDeck);
   std::map<std::string, std::pair<std::string, std::string>> cases;  // name -> deck text, expected words

@@ -45,6 +45,27 @@ constexpr std::size_t kMaxTablePoints = 400;
 constexpr int kMaxRuns = 6;
 constexpr double kLongestPeriod = 1000;
 
+// A run in which the pixel never fired, looked at for the reason it never will: out held high
+// (latched), or the probe node settled (it moved by under 1 % in the run's last 30 % of what it
+// moved before: a leak or a clamp balances the photocurrent, not a ramp too slow for the run).
+// "" when neither: the next run waits longer.
+std::string why_silent(const Waveform& w, double vdd, const std::string& probe) {
+  if (w.t.size() < 10) return "";
+  const std::size_t n = w.t.size();
+  std::size_t high = 0;
+  for (double v : w.out) high += v > vdd / 2 ? 1 : 0;
+  if (high * 2 > n && w.out.back() > vdd / 2) return fmt::format("out latched high ({:.3g} V)", w.out.back());
+  if (w.probe.size() != n) return "";
+  const double cut = w.t.front() + 0.7 * (w.t.back() - w.t.front());
+  std::size_t k = 0;
+  while (k + 1 < n && w.t[k] < cut) ++k;
+  const double early = std::fabs(w.probe[k] - w.probe.front()), late = std::fabs(w.probe.back() - w.probe[k]);
+  if (late <= 0.01 * early + 1e-6) {
+    return fmt::format("node '{}' settles at {:.3g} V without out rising", probe, w.probe.back());
+  }
+  return "";
+}
+
 struct PointRun {
   CalibrationPoint point;
   Waveform wave;
@@ -106,6 +127,10 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
       r.point.pulse = r.measure.pulse;
       r.point.supply_charge = r.measure.supply_charge;
       return r;
+    }
+    if (fired == 0) {
+      r.point.seen = why_silent(r.wave, o.vdd, deck.probe);
+      if (!r.point.seen.empty()) return r;  // it never will: no longer run is worth waiting for
     }
     if (fired >= 3) {
       guess = r.measure.period;
@@ -218,9 +243,14 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
                                    deck.given, runs.size(), why));
     }
     if (fired().empty()) {
-      throw InputError(fmt::format("deck '{}': the pixel never fires between {:.3g} A and {:.3g} A (out never rises "
-                                   "through vdd/2 = {:.3g} V){}",
-                                   deck.given, o.i_low, o.i_high, o.vdd / 2, gave_up));
+      // What the runs showed, at the brightest current that showed something.
+      std::string seen;
+      for (auto it = runs.rbegin(); it != runs.rend() && seen.empty(); ++it) {
+        if (!it->point.seen.empty()) seen = fmt::format("; at {:.3g} A {}", it->point.current, it->point.seen);
+      }
+      throw InputError(fmt::format("deck '{}': the pixel never fires between {:.3g} A and {:.3g} A (no rising edge "
+                                   "of out through vdd/2 = {:.3g} V){}{}",
+                                   deck.given, o.i_low, o.i_high, o.vdd / 2, seen, gave_up));
     }
     throw InputError(fmt::format("deck '{}': the pixel fires at only {} of the {} photocurrents{}; a table needs 3: "
                                  "widen --currents",

@@ -31,6 +31,7 @@ struct CalibrationPoint {
   double simulated = 0;        // s of circuit time simulated
   std::size_t settings = 0;    // the solver settings level it was measured with (solver_settings())
   std::string aborted;         // why ngspice gave up on it under every setting ("" when it did not)
+  std::string seen;            // when it never fired and was not waited for longer: what the run showed
 };
 
 struct Calibration {
