@@ -19,18 +19,23 @@ namespace {
 
 const std::string kScene = std::string(AESIM_SOURCE_DIR) + "/scenes/hdr/window.pfm";
 
+// simulate() on the aloha preset, the spec's scene and settings, at `fidelity`.
+SimulationResult reference_run(const ImagerSpec& spec, const char* fidelity) {
+  std::vector<Setting> settings = spec.settings;
+  settings.push_back({"sim.fidelity", fidelity});
+  const SceneFiles scene = find_scene(spec.scene);
+  const ResolvedConfig config = configure_run(load_sensor("aloha"), scene, settings);
+  const Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
+  return simulate(config, photocurrents);
+}
+
 TEST(Imager, RunsInTheCallersKernelWithTheCycleRungsEvents) {
   ImagerSpec spec;
   spec.scene = kScene;
   spec.settings = {{"sim.duration", "300ms"}, {"bus.t_event", "2us"}, {"receiver.clock", "5MHz"}};
 
   // The reference: simulate() at the cycle fidelity, in a context of its own.
-  std::vector<Setting> settings = spec.settings;
-  settings.push_back({"sim.fidelity", "cycle"});
-  const SceneFiles scene = find_scene(kScene);
-  const ResolvedConfig config = configure_run(load_sensor("aloha"), scene, settings);
-  const Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
-  const SimulationResult reference = simulate(config, photocurrents);
+  const SimulationResult reference = reference_run(spec, "cycle");
   ASSERT_GT(reference.log.events().size(), 1000u);
 
   // The same in the default context, started by the caller as an sc_main would.
@@ -87,12 +92,7 @@ TEST(EventSource, HandsTheEventRungsEventsToAFifoAtTheirTimes) {
   ImagerSpec spec;
   spec.scene = kScene;
   spec.settings = {{"sim.duration", "300ms"}, {"bus.t_event", "2us"}};
-  std::vector<Setting> settings = spec.settings;
-  settings.push_back({"sim.fidelity", "event"});
-  const SceneFiles scene = find_scene(kScene);
-  const ResolvedConfig config = configure_run(load_sensor("aloha"), scene, settings);
-  const Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
-  const SimulationResult reference = simulate(config, photocurrents);
+  const SimulationResult reference = reference_run(spec, "event");
   ASSERT_GT(reference.log.events().size(), 1000u);
 
   EventSource source("source", spec);

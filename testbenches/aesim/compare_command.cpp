@@ -64,7 +64,7 @@ std::string display(const std::string& path) {
 }  // namespace
 
 int compare_command(CompareOptions opt) {
-  if (opt.scenes.empty()) opt.scenes = {data_dir() + "/scenes/letters/A.pgm"};
+  if (opt.scenes.empty()) opt.scenes = {default_scene_path()};
   std::vector<double> steps;
   for (const std::string& text : opt.steps) {
     steps.push_back(parse_si(text, "s", "--steps"));

@@ -12,7 +12,6 @@
 
 #include "command_settings.hpp"
 #include "commands.hpp"
-#include "files/data_dir.hpp"
 #include "errors/input_error.hpp"
 #include "config/sensor_config.hpp"
 #include "event_files/aedat.hpp"
@@ -40,7 +39,7 @@ int run_command(RunOptions opt) {
   }
   // The default scene is named as the README names it, wherever the tree is.
   const bool default_scene = opt.scene.empty();
-  if (default_scene) opt.scene = data_dir() + "/scenes/letters/A.pgm";
+  if (default_scene) opt.scene = default_scene_path();
   const SceneFiles scene_files = find_scene(opt.scene);
   const ResolvedConfig config =
       configure_run(load_sensor(opt.sensor), scene_files, command_settings(opt.sets, opt.duration, opt.max_events));
@@ -170,7 +169,7 @@ int run_command(RunOptions opt) {
   }
   std::printf("aesim run: sensor %s, %dx%d pixels in %d tiles of %dx%d, scene %s (%dx%d%s%s)\n",
               opt.sensor.c_str(), map.cols(), map.rows(), map.tiles(), config.array.tile_cols,
-              config.array.tile_rows, default_scene ? "scenes/letters/A.pgm" : opt.scene.c_str(),
+              config.array.tile_rows, default_scene ? kDefaultScene : opt.scene.c_str(),
               scene.source_width, scene.source_height,
               scene.frames.size() > 1 ? fmt::format(", {} frames", scene.frames.size()).c_str() : "",
               default_scene ? ", the default" : "");

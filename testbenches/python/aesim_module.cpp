@@ -24,7 +24,6 @@
 #include "errors/input_error.hpp"
 #include "events/event_stream.hpp"
 #include "events/timestamps.hpp"
-#include "files/data_dir.hpp"
 #include "output/temp_files.hpp"
 #include "process/interrupt.hpp"
 #include "run/imager_simulation.hpp"
@@ -185,7 +184,7 @@ py::object py_run(const std::string& sensor, const py::object& scene, const py::
   SceneFiles files;
   std::vector<Image> frames;
   if (scene.is_none()) {
-    files = find_scene(data_dir() + "/scenes/letters/A.pgm");
+    files = find_scene(default_scene_path());
   } else if (is_path(scene)) {
     files = find_scene(as_path(scene));
   } else {

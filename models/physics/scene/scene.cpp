@@ -10,6 +10,7 @@
 
 #include "errors/input_error.hpp"
 #include "limits/limits.hpp"
+#include "files/data_dir.hpp"
 #include "files/input_path.hpp"
 #include "scene/netpbm.hpp"
 #include "scene/resample.hpp"
@@ -36,6 +37,8 @@ bool is_scene_image(const fs::path& p) {
 }
 
 }  // namespace
+
+std::string default_scene_path() { return data_dir() + "/" + kDefaultScene; }
 
 SceneFiles find_scene(const std::string& file_or_dir) {
   SceneFiles files;

@@ -19,6 +19,9 @@ struct SceneFiles {
 };
 
 SceneFiles find_scene(const std::string& file_or_dir);
+// The scene a command uses when given none, relative to the data folder, and its full path.
+inline constexpr char kDefaultScene[] = "scenes/letters/A.pgm";
+std::string default_scene_path();
 // Applies the folder's scene.toml to config.scene (command-line --set applies after this).
 void apply_scene_settings(const SceneFiles& files, SensorConfig& config);
 

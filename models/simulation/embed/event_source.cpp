@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
-#include "files/data_dir.hpp"
 #include "run/imager_simulation.hpp"
 #include "scene/photocurrents.hpp"
 
@@ -22,16 +21,10 @@ struct EventSource::Run {
 
 EventSource::EventSource(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name), out("out") {
   if (spec.receiver) throw InputError("EventSource: the event fidelity has no clocked receiver to replace (use Imager)");
-  const SceneFiles scene = find_scene(spec.scene.empty() ? data_dir() + "/scenes/letters/A.pgm" : spec.scene);
-  ResolvedConfig config = configure_run(load_sensor(spec.sensor), scene, spec.settings);
-  if (config.sim.fidelity != Fidelity::Event && config.sim.fidelity != Fidelity::Auto) {
-    throw InputError(fmt::format("sim.fidelity={}: an EventSource is the event fidelity (use Imager for the cycle one)",
-                                 to_string(config.sim.fidelity)));
-  }
-  config.sim.fidelity = Fidelity::Event;
-  const Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
-  SimulationResult result = simulate(config, photocurrents);
-  run_.reset(new Run{std::move(config), std::move(result)});
+  SpecInputs in =
+      spec_inputs(spec, Fidelity::Event, "an EventSource is the event fidelity (use Imager for the cycle one)");
+  SimulationResult result = simulate(in.config, in.photocurrents);
+  run_.reset(new Run{std::move(in.config), std::move(result)});
   SC_THREAD(emit);
 }
 

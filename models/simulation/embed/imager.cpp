@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
-#include "files/data_dir.hpp"
 #include "rungs/cycle_array.hpp"
 #include "rungs/run_budget.hpp"
 #include "scene/photocurrents.hpp"
@@ -21,27 +20,23 @@ struct Imager::Run {
   EventLog log;
 };
 
-namespace {
-
-ResolvedConfig imager_config(const ImagerSpec& spec, const SceneFiles& scene) {
+SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_instead) {
+  const SceneFiles scene = find_scene(spec.scene.empty() ? default_scene_path() : spec.scene);
   ResolvedConfig config = configure_run(load_sensor(spec.sensor), scene, spec.settings);
-  if (config.sim.fidelity != Fidelity::Cycle && config.sim.fidelity != Fidelity::Auto) {
-    throw InputError(fmt::format("sim.fidelity={}: an Imager is the cycle fidelity (use simulate() for the others)",
-                                 to_string(config.sim.fidelity)));
+  if (config.sim.fidelity != rung && config.sim.fidelity != Fidelity::Auto) {
+    throw InputError(fmt::format("sim.fidelity={}: {}", to_string(config.sim.fidelity), use_instead));
   }
-  rung_for(Fidelity::Cycle).check(config);
-  return config;
+  config.sim.fidelity = rung;
+  rung_for(rung).check(config);
+  Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
+  return {std::move(config), std::move(photocurrents)};
 }
 
-}  // namespace
-
 Imager::Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name) {
-  const SceneFiles scene = find_scene(spec.scene.empty() ? data_dir() + "/scenes/letters/A.pgm" : spec.scene);
-  ResolvedConfig config = imager_config(spec, scene);
-  Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
-  check_work(config, photocurrents, Fidelity::Cycle);
-  const AddressMap map(config.array);
-  run_.reset(new Run{std::move(config), std::move(photocurrents), map, SimulationRequest{},
+  SpecInputs in = spec_inputs(spec, Fidelity::Cycle, "an Imager is the cycle fidelity (use simulate() for the others)");
+  check_work(in.config, in.photocurrents, Fidelity::Cycle);
+  const AddressMap map(in.config.array);
+  run_.reset(new Run{std::move(in.config), std::move(in.photocurrents), map, SimulationRequest{},
                      EventLog(map.tiles(), LogOutputs{true, false, nullptr})});
   run_->log.count_pixels(run_->map, run_->config.analysis.window);
   run_->request.cycle.receiver = spec.receiver;

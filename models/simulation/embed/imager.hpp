@@ -10,6 +10,7 @@
 #include "events/event_log.hpp"
 #include "receiver/receiver_module.hpp"
 #include "receiver/receiver_signals.hpp"
+#include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
 
 namespace aesim {
@@ -28,6 +29,15 @@ struct ImagerSpec {
   // makes the reference model for the tiles a caller does not replace.
   ReceiverFactory receiver;
 };
+
+// What an ImagerSpec names, for a module of fidelity `rung`: its configuration (sim.fidelity must be
+// `rung` or auto, else InputError saying `use_instead`; the rung's own checks passed) and the
+// scene's photocurrents. Shared by the embeddable modules.
+struct SpecInputs {
+  ResolvedConfig config;
+  Photocurrents photocurrents;
+};
+SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_instead);
 
 // The imager at the cycle fidelity as a SystemC module for the caller's own sc_main: the pixels
 // of every tile firing onto their tile's clocked ALOHA bus (Req/Ack, 10-bit address, contention)

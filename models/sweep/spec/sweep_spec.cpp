@@ -164,7 +164,7 @@ SweepSpec load_sweep_spec(const std::string& path) {
     ++group_index;
     if (!group.is_table()) throw InputError(fmt::format("sweep spec '{}': group {} is not a table", path, group_index));
     std::string name = fmt::format("{}", group_index);
-    std::vector<std::string> scenes = {"scenes/letters/A.pgm"};
+    std::vector<std::string> scenes = {kDefaultScene};
     long long samples = 0;
     std::uint64_t sample_seed = 1;
     std::vector<std::pair<std::string, std::vector<std::string>>> axes;

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
+#include "files/scratch_text.hpp"
 #include "text/ascii_case.hpp"
 #include "process/child_process.hpp"
 
@@ -41,12 +42,6 @@ std::string trim(const std::string& s) {
   return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
 }
 
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // ngspice's first error as one line: the "Error" line and the lines that explain it, up to the
 // line that says the run stopped; without such a line (ngspice's parser words some errors
@@ -156,14 +151,14 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
                                  strsignal(*status - 128)));
   }
   if (*status != 0) {
-    const std::string error = first_error(read_all(log));
+    const std::string error = first_error(read_scratch_text(log));
     if (ascii_lower(error).find("unknown subckt") != std::string::npos) {
       throw InputError(fmt::format("deck '{}': ngspice finds no subcircuit '{}' ({})", deck.given, deck.subckt, error));
     }
     throw InputError(fmt::format("deck '{}': ngspice rejects it: {}", deck.given,
                                  error.empty() ? fmt::format("exit status {}", *status) : error));
   }
-  const std::string messages = read_all(log);
+  const std::string messages = read_scratch_text(log);
   if (ascii_lower(messages).find("timestep too small") != std::string::npos) {
     throw TransientAborted(first_error(messages).empty() ? "timestep too small" : first_error(messages));
   }
@@ -172,7 +167,7 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   std::string header;
   if (!std::getline(in, header)) {
     throw InputError(fmt::format("deck '{}': ngspice wrote no waveform at iph = {:.3g} A ({})", deck.given, request.iph,
-                                 first_error(read_all(log))));
+                                 first_error(read_scratch_text(log))));
   }
   const bool probe = !deck.probe.empty();
   double t = 0, out = 0, supply = 0, node = 0;
@@ -192,7 +187,7 @@ std::string ngspice_version() {
     std::string v = "ngspice (version unknown)";
     try {
       if (run_child("ngspice", {"-v"}, {out.string(), "/dev/null"}) == 0) {
-        std::istringstream in(read_all(out));
+        std::istringstream in(read_scratch_text(out));
         std::string line;
         while (std::getline(in, line)) {
           const auto at = line.find("ngspice-");

@@ -20,6 +20,7 @@
 #include "errors/input_error.hpp"
 #include "files/content_hash.hpp"
 #include "files/scratch_folder.hpp"
+#include "files/scratch_text.hpp"
 #include "process/child_process.hpp"
 
 namespace aesim {
@@ -27,26 +28,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-}
-
 // A tool's output captured through a file (no shell, no pipe to drain).
 std::string tool_output(const std::string& program, const std::vector<std::string>& args, const fs::path& scratch) {
   const fs::path out = scratch / "tool_output.txt";
   if (run_child(program, args, {out.string(), out.string()}) != 0) {
-    throw InputError(fmt::format("'{} {}' failed: {}", program, args.empty() ? "" : args[0], read_text(out)));
+    throw InputError(fmt::format("'{} {}' failed: {}", program, args.empty() ? "" : args[0], read_scratch_text(out)));
   }
-  std::string text = read_text(out);
+  std::string text = read_scratch_text(out);
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
   return text;
 }
@@ -124,7 +112,7 @@ fs::path hooks_header(const fs::path& cache) {
   const fs::path path = cache / ("vl_hooks-" + content_hash_hex(text) + ".h");
   if (fs::is_regular_file(path)) return path;
   const fs::path temp = cache / fmt::format("tmp-hooks.{}", ::getpid());
-  write_text(temp, text);
+  write_scratch_text(temp, text);
   fs::rename(temp, path);
   return path;
 }
@@ -136,7 +124,7 @@ void refuse_host_calls(const fs::path& obj, bool allow_system_tasks) {
   for (const auto& e : fs::directory_iterator(obj)) {
     const std::string name = e.path().filename().string();
     if (name.size() < 4) continue;
-    const std::string text = read_text(e.path());
+    const std::string text = read_scratch_text(e.path());
     std::smatch m;
     if (name.find("__Dpi.h") != std::string::npos && std::regex_search(text, m, dpi)) {
       throw InputError(fmt::format("receiver RTL imports a C function (DPI import at {}); aesim verify links no C code", m[1].str()));
@@ -168,10 +156,10 @@ int compile_all(const std::string& compiler, const std::vector<std::vector<std::
   std::string all;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fs::path job_log = log.string() + "." + std::to_string(i);
-    all += read_text(job_log);
+    all += read_scratch_text(job_log);
     fs::remove(job_log);
   }
-  write_text(log, all);
+  write_scratch_text(log, all);
   return failed;
 }
 
@@ -227,7 +215,7 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
                     (allow_system_tasks ? "system tasks allowed\n" : "");
   for (const std::string& flag : compile_flags(t, trace, hooks)) all += flag + " ";
   for (const std::string& arg : verilator_args(d, "", trace)) all += arg + " ";
-  for (const std::string& s : d.sources) all += "source " + s + "\n" + read_text(s) + "\n";
+  for (const std::string& s : d.sources) all += "source " + s + "\n" + read_scratch_text(s) + "\n";
   for (const std::string& dir : d.include_dirs) {
     std::vector<fs::path> files;
     std::error_code ec;
@@ -241,7 +229,7 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
       if (all.size() + fs::file_size(f, ec) > (256u << 20)) {
         throw InputError(fmt::format("include_dirs: '{}' holds over 256 MiB; point it at the RTL's include files only", dir));
       }
-      all += f.string() + "\n" + read_text(f) + "\n";
+      all += f.string() + "\n" + read_scratch_text(f) + "\n";
     }
   }
   for (const auto& [k, v] : d.defines) all += "define " + k + "=" + v + "\n";
@@ -259,7 +247,7 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
     fs::copy_file(log, dest, fs::copy_options::overwrite_existing, ec);
     if (!ec) kept = dest.string();
   }
-  throw InputError(fmt::format("receiver RTL does not build: {} ({}'s log: {})", first_error(read_text(log), tool), tool, kept));
+  throw InputError(fmt::format("receiver RTL does not build: {} ({}'s log: {})", first_error(read_scratch_text(log), tool), tool, kept));
 }
 
 }  // namespace
@@ -303,7 +291,7 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   DutBuild out;
   out.library = (entry / "dut.so").string();
   if (fs::is_regular_file(out.library) && fs::is_regular_file(entry / "ports.txt")) {
-    out.ports = parse_port_list_text(read_text(entry / "ports.txt"));
+    out.ports = parse_port_list_text(read_scratch_text(entry / "ports.txt"));
     out.cached = true;
     out.seconds = progress.seconds();
     return out;
@@ -318,8 +306,8 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
     build_failed("verilator", work / "verilator.log", options);
   }
   refuse_host_calls(obj, options.allow_system_tasks);
-  out.ports = ports_in_verilated_header(read_text(obj / "Vdut.h"));
-  write_text(work / "dut_glue.cpp", dut_glue_source(out.ports));
+  out.ports = ports_in_verilated_header(read_scratch_text(obj / "Vdut.h"));
+  write_scratch_text(work / "dut_glue.cpp", dut_glue_source(out.ports));
   std::vector<fs::path> generated;
   for (const auto& e : fs::directory_iterator(obj)) {
     if (e.path().extension() == ".cpp") generated.push_back(e.path());
@@ -330,7 +318,7 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   std::string unity;
   for (const fs::path& g : generated) unity += "#include \"" + g.string() + "\"\n";
   unity += "#include \"" + (work / "dut_glue.cpp").string() + "\"\n";
-  write_text(work / "model.cpp", unity);
+  write_scratch_text(work / "model.cpp", unity);
 
   const std::vector<std::string> runtime = runtime_objects(cache, t, options.trace, hooks, progress);
   progress.step("compiling the model");
@@ -346,7 +334,7 @@ DutBuild build_dut(const ReceiverDescription& d, const DutBuildOptions& options)
   link.insert(link.end(), runtime.begin(), runtime.end());
   link.push_back("-pthread");
   if (compile_all(t.compiler, {link}, work / "link.log") >= 0) build_failed(t.compiler, work / "link.log", options);
-  write_text(work / "ports.txt", port_list_text(out.ports));
+  write_scratch_text(work / "ports.txt", port_list_text(out.ports));
 
   const fs::path staged = cache / fmt::format("tmp-entry.{}", ::getpid());
   fs::remove_all(staged);

@@ -18,25 +18,13 @@
 #include "errors/input_error.hpp"
 #include "files/content_hash.hpp"
 #include "files/scratch_folder.hpp"
+#include "files/scratch_text.hpp"
 #include "process/child_process.hpp"
 
 namespace aesim {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -63,7 +51,7 @@ std::string yosys_first_error(const std::string& log) {
 std::string tool_version(const std::string& program, const std::vector<std::string>& args, const fs::path& scratch) {
   const fs::path out = scratch / "version.txt";
   run_child(program, args, {out.string(), out.string()});
-  std::string text = read_text(out);
+  std::string text = read_scratch_text(out);
   return text.substr(0, text.find('\n'));
 }
 
@@ -342,7 +330,7 @@ void run_yosys(const fs::path& work, const std::string& script_name, const Recei
   const std::optional<int> status = wait_child_for(pid, seconds);
   if (!status) throw InputError(fmt::format("--formal: yosys ran past {:.0f} s on the RTL", seconds));
   if (*status != 0) {
-    std::string first = yosys_first_error(read_text(work / log) + read_text(work / (script_name + ".out")));
+    std::string first = yosys_first_error(read_scratch_text(work / log) + read_scratch_text(work / (script_name + ".out")));
     const std::string prefix = fs::absolute(d.file).parent_path().string() + "/";
     for (std::size_t at; (at = first.find(prefix)) != std::string::npos;) first.erase(at, prefix.size());
     // Yosys's SystemVerilog front end has no import: say so where that is the cause.
@@ -353,7 +341,7 @@ void run_yosys(const fs::path& work, const std::string& script_name, const Recei
         std::sscanf(first.c_str() + colon + 1, "%u", &line) == 1) {
       for (const std::string& src : d.sources) {
         if (fs::path(src).filename() != fs::path(first.substr(0, colon)).filename()) continue;
-        std::istringstream text(read_text(src));
+        std::istringstream text(read_scratch_text(src));
         std::string l;
         for (unsigned n = 1; std::getline(text, l) && n <= line; ++n) {
           if (n == line && l.find("import") != std::string::npos) {
@@ -385,19 +373,19 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   // Everything the verdicts follow from: the description, the sources, the tools, the rule.
   std::string key = fmt::format("aesim-formal-v3\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
   if (stamp) key += fmt::format("stamp {} {}\n", stamp->from_ack, stamp->offset);
-  key += read_text(d.file);
-  for (const std::string& s : d.sources) key += s + "\n" + read_text(s);
+  key += read_scratch_text(d.file);
+  for (const std::string& s : d.sources) key += s + "\n" + read_scratch_text(s);
   for (const std::string& dir : d.include_dirs) {
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
       if (e.is_regular_file()) files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
-    for (const fs::path& f : files) key += f.string() + "\n" + read_text(f);
+    for (const fs::path& f : files) key += f.string() + "\n" + read_scratch_text(f);
   }
   const fs::path entry = cache / ("formal-" + content_hash_hex(key));
   if (fs::is_regular_file(entry / "result.json")) {
-    const nlohmann::json j = nlohmann::json::parse(read_text(entry / "result.json"));
+    const nlohmann::json j = nlohmann::json::parse(read_scratch_text(entry / "result.json"));
     for (const auto& v : j.at("verdicts")) {
       FormalVerdict f{v.at("property"), v.at("text"), v.at("verdict"), v.at("depth"), v.at("time_s"), std::nullopt, v.at("detail")};
       if (v.contains("step") && !v["step"].is_null()) f.step = v["step"].get<int>();
@@ -407,9 +395,9 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
     result.depth = j.at("depth");
     result.depth_reason = j.at("depth_reason");
     result.notes = j.at("notes").get<std::vector<std::string>>();
-    if (fs::is_regular_file(entry / "counterexample.vcd")) result.counterexample_vcd = read_text(entry / "counterexample.vcd");
+    if (fs::is_regular_file(entry / "counterexample.vcd")) result.counterexample_vcd = read_scratch_text(entry / "counterexample.vcd");
     if (fs::is_regular_file(entry / "counterexample.aiw")) {
-      result.replay = counterexample_inputs(read_text(entry / "counterexample.aim"), read_text(entry / "counterexample.aiw"));
+      result.replay = counterexample_inputs(read_scratch_text(entry / "counterexample.aim"), read_scratch_text(entry / "counterexample.aiw"));
     }
     result.cached = true;
     result.seconds = seconds_since(start);
@@ -421,10 +409,10 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   for (const auto& [k, v] : d.formal.parameters) parameters[k] = v;
   std::string chparams;
   for (const auto& [k, v] : parameters) chparams += fmt::format(" -chparam {} {}", k, v);
-  write_text(work / "aesim_netlist.ys",
+  write_scratch_text(work / "aesim_netlist.ys",
              read_sources(d, false) + fmt::format("hierarchy -top {}{}\nproc\nflatten\nopt_clean\nwrite_json netlist.json\n", d.top, chparams));
   run_yosys(work, "aesim_netlist.ys", d, options.property_seconds);
-  const std::string netlist_text = read_text(work / "netlist.json");
+  const std::string netlist_text = read_scratch_text(work / "netlist.json");
   const std::vector<RtlPort> ports = netlist_ports(nlohmann::json::parse(netlist_text), d.top);
   // The proof may run narrower address and stamp paths than the simulation ([formal] parameters):
   // a receiver only moves addresses, and its stamps wrap at the width it has.
@@ -455,8 +443,8 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
     std::fprintf(stderr, "aesim verify --formal: %zu properties: an unbounded proof (pdr) where ABC finds one in %.0f s, else a bounded check to %d steps (%s)\n",
                  checker.properties.size() + 1, options.property_seconds, result.depth, result.depth_reason.c_str());
   }
-  write_text(work / "aesim_formal.sv", checker.source);
-  write_text(work / "aesim_formal.ys", yosys_script(d, checker.properties));
+  write_scratch_text(work / "aesim_formal.sv", checker.source);
+  write_scratch_text(work / "aesim_formal.ys", yosys_script(d, checker.properties));
   run_yosys(work, "aesim_formal.ys", d, options.property_seconds);
 
   // Per property, with ABC: an unbounded proof (pdr, which also finds counterexamples), and, if it
@@ -493,7 +481,7 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
     v.time_s += seconds_since(r.start);
     std::optional<int> frame;
     int frames = 0;
-    const int outcome = status ? abc_status(read_text(r.log), frame, frames) : -1;
+    const int outcome = status ? abc_status(read_scratch_text(r.log), frame, frames) : -1;
     bool settled = true;
     if (outcome == 1) {
       v.verdict = "failed";
@@ -523,12 +511,12 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
     // own simulation of the same design.
     const std::string base = fmt::format("p{}", checker.properties[i].id);
     witness = base;
-    result.replay = counterexample_inputs(read_text(work / (base + ".aim")), read_text(work / (base + ".aiw")));
-    write_text(work / "replay.ys", replay_script(d, checker.properties[i].id, base));
+    result.replay = counterexample_inputs(read_scratch_text(work / (base + ".aim")), read_scratch_text(work / (base + ".aiw")));
+    write_scratch_text(work / "replay.ys", replay_script(d, checker.properties[i].id, base));
     const pid_t replay = spawn_child("yosys", {"-q", "-s", "replay.ys"},
                                      {(work / "replay.log").string(), (work / "replay.log").string(), work.string()});
     const std::optional<int> replayed = wait_child_for(replay, options.property_seconds);
-    if (replayed && fs::is_regular_file(work / (base + ".vcd"))) result.counterexample_vcd = read_text(work / (base + ".vcd"));
+    if (replayed && fs::is_regular_file(work / (base + ".vcd"))) result.counterexample_vcd = read_scratch_text(work / (base + ".vcd"));
     break;
   }
   if (result.failed_property.empty()) {
@@ -552,8 +540,8 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   const fs::path staged = cache / fmt::format("tmp-formal-entry.{}", ::getpid());
   fs::remove_all(staged, ec);
   fs::create_directories(staged, ec);
-  write_text(staged / "result.json", j.dump(2));
-  if (!result.counterexample_vcd.empty()) write_text(staged / "counterexample.vcd", result.counterexample_vcd);
+  write_scratch_text(staged / "result.json", j.dump(2));
+  if (!result.counterexample_vcd.empty()) write_scratch_text(staged / "counterexample.vcd", result.counterexample_vcd);
   if (!witness.empty()) {
     fs::copy_file(work / (witness + ".aim"), staged / "counterexample.aim", ec);
     fs::copy_file(work / (witness + ".aiw"), staged / "counterexample.aiw", ec);

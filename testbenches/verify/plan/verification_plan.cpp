@@ -7,7 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "errors/input_error.hpp"
-#include "files/data_dir.hpp"
+#include "scene/scene.hpp"
 #include "files/input_path.hpp"
 #include "files/toml_file.hpp"
 #include "stimulus/directed_cases.hpp"
@@ -17,8 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string default_scene() { return data_dir() + "/scenes/letters/A.pgm"; }
-
 VerificationPlan builtin(const std::string& name, int seeds, double firings) {
   VerificationPlan p;
   p.name = name;
@@ -26,7 +24,7 @@ VerificationPlan builtin(const std::string& name, int seeds, double firings) {
     double g, ready;
   };
   for (const Load l : {Load{0.05, 1.0}, Load{0.3, 0.9}, Load{1.0, 0.6}}) {
-    for (int s = 1; s <= seeds; ++s) p.scenes.push_back({default_scene(), l.g, static_cast<std::uint64_t>(s), firings, l.ready});
+    for (int s = 1; s <= seeds; ++s) p.scenes.push_back({default_scene_path(), l.g, static_cast<std::uint64_t>(s), firings, l.ready});
   }
   return p;
 }
@@ -76,7 +74,7 @@ VerificationPlan read_plan(const std::string& path) {
     const std::string at = fmt::format("scene[{}]", i);
     if (!t.is_table()) fail(at, "expected a table");
     SceneLoad base;
-    base.scene = default_scene();
+    base.scene = default_scene_path();
     std::vector<std::uint64_t> seeds = {1};
     for (const auto& entry : t.as_table()) {
       const std::string& key = entry.first;
