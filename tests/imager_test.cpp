@@ -1,13 +1,16 @@
 // The Imager module in a caller's own SystemC context, as a user's sc_main holds it: its events
 // equal simulate()'s at the cycle fidelity, event for event (each test is a process of its own,
 // so each gets the one elaboration and sc_start() SystemC allows a context).
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <systemc>
 
+#include "Vaer_receiver_drop.h"
 #include "embed/event_source.hpp"
 #include "embed/imager.hpp"
 #include "errors/input_error.hpp"
@@ -72,6 +75,224 @@ TEST(Imager, RefusesAnotherFidelityAndBadKeysBeforeElaborating) {
   EXPECT_THROW(Imager("c", spec), InputError);
 }
 
+// A receiver as a caller writes one, or as `verilator --sc` declares one: plain sc_in/sc_out ports
+// named as rtl/aer_receiver.v's. Four-phase: Req through three flops (the last two decide), Ack
+// raised with the address and the tick count taken, lowered when Req has fallen; a collision the
+// bus flagged is acknowledged and dropped; one output register, emptied when the consumer is ready.
+struct PortReceiver : sc_core::sc_module {
+  sc_core::sc_in<bool> clk, rst_n, req, contention, evt_ready;
+  sc_core::sc_in<std::uint32_t> addr, ts;
+  sc_core::sc_out<bool> ack, idle, evt_valid, evt_flags;
+  sc_core::sc_out<std::uint32_t> evt_addr, evt_ts;
+  std::uint32_t taken = 0;
+  SC_HAS_PROCESS(PortReceiver);
+  explicit PortReceiver(const sc_core::sc_module_name& name) : sc_module(name) {
+    SC_METHOD(on_clock);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+  void on_clock() {
+    if (!rst_n.read()) return;
+    const bool req_high = (sync_ & 0b110) == 0b110, req_low = (sync_ & 0b110) == 0;
+    if (full_ && evt_ready.read()) full_ = false;
+    if (!acking_ && req_high) {
+      acking_ = true;
+      if (!contention.read()) {
+        full_ = true;
+        ++taken;
+        addr_ = addr.read();
+        ts_ = ts.read();
+      }
+    } else if (acking_ && req_low) {
+      acking_ = false;
+    }
+    sync_ = ((sync_ << 1) | (req.read() ? 1u : 0u)) & 0b111;
+    ack.write(acking_);
+    evt_valid.write(full_);
+    evt_addr.write(full_ ? addr_ : 0);
+    evt_ts.write(full_ ? ts_ : 0);
+    evt_flags.write(false);
+    idle.write(!acking_ && !full_ && sync_ == 0);
+  }
+  unsigned sync_ = 0;
+  bool acking_ = false, full_ = false;
+  std::uint32_t addr_ = 0, ts_ = 0;
+};
+
+// The caller's signals between tile `t`'s ports and a PortReceiver; the stream and idle only when
+// `whole`.
+struct Wiring {
+  sc_core::sc_signal<bool> clk, rst_n, req, contention, evt_ready, ack, idle, evt_valid, evt_flags;
+  sc_core::sc_signal<std::uint32_t> addr, ts, evt_addr, evt_ts;
+  PortReceiver rx{"my_receiver"};
+  Wiring(TilePorts& p, bool whole) {
+    p.clk(clk), rx.clk(clk);
+    p.rst_n(rst_n), rx.rst_n(rst_n);
+    p.req(req), rx.req(req);
+    p.contention(contention), rx.contention(contention);
+    p.addr(addr), rx.addr(addr);
+    p.ts(ts), rx.ts(ts);
+    p.ack(ack), rx.ack(ack);
+    rx.idle(idle), rx.evt_valid(evt_valid), rx.evt_flags(evt_flags), rx.evt_addr(evt_addr), rx.evt_ts(evt_ts);
+    rx.evt_ready(evt_ready);
+    if (whole) {
+      p.idle(idle), p.evt_valid(evt_valid), p.evt_flags(evt_flags), p.evt_addr(evt_addr), p.evt_ts(evt_ts);
+      p.evt_ready(evt_ready);
+    } else {
+      evt_ready.write(true);  // the caller's own consumer, always ready
+    }
+  }
+};
+
+// The tile that delivered the most events in `run`.
+std::uint32_t busiest_tile(const SimulationResult& run) {
+  std::vector<std::size_t> n(4);
+  for (const AddressEvent& e : run.log.events()) ++n.at(e.tile);
+  return static_cast<std::uint32_t>(std::max_element(n.begin(), n.end()) - n.begin());
+}
+
+const std::vector<Setting> kLoadedBus = {{"sim.duration", "300ms"}, {"bus.t_event", "2us"}, {"receiver.clock", "5MHz"}};
+
+// The busiest tile's receiver outside the Imager, wired to its ports through the caller's sc_signals, with
+// idle and the output stream connected: the same events as simulate() with aesim's receiver on
+// every tile, event for event (the receiver keeps the reference's timing).
+TEST(Imager, ATileWiredToAReceiverOutsideGivesTheSameEvents) {
+  ImagerSpec spec;
+  spec.scene = kScene;
+  spec.settings = kLoadedBus;
+  const SimulationResult reference = reference_run(spec, "cycle");
+  const std::uint32_t t = busiest_tile(reference);
+  spec.outside_receivers = {t};
+
+  Imager imager("imager", spec);
+  Wiring wiring(imager.tile[t], true);
+  sc_core::sc_start();
+  const std::vector<AddressEvent>& events = imager.events();
+  ASSERT_EQ(events.size(), reference.log.events().size());
+  std::size_t on_t = 0;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const AddressEvent& a = events[i];
+    const AddressEvent& b = reference.log.events()[i];
+    ASSERT_TRUE(a.t == b.t && a.x == b.x && a.y == b.y && a.tile == b.tile && a.flags == b.flags) << "event " << i;
+    on_t += a.tile == t;
+  }
+  EXPECT_GT(on_t, 1000u);
+  EXPECT_EQ(wiring.rx.taken, on_t);
+  EXPECT_EQ(imager.protocol_violations(), 0u);
+  EXPECT_LE(sc_core::sc_time_stamp().to_seconds(), 0.3);  // idle stopped the clock: the kernel starved
+}
+
+// With Ack, Req, address and clock alone connected (no idle, no stream): the clock runs free until
+// sim.duration and stops once the handshake is done, so sc_start() returns; the receiver took
+// every event aesim's receiver delivers on that tile, and the Imager's own record of the tile holds
+// none (what an outside receiver delivers is the caller's).
+TEST(Imager, AnOutsideReceiverWithoutIdleOrStreamStillEndsTheRun) {
+  ImagerSpec spec;
+  spec.scene = kScene;
+  spec.settings = kLoadedBus;
+  const SimulationResult reference = reference_run(spec, "cycle");
+  const std::uint32_t t = busiest_tile(reference);
+  spec.outside_receivers = {t};
+  std::size_t want = 0;
+  for (const AddressEvent& e : reference.log.events()) want += e.tile == t;
+
+  Imager imager("imager", spec);
+  Wiring wiring(imager.tile[t], false);
+  sc_core::sc_start();
+  EXPECT_GE(sc_core::sc_time_stamp().to_seconds(), 0.3);
+  EXPECT_LT(sc_core::sc_time_stamp().to_seconds(), 0.3001);
+  EXPECT_EQ(wiring.rx.taken, want);
+  EXPECT_GT(want, 1000u);
+  for (const AddressEvent& e : imager.events()) ASSERT_NE(e.tile, t);
+  EXPECT_EQ(imager.protocol_violations(), 0u);
+}
+
+// The receiver RTL Verilated with `verilator --sc` (aesim's own, rtl/aer_receiver.v) outside the
+// Imager, every port bound to the caller's sc_signals as a hardware team wires their own: the same
+// events as simulate() with the reference model on every tile, no rule broken (the counters are
+// connected, so nothing may vanish either).
+TEST(Imager, AVerilatedReceiverOnTheTilePortsGivesTheSameEvents) {
+  ImagerSpec spec;
+  spec.scene = kScene;
+  spec.settings = kLoadedBus;
+  const SimulationResult reference = reference_run(spec, "cycle");
+  const std::uint32_t t = busiest_tile(reference);
+  spec.outside_receivers = {t};
+
+  Imager imager("imager", spec);
+  TilePorts& p = imager.tile[t];
+  Vaer_receiver_drop rtl("rtl");
+  sc_core::sc_signal<bool> clk, rst_n, req, contention, ack, discard, ts_external, valid, ready, flags, idle;
+  sc_core::sc_signal<std::uint32_t> addr, prescale, fifo_limit, ts, evt_ts, evt_addr, events, collisions, overflows,
+      fifo_count;
+  p.clk(clk), rtl.clk_i(clk);
+  p.rst_n(rst_n), rtl.rst_ni(rst_n);
+  p.req(req), rtl.req_i(req);
+  p.addr(addr), rtl.addr_i(addr);
+  p.contention(contention), rtl.contention_i(contention);
+  p.ack(ack), rtl.ack_o(ack);
+  p.prescale(prescale), rtl.prescale_i(prescale);
+  p.fifo_limit(fifo_limit), rtl.fifo_limit_i(fifo_limit);
+  p.discard_collisions(discard), rtl.discard_collisions_i(discard);
+  p.ts_external(ts_external), rtl.ts_external_i(ts_external);
+  p.ts(ts), rtl.ts_i(ts);
+  p.evt_valid(valid), rtl.evt_valid_o(valid);
+  p.evt_ready(ready), rtl.evt_ready_i(ready);
+  p.evt_ts(evt_ts), rtl.evt_ts_o(evt_ts);
+  p.evt_addr(evt_addr), rtl.evt_addr_o(evt_addr);
+  p.evt_flags(flags), rtl.evt_flags_o(flags);
+  p.events(events), rtl.events_o(events);
+  p.fifo_count(fifo_count), rtl.fifo_count_o(fifo_count);
+  p.idle(idle), rtl.idle_o(idle);
+  rtl.collisions_o(collisions);
+  rtl.overflows_o(overflows);
+  sc_core::sc_start();
+
+  const std::vector<AddressEvent>& got = imager.events();
+  const std::vector<AddressEvent>& want = reference.log.events();
+  ASSERT_EQ(got.size(), want.size());
+  std::size_t on_t = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const AddressEvent& a = got[i];
+    const AddressEvent& b = want[i];
+    ASSERT_TRUE(a.t == b.t && a.x == b.x && a.y == b.y && a.tile == b.tile && a.flags == b.flags) << "event " << i;
+    on_t += a.tile == t;
+  }
+  EXPECT_GT(on_t, 1000u);
+  EXPECT_EQ(events.read(), on_t);  // the RTL's own count
+  EXPECT_EQ(imager.protocol_violations(), 0u);
+}
+
+TEST(Imager, TilePortsBoundWrongAreReportedAtElaboration) {
+  ImagerSpec spec;
+  spec.outside_receivers = {4};
+  EXPECT_THROW(Imager("a", spec), InputError);  // the aloha sensor has tiles 0 to 3
+  spec.outside_receivers = {1};
+  Imager imager("imager", spec);
+  sc_core::sc_signal<bool> ack("ack");
+  sc_core::sc_signal<bool> ack1("ack1");
+  imager.tile[1].ack(ack1);
+  imager.tile[2].ack(ack);  // tile 2 has aesim's receiver
+  try {
+    sc_core::sc_start();
+    FAIL() << "sc_start() accepted ports bound to a tile with aesim's receiver";
+  } catch (const sc_core::sc_report& r) {
+    EXPECT_NE(std::string(r.what()).find("tile 2 has aesim's receiver"), std::string::npos) << r.what();
+  }
+}
+
+TEST(Imager, AnOutsideReceiverWithoutAckIsReported) {
+  ImagerSpec spec;
+  spec.outside_receivers = {1};
+  Imager imager("imager", spec);
+  try {
+    sc_core::sc_start();
+    FAIL() << "sc_start() ran with tile 1's Ack unconnected";
+  } catch (const sc_core::sc_report& r) {
+    EXPECT_NE(std::string(r.what()).find("imager.tile_1.ack is not bound"), std::string::npos) << r.what();
+  }
+}
+
 // A consumer of the caller's own reads the event fidelity's events from an sc_fifo: every event of
 // simulate()'s event rung, in order, each read at its delivery time (to the 1 ps step).
 struct Consumer : sc_core::sc_module {
@@ -121,6 +342,9 @@ TEST(EventSource, RefusesTheCycleFidelityAndAReceiver) {
   spec.settings = {};
   spec.receiver = reference_receiver_factory();
   EXPECT_THROW(EventSource("b", spec), InputError);
+  spec.receiver = nullptr;
+  spec.outside_receivers = {0};
+  EXPECT_THROW(EventSource("c", spec), InputError);
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 // The aesim imager inside a user's own sc_main: the aloha sensor on a scene at the cycle fidelity,
-// tile 0's bus wired to a receiver written here, the other tiles to aesim's reference receiver,
-// run by this program's sc_start(); what the receivers delivered is written as `aesim run --csv`
-// writes it.   usage: embed_example [SCENE [DURATION]] > events.csv
+// tile 0's bus wired through sc_signals to a receiver written here (plain sc_in/sc_out ports, as a
+// SystemC model or a `verilator --sc` module has), the other tiles with aesim's reference
+// receiver, run by this program's sc_start(); what the receivers delivered is written as
+// `aesim run --csv` writes it.   usage: embed_example [SCENE [DURATION]] > events.csv
 #include <cstdint>
 #include <iostream>
-#include <memory>
 
 #include <aesim/aesim.hpp>
 
@@ -12,69 +12,74 @@
 // address taken and stamped with the tile's tick count, lowered when Req has fallen; a collision
 // the bus flagged is acknowledged and dropped; one output register, emptied when the consumer is
 // ready. `idle` tells the tile it may stop the clock.
-class MyReceiver : public aesim::ReceiverModule {
- public:
-  MyReceiver(const sc_core::sc_module_name& name, aesim::ReceiverSignals& s) : ReceiverModule(name), s_(s) {
+SC_MODULE(MyReceiver) {
+  sc_core::sc_in<bool> clk, rst_n, req, contention, evt_ready;
+  sc_core::sc_in<std::uint32_t> addr, ts;
+  sc_core::sc_out<bool> ack, idle, evt_valid, evt_flags;
+  sc_core::sc_out<std::uint32_t> evt_addr, evt_ts;
+
+  SC_CTOR(MyReceiver) {
     SC_METHOD(on_clock);
-    sensitive << s.clk.posedge_event();
+    sensitive << clk.pos();
     dont_initialize();
   }
-  SC_HAS_PROCESS(MyReceiver);
 
- private:
   void on_clock() {
-    if (!s_.rst_n.read()) {
+    if (!rst_n.read()) {
       sync_ = 0;
       acking_ = full_ = false;
-      events_ = collisions_ = 0;
     } else {
       const bool req_high = (sync_ & 0b110) == 0b110, req_low = (sync_ & 0b110) == 0;
-      if (full_ && s_.evt_ready.read()) full_ = false;
+      if (full_ && evt_ready.read()) full_ = false;
       if (!acking_ && req_high) {
         acking_ = true;
-        if (s_.contention.read() && s_.discard_collisions.read()) {
-          ++collisions_;
-        } else {
+        if (!contention.read()) {
           full_ = true;
-          ++events_;
-          beat_addr_ = s_.addr.read();
-          beat_ts_ = s_.ts.read();
-          beat_flag_ = s_.contention.read();
+          addr_ = addr.read();
+          ts_ = ts.read();
         }
       } else if (acking_ && req_low) {
         acking_ = false;
       }
-      sync_ = ((sync_ << 1) | (s_.req.read() ? 1u : 0u)) & 0b111;
+      sync_ = ((sync_ << 1) | (req.read() ? 1u : 0u)) & 0b111;
     }
-    s_.ack.write(acking_);
-    s_.evt_valid.write(full_);
-    s_.evt_addr.write(full_ ? beat_addr_ : 0);
-    s_.evt_ts.write(full_ ? beat_ts_ : 0);
-    s_.evt_flags.write(full_ && beat_flag_);
-    s_.events.write(events_);
-    s_.collisions.write(collisions_);
-    s_.fifo_count.write(full_ ? 1 : 0);
-    s_.idle.write(!acking_ && !full_ && sync_ == 0);
+    ack.write(acking_);
+    evt_valid.write(full_);
+    evt_addr.write(full_ ? addr_ : 0);
+    evt_ts.write(full_ ? ts_ : 0);
+    evt_flags.write(false);
+    idle.write(!acking_ && !full_ && sync_ == 0);
   }
 
-  aesim::ReceiverSignals& s_;
   unsigned sync_ = 0;
-  bool acking_ = false, full_ = false, beat_flag_ = false;
-  std::uint32_t beat_addr_ = 0, beat_ts_ = 0, events_ = 0, collisions_ = 0;
+  bool acking_ = false, full_ = false;
+  std::uint32_t addr_ = 0, ts_ = 0;
 };
 
 int sc_main(int argc, char* argv[]) {
   aesim::ImagerSpec spec;                       // the aloha preset
   if (argc > 1) spec.scene = argv[1];           // default: scenes/letters/A.pgm
   spec.settings = {{"sim.duration", argc > 2 ? argv[2] : "200ms"}};
-  spec.receiver = [reference = aesim::reference_receiver_factory()](
-                      const std::string& name, std::uint32_t tile, aesim::ReceiverSignals& s,
-                      const aesim::ReceiverCycleModel::Config& config) -> std::unique_ptr<aesim::ReceiverModule> {
-    if (tile == 0) return std::make_unique<MyReceiver>(name.c_str(), s);
-    return reference(name, tile, s, config);
-  };
+  spec.outside_receivers = {0};                 // tile 0's receiver is ours, on its ports
   try {
     aesim::Imager imager("imager", spec);
+    MyReceiver rx("my_receiver");
+    sc_core::sc_signal<bool> clk, rst_n, req, contention, ack, idle, valid, ready, flags;
+    sc_core::sc_signal<std::uint32_t> addr, ts, evt_addr, evt_ts;
+    aesim::TilePorts& tile0 = imager.tile[0];
+    tile0.clk(clk), rx.clk(clk);
+    tile0.rst_n(rst_n), rx.rst_n(rst_n);
+    tile0.req(req), rx.req(req);
+    tile0.addr(addr), rx.addr(addr);
+    tile0.contention(contention), rx.contention(contention);
+    tile0.ts(ts), rx.ts(ts);
+    tile0.ack(ack), rx.ack(ack);
+    tile0.idle(idle), rx.idle(idle);                // optional: lets the tile stop the clock
+    tile0.evt_valid(valid), rx.evt_valid(valid);    // optional: the tile collects the stream
+    tile0.evt_ready(ready), rx.evt_ready(ready);
+    tile0.evt_addr(evt_addr), rx.evt_addr(evt_addr);
+    tile0.evt_ts(evt_ts), rx.evt_ts(evt_ts);
+    tile0.evt_flags(flags), rx.evt_flags(flags);
     sc_core::sc_start();                        // returns when the run is done
     aesim::write_events_csv(std::cout, imager.events(), imager.tick());
     std::uint64_t fired = 0, collided = 0;

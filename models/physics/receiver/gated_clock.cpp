@@ -31,7 +31,8 @@ void GatedClock::run() {
       ++edges_;
       wait(half);
       s_.clk.write(false);
-      const bool may_stop = s_.idle.read() && !s_.req.read() && sc_core::sc_time_stamp() >= free_running_until_;
+      const bool may_stop = !s_.req.read() && sc_core::sc_time_stamp() >= free_running_until_ &&
+                            (s_.idle.read() || (stop_when_quiet_ && !s_.ack.read()));
       if (may_stop) break;
     }
   }

@@ -19,6 +19,13 @@ class GatedClock : public sc_core::sc_module {
   SC_HAS_PROCESS(GatedClock);
 
   std::uint64_t edges() const { return edges_; }
+  // For a receiver that does not report idle (one outside the tile, with its idle wire left
+  // unconnected): run free until `until`, then stop once Req and Ack are both low. Set before the
+  // simulation starts.
+  void run_free_then_stop_when_quiet(sc_core::sc_time until) {
+    free_running_until_ = until;
+    stop_when_quiet_ = true;
+  }
   const sc_core::sc_time& period() const { return period_; }
 
  private:
@@ -29,6 +36,7 @@ class GatedClock : public sc_core::sc_module {
   unsigned prescale_;
   std::uint64_t ts_mask_;
   sc_core::sc_time free_running_until_;
+  bool stop_when_quiet_ = false;
   std::uint64_t edges_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 #include <systemc>
 
 #include "config/sensor_config.hpp"
@@ -31,6 +32,9 @@ ReceiverFactory reference_receiver_factory();
 struct CycleOptions {
   // Empty: the reference model (or the RTL, when the run's receiver.model says so).
   ReceiverFactory receiver;
+  // Tiles whose receiver lives outside the tile (the caller's, wired to the tile's signals after
+  // the tile is built): such a tile has its clock, consumer and stream monitor but no receiver.
+  std::vector<std::uint32_t> outside_receivers;
   // Keep the receiver clock running for the whole run and let the receiver count its own
   // timestamps, instead of stopping the clock while the bus is idle and feeding it the
   // free-running count. Both give the same results (a test shows it); this one costs more.

@@ -19,6 +19,7 @@ StreamView StreamMonitor::view() const {
   v.events = s_.events.read();
   v.fifo_count = s_.fifo_count.read();
   v.fifo_limit = s_.fifo_limit.read();
+  v.counters = counters_;
   return v;
 }
 

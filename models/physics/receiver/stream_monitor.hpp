@@ -14,6 +14,8 @@ class StreamMonitor : public sc_core::sc_module {
   SC_HAS_PROCESS(StreamMonitor);
 
   std::uint64_t violations() const { return rules_.violations(view()); }
+  // For a receiver whose `events` and `fifo_count` outputs are not connected.
+  void without_counters() { counters_ = false; }
 
  private:
   void on_rise() { rules_.edge(view()); }
@@ -21,6 +23,7 @@ class StreamMonitor : public sc_core::sc_module {
 
   ReceiverSignals& s_;
   StreamRules rules_;
+  bool counters_ = true;
 };
 
 }  // namespace aesim

@@ -9,13 +9,14 @@ struct StreamView {
   bool valid = false, ready = false, flags = false;
   std::uint32_t ts = 0, addr = 0;
   std::uint32_t events = 0, fifo_count = 0, fifo_limit = 0;
+  bool counters = true;  // events and fifo_count are driven
 };
 
 // The rules of a receiver's event stream, checked at every rising clock edge:
 //  - while valid is high and ready low, the beat (timestamp, address, flags) must not change and
 //    valid must not fall;
 //  - nothing vanishes: events written equal beats taken plus words still in the FIFO, and the
-//    FIFO never holds more than its limit.
+//    FIFO never holds more than its limit (where the receiver drives those counters).
 // The outputs are registered, so what they hold after an edge they still hold at the next rising
 // edge (or when the run ends, the clock stopped): each edge checks the last edge's outputs, then
 // latches this edge's inputs. Shared by the SystemC monitor (receiver/stream_monitor) and the
@@ -49,8 +50,8 @@ class StreamRules {
     if (!now.rst_n) return 0;
     unsigned n = 0;
     if (stalled_ && (!now.valid || now.ts != held_ts_ || now.addr != held_addr_ || now.flags != held_flags_)) ++n;
-    if (now.events != taken_ + now.fifo_count) ++n;
-    if (now.fifo_count > now.fifo_limit) ++n;
+    if (now.counters && now.events != taken_ + now.fifo_count) ++n;
+    if (now.counters && now.fifo_count > now.fifo_limit) ++n;
     return n;
   }
 

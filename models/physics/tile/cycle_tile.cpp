@@ -24,13 +24,15 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
       options.free_running_clock ? sc_core::sc_time(config.sim.duration, sc_core::SC_SEC) : sc_core::SC_ZERO_TIME;
   StreamConsumer consumer(tile, map, receiver_tick(config.receiver), kReceiverTsWidth, log);
   if (options.sink_ready) consumer.set_ready_pattern(options.sink_ready);
-  if (!options.receiver) {
+  outside_ = std::find(options.outside_receivers.begin(), options.outside_receivers.end(), tile) !=
+             options.outside_receivers.end();
+  if (!options.receiver && !outside_) {
     domain_ = std::make_unique<ReferenceClockDomain>(
         "receiver", s_, ReferenceClockDomain::Clock{period, rc.prescale, kReceiverTsWidth, free_running_until}, rc,
         std::move(consumer));
   } else {
     clock_ = std::make_unique<GatedClock>("clock", s_, period, rc.prescale, kReceiverTsWidth, free_running_until);
-    receiver_ = options.receiver("receiver", tile, s_, rc);
+    if (!outside_) receiver_ = options.receiver("receiver", tile, s_, rc);
     sink_ = std::make_unique<EventSink>("sink", s_, std::move(consumer));
     stream_monitor_ = std::make_unique<StreamMonitor>("stream_monitor", s_);
   }
@@ -44,6 +46,11 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
     waveform_->contention(s_.contention);
     waveform_->addr(s_.addr);
   }
+}
+
+void CycleTile::outside_receiver_reports(bool idle, bool counters, sc_core::sc_time duration) {
+  if (!idle) clock_->run_free_then_stop_when_quiet(duration);
+  if (!counters) stream_monitor_->without_counters();
 }
 
 void CycleTile::set_next_firing(std::function<std::uint64_t()> next_firing_ps) {

@@ -26,13 +26,21 @@ namespace aesim {
 // The reference receiver (no factory in the options) runs as one process per clock edge
 // (ReferenceClockDomain); a receiver from a factory (the Verilated RTL, a variant under test, or
 // the reference model as a module) gets a clock wire and its own processes beside the sink and
-// the stream monitor. Both give the same records.
+// the stream monitor. Both give the same records. A tile named in outside_receivers has the clock
+// wire, sink and monitor and leaves the receiver to whoever binds to wires().
 class CycleTile : public sc_core::sc_module {
  public:
   CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,
             const SensorConfig& config, EventLog& log, VcdRecorder* vcd, const CycleOptions& options);
 
   EventBus& bus() { return bus_; }
+  // The tile's wires, for a receiver outside it (CycleOptions::outside_receivers).
+  ReceiverSignals& wires() { return s_; }
+  bool receiver_outside() const { return outside_; }
+  // What an outside receiver drives, told before the simulation starts. Without idle, the clock
+  // runs free until `duration` and then stops once Req and Ack are low; without the event and FIFO
+  // counters, the stream's rule that nothing vanishes is not checked.
+  void outside_receiver_reports(bool idle, bool counters, sc_core::sc_time duration);
   // Gives the reference receiver's clock domain the time (ps) of this tile's next firing, from
   // whatever drives the bus, so that it steps the edges before it in one activation.
   void set_next_firing(std::function<std::uint64_t()> next_firing_ps);
@@ -48,6 +56,7 @@ class CycleTile : public sc_core::sc_module {
 
  private:
   ReceiverSignals s_;
+  bool outside_ = false;
   std::unique_ptr<ReferenceClockDomain> domain_;  // the reference receiver's clock domain, or
   std::unique_ptr<GatedClock> clock_;             // a factory's receiver with its clock wire,
   std::unique_ptr<ReceiverModule> receiver_;

@@ -32,16 +32,27 @@ SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_in
   return {std::move(config), std::move(photocurrents)};
 }
 
-Imager::Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name) {
+Imager::Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name), tile("tile") {
   SpecInputs in = spec_inputs(spec, Fidelity::Cycle, "an Imager is the cycle fidelity (use simulate() for the others)");
   check_work(in.config, in.photocurrents, Fidelity::Cycle);
   const AddressMap map(in.config.array);
+  for (const std::uint32_t t : spec.outside_receivers) {
+    if (t >= static_cast<std::uint32_t>(map.tiles())) {
+      throw InputError(fmt::format("ImagerSpec::outside_receivers names tile {}, but the sensor has {} tiles (0 to {})",
+                                   t, map.tiles(), map.tiles() - 1));
+    }
+  }
   run_.reset(new Run{std::move(in.config), std::move(in.photocurrents), map, SimulationRequest{},
                      EventLog(map.tiles(), LogOutputs{true, false, nullptr})});
   run_->log.count_pixels(run_->map, run_->config.analysis.window);
   run_->request.cycle.receiver = spec.receiver;
+  run_->request.cycle.outside_receivers = spec.outside_receivers;
   const RungRun rung_run{run_->config, run_->photocurrents, run_->map, run_->request, run_->log, nullptr};
   array_ = std::make_unique<CycleArray>("array", rung_run, cycle_options(rung_run));
+  tile.init(array_->tiles().size());
+  for (std::size_t t = 0; t < tile.size(); ++t) {
+    tile[t].attach(*array_->tiles()[t], static_cast<std::uint32_t>(t), run_->config.sim.duration);
+  }
 }
 
 Imager::~Imager() = default;

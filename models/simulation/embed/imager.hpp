@@ -6,6 +6,7 @@
 #include <systemc>
 
 #include "config/sensor_config.hpp"
+#include "embed/tile_ports.hpp"
 #include "events/address_event.hpp"
 #include "events/event_log.hpp"
 #include "receiver/receiver_module.hpp"
@@ -28,6 +29,9 @@ struct ImagerSpec {
   // (the reference model, or the RTL with receiver.model=rtl). reference_receiver_factory()
   // makes the reference model for the tiles a caller does not replace.
   ReceiverFactory receiver;
+  // Tiles whose receiver lives outside the Imager: the caller connects it to Imager::tile[t]'s
+  // ports through sc_signals (at least `ack`), and the factory is not asked for these tiles.
+  std::vector<std::uint32_t> outside_receivers;
 };
 
 // What an ImagerSpec names, for a module of fidelity `rung`: its configuration (sim.fidelity must be
@@ -53,6 +57,10 @@ class Imager : public sc_core::sc_module {
  public:
   Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec);
   ~Imager() override;
+
+  // Each tile's bus as ports (TilePorts), bound only for the tiles named in
+  // ImagerSpec::outside_receivers.
+  sc_core::sc_vector<TilePorts> tile;
   Imager(const Imager&) = delete;
   Imager& operator=(const Imager&) = delete;
 
