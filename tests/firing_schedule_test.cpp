@@ -74,6 +74,11 @@ std::vector<Case> cases() {
   out.push_back({"spread", spread, make_scene({make_image(40, 40, [](int x, int y) {
                    return (x + y) % 7 == 0 ? 0.0 : (x == 20 && y == 3 ? 1.0 : 0.02 * (1 + (x * 3 + y) % 50));
                  })})});
+  // The same with shot noise: each integration draws its electron count, so no two periods of a
+  // pixel are alike, and the windows draw them in the calendar's order, pixel by pixel.
+  SensorConfig noisy = spread;
+  noisy.pixel.shot_noise = true;
+  out.push_back({"shot noise", noisy, out.back().scene});
   return out;
 }
 
@@ -124,7 +129,7 @@ TEST(FiringSchedule, TilesTakenInTurnOnOneThreadKeepTheirOwnWindows) {
   for (std::size_t tile = 0; tile < 3; ++tile) expect_same(got[tile], expected[tile]);
 }
 
-TEST(FiringSchedule, AMovingSceneOrShotNoiseStaysOnTheCalendar) {
+TEST(FiringSchedule, AMovingSceneOrASwingOfAFewElectronsStaysOnTheCalendar) {
   SensorConfig c = exact_sensor(16, 16, 16);
   const AddressMap map(c.array);
   const Photocurrents moving(make_scene({make_image(16, 16, [](int, int) { return 0.5; }),
@@ -134,7 +139,12 @@ TEST(FiringSchedule, AMovingSceneOrShotNoiseStaysOnTheCalendar) {
   EXPECT_FALSE(FiringSchedule(c.pixel, c.sim, moving, map, 0).periodic());
   c.pixel.shot_noise = true;
   const Photocurrents still(make_scene({make_image(16, 16, [](int, int) { return 0.5; })}), c.pixel);
+  EXPECT_TRUE(FiringSchedule(c.pixel, c.sim, still, map, 0).periodic());
+  // Nine electrons a swing: counts spread by a third, past what a window makes room for.
+  c.pixel.c_int = 9 * 1.602176634e-19 / c.pixel.dv_int;
   EXPECT_FALSE(FiringSchedule(c.pixel, c.sim, still, map, 0).periodic());
+  c.pixel.c_int = 11 * 1.602176634e-19 / c.pixel.dv_int;
+  EXPECT_TRUE(FiringSchedule(c.pixel, c.sim, still, map, 0).periodic());
 }
 
 }  // namespace

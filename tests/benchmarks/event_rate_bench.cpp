@@ -5,13 +5,16 @@
 #include <benchmark/benchmark.h>
 #include <systemc>
 
+#include <algorithm>
 #include <ostream>
 #include <streambuf>
 
 #include "ceiling_probe.hpp"
 #include "config/sensor_config.hpp"
 #include "event_files/aedat.hpp"
+#include "pixel/integrate_fire.hpp"
 #include "pixel/pixel_draws.hpp"
+#include "random/gamma_draw.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
 #include "run/imager_simulation.hpp"
@@ -104,8 +107,9 @@ class ByteSink : public std::streambuf {
   int_type overflow(int_type c) override { return traits_type::not_eof(c); }
 };
 
-void BM_QcifBright(benchmark::State& state, int threads, bool aedat) {
-  const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, threads);
+void BM_QcifBright(benchmark::State& state, int threads, bool aedat, bool shot_noise) {
+  SensorConfig c = qcif_bright(Fidelity::Event, 20.0, threads);
+  c.pixel.shot_noise = shot_noise;
   const Scene scene = scene_for(c, "scenes/uniform.pgm");
   const Photocurrents photocurrents(scene, c.pixel);
   const ResolvedConfig config = c.resolved();
@@ -129,18 +133,40 @@ void BM_QcifPixelProcesses(benchmark::State& state) {
   run(state, c, scene_for(c, "scenes/uniform.pgm"));
 }
 
-void BM_QcifCeilingProbe(benchmark::State& state) {
+// The ceiling probe on the bright QCIF's pixels: each period constant, or with `shot_noise` each
+// drawn as the model draws it (the pixel's threshold over its current, its electron count from
+// the gamma law by the model's own sampler, plus the reset).
+void BM_QcifCeilingProbe(benchmark::State& state, bool shot_noise) {
   const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, 1);
   const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
-  std::vector<double> periods, phases;
+  std::vector<double> periods, phases, seconds_per_electron;
+  std::vector<GammaDraw> electrons;
+  std::vector<SplitMix64> streams;
   for (std::size_t i = 0; i < std::size_t(144) * 176; ++i) {
     const double current = photocurrents.current(0, i);
-    const double period = pixel_threshold(c.pixel, c.sim.seed, i) / current + c.pixel.t_reset;
+    const double threshold = pixel_threshold(c.pixel, c.sim.seed, i);
+    const double period = threshold / current + c.pixel.t_reset;
     periods.push_back(period);
     phases.push_back((1 - initial_fraction(c.pixel, c.sim.seed, i)) * period);
+    electrons.emplace_back(threshold / kElectronCharge);
+    seconds_per_electron.push_back(kElectronCharge / current);
+    streams.push_back(shot_noise_stream(c.sim.seed, i));
   }
+  std::vector<double> sorted = periods;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  const double t_reset = c.pixel.t_reset;
   double events = 0;
-  for (auto _ : state) events += static_cast<double>(ceiling_probe(periods, phases, c.sim.duration));
+  for (auto _ : state) {
+    if (shot_noise) {
+      events += static_cast<double>(ceiling_probe(phases, median, c.sim.duration, [&](std::uint32_t i) {
+        return t_reset + seconds_per_electron[i] * electrons[i](streams[i]);
+      }));
+    } else {
+      events += static_cast<double>(
+          ceiling_probe(phases, median, c.sim.duration, [&](std::uint32_t i) { return periods[i]; }));
+    }
+  }
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
@@ -178,10 +204,12 @@ BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Rtl, ReceiverModel::Rtl)->Unit(bench
 void qcif(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime()->Repetitions(6)->DisplayAggregatesOnly(true);
 }
-BENCHMARK(BM_QcifCeilingProbe)->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false)->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true)->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifCeilingProbe, still, false)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifCeilingProbe, shot_noise, true)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false, false)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifBright, shot_noise_1_thread, 1, false, true)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true, false)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false, false)->Apply(qcif);
 BENCHMARK(BM_QcifPixelProcesses)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace

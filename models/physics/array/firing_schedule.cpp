@@ -13,6 +13,10 @@ namespace {
 // A periodic tile's windows: about this many firings a pixel each, so that visiting every pixel
 // once a window costs little beside its firings.
 constexpr double kWindowFirings = 4;
+// With shot noise an integration's electron count is Gamma(N): at N = 10 its spread is a third of
+// the mean, and a window's firings exceed their expected count by the room's 3 per pixel (plus
+// 64) with a probability far below one in 10^30.
+constexpr double kWindowElectrons = 10;
 
 }  // namespace
 
@@ -59,8 +63,13 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
   }
   // A mostly dark tile gives back what it does not use.
   if (pixels_.size() < pixels_.capacity() / 2) pixels_.shrink_to_fit();
-  periodic_ = windows && !sensor_.shot_noise && !pixels_.empty() &&
-              std::all_of(pixels_.begin(), pixels_.end(), [](const Slot& p) { return p.next_boundary == kNoBoundary; });
+  // Shot noise keeps windows while every pixel's swing is at least kWindowElectrons: a window's
+  // firings then stay so close to the mean count that the room made for them is never short.
+  periodic_ = windows && !pixels_.empty() &&
+              std::all_of(pixels_.begin(), pixels_.end(), [](const Slot& p) { return p.next_boundary == kNoBoundary; }) &&
+              std::all_of(shot_noise_.begin(), shot_noise_.end(), [](const IntegrateFire::ShotNoise& n) {
+                return n.threshold >= kWindowElectrons * kElectronCharge;
+              });
   if (periodic_) {
     // Every pixel is lit (a pixel dark all run has no slot), so the rate is the sum of its rates.
     for (const double period : periods) rate_ += 1 / period;
@@ -136,7 +145,11 @@ void FiringSchedule::make_window(double to) {
   // Pixel by pixel, so in bus-address order; each pixel's firings in time order.
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t key = keys[i];
-    pixels[i].fire_through(sensor_, no_noise_, to, [&writer, key](double t) { writer.add(t, key); });
+    if (shot_noise_.empty()) {
+      pixels[i].fire_through(sensor_, no_noise_, to, [&writer, key](double t) { writer.add(t, key); });
+    } else {
+      pixels[i].fire_through_noisy(sensor_, shot_noise_[i], to, [&writer, key](double t) { writer.add(t, key); });
+    }
   }
   window->finish(writer);
   made_to_ = to;

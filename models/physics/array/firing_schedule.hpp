@@ -21,10 +21,10 @@ namespace aesim {
 // A pixel dark in every frame never gets a slot; a pixel whose next wake-up is past the end of
 // the run leaves the queue. Cost follows the events, not the pixels.
 //
-// A tile whose every pixel fires periodically (light that never changes, no shot noise: a still
-// scene) needs no queue: it makes its firings a window of about four firings a pixel at a time,
-// and counting-sorts them (FiringWindow). Same firings, same order, about twice the calendar's
-// rate.
+// A tile whose light never changes (a still scene) needs no queue: it makes its firings a window
+// of about four firings a pixel at a time, and counting-sorts them (FiringWindow). Same firings,
+// same order, about twice the calendar's rate. With shot noise too, while every pixel's swing is
+// at least ten electrons (each firing then draws the next integration's electron count).
 class FiringSchedule {
  public:
   // `windows`: a tile whose every pixel fires periodically makes its firings a window at a time
@@ -74,8 +74,8 @@ class FiringSchedule {
   IntegrateFire::ShotNoise& noise(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
   std::uint32_t boundary_after(std::uint64_t boundary, std::size_t index) const;
   std::size_t fill_from_calendar(AddressEvent* out, std::size_t capacity, double until);
-  // A tile whose every pixel fires periodically (light that never changes, no shot noise) makes
-  // its firings a window at a time: each pixel's firings up to the window's end, in pixel order,
+  // A tile whose light never changes (and whose swings hold ten electrons or more, with shot noise)
+  // makes its firings a window at a time: each pixel's firings up to the window's end, in pixel order,
   // counting-sorted by time (FiringWindow). The same firings in the same order as the calendar's,
   // for about half the work a firing; the calendar is not built.
   std::size_t fill_periodic(AddressEvent* out, std::size_t capacity, double until);

@@ -1,15 +1,13 @@
 #include "pixel/integrate_fire.hpp"
 
 #include <algorithm>
-#include <random>
 
 namespace aesim {
 namespace {
 
 double draw_target(const IntegrateFire::Sensor& s, double threshold, SplitMix64& rng) {
   if (!s.shot_noise) return threshold;
-  std::gamma_distribution<double> gamma(threshold / kElectronCharge, 1.0);
-  return kElectronCharge * gamma(rng);
+  return kElectronCharge * GammaDraw(threshold / kElectronCharge)(rng);
 }
 
 }  // namespace
@@ -31,7 +29,7 @@ void IntegrateFire::start_new_integration(const Sensor& sensor, ShotNoise& noise
   anchor_q_ = 0;
   cycles_ = 0;
   // Without shot noise every target is the threshold, the one the pixel was made with.
-  if (sensor.shot_noise) target_ = draw_target(sensor, noise.threshold, noise.rng);
+  if (sensor.shot_noise) target_ = kElectronCharge * noise.electrons(noise.rng);
 }
 
 double IntegrateFire::charge_at(const Sensor& sensor, double t) const {

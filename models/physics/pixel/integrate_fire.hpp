@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "random/gamma_draw.hpp"
 #include "random/splitmix64.hpp"
 
 namespace aesim {
@@ -38,10 +39,15 @@ class IntegrateFire {
     bool shot_noise = false;
   };
   // With shot noise, what each new integration's target is drawn from: the pixel's threshold
-  // charge (with mismatch) and its own random stream. Untouched without shot noise.
+  // charge (with mismatch), the law of its electron count and its own random stream. Untouched
+  // without shot noise.
   struct ShotNoise {
+    ShotNoise() = default;
+    ShotNoise(SplitMix64 stream, double threshold_charge)
+        : rng(stream), threshold(threshold_charge), electrons(threshold_charge / kElectronCharge) {}
     SplitMix64 rng{0};
     double threshold = 0;  // C
+    GammaDraw electrons;   // Gamma(threshold / q, 1)
   };
 
   IntegrateFire() = default;
@@ -64,8 +70,32 @@ class IntegrateFire {
     }
   }
   // fire() at each firing up to and including time `to`, handing each firing's time to `emit`
-  // first: the same times as next_fire() and fire() one at a time, for a pixel without shot noise
-  // (its period stays, so the loop runs in registers).
+  // first: the same times as next_fire() and fire() one at a time. fire_through() is for a pixel
+  // without shot noise (its period stays, so the loop runs in registers), fire_through_noisy()
+  // for one with.
+  template <typename Emit>
+  void fire_through_noisy(const Sensor& sensor, ShotNoise& noise, double to, Emit&& emit) {
+    // start_new_integration() and anchored() written out: the same arithmetic, without the calls,
+    // and what no firing in the loop reads (the charge at the anchor, the period) set once after.
+    const double t_reset = sensor.t_reset, current = current_;
+    double t = first_;
+    if (!(t <= to)) return;
+    double target = target_, anchor = anchor_t_;
+    SplitMix64 rng = noise.rng;  // in registers: emit's stores would make the compiler reload it
+    while (t <= to) {
+      emit(t);
+      anchor = t + t_reset;
+      target = kElectronCharge * noise.electrons(rng);
+      t = anchor + target / current;
+    }
+    noise.rng = rng;
+    first_ = t;
+    anchor_t_ = anchor;
+    target_ = target;
+    anchor_q_ = 0;
+    period_ = target / current + t_reset;
+  }
+
   template <typename Emit>
   void fire_through(const Sensor& sensor, ShotNoise& noise, double to, Emit&& emit) {
     for (;;) {
