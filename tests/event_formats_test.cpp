@@ -11,6 +11,7 @@
 
 #include <flatbuffers/flatbuffers.h>
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include "FileDataTable_generated.h"
 #include "IOHeader_generated.h"
@@ -109,6 +110,24 @@ TEST_F(EventFormats, EveryFormatReadsBackEventForEventWithItsArray) {
     EXPECT_EQ(rec.width, 64) << name;
     EXPECT_EQ(rec.tiles, name == "e.npy" ? 1 : 4) << name;
   }
+}
+
+// HDF5 stamps every object's header with the wall-clock time unless told not to, so two runs of
+// the same inputs would differ in bytes a second apart: an .h5 records no time in any object.
+TEST_F(EventFormats, AnH5FileHoldsNoWallClockTimeSoRunsGiveTheSameBytes) {
+  const AddressMap map{ArrayParams{}};
+  const std::string path = write("t.h5", sample(map), Aedat4Compression::Lz4);
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  for (const char* object : {"/", "/events", "/events/x", "/events/y", "/events/t", "/events/p", "/ms_to_idx", "/t_offset"}) {
+    H5O_info_t info;
+    ASSERT_GE(H5Oget_info_by_name2(file, object, &info, H5O_INFO_TIME, H5P_DEFAULT), 0) << object;
+    EXPECT_EQ(info.atime, 0) << object;
+    EXPECT_EQ(info.mtime, 0) << object;
+    EXPECT_EQ(info.ctime, 0) << object;
+    EXPECT_EQ(info.btime, 0) << object;
+  }
+  H5Fclose(file);
 }
 
 // A ghost (the OR of colliding addresses) may name no pixel of the array: past a narrow edge tile.

@@ -76,10 +76,18 @@ Handle checked(hid_t id, const std::string& what) {
   return Handle(id);
 }
 
+// Creation properties of the file, a group or a dataset without the times HDF5 records in each
+// object's header by default: they would make two runs of the same inputs differ in bytes.
+Handle untimed(hid_t property_class) {
+  Handle props = checked(H5Pcreate(property_class), "HDF5: cannot make creation properties");
+  H5Pset_obj_track_times(props.get(), false);
+  return props;
+}
+
 Handle extendable(hid_t parent, const char* name, hid_t type) {
   const hsize_t zero = 0, unlimited = H5S_UNLIMITED, chunk = kDsecChunk;
   Handle space = checked(H5Screate_simple(1, &zero, &unlimited), "HDF5: cannot make a dataspace");
-  Handle props = checked(H5Pcreate(H5P_DATASET_CREATE), "HDF5: cannot make dataset properties");
+  Handle props = untimed(H5P_DATASET_CREATE);
   H5Pset_chunk(props.get(), 1, &chunk);
   return checked(H5Dcreate2(parent, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
                  fmt::format("HDF5: cannot create dataset {}", name));
@@ -123,9 +131,9 @@ struct DsecWriter::Handles {
 DsecWriter::DsecWriter(const std::string& path, const EventFileSpec& spec, double duration_s)
     : h_(std::make_unique<Handles>()), path_(path), stamps_(spec.tick), ms_total_(static_cast<std::uint64_t>(std::ceil(duration_s * 1e3))) {
   quiet_hdf5();
-  h_->file = checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+  h_->file = checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, untimed(H5P_FILE_CREATE).get(), H5P_DEFAULT),
                      fmt::format("cannot create HDF5 file '{}'", path));
-  h_->events = checked(H5Gcreate2(h_->file.get(), "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  h_->events = checked(H5Gcreate2(h_->file.get(), "events", H5P_DEFAULT, untimed(H5P_GROUP_CREATE).get(), H5P_DEFAULT),
                        "HDF5: cannot create /events");
   h_->x = extendable(h_->events.get(), "x", H5T_STD_U16LE);
   h_->y = extendable(h_->events.get(), "y", H5T_STD_U16LE);
@@ -187,15 +195,15 @@ void DsecWriter::finish() {
   while (ms_to_idx_.size() <= ms_total_) ms_to_idx_.push_back(count_);
   const hsize_t n = ms_to_idx_.size();
   Handle space = checked(H5Screate_simple(1, &n, nullptr), "HDF5: cannot make a dataspace");
-  Handle index = checked(H5Dcreate2(h_->file.get(), "ms_to_idx", H5T_STD_U64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                                    H5P_DEFAULT),
+  Handle index = checked(H5Dcreate2(h_->file.get(), "ms_to_idx", H5T_STD_U64LE, space.get(), H5P_DEFAULT,
+                                    untimed(H5P_DATASET_CREATE).get(), H5P_DEFAULT),
                          "HDF5: cannot create /ms_to_idx");
   if (H5Dwrite(index.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, ms_to_idx_.data()) < 0) {
     throw OutputError("HDF5: writing /ms_to_idx failed");
   }
   Handle scalar = checked(H5Screate(H5S_SCALAR), "HDF5: scalar space");
-  Handle offset = checked(H5Dcreate2(h_->file.get(), "t_offset", H5T_STD_I64LE, scalar.get(), H5P_DEFAULT, H5P_DEFAULT,
-                                     H5P_DEFAULT),
+  Handle offset = checked(H5Dcreate2(h_->file.get(), "t_offset", H5T_STD_I64LE, scalar.get(), H5P_DEFAULT,
+                                     untimed(H5P_DATASET_CREATE).get(), H5P_DEFAULT),
                           "HDF5: cannot create /t_offset");
   const long long zero = 0;
   H5Dwrite(offset.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &zero);
