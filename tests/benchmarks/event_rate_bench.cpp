@@ -128,6 +128,30 @@ void BM_QcifBright(benchmark::State& state, int threads, bool aedat, bool shot_n
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
+// The QCIF array at i_max 100 pA on the moving disc (the disc at about 1 kHz a pixel, the field at
+// about 20 Hz): its 24 frames shown at 100 Hz and looped, so the light changes every 10 ms for the
+// whole 2 s; and, as the still scene of the same light, its first frame alone. Summary only.
+void BM_QcifMoving(benchmark::State& state, bool moving) {
+  SensorConfig c = qcif_bright(Fidelity::Event, 2.0, 1);
+  c.pixel.i_max = 100e-12;
+  Scene scene = scene_for(c, "scenes/moving_disc");
+  if (moving) {
+    scene.frame_period = 0.01;
+    scene.loop = true;
+  } else {
+    scene.frames.resize(1);
+  }
+  const Photocurrents photocurrents(scene, c.pixel);
+  const ResolvedConfig config = c.resolved();
+  double events = 0;
+  SimulationRequest summary_only;
+  summary_only.keep_events = false;
+  for (auto _ : state) {
+    events += static_cast<double>(simulate(config, photocurrents, summary_only).log.totals().fired);
+  }
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
 void BM_QcifPixelProcesses(benchmark::State& state) {
   SensorConfig c = qcif_bright(Fidelity::PixelProcesses, 2.0, 1);
   run(state, c, scene_for(c, "scenes/uniform.pgm"));
@@ -208,6 +232,8 @@ BENCHMARK_CAPTURE(BM_QcifCeilingProbe, still, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifCeilingProbe, shot_noise, true)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, shot_noise_1_thread, 1, false, true)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifMoving, still, false)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifMoving, moving, true)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false, false)->Apply(qcif);
 BENCHMARK(BM_QcifPixelProcesses)->Unit(benchmark::kMillisecond)->MinTime(2.0);

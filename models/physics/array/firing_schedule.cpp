@@ -10,9 +10,12 @@ static_assert(sizeof(aesim::FiringSchedule::Slot) <= 56, "pixel record grew");
 namespace aesim {
 namespace {
 
-// A periodic tile's windows: about this many firings a pixel each, so that visiting every pixel
-// once a window costs little beside its firings.
+// A tile's windows: about this many firings a pixel each, so that visiting every pixel once a
+// window costs little beside its firings.
 constexpr double kWindowFirings = 4;
+// A moving scene's tile makes windows when they visit pixels at most this many times as often as
+// the calendar would wake them (a visit in pixel order costs a fraction of a wake-up).
+constexpr double kVisitsPerCalendarWake = 4;
 // With shot noise an integration's electron count is Gamma(N): at N = 10 its spread is a third of
 // the mean, and a window's firings exceed their expected count by the room's 3 per pixel (plus
 // 64) with a probability far below one in 10^30.
@@ -32,7 +35,7 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
   y0_ = tile / static_cast<std::uint32_t>(map.tiles_per_row()) * static_cast<std::uint32_t>(map.tile_rows());
   xbits_ = static_cast<std::uint32_t>(map.xbits());
   std::vector<WakeCalendar::Entry> entries;
-  std::vector<double> periods;
+  std::vector<double> periods, thresholds;
   const std::uint32_t x1 = std::min<std::uint32_t>(x0_ + map.tile_cols(), cols_);
   const std::uint32_t y1 = std::min<std::uint32_t>(y0_ + map.tile_rows(), static_cast<std::uint32_t>(map.rows()));
   // Sized once for every pixel of the tile: grown by doubling, the vectors of thousands of tiles
@@ -57,6 +60,7 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       if (!(t <= t_end_)) continue;  // nothing happens to it within the run
       entries.push_back({t, map.bus_address({x, y}), static_cast<std::uint32_t>(pixels_.size())});
       if (current > 0) periods.push_back(threshold / current + sensor_.t_reset);
+      thresholds.push_back(threshold);
       pixels_.push_back(p);
       if (sensor_.shot_noise) shot_noise_.push_back({noise, threshold});
     }
@@ -65,18 +69,24 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
   if (pixels_.size() < pixels_.capacity() / 2) pixels_.shrink_to_fit();
   // Shot noise keeps windows while every pixel's swing is at least kWindowElectrons: a window's
   // firings then stay so close to the mean count that the room made for them is never short.
-  periodic_ = windows && !pixels_.empty() &&
-              std::all_of(pixels_.begin(), pixels_.end(), [](const Slot& p) { return p.next_boundary == kNoBoundary; }) &&
-              std::all_of(shot_noise_.begin(), shot_noise_.end(), [](const IntegrateFire::ShotNoise& n) {
-                return n.threshold >= kWindowElectrons * kElectronCharge;
-              });
-  if (periodic_) {
-    // Every pixel is lit (a pixel dark all run has no slot), so the rate is the sum of its rates.
-    for (const double period : periods) rate_ += 1 / period;
-    window_ = kWindowFirings * static_cast<double>(pixels_.size()) / rate_;
+  const bool swings = std::all_of(shot_noise_.begin(), shot_noise_.end(), [](const IntegrateFire::ShotNoise& n) {
+    return n.threshold >= kWindowElectrons * kElectronCharge;
+  });
+  const bool still =
+      std::all_of(pixels_.begin(), pixels_.end(), [](const Slot& p) { return p.next_boundary == kNoBoundary; });
+  if (windows && !pixels_.empty() && swings) {
     keys_.reserve(entries.size());
     for (const WakeCalendar::Entry& e : entries) keys_.push_back(e.key);
-    return;
+    if (still) {
+      // Every pixel is lit (a pixel dark all run has no slot), so the rate is the sum of its rates.
+      for (const double period : periods) rate_ += 1 / period;
+      windowed_ = true;
+    } else {
+      windowed_ = windows_pay(thresholds);
+    }
+    if (windowed_) return;
+    keys_.clear();
+    keys_.shrink_to_fit();
   }
   // A year of twice the median period keeps the brighter half of the pixels, and most of their
   // neighbours in brightness, in the buckets; the light of the first frame sets it.
@@ -90,6 +100,81 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
   for (const WakeCalendar::Entry& e : entries) calendar_.push(e.slot, e.t, e.key);
 }
 
+bool FiringSchedule::windows_pay(const std::vector<double>& thresholds) {
+  const Photocurrents& pc = photocurrents_;
+  const std::size_t frames = pc.frames();
+  frame_rates_.assign(frames, 0.0);
+  frame_changes_.assign(frames, 0);
+  for (std::size_t s = 0; s < pixels_.size(); ++s) {
+    const std::size_t index = std::size_t(y_of(keys_[s])) * cols_ + x_of(keys_[s]);
+    double before = pc.current(frames - 1, index);  // on a loop, the frame before the first
+    for (std::size_t f = 0; f < frames; ++f) {
+      const double current = pc.current(f, index);
+      if (current > 0) frame_rates_[f] += 1 / (thresholds[s] / current + sensor_.t_reset);
+      if (current != before && (f > 0 || pc.loops())) ++frame_changes_[f];
+      before = current;
+    }
+  }
+  // Over the run: firings expected, light changes (each a calendar wake-up), and boundaries at
+  // which some pixel of the tile changes (each ends a window).
+  double firings = 0, changes = 0, change_boundaries = 0;
+  const double period = pc.frame_period();
+  const auto interval = [&](std::size_t frame, double length, bool starts_with_change) {
+    firings += length * frame_rates_[frame];
+    if (starts_with_change && frame_changes_[frame] > 0) {
+      changes += frame_changes_[frame];
+      change_boundaries += 1;
+    }
+  };
+  if (pc.loops()) {
+    const double cycle = period * static_cast<double>(frames);
+    const double whole = std::floor(t_end_ / cycle);
+    for (std::size_t f = 0; f < frames; ++f) interval(f, period * whole, false);
+    for (std::size_t f = 0; f < frames; ++f) {
+      changes += whole * frame_changes_[f];
+      change_boundaries += whole * (frame_changes_[f] > 0);
+    }
+    for (std::size_t f = 0; f < frames && whole * cycle + static_cast<double>(f) * period < t_end_; ++f) {
+      const double start = whole * cycle + static_cast<double>(f) * period;
+      interval(f, std::min(period, t_end_ - start), true);
+    }
+  } else {
+    for (std::size_t f = 0; f < frames && static_cast<double>(f) * period < t_end_; ++f) {
+      const double start = static_cast<double>(f) * period;
+      interval(f, f + 1 == frames ? t_end_ - start : std::min(period, t_end_ - start), f > 0);
+    }
+  }
+  // Each window visits every pixel of the tile; the calendar pays a pop and a push for every
+  // firing and every change of light, each several times a visit's cost.
+  const double n = static_cast<double>(pixels_.size());
+  const double visits = n * change_boundaries + firings / kWindowFirings;
+  if (!(visits <= kVisitsPerCalendarWake * (firings + changes))) {
+    frame_rates_.clear();
+    frame_changes_.clear();
+    return false;
+  }
+  return true;
+}
+
+std::uint64_t FiringSchedule::interval_at(double t) const {
+  const Photocurrents& pc = photocurrents_;
+  auto k = static_cast<std::uint64_t>(t / pc.frame_period());
+  while (pc.boundary_time(k + 1) <= t) ++k;
+  while (k > 0 && pc.boundary_time(k) > t) --k;
+  return k;
+}
+
+double FiringSchedule::next_change_after(std::uint64_t k) const {
+  const Photocurrents& pc = photocurrents_;
+  const std::uint64_t frames = pc.frames();
+  // A held sequence changes up to its last frame; a looped one repeats within `frames`.
+  const std::uint64_t last = pc.loops() ? k + frames : frames - 1;
+  for (std::uint64_t b = k + 1; b <= last; ++b) {
+    if (frame_changes_[pc.frame_at(b)] > 0) return pc.boundary_time(b);
+  }
+  return kNever;
+}
+
 std::uint32_t FiringSchedule::boundary_after(std::uint64_t boundary, std::size_t index) const {
   const std::uint64_t b = photocurrents_.next_change(boundary, index);
   // A boundary past the run is as good as none (sim.duration * frame rate < 2^32 is validated).
@@ -97,14 +182,13 @@ std::uint32_t FiringSchedule::boundary_after(std::uint64_t boundary, std::size_t
                                                                                    : static_cast<std::uint32_t>(b);
 }
 
-std::size_t FiringSchedule::fill_periodic(AddressEvent* out, std::size_t capacity, double until) {
+std::size_t FiringSchedule::fill_windows(AddressEvent* out, std::size_t capacity, double until) {
   std::size_t filled = 0;
   const double last = std::min(until, t_end_);
   while (filled < capacity) {
     if (!made_) {
       if (!(made_to_ < last)) break;
-      // At least one representable step, so that every window moves on.
-      make_window(std::min(last, std::max(made_to_ + window_, std::nextafter(made_to_, last))));
+      make_window(last);
       continue;
     }
     // Through locals: the events' stores would make the compiler reload members every time.
@@ -131,24 +215,50 @@ std::size_t FiringSchedule::fill_periodic(AddressEvent* out, std::size_t capacit
   return filled;
 }
 
-void FiringSchedule::make_window(double to) {
-  std::unique_ptr<FiringWindow> window = FiringWindow::take();
+void FiringSchedule::make_window(double last) {
+  // The window ends at `last`, at the next boundary where the tile's light changes, or after about
+  // kWindowFirings firings a pixel at the rate of the light it starts in, whichever comes first;
+  // and at least one representable step on, so that every window moves on.
   const std::size_t n = pixels_.size();
-  // A pixel fires at most (to - from) / period + 1 times in the window, one more at each end for
+  double rate = rate_, to = last;
+  if (!frame_rates_.empty()) {
+    const std::uint64_t k = interval_at(made_to_);
+    rate = frame_rates_[photocurrents_.frame_at(k)];
+    to = std::min(to, next_change_after(k));
+  }
+  if (rate > 0) to = std::min(to, made_to_ + kWindowFirings * static_cast<double>(n) / rate);
+  to = std::max(to, std::nextafter(made_to_, last));
+  std::unique_ptr<FiringWindow> window = FiringWindow::take();
+  // The light is the same through the window (a pixel's change at its end comes after its firings
+  // there), so a pixel fires at most (to - from) / period + 1 times in it, one more at each end for
   // rounding; room for a little over the sum, so that the loop below never has to grow it (the
   // writer would report a shortfall rather than write past it).
-  const double most = (to - made_to_) * rate_ * (1 + 1e-9) + 3.0 * static_cast<double>(n) + 64;
+  const double most = (to - made_to_) * rate * (1 + 1e-9) + 3.0 * static_cast<double>(n) + 64;
   FiringWindow::Writer writer =
-      window->start(made_to_, to, static_cast<std::size_t>((to - made_to_) * rate_), static_cast<std::size_t>(most));
+      window->start(made_to_, to, static_cast<std::size_t>((to - made_to_) * rate), static_cast<std::size_t>(most));
   Slot* const pixels = pixels_.data();
   const std::uint32_t* const keys = keys_.data();
+  const bool noisy = !shot_noise_.empty();
   // Pixel by pixel, so in bus-address order; each pixel's firings in time order.
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t key = keys[i];
-    if (shot_noise_.empty()) {
-      pixels[i].fire_through(sensor_, no_noise_, to, [&writer, key](double t) { writer.add(t, key); });
-    } else {
-      pixels[i].fire_through_noisy(sensor_, shot_noise_[i], to, [&writer, key](double t) { writer.add(t, key); });
+    Slot& p = pixels[i];
+    const auto emit = [&writer, key](double t) { writer.add(t, key); };
+    for (;;) {
+      const double boundary =
+          p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
+      // Firings up to the change (it falls at the window's end), then the new light, and any
+      // firing the new light still puts at that instant.
+      const double through = boundary < to ? boundary : to;
+      if (noisy) {
+        p.fire_through_noisy(sensor_, shot_noise_[i], through, emit);
+      } else {
+        p.fire_through(sensor_, no_noise_, through, emit);
+      }
+      if (!(boundary <= to)) break;
+      const std::size_t index = std::size_t(y_of(key)) * cols_ + x_of(key);
+      p.set_current(sensor_, boundary, photocurrents_.current(p.next_boundary, index));
+      p.next_boundary = boundary_after(p.next_boundary, index);
     }
   }
   window->finish(writer);

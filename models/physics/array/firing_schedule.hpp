@@ -21,14 +21,15 @@ namespace aesim {
 // A pixel dark in every frame never gets a slot; a pixel whose next wake-up is past the end of
 // the run leaves the queue. Cost follows the events, not the pixels.
 //
-// A tile whose light never changes (a still scene) needs no queue: it makes its firings a window
-// of about four firings a pixel at a time, and counting-sorts them (FiringWindow). Same firings,
-// same order, about twice the calendar's rate. With shot noise too, while every pixel's swing is
-// at least ten electrons (each firing then draws the next integration's electron count).
+// A still tile needs no queue: it makes its firings a window of about four firings a pixel at a
+// time, and counting-sorts them (FiringWindow). Same firings, same order, about twice the
+// calendar's rate. A moving scene's tile does the same, its windows ending where its light
+// changes, when that costs less than the calendar; with shot noise too, while every pixel's swing
+// is at least ten electrons (each firing then draws the next integration's electron count).
 class FiringSchedule {
  public:
-  // `windows`: a tile whose every pixel fires periodically makes its firings a window at a time
-  // (see fill_periodic); false keeps every tile on the calendar (tests compare the two).
+  // `windows`: a tile may make its firings a window at a time (see fill_windows); false keeps
+  // every tile on the calendar (tests compare the two).
   FiringSchedule(const PixelParams& pixel, const SimParams& sim, const Photocurrents& photocurrents,
                  const AddressMap& map, std::uint32_t tile, bool windows = true);
 
@@ -41,10 +42,10 @@ class FiringSchedule {
   // than `capacity` when none remains that early (as next()). A batch costs one call, not one an
   // event.
   std::size_t fill(AddressEvent* out, std::size_t capacity, double until) {
-    return periodic_ ? fill_periodic(out, capacity, until) : fill_from_calendar(out, capacity, until);
+    return windowed_ ? fill_windows(out, capacity, until) : fill_from_calendar(out, capacity, until);
   }
-  // Whether the tile's firings come from windows (every pixel periodic) rather than the calendar.
-  bool periodic() const { return periodic_; }
+  // Whether the tile's firings come from windows rather than the calendar.
+  bool windowed() const { return windowed_; }
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
   // 68 bytes per lit pixel; a still tile's 56 and its 4-byte bus address, with no calendar (a still
@@ -74,25 +75,36 @@ class FiringSchedule {
   IntegrateFire::ShotNoise& noise(std::uint32_t slot) { return shot_noise_.empty() ? no_noise_ : shot_noise_[slot]; }
   std::uint32_t boundary_after(std::uint64_t boundary, std::size_t index) const;
   std::size_t fill_from_calendar(AddressEvent* out, std::size_t capacity, double until);
-  // A tile whose light never changes (and whose swings hold ten electrons or more, with shot noise)
-  // makes its firings a window at a time: each pixel's firings up to the window's end, in pixel order,
-  // counting-sorted by time (FiringWindow). The same firings in the same order as the calendar's,
-  // for about half the work a firing; the calendar is not built.
-  std::size_t fill_periodic(AddressEvent* out, std::size_t capacity, double until);
-  void make_window(double to);
+  // A tile makes its firings a window at a time: each pixel's firings up to the window's end, in
+  // pixel order, counting-sorted by time (FiringWindow). The same firings in the same order as the
+  // calendar's, for about half the work a firing; the calendar is not built. A window ends where
+  // the tile's light next changes, so its light is the same throughout. Taken by a still tile, and
+  // by a moving one when its windows would visit pixels no more than kVisitsPerCalendarWake times
+  // as often as the calendar would wake them (windows_pay); with shot noise, while every swing
+  // holds ten electrons or more.
+  std::size_t fill_windows(AddressEvent* out, std::size_t capacity, double until);
+  void make_window(double last);
+  // For a moving scene: each frame's firing rate and count of changed pixels over the tile; true
+  // when windows cost less than the calendar over the run.
+  bool windows_pay(const std::vector<double>& thresholds);
+  // The frame interval (boundary k to k + 1) holding time t, and the time of the first boundary
+  // after k at which some pixel of the tile changes (kNever if none).
+  std::uint64_t interval_at(double t) const;
+  double next_change_after(std::uint64_t k) const;
 
   std::vector<Slot> pixels_;
   std::vector<IntegrateFire::ShotNoise> shot_noise_;  // per pixel, only with pixel.shot_noise
   IntegrateFire::ShotNoise no_noise_;                 // untouched: without shot noise nothing is random
   WakeCalendar calendar_;
 
-  bool periodic_ = false;
-  std::vector<std::uint32_t> keys_;       // periodic: each pixel's bus address
-  double rate_ = 0;                       // periodic: the tile's firings per second
-  double window_ = 0;                     // periodic: a window's length (kWindowFirings a pixel)
-  double made_to_ = 0;                    // periodic: firings up to this time are made
-  std::unique_ptr<FiringWindow> made_;    // periodic: the window made last, while any is left
-  const FiringWindow::Firing* next_ = nullptr;  // periodic: its first firing not yet taken
+  bool windowed_ = false;
+  std::vector<std::uint32_t> keys_;       // windows: each pixel's bus address
+  double rate_ = 0;                       // windows, still: the tile's firings per second
+  std::vector<double> frame_rates_;       // windows, moving: the tile's firings per second in each frame
+  std::vector<std::uint32_t> frame_changes_;  // windows, moving: pixels whose light changes into each frame
+  double made_to_ = 0;                    // windows: firings up to this time are made
+  std::unique_ptr<FiringWindow> made_;    // windows: the window made last, while any is left
+  const FiringWindow::Firing* next_ = nullptr;  // windows: its first firing not yet taken
 };
 
 }  // namespace aesim
