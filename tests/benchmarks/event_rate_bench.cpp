@@ -3,15 +3,20 @@
 // with the Verilated RTL; and the cost per receiver clock cycle of each receiver with the clock
 // never stopped. All side by side in one run, so the ratios hold on a noisy machine.
 #include <benchmark/benchmark.h>
+#include <lz4frame.h>
 #include <systemc>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <ostream>
 #include <streambuf>
 
 #include "ceiling_probe.hpp"
 #include "config/sensor_config.hpp"
 #include "event_files/aedat.hpp"
+#include "event_files/event_writer.hpp"
+#include "output/atomic_file.hpp"
 #include "pixel/integrate_fire.hpp"
 #include "pixel/pixel_draws.hpp"
 #include "random/gamma_draw.hpp"
@@ -128,6 +133,65 @@ void BM_QcifBright(benchmark::State& state, int threads, bool aedat, bool shot_n
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
+// The bright QCIF with its events written to a file of each format, as `aesim run --out` writes it
+// (to a temporary under /tmp, never committed: the page cache takes it, the disk is not waited for).
+void BM_QcifWritten(benchmark::State& state, const char* name) {
+  const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, 1);
+  const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
+  const ResolvedConfig config = c.resolved();
+  EventFileSpec spec;
+  spec.array = config.array;
+  spec.tick = config.receiver.tick;
+  spec.duration = config.sim.duration;
+  spec.compression = std::string(name) == "plain.aedat4" ? Aedat4Compression::None : Aedat4Compression::Lz4;
+  const std::string path = (std::filesystem::temp_directory_path() / (std::string("aesim_bench_") + name)).string();
+  double events = 0;
+  for (auto _ : state) {
+    OutputFiles files;
+    const auto writer = open_event_writer(files, path, spec);
+    SimulationRequest request;
+    request.keep_events = true;
+    request.stream = writer.get();
+    events += static_cast<double>(simulate(config, photocurrents, request).log.totals().fired);
+    writer->finish();
+  }
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
+// LZ4 alone on the packets an .aedat4 holds: 4096 events of DV's 16-byte Event (stamp, x, y,
+// polarity) from the bright QCIF's firing pattern, each packet one LZ4 frame, as the writer makes
+// them. The least work compressed AEDAT 4.0 must do.
+void BM_Lz4Probe(benchmark::State& state) {
+  const SensorConfig c = qcif_bright(Fidelity::Event, 2.0, 1);
+  const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
+  const SimulationResult r = simulate(c.resolved(), photocurrents);
+  struct DvEvent {
+    std::int64_t t;
+    std::int16_t x, y;
+    std::uint8_t on, pad[3];
+  };
+  static_assert(sizeof(DvEvent) == 16, "DV's Event is 16 bytes");
+  std::vector<DvEvent> packed;
+  for (const AddressEvent& e : r.log.events()) {
+    packed.push_back({static_cast<std::int64_t>(std::llround(e.t * 1e6)), static_cast<std::int16_t>(e.x),
+                      static_cast<std::int16_t>(e.y), 1, {0, 0, 0}});
+  }
+  constexpr std::size_t kPacket = 4096;
+  LZ4F_preferences_t prefs{};
+  std::vector<char> out(LZ4F_compressFrameBound(kPacket * sizeof(DvEvent), &prefs));
+  double events = 0;
+  for (auto _ : state) {
+    for (std::size_t at = 0; at < packed.size(); at += kPacket) {
+      const std::size_t n = std::min(kPacket, packed.size() - at);
+      prefs.frameInfo.contentSize = n * sizeof(DvEvent);
+      benchmark::DoNotOptimize(
+          LZ4F_compressFrame(out.data(), out.size(), packed.data() + at, n * sizeof(DvEvent), &prefs));
+    }
+    events += static_cast<double>(packed.size());
+  }
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
 // The QCIF array at i_max 100 pA on the moving disc (the disc at about 1 kHz a pixel, the field at
 // about 20 Hz): its 24 frames shown at 100 Hz and looped, so the light changes every 10 ms for the
 // whole 2 s; and, as the still scene of the same light, its first frame alone. Summary only.
@@ -235,6 +299,12 @@ BENCHMARK_CAPTURE(BM_QcifBright, shot_noise_1_thread, 1, false, true)->Apply(qci
 BENCHMARK_CAPTURE(BM_QcifMoving, still, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifMoving, moving, true)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true, false)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, aedat, "e.aedat")->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, aedat4, "e.aedat4")->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, aedat4_plain, "plain.aedat4")->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, npy, "e.npy")->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, h5, "e.h5")->Apply(qcif);
+BENCHMARK(BM_Lz4Probe)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false, false)->Apply(qcif);
 BENCHMARK(BM_QcifPixelProcesses)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 

@@ -21,6 +21,8 @@ class Aedat4Writer : public EventFileWriter {
   ~Aedat4Writer() override;
   void events(const AddressEvent* first, std::size_t count) override;
   void finish() override;
+  // LZ4 costs more than the merge that feeds it.
+  bool wants_own_thread() const override { return compression_ == Aedat4Compression::Lz4; }
 
  private:
   void write_packet();

@@ -1,5 +1,6 @@
 #include "event_files/npy_events.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cerrno>
 #include <cstring>
@@ -58,19 +59,24 @@ NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, std::ios
   const char version[4] = {1, 0, static_cast<char>(text.size() & 0xff), static_cast<char>(text.size() >> 8)};
   out_.write(version, 4);
   out_.write(text.data(), static_cast<std::streamsize>(text.size()));
-  buffer_.reserve(kNpyBufferBytes + kNpyRecordBytes);
+  buffer_.reserve(kNpyBufferBytes + kNpyRecordBytes);  // fit rounds up: one record past the mark at most
 }
 
 void NpyWriter::events(const AddressEvent* first, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) {
-    const AddressEvent& e = first[i];
+  for (std::size_t i = 0; i < count;) {
+    // As many records as fit before the buffer is due to be written, made room for at once.
+    const std::size_t fit = (kNpyBufferBytes - buffer_.size() + kNpyRecordBytes - 1) / kNpyRecordBytes;
+    const std::size_t n = std::min(count - i, std::max<std::size_t>(fit, 1));
     const std::size_t at = buffer_.size();
-    buffer_.resize(at + kNpyRecordBytes);
+    buffer_.resize(at + n * kNpyRecordBytes);
     char* p = buffer_.data() + at;
-    put_le_bytes(p, e.x, 2);
-    put_le_bytes(p + 2, e.y, 2);
-    put_le_bytes(p + 4, stamps_(e.t), 8);
-    p[12] = e.flags == kGhostEvent ? 0 : 1;
+    for (const AddressEvent* e = first + i; e != first + i + n; ++e, p += kNpyRecordBytes) {
+      put_le_bytes(p, e->x, 2);
+      put_le_bytes(p + 2, e->y, 2);
+      put_le_bytes(p + 4, stamps_(e->t), 8);
+      p[12] = e->flags == kGhostEvent ? 0 : 1;
+    }
+    i += n;
     if (buffer_.size() >= kNpyBufferBytes) flush();
   }
   count_ += count;

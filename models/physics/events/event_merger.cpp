@@ -37,18 +37,37 @@ bool before_in_tile(const TileEvent& a, const TileEvent& b) {
 bool before_in_tile(const TruthRecord& a, const TruthRecord& b) { return key_of(a, 0) < key_of(b, 0); }
 
 constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
-constexpr std::size_t kAhead = 8;      // records prefetched ahead in each tile's buffer
+// Records sorted at a time: a slice of the window's time holding about this many, gathered from
+// every tile, sorted by a counting sort on time and passed on. Two buffers of them (32 bytes a
+// record) stay in the core's own cache.
+constexpr std::size_t kSlice = 4096;
+// A bucket of the slice's counting sort holding more records than this (many firings at one
+// instant) is sorted by a merge sort rather than by insertion.
+constexpr std::size_t kInsertionMost = 16;
 
-// Merges every tile's records earlier than `before` through a tree of losers over the tiles'
-// heads into `chunk`, passing full chunks to `emit`. A tile's records are those it held back last
-// time followed by its new ones; in the event rung both are in order and the new ones come later,
-// so they are read where they lie, and only what stays for the next window is copied (the tail
-// past `before`), which keeps the buffers to the two sets the tiles and the merge swap. Otherwise
-// (simultaneous SystemC processes may have run in any order) they are joined and sorted; a
-// stable sort keeps production order among equal keys, as a sort of the whole run would.
+double time_of_key(OrderKey key) {
+  const auto bits = static_cast<std::uint64_t>(key >> 64);
+  double t;
+  std::memcpy(&t, &bits, sizeof t);
+  return t;
+}
+
+// Merges every tile's records earlier than `before` into `chunk`, passing full chunks to `emit`.
+// A tile's records are those it held back last time followed by its new ones; in the event rung
+// both are in order and the new ones come later, so they are read where they lie, and only what
+// stays for the next window is copied (the tail past `before`), which keeps the buffers to the two
+// sets the tiles and the merge swap. Otherwise (simultaneous SystemC processes may have run in any
+// order) they are joined and sorted; a stable sort keeps production order among equal keys, as a
+// sort of the whole run would.
+//
+// The window's span of time is cut into slices of about kSlice records. Each slice takes every
+// tile's records in it (each tile's in order, so a slice is a prefix of what is left of each) and
+// counting-sorts them on time into about a bucket a record, then orders each bucket by the whole
+// key (time, tile, address), keeping production order among equal keys. A record costs the same
+// whatever the number of tiles, where a k-way merge pays log2(tiles) comparisons for it.
 template <typename T, typename Out, typename Emit>
 void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector<T>>& held, double before,
-                  std::vector<Out>& chunk, Emit emit) {
+                  std::vector<Out>& chunk, MergeScratch<T>& scratch, Emit emit) {
   // Within one tile's records (the tile part of the key is the same).
   auto less = [](const T& a, const T& b) { return before_in_tile(a, b); };
   auto early = [before](const T& r) { return time_of(r) < before; };
@@ -56,28 +75,15 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
   // A tile's records to merge: [a, a_end) then [b, b_end).
   struct Cursor {
     const T *a, *a_end, *b, *b_end;
-    // The records were written on the tiles' core and wait in the shared cache: with many tiles
-    // interleaved, the hardware prefetcher loses track of them, so each read asks for the
-    // records a few lines ahead of it.
-    const T& next() {
-      const T*& p = a != a_end ? a : b;
-      __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(p) + kAhead * sizeof(T)));
-      return *p++;
-    }
     bool done() const { return a == a_end && b == b_end; }
     const T& peek() const { return a != a_end ? *a : *b; }
+    const T& last() const { return b != b_end ? b_end[-1] : a_end[-1]; }
+    void skip() { (a != a_end ? a : b)++; }
   };
   std::vector<Cursor> cursor(tiles);
   std::vector<std::size_t> from_held(tiles, 0), from_new(tiles, 0);
-  // A tree of losers over the tiles' heads: each inner node keeps the tile that lost the match
-  // there, so a pop replays only the winner's path, one comparison (and one key read) a level,
-  // with no records moved (a heap compares twice a level and moves its entries; a tree of
-  // winners reads both children).
-  std::size_t leaves = 1;
-  while (leaves < tiles) leaves *= 2;
-  const OrderKey exhausted = ~OrderKey(0);
-  std::vector<OrderKey> head(leaves, exhausted);
   std::size_t live = 0;
+  double t_first = 0, t_last = 0;
   for (std::size_t i = 0; i < tiles; ++i) {
     std::vector<T>& h = held[i];
     std::vector<T>& in = incoming[i];
@@ -94,41 +100,72 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
                       : static_cast<std::size_t>(std::partition_point(in.begin(), in.end(), early) - in.begin());
     cursor[i] = {h.data(), h.data() + from_held[i], in.data(), in.data() + from_new[i]};
     if (!cursor[i].done()) {
-      head[i] = key_of(cursor[i].peek(), static_cast<std::uint32_t>(i));
+      const double first = time_of(cursor[i].peek()), last = time_of(cursor[i].last());
+      t_first = live == 0 ? first : std::min(t_first, first);
+      t_last = live == 0 ? last : std::max(t_last, last);
       live += from_held[i] + from_new[i];
     }
   }
-  std::vector<std::uint32_t> winner(2 * leaves), loser(leaves);
-  for (std::size_t i = 0; i < leaves; ++i) winner[leaves + i] = static_cast<std::uint32_t>(i);
-  for (std::size_t n = leaves - 1; n >= 1; --n) {
-    const std::uint32_t l = winner[2 * n], r = winner[2 * n + 1];
-    const bool right_wins = head[r] < head[l];
-    winner[n] = right_wins ? r : l;
-    loser[n] = right_wins ? l : r;
-  }
-  std::uint32_t w = winner[1];
+  const std::size_t slices = std::max<std::size_t>(1, live / kSlice);
+  const double span = t_last - t_first;
+  std::vector<Sorted<T>>& gathered = scratch.gathered;
+  std::vector<Sorted<T>>& sorted = scratch.sorted;
+  std::vector<std::uint32_t>& count = scratch.count;
   std::size_t used = 0;
-  for (; live > 0; --live) {
-    Cursor& c = cursor[w];
-    put(chunk[used], c.next(), w);
-    if (++used == kChunk) {
-      emit(chunk.data(), used);
-      used = 0;
+  for (std::size_t s = 0; s < slices && live > 0; ++s) {
+    // The slice [lo, hi): the last one takes whatever is left.
+    const double lo = t_first + span * static_cast<double>(s) / static_cast<double>(slices);
+    const bool last_slice = s + 1 == slices;
+    const double hi = last_slice ? t_last : t_first + span * static_cast<double>(s + 1) / static_cast<double>(slices);
+    gathered.clear();
+    for (std::size_t i = 0; i < tiles; ++i) {
+      Cursor& c = cursor[i];
+      while (!c.done() && (last_slice || time_of(c.peek()) < hi)) {
+        gathered.push_back({key_of(c.peek(), static_cast<std::uint32_t>(i)), &c.peek(), static_cast<std::uint32_t>(i)});
+        c.skip();
+      }
     }
-    OrderKey climbing = c.done() ? exhausted : key_of(c.peek(), w);
-    head[w] = climbing;
-    // Which side wins is as good as random, so the swap is done with masks: written as selects,
-    // GCC compiled it to a branch, mispredicted at every other level, 80 % of the merge's time in
-    // perf. The path's nodes and their losers do not depend on the matches, so they load early;
-    // what each level waits for is the comparison below it.
-    for (std::size_t n = (leaves + w) / 2; n >= 1; n /= 2) {
-      const std::uint32_t l = loser[n];
-      const OrderKey other = head[l];
-      const std::uint64_t swap = std::uint64_t(0) - static_cast<std::uint64_t>(other < climbing);
-      const std::uint32_t flip = (l ^ w) & static_cast<std::uint32_t>(swap);
-      loser[n] = l ^ flip;
-      w ^= flip;
-      climbing ^= (climbing ^ other) & ((OrderKey(swap) << 64) | swap);
+    const std::size_t n = gathered.size();
+    live -= n;
+    if (n == 0) continue;
+    // Buckets of time over [lo, hi], about one a record; (t - lo) * scale never decreases as t
+    // grows, so records in a lower bucket come first.
+    std::size_t buckets = 1;
+    while (buckets < n) buckets *= 2;
+    const double width = hi - lo;
+    const double scale = width > 0 ? static_cast<double>(buckets) / width : 0;
+    const auto bucket_of = [&](OrderKey key) {
+      const double b = (time_of_key(key) - lo) * scale;
+      return b < static_cast<double>(buckets - 1) ? static_cast<std::size_t>(b) : buckets - 1;
+    };
+    count.assign(buckets + 1, 0);
+    for (const Sorted<T>& g : gathered) ++count[bucket_of(g.key) + 1];
+    for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
+    sorted.resize(n);
+    for (const Sorted<T>& g : gathered) sorted[count[bucket_of(g.key)]++] = g;
+    // count[b] is now where bucket b ends; each bucket in key order, stably.
+    std::size_t begin = 0;
+    for (std::size_t b = 0; b < buckets; ++b) {
+      const std::size_t end = count[b];
+      if (end - begin > kInsertionMost) {
+        std::stable_sort(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
+                         [](const Sorted<T>& x, const Sorted<T>& y) { return x.key < y.key; });
+      } else {
+        for (std::size_t k = begin + 1; k < end; ++k) {
+          const Sorted<T> moving = sorted[k];
+          std::size_t j = k;
+          for (; j > begin && moving.key < sorted[j - 1].key; --j) sorted[j] = sorted[j - 1];
+          sorted[j] = moving;
+        }
+      }
+      begin = end;
+    }
+    for (const Sorted<T>& r : sorted) {
+      put(chunk[used], *r.record, r.tile);
+      if (++used == kChunk) {
+        emit(chunk.data(), used);
+        used = 0;
+      }
     }
   }
   if (used > 0) emit(chunk.data(), used);
@@ -153,9 +190,9 @@ EventMerger::EventMerger(std::size_t tiles, EventStream& out) : events_(tiles), 
 }
 
 void EventMerger::merge(TileRecords& batch, double before) {
-  merge_window(batch.events, events_, before, event_chunk_,
+  merge_window(batch.events, events_, before, event_chunk_, event_scratch_,
                [this](const AddressEvent* c, std::size_t n) { out_.events(c, n); });
-  merge_window(batch.truth, truth_, before, truth_chunk_,
+  merge_window(batch.truth, truth_, before, truth_chunk_, truth_scratch_,
                [this](const TruthRecord* c, std::size_t n) { out_.truth(c, n); });
 }
 

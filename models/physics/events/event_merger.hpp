@@ -48,6 +48,21 @@ struct TileRecords {
   std::vector<std::vector<TruthRecord>> truth;
 };
 
+// A record on its way through a merge's sort (event_merger.cpp): its order key (time, tile, bus
+// address as one 128-bit number), where it lies, its tile.
+template <typename T>
+struct Sorted {
+  unsigned __int128 key;
+  const T* record;
+  std::uint32_t tile;
+};
+// Where a merge sorts a slice of records, kept between windows.
+template <typename T>
+struct MergeScratch {
+  std::vector<Sorted<T>> gathered, sorted;
+  std::vector<std::uint32_t> count;
+};
+
 // Merges the tiles' records into one stream, outputs in (time, tile, bus address) order and truth
 // in (fire time, tile, bus address) order, a window at a time: a record is passed on once no tile
 // can still produce an earlier one. The caller names that time with each batch (`before`); later
@@ -66,6 +81,8 @@ class EventMerger {
   std::vector<std::vector<TruthRecord>> truth_;
   std::vector<AddressEvent> event_chunk_;  // kChunk records, filled from the front
   std::vector<TruthRecord> truth_chunk_;
+  MergeScratch<TileEvent> event_scratch_;
+  MergeScratch<TruthRecord> truth_scratch_;
   EventStream& out_;
 };
 
