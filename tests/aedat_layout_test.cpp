@@ -99,7 +99,7 @@ void expect_jaer_decodes(int rows, int cols, AedatLayout layout, const char* chi
     ASSERT_EQ(j.on, (e.flags & kGhostEvent) == 0) << i;
   }
   // aesim's readers get the same events back, ghosts included.
-  const EventRecording back = decode_events(bytes, "layout.aedat", EventFormat::Aedat2);
+  const EventRecording back = decode_events(bytes, "layout.aedat", EventFileFormat::Aedat2);
   ASSERT_EQ(back.events.size(), r.log.events().size());
   for (std::size_t i = 0; i < back.events.size(); ++i) {
     const AddressEvent& e = r.log.events()[i];

@@ -18,6 +18,7 @@
 #include "errors/input_error.hpp"
 #include "event_files/aedat4.hpp"
 #include "event_files/aedat_layout.hpp"
+#include "event_files/event_formats.hpp"
 #include "event_files/event_file.hpp"
 #include "event_files/event_writer.hpp"
 #include "event_files/npy_events.hpp"
@@ -110,6 +111,37 @@ TEST_F(EventFormats, EveryFormatReadsBackEventForEventWithItsArray) {
     EXPECT_EQ(rec.width, 64) << name;
     EXPECT_EQ(rec.tiles, name == "e.npy" ? 1 : 4) << name;
   }
+}
+
+// Each format is one row of event_formats(): every extension of a row names that row; what --out
+// writes each row reads back; the program's help texts list the rows; docs/event_files.md's format
+// table names every extension. A format added without its row, or a row left out of the help or the
+// docs, fails here.
+TEST_F(EventFormats, EveryFormatIsOneRowOfTheTable) {
+  const AddressMap map{ArrayParams{}};
+  const std::string docs = testing::slurp(std::string(AESIM_SOURCE_DIR) + "/docs/event_files.md");
+  const testing::Outcome run_help = aesim("run --help");
+  const testing::Outcome recon_help = aesim("recon --help");
+  std::size_t writable = 0;
+  for (const EventFormatRow& row : event_formats()) {
+    SCOPED_TRACE(row.name);
+    ASSERT_FALSE(row.extensions.empty());
+    ASSERT_NE(row.read, nullptr);
+    for (const std::string& ext : row.extensions) {
+      EXPECT_EQ(event_format_of("a/b" + ext, "--out").format, row.format) << ext;
+      EXPECT_NE(docs.find("`" + ext + "`"), std::string::npos) << ext << " is not in docs/event_files.md";
+    }
+    EXPECT_NE(recon_help.out.find(row.extensions.front()), std::string::npos);
+    if (row.longest_run > 0) EXPECT_FALSE(std::string(row.stamps).empty());
+    if (!row.open) continue;
+    ++writable;
+    const std::string path = write("row" + row.extensions.back(), sample(map));
+    EXPECT_EQ(load_events(path).events.size(), sample(map).size());
+    if (row.decode) EXPECT_EQ(decode_events(slurp(path), path, row.format).events.size(), sample(map).size());
+  }
+  EXPECT_EQ(writable, 4u);
+  EXPECT_NE(run_help.out.find(event_formats_help()), std::string::npos) << run_help.out;
+  EXPECT_THROW(event_format_of("events.mp4", "--out"), InputError);
 }
 
 // HDF5 stamps every object's header with the wall-clock time unless told not to, so two runs of
@@ -267,7 +299,7 @@ TEST_F(EventFormats, AnotherRecordersAedat4KeepsItsPolarityAsEvents) {
   const std::vector<dv::Event> e = {dv::Event(10, 345, 259, false), dv::Event(20, 0, 0, true)};
   dv::FinishSizePrefixedEventPacketBuffer(events, dv::CreateEventPacket(events, events.CreateVectorOfStructs(e)));
   packet(1, std::string(reinterpret_cast<const char*>(events.GetBufferPointer()), events.GetSize()));
-  const EventRecording rec = decode_events(file, "dv.aedat4", EventFormat::Aedat4);
+  const EventRecording rec = decode_events(file, "dv.aedat4", EventFileFormat::Aedat4);
   ASSERT_EQ(rec.events.size(), 2u);
   EXPECT_EQ(rec.width, 346);
   EXPECT_EQ(rec.height, 260);
@@ -285,7 +317,7 @@ TEST_F(EventFormats, MalformedFilesAreOneLineErrorsNamingTheFile) {
   const AddressMap map{ArrayParams{}};
   const std::string aedat4 = slurp(write("e.aedat4", sample(map)));
   const std::string npy = slurp(write("e.npy", sample(map)));
-  const auto refused = [](const std::string& data, EventFormat f, const std::string& words) {
+  const auto refused = [](const std::string& data, EventFileFormat f, const std::string& words) {
     try {
       decode_events(data, "bad", f);
       ADD_FAILURE() << "accepted: " << words;
@@ -302,28 +334,28 @@ TEST_F(EventFormats, MalformedFilesAreOneLineErrorsNamingTheFile) {
   const std::vector<std::uint64_t> header_copy = aligned(aedat4.substr(14, 4 + header_size));
   const auto packets_end = static_cast<std::size_t>(dv::GetSizePrefixedIOHeader(header_copy.data())->dataTablePosition());
   ASSERT_LT(packets_end, aedat4.size());
-  refused(aedat4.substr(0, packets_end - 3), EventFormat::Aedat4, "truncated");
-  refused(aedat4.substr(0, 20), EventFormat::Aedat4, "truncated in the IOHeader");
-  refused(std::string("#!AER-DAT4.0\r\n\x08\x00\x00\x00garbage!", 26), EventFormat::Aedat4, "not a valid FlatBuffer");
+  refused(aedat4.substr(0, packets_end - 3), EventFileFormat::Aedat4, "truncated");
+  refused(aedat4.substr(0, 20), EventFileFormat::Aedat4, "truncated in the IOHeader");
+  refused(std::string("#!AER-DAT4.0\r\n\x08\x00\x00\x00garbage!", 26), EventFileFormat::Aedat4, "not a valid FlatBuffer");
   std::string corrupt = aedat4;
   for (std::size_t i = packets_end - 20; i < packets_end; ++i) corrupt[i] = '\xff';
-  refused(corrupt, EventFormat::Aedat4, "packet 0");
+  refused(corrupt, EventFileFormat::Aedat4, "packet 0");
   // A packet of a stream the header does not declare: its bytes cannot be told from damage.
   std::string stray = aedat4;
   stray[header_size + 18] = '\x07';
-  refused(stray, EventFormat::Aedat4, "stream 7, which the header does not declare");
+  refused(stray, EventFileFormat::Aedat4, "stream 7, which the header does not declare");
   // A damaged data table costs nothing: it is an index of packets aesim reads in order (DV too
   // rebuilds a missing one).
-  EXPECT_EQ(decode_events(aedat4.substr(0, aedat4.size() - 3), "cut table", EventFormat::Aedat4).events.size(), 5u);
-  refused("#!AER-DAT2.0\r\n", EventFormat::Aedat4, "not AEDAT 4.0");
-  refused(npy.substr(0, npy.size() - 1), EventFormat::Npy, "truncated");
+  EXPECT_EQ(decode_events(aedat4.substr(0, aedat4.size() - 3), "cut table", EventFileFormat::Aedat4).events.size(), 5u);
+  refused("#!AER-DAT2.0\r\n", EventFileFormat::Aedat4, "not AEDAT 4.0");
+  refused(npy.substr(0, npy.size() - 1), EventFileFormat::Npy, "truncated");
   std::string other_dtype = npy;
   other_dtype.replace(other_dtype.find("('p', '|b1')"), 12, "('q', '|b1')");
-  refused(other_dtype, EventFormat::Npy, "no field 'p'");
+  refused(other_dtype, EventFileFormat::Npy, "no field 'p'");
   std::string big_endian = npy;
   big_endian.replace(big_endian.find("('t', '<i8')"), 12, "('t', '>i8')");
-  refused(big_endian, EventFormat::Npy, "little-endian");
-  refused("not numpy at all", EventFormat::Npy, "not a NumPy .npy file");
+  refused(big_endian, EventFileFormat::Npy, "little-endian");
+  refused("not numpy at all", EventFileFormat::Npy, "not a NumPy .npy file");
   std::ofstream(dir_ / "fake.h5") << "not hdf5";
   try {
     load_events((dir_ / "fake.h5").string());

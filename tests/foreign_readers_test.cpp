@@ -92,7 +92,7 @@ TEST(ForeignReaders, JaerFindsEveryEventAfterTheHeader) {
     // the writer says so.
     EXPECT_EQ(tonic_data_start(data) != start, hash) << "row " << row;
     EXPECT_EQ(!warning.empty(), hash) << "row " << row;
-    const EventRecording back = decode_events(data, "one.aedat", EventFormat::Aedat2);
+    const EventRecording back = decode_events(data, "one.aedat", EventFileFormat::Aedat2);
     ASSERT_EQ(back.events.size(), 1u) << "row " << row;
     EXPECT_EQ(back.events[0].y, static_cast<std::uint32_t>(row));
     EXPECT_EQ(back.events[0].x, 0u);
@@ -178,7 +178,7 @@ TEST(ForeignReaders, Aedat31GivesItsValidPolarityEventsWithOverflowedStampsAndCo
   f.packet(1, 8, 1, 2, 1);  // the stamps' 2^31 overflow; one slot of capacity unused
   f.polarity(12, 34, true, 5);
   f.polarity(0, 0, true, 0);
-  const EventRecording rec = decode_events(f.data, "rec.aedat", EventFormat::Aedat2);
+  const EventRecording rec = decode_events(f.data, "rec.aedat", EventFileFormat::Aedat2);
   ASSERT_EQ(rec.events.size(), 3u);
   EXPECT_EQ(rec.events[0].x, 345u);
   EXPECT_EQ(rec.events[0].y, 259u);
@@ -195,13 +195,13 @@ TEST(ForeignReaders, Aedat31GivesItsValidPolarityEventsWithOverflowedStampsAndCo
   // Some writers end the header's lines in LF alone.
   std::string lf = f.data;
   lf.replace(lf.find("#!END-HEADER\r\n"), 14, "#!END-HEADER\n");
-  EXPECT_EQ(decode_events(lf, "lf.aedat", EventFormat::Aedat2).events.size(), 3u);
+  EXPECT_EQ(decode_events(lf, "lf.aedat", EventFileFormat::Aedat2).events.size(), 3u);
 }
 
 TEST(ForeignReaders, MalformedAedat31IsAnInputErrorReadingNothingPastItsBytes) {
   const auto refused = [](const std::string& data, const char* says) {
     try {
-      decode_events(data, "bad.aedat", EventFormat::Aedat2);
+      decode_events(data, "bad.aedat", EventFileFormat::Aedat2);
       ADD_FAILURE() << "accepted: " << says;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
@@ -261,7 +261,7 @@ TEST(ForeignReaders, JaerDavisRecordingGivesItsPolarityEventsAndCountsTheRest) {
   record(0x80000000u | (5u << 22), 1500);                 // APS
   record((0u << 22) | (0u << 12), 2000);                  // OFF at jAER (239, 0)
   record(1u << 10, 2500);                                 // special
-  const EventRecording rec = decode_events(file, "davis.aedat", EventFormat::Aedat2);
+  const EventRecording rec = decode_events(file, "davis.aedat", EventFileFormat::Aedat2);
   EXPECT_EQ(rec.width, 240);
   EXPECT_EQ(rec.height, 180);
   ASSERT_EQ(rec.events.size(), 2u);
@@ -280,7 +280,7 @@ TEST(ForeignReaders, JaerDavisRecordingGivesItsPolarityEventsAndCountsTheRest) {
   std::string anonymous = file;
   anonymous.replace(anonymous.find("# AEChip"), anonymous.find("#End") - anonymous.find("# AEChip"), "");
   try {
-    decode_events(anonymous, "anon.aedat", EventFormat::Aedat2);
+    decode_events(anonymous, "anon.aedat", EventFileFormat::Aedat2);
     ADD_FAILURE() << "decoded words of no named chip";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--layout"), std::string::npos) << e.what();
@@ -304,7 +304,7 @@ TEST(ForeignReaders, JaerStampsPastTwoToTheThirtyOneAndAcrossAWrapReadInOrder) {
   record(on | (3u << 12), 0x80000008u);   // 8 us earlier than the one before: put in order
   record(on | (4u << 12), 0xFFFFFFF0u);   // just below 2^32
   record(on | (5u << 12), 0x00000020u);   // the counter wrapped
-  const EventRecording rec = decode_events(file, "long.aedat", EventFormat::Aedat2);
+  const EventRecording rec = decode_events(file, "long.aedat", EventFileFormat::Aedat2);
   ASSERT_EQ(rec.events.size(), 5u);
   const double us = 1e-6;
   EXPECT_DOUBLE_EQ(rec.events[0].t, 2147483632 * us);

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "errors/input_error.hpp"
+#include "event_files/event_formats.hpp"
 #include "text/nearest_name.hpp"
 
 namespace aesim {
@@ -22,9 +23,7 @@ void add_run(CLI::App& app, int& status) {
   cmd->add_option("--duration", opt->duration, "Simulated time, e.g. 2s or 500ms (same as --set sim.duration=)");
   cmd->add_option("--set", opt->sets, "Override a parameter: section.key=value with SI units, e.g. pixel.c_int=50fF")
       ->allow_extra_args(false);
-  cmd->add_option("--out", opt->out,
-                  "Event file, its type by extension: .aedat (AEDAT 2.0), .aedat4 (AEDAT 4.0), .npy (tonic's dtype), "
-                  ".h5 (DSEC layout)");
+  cmd->add_option("--out", opt->out, "Event file, its type by extension: " + event_formats_help());
   cmd->add_option("--aedat-layout", opt->aedat_layout,
                   "Address words of an AEDAT 2.0 --out: aesim (default), dvs128 or davis (jAER's layouts, y = 0 at the "
                   "bottom, polarity ON for a normal event and OFF for a ghost)");
@@ -44,7 +43,7 @@ void add_run(CLI::App& app, int& status) {
 
 void add_recon(CLI::App& app, int& status) {
   auto opt = std::make_shared<ReconOptions>();
-  CLI::App* cmd = app.add_subcommand("recon", "Reconstruct an image from an event file (.aedat, .aedat4, .npy, .h5 or .csv)");
+  CLI::App* cmd = app.add_subcommand("recon", "Reconstruct an image from an event file (" + event_extensions() + ")");
   cmd->add_option("EVENTS", opt->events, "Event file")->required();
   auto* window = cmd->add_option("--window", opt->window, "Use the events within this time of the first, e.g. 100ms");
   cmd->add_option("--events", opt->count, "Use the first N events")->excludes(window);
@@ -60,7 +59,7 @@ void add_info(CLI::App& app, int& status) {
   auto path = std::make_shared<std::string>();
   auto layout = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("info", "Counts, time span, rate and per-tile breakdown of an event file");
-  cmd->add_option("EVENTS", *path, "Event file (.aedat, .aedat4, .npy, .h5 or .csv)")->required();
+  cmd->add_option("EVENTS", *path, "Event file (" + event_extensions() + ")")->required();
   cmd->add_option("--layout", *layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");
   cmd->callback([path, layout, &status] { status = info_command(*path, *layout); });
 }
@@ -157,7 +156,7 @@ void add_emulate(CLI::App& app, int& status) {
   cmd->add_option("--seed", opt->seed, "Seed of the chaos draws")->capture_default_str();
   cmd->add_option("--queue", opt->queue, "The event queue as text, one 'x y' per line in queue order");
   cmd->add_option("--out", opt->out,
-                  "Events with synthetic timestamps, by extension: .aedat (AEDAT 2.0), .aedat4, .npy or .h5");
+                  "Events with synthetic timestamps, by extension: " + event_formats_help());
   cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4 or none")
       ->capture_default_str();
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction (.png or .pgm)");
@@ -170,7 +169,7 @@ void add_emulate(CLI::App& app, int& status) {
 void add_classify(CLI::App& app, int& status) {
   auto opt = std::make_shared<ClassifyOptions>();
   CLI::App* cmd = app.add_subcommand("classify", "Recognise the subject of an event file with the paper's rank-weighted templates");
-  cmd->add_option("EVENTS", opt->events, "Event file (.aedat, .aedat4, .npy, .h5 or .csv)")->required();
+  cmd->add_option("EVENTS", opt->events, "Event file (" + event_extensions() + ")")->required();
   cmd->add_option("--templates", opt->templates, "Folder of binary .pgm templates (default scenes/templates/letters)");
   cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT: needed for a CSV, which records none");
   cmd->add_option("--layout", opt->layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");

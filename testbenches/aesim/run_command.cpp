@@ -66,15 +66,13 @@ int run_command(RunOptions opt) {
   const AedatLayout layout = parse_aedat_layout(opt.aedat_layout);
   const Aedat4Compression compression = parse_aedat4_compression(opt.aedat4_compression);
   if (!opt.out.empty()) {
-    const EventFileFormat format = event_file_format(opt.out, "--out");
-    if (format == EventFileFormat::Csv) throw InputError(fmt::format("--out '{}': write events CSV with --csv", opt.out));
-    if (format == EventFileFormat::Aedat2 && config.sim.duration > 2147.0) {
-      throw InputError("sim.duration: AEDAT 2.0 timestamps are int32 microseconds, so --out allows at most 2147 s");
+    const EventFormatRow& row = event_format_of(opt.out, "--out");
+    if (!row.open) throw InputError(fmt::format("--out '{}': write events CSV with --csv", opt.out));
+    if (row.longest_run > 0 && config.sim.duration > row.longest_run) {
+      throw InputError(fmt::format("sim.duration: {}, so an {} --out allows at most {} s", row.stamps, row.name,
+                                   row.longest_run));
     }
-    if (format == EventFileFormat::Hdf5 && config.sim.duration > 4294.0) {
-      throw InputError("sim.duration: DSEC timestamps are uint32 microseconds, so an .h5 --out allows at most 4294 s");
-    }
-    if (layout != AedatLayout::Aesim && format != EventFileFormat::Aedat2) {
+    if (layout != AedatLayout::Aesim && row.format != EventFileFormat::Aedat2) {
       throw InputError(fmt::format("--aedat-layout {}: jAER's layouts are for AEDAT 2.0 (.aedat) files", opt.aedat_layout));
     }
     jaer_chip(layout, map);  // an array the chip cannot hold is refused before the run

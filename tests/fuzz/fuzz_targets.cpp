@@ -63,19 +63,19 @@ int y4m(const std::uint8_t* data, std::size_t size) {
 }
 
 int aedat(const std::uint8_t* data, std::size_t size) {
-  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat", EventFormat::Aedat2); });
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat", EventFileFormat::Aedat2); });
 }
 
 int events_csv(const std::uint8_t* data, std::size_t size) {
-  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.csv", EventFormat::Csv); });
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.csv", EventFileFormat::Csv); });
 }
 
 int aedat4(const std::uint8_t* data, std::size_t size) {
-  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat4", EventFormat::Aedat4); });
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat4", EventFileFormat::Aedat4); });
 }
 
 int npy(const std::uint8_t* data, std::size_t size) {
-  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.npy", EventFormat::Npy); });
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.npy", EventFileFormat::Npy); });
 }
 
 int h5(const std::uint8_t* data, std::size_t size) {

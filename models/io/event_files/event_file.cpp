@@ -16,6 +16,7 @@
 #include "event_files/aedat31.hpp"
 #include "event_files/aedat4.hpp"
 #include "event_files/dsec_h5.hpp"
+#include "event_files/event_formats.hpp"
 #include "event_files/event_writer.hpp"
 #include "event_files/events_csv.hpp"
 #include "event_files/npy_events.hpp"
@@ -242,32 +243,42 @@ ArraySize parse_array_size(const std::string& text, const std::string& option) {
   return ArraySize{static_cast<int>(w), static_cast<int>(h)};
 }
 
+EventRecording decode_aedat_recording(const std::string& data, const std::string& label, const std::string& layout) {
+  // .aedat holds AEDAT 2.0 (jAER) or 3.1 (cAER, jAER); the first line says which.
+  if (is_aedat31(data)) {
+    if (!layout.empty()) throw InputError("--layout: jAER's layouts are for AEDAT 2.0 files; this one is AEDAT 3.1");
+    return from_polarity(decode_aedat31(data, label), label);
+  }
+  return from_aedat(decode_aedat(data, label), label, layout);
+}
+
+EventRecording decode_aedat4_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_aedat4(data, label), label);
+}
+
+EventRecording decode_npy_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_npy(data, label), label);
+}
+
+EventRecording decode_csv_recording(const std::string& data, const std::string& label) {
+  std::istringstream in(data);
+  return from_csv(parse_events_csv(in, label), label);
+}
+
+EventRecording read_csv_recording(const std::string& path) { return from_csv(read_events_csv(path), path); }
+
+EventRecording read_h5_recording(const std::string& path) { return from_polarity(read_dsec_h5(path), path); }
+
+std::string read_event_file_bytes(const std::string& path) { return read_whole(path); }
+
 EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size, const std::string& layout) {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  EventRecording rec;
-  EventFileFormat format;
+  const EventFormatRow* row = nullptr;
   try {
-    format = event_file_format(path, "event file");
+    row = &event_format_of(path, "event file");
   } catch (const InputError&) {
-    throw InputError(fmt::format("event file '{}': unsupported format (use .aedat, .aedat4, .npy, .h5 or .csv)", path));
+    throw InputError(fmt::format("event file '{}': unsupported format (use {})", path, event_extensions()));
   }
-  switch (format) {
-    case EventFileFormat::Csv: rec = from_csv(read_events_csv(path), path); break;
-    case EventFileFormat::Aedat2: {
-      // .aedat holds AEDAT 2.0 (jAER) or 3.1 (cAER, jAER); the first line says which.
-      const std::string data = read_whole(path);
-      if (is_aedat31(data)) {
-        if (!layout.empty()) throw InputError("--layout: jAER's layouts are for AEDAT 2.0 files; this one is AEDAT 3.1");
-        rec = from_polarity(decode_aedat31(data, path), path);
-      } else {
-        rec = from_aedat(decode_aedat(data, path), path, layout);
-      }
-      break;
-    }
-    case EventFileFormat::Aedat4: rec = from_polarity(decode_aedat4(read_whole(path), path), path); break;
-    case EventFileFormat::Npy: rec = from_polarity(decode_npy(read_whole(path), path), path); break;
-    case EventFileFormat::Hdf5: rec = from_polarity(read_dsec_h5(path), path); break;
-  }
+  EventRecording rec = row->read(path, layout);
   if (!size) return rec;
   if (rec.size_recorded && (rec.width != size->width || rec.height != size->height)) {
     throw InputError(fmt::format("--size {}x{}: event file '{}' records a {}x{} array", size->width, size->height, path,
@@ -286,15 +297,10 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
   return rec;
 }
 
-EventRecording decode_events(const std::string& data, const std::string& label, EventFormat format) {
-  if (format == EventFormat::Aedat2) {
-    return is_aedat31(data) ? from_polarity(decode_aedat31(data, label), label)
-                            : from_aedat(decode_aedat(data, label), label, "");
-  }
-  if (format == EventFormat::Aedat4) return from_polarity(decode_aedat4(data, label), label);
-  if (format == EventFormat::Npy) return from_polarity(decode_npy(data, label), label);
-  std::istringstream in(data);
-  return from_csv(parse_events_csv(in, label), label);
+EventRecording decode_events(const std::string& data, const std::string& label, EventFileFormat format) {
+  const EventFormatRow& row = event_format(format);
+  if (!row.decode) throw InputError(fmt::format("event file '{}': {} is read from a file, not from memory", label, row.name));
+  return row.decode(data, label, "");
 }
 
 }  // namespace aesim

@@ -7,6 +7,7 @@
 
 #include "array/address_map.hpp"
 #include "event_files/aedat_layout.hpp"
+#include "event_files/event_formats.hpp"
 #include "events/event_stream.hpp"
 
 namespace aesim {
@@ -24,12 +25,6 @@ class EventFileWriter : public EventStream {
   virtual std::uint64_t off_array() const { return 0; }
 };
 
-// The event file formats, chosen by the output's extension (docs/reference.md section 5); a name without an
-// extension is AEDAT 2.0.
-enum class EventFileFormat { Aedat2, Aedat4, Npy, Hdf5, Csv };
-// Throws InputError naming `option` for an extension aesim does not write.
-EventFileFormat event_file_format(const std::string& path, const std::string& option);
-
 enum class Aedat4Compression { None, Lz4 };
 Aedat4Compression parse_aedat4_compression(const std::string& text);  // "none" | "lz4"
 
@@ -45,8 +40,8 @@ struct EventFileSpec {
   Aedat4Compression compression = Aedat4Compression::Lz4;  // AEDAT 4.0 only
 };
 
-// A writer for `path` (not .csv) in the format its extension names, writing to a temporary of
-// `files` that is renamed into place with the rest.
+// A writer for `path` (not .csv) in the format its extension names (event_formats), writing to a
+// temporary of `files` that is renamed into place with the rest.
 std::unique_ptr<EventFileWriter> open_event_writer(OutputFiles& files, const std::string& path,
                                                    const EventFileSpec& spec);
 

@@ -1,0 +1,146 @@
+#include "event_files/event_formats.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+#include "event_files/aedat.hpp"
+#include "event_files/aedat4.hpp"
+#include "event_files/dsec_h5.hpp"
+#include "event_files/event_file.hpp"
+#include "event_files/event_writer.hpp"
+#include "event_files/npy_events.hpp"
+#include "output/atomic_file.hpp"
+
+namespace aesim {
+namespace {
+
+// A reader from a path for a format decoded from its bytes.
+template <EventRecording (*decode)(const std::string&, const std::string&, const std::string&)>
+EventRecording read_bytes(const std::string& path, const std::string& layout) {
+  return decode(read_event_file_bytes(path), path, layout);
+}
+
+std::vector<EventFormatRow> make_rows() {
+  std::vector<EventFormatRow> rows;
+  {
+    EventFormatRow r{EventFileFormat::Aedat2, "AEDAT 2.0", {".aedat", ".aedat2", ".dat"}, "jAER's"};
+    r.longest_run = 2147;
+    r.stamps = "AEDAT 2.0 timestamps are int32 microseconds";
+    r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
+      const AddressMap map(spec.array);
+      std::vector<std::string> header = aedat_header(map, spec.sensor, spec.layout);
+      header.insert(header.begin() + 1, spec.notes.begin(), spec.notes.end());
+      return std::make_unique<AedatWriter>(files.open(path), header, map, spec.tick, spec.layout);
+    };
+    r.decode = [](const std::string& data, const std::string& label, const std::string& layout) {
+      return decode_aedat_recording(data, label, layout);
+    };
+    r.read = read_bytes<decode_aedat_recording>;
+    rows.push_back(std::move(r));
+  }
+  {
+    EventFormatRow r{EventFileFormat::Aedat4, "AEDAT 4.0", {".aedat4"}, "DV's"};
+    r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
+      return std::make_unique<Aedat4Writer>(files.open(path), spec);
+    };
+    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
+      return decode_aedat4_recording(data, label);
+    };
+    r.read = [](const std::string& path, const std::string&) {
+      return decode_aedat4_recording(read_event_file_bytes(path), path);
+    };
+    rows.push_back(std::move(r));
+  }
+  {
+    EventFormatRow r{EventFileFormat::Npy, ".npy", {".npy"}, "tonic's dtype"};
+    r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
+      return std::make_unique<NpyWriter>(files.adopt(path), spec.tick);
+    };
+    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
+      return decode_npy_recording(data, label);
+    };
+    r.read = [](const std::string& path, const std::string&) {
+      return decode_npy_recording(read_event_file_bytes(path), path);
+    };
+    rows.push_back(std::move(r));
+  }
+  {
+    EventFormatRow r{EventFileFormat::Hdf5, "HDF5", {".h5", ".hdf5"}, "DSEC layout"};
+    r.longest_run = 4294;
+    r.stamps = "DSEC timestamps are uint32 microseconds";
+    r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
+      return std::make_unique<DsecWriter>(files.adopt(path), spec, spec.duration);
+    };
+    r.read = [](const std::string& path, const std::string&) { return read_h5_recording(path); };
+    rows.push_back(std::move(r));
+  }
+  {
+    EventFormatRow r{EventFileFormat::Csv, "CSV", {".csv"}, "t_us,x,y,tile,flags"};
+    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
+      return decode_csv_recording(data, label);
+    };
+    r.read = [](const std::string& path, const std::string&) { return read_csv_recording(path); };
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+// ".a, .b or .c"
+std::string listed(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) out += i + 1 == items.size() ? " or " : ", ";
+    out += items[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<EventFormatRow>& event_formats() {
+  static const std::vector<EventFormatRow> rows = make_rows();
+  return rows;
+}
+
+const EventFormatRow& event_format(EventFileFormat format) {
+  for (const EventFormatRow& row : event_formats()) {
+    if (row.format == format) return row;
+  }
+  throw std::logic_error("an event file format without a row");
+}
+
+const EventFormatRow& event_format_of(const std::string& path, const std::string& option) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  // No extension keeps the AEDAT 2.0 that --out always wrote.
+  if (ext.empty()) return event_format(EventFileFormat::Aedat2);
+  for (const EventFormatRow& row : event_formats()) {
+    if (std::find(row.extensions.begin(), row.extensions.end(), ext) != row.extensions.end()) return row;
+  }
+  std::vector<std::string> all;
+  for (const EventFormatRow& row : event_formats()) all.insert(all.end(), row.extensions.begin(), row.extensions.end());
+  throw InputError(fmt::format("{} '{}': unknown event file type (use {})", option, path, listed(all)));
+}
+
+std::string event_extensions(bool writable) {
+  std::vector<std::string> first;
+  for (const EventFormatRow& row : event_formats()) {
+    if (!writable || row.open) first.push_back(row.extensions.front());
+  }
+  return listed(first);
+}
+
+std::string event_formats_help() {
+  std::vector<std::string> parts;
+  for (const EventFormatRow& row : event_formats()) {
+    if (!row.open) continue;
+    const bool named_by_extension = row.name == row.extensions.front();
+    parts.push_back(named_by_extension ? fmt::format("{} ({})", row.extensions.front(), row.help)
+                                       : fmt::format("{} ({}, {})", row.extensions.front(), row.name, row.help));
+  }
+  return listed(parts);
+}
+
+}  // namespace aesim
