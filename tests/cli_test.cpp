@@ -11,6 +11,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "config/sensor_config.hpp"
@@ -62,6 +63,38 @@ TEST_F(CliTest, DefaultRunWritesEveryOutputUnderOut) {
   EXPECT_EQ(csv.rfind("t_us,x,y,tile,flags\n", 0), 0u);
   EXPECT_EQ(static_cast<double>(std::count(csv.begin(), csv.end(), '\n') - 1),
             summary["events_delivered"].get<double>());
+}
+
+// A calibrated preset is only the circuit within the currents it was measured at: a run whose
+// light leaves them says how many pixels, which way and how far, counted here from the scene file
+// itself; a run inside them says nothing.
+TEST_F(CliTest, ARunOutsideTheCalibratedRangeSaysWhereOnce) {
+  // scenes/gradient.pgm: 64x64, 16-bit big-endian values after "P5\n64 64\n65535\n".
+  const std::string pgm = slurp(kScenes + "/gradient.pgm");
+  const std::string header = "P5\n64 64\n65535\n";
+  ASSERT_EQ(pgm.compare(0, header.size(), header), 0);
+  // aesim_pixel's table runs from 1 fA to 1 nA; at i_max = 2 nA a value v gives v * 2 nA.
+  std::size_t below = 0, above = 0;
+  for (std::size_t i = header.size(); i + 1 < pgm.size(); i += 2) {
+    const unsigned raw = (static_cast<unsigned char>(pgm[i]) << 8) | static_cast<unsigned char>(pgm[i + 1]);
+    const double current = 2e-9 * raw / 65535.0;
+    below += current < 1e-15;
+    above += current > 1e-9;
+  }
+  ASSERT_GT(below, 0u);
+  ASSERT_GT(above, 0u);
+  const Outcome o = aesim("run --sensor aesim_pixel --scene " + kScenes +
+                          "/gradient.pgm --duration 10ms --set pixel.i_max=2nA --summary s.json");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string want = fmt::format("of the scene's 4096 pixels, {} below it, down to 0 A; {} above it, up to 2 nA",
+                                       below, above);
+  EXPECT_NE(o.err.find(want), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("calibrated from 1 fA to 1 nA"), std::string::npos) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;  // one line
+  // The uniform scene at full light, 1 pA: inside the table, no word.
+  const Outcome inside = aesim("run --sensor aesim_pixel --scene " + kScenes + "/uniform.pgm --duration 10ms");
+  ASSERT_EQ(inside.status, 0) << inside.err;
+  EXPECT_EQ(inside.err.find("calibrated from"), std::string::npos) << inside.err;
 }
 
 TEST_F(CliTest, SameSeedSameBytesOtherSeedOtherBytes) {

@@ -1,7 +1,10 @@
 # A calibrated pixel: period against photocurrent from ngspice, the model aesim runs with the
 # calibrated preset, and the ideal eq. 2 pixel of the base preset; below, each relative to the
-# ideal pixel, where the percent-level differences show. From `aesim calibrate --chart`.
+# ideal pixel, where the percent-level differences show. Shaded: the currents outside those at
+# which the circuit fired (ARG3 to ARG4), where the model extrapolates along eq. 2 and `aesim run`
+# warns. From `aesim calibrate --chart`.
 csv = ARG1; png = ARG2  # paths arrive as arguments, never as code
+fired_lo = ARG3 + 0.0; fired_hi = ARG4 + 0.0  # "1.000000e-12": gnuplot reads a number from a string only with its decimal point
 set datafile separator ","
 set datafile columnheaders
 set datafile missing ""
@@ -16,6 +19,10 @@ set logscale y
 set format y "%.0e"
 set ylabel "firing period (s)"
 set key top right
+set object 1 rect from graph 0, graph 0 to first fired_lo, graph 1 behind fc rgb "#e8e8e8" fs solid noborder
+set object 2 rect from first fired_hi, graph 0 to graph 1, graph 1 behind fc rgb "#e8e8e8" fs solid noborder
+set label 1 "extrapolated" at graph 0.02, graph 0.05 tc rgb "gray40"
+set label 2 "extrapolated" at graph 0.98, graph 0.05 right tc rgb "gray40"
 plot csv using 1:4 with lines lw 2 dt 2 lc rgb "gray40" title "ideal eq. 2 (base preset)", \
      csv using 1:3 with lines lw 2 lc rgb "#1f77b4" title "calibrated model (pixel.transfer)", \
      csv using 1:2 with points pt 7 ps 1.2 lc rgb "#d62728" title "ngspice"

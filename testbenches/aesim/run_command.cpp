@@ -21,6 +21,7 @@
 #include "images/image_file.hpp"
 #include "event_files/truth_csv.hpp"
 #include "recon/reconstruct.hpp"
+#include "scene/calibrated_range.hpp"
 #include "scene/photocurrents.hpp"
 #include "scene/scene.hpp"
 #include "run/imager_simulation.hpp"
@@ -144,6 +145,8 @@ int run_command(RunOptions opt) {
   files.commit();
 
   const TileCounters total = result.log.totals();
+  const std::string range = calibrated_range_warning(calibrated_range_use(scene, config.pixel), config.pixel);
+  if (!range.empty()) std::fprintf(stderr, "aesim: warning: %s\n", range.c_str());
   if (events && !events->reader_warning().empty()) {
     std::fprintf(stderr, "aesim: warning: %s: %s\n", opt.out.c_str(), events->reader_warning().c_str());
   }

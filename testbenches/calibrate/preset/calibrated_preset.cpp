@@ -81,6 +81,16 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
       c.supply.static_current, 100 * c.supply.rms_residual, 100 * c.supply.max_residual);
   if (const std::string note = per_firing_energy_note(c, o.vdd); !note.empty()) text += "# " + note + ".\n";
+  double fired_lo = 0, fired_hi = 0;
+  for (const CalibrationPoint& p : c.points) {
+    if (!std::isfinite(p.period)) continue;
+    fired_lo = fired_lo == 0 ? p.current : std::min(fired_lo, p.current);
+    fired_hi = std::max(fired_hi, p.current);
+  }
+  text += fmt::format(
+      "# Valid from {:.4g} A to {:.4g} A, the currents at which the circuit fired periodically (pixel.transfer's\n"
+      "#   ends): outside them the model extrapolates along eq. 2, and `aesim run` warns how many pixels are there.\n",
+      fired_lo, fired_hi);
   if (c.mismatch) {
     text += fmt::format("# Monte Carlo: {} runs at {:.4g} A: threshold-charge spread (pixel.mismatch) {:.4g}\n",
                         c.mc_periods.size(), c.mc_current, *c.mismatch);

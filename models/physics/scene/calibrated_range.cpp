@@ -1,0 +1,48 @@
+#include "scene/calibrated_range.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "units/si_units.hpp"
+
+namespace aesim {
+
+CalibratedRangeUse calibrated_range_use(const Scene& scene, const PixelParams& pixel) {
+  CalibratedRangeUse use;
+  if (pixel.transfer.empty() || scene.frames.empty()) return use;
+  const double lo = pixel.transfer.current.front(), hi = pixel.transfer.current.back();
+  use.pixels = scene.frames.front().pixels.size();
+  std::vector<unsigned char> seen(use.pixels, 0);  // bit 0: below, bit 1: above
+  use.lowest = pixel.i_max * scene.frames.front().pixels.front();
+  use.highest = use.lowest;
+  for (const Image& frame : scene.frames) {
+    for (std::size_t i = 0; i < frame.pixels.size() && i < use.pixels; ++i) {
+      const double current = pixel.i_max * frame.pixels[i];
+      use.lowest = std::min(use.lowest, current);
+      use.highest = std::max(use.highest, current);
+      if (current < lo) seen[i] |= 1;
+      if (current > hi) seen[i] |= 2;
+    }
+  }
+  for (const unsigned char s : seen) {
+    use.below += s & 1;
+    use.above += (s >> 1) & 1;
+  }
+  return use;
+}
+
+std::string calibrated_range_warning(const CalibratedRangeUse& use, const PixelParams& pixel) {
+  if (use.below == 0 && use.above == 0) return "";
+  std::vector<std::string> parts;
+  if (use.below > 0) parts.push_back(fmt::format("{} below it, down to {}", use.below, format_si(use.lowest, "A")));
+  if (use.above > 0) parts.push_back(fmt::format("{} above it, up to {}", use.above, format_si(use.highest, "A")));
+  return fmt::format(
+      "pixel.transfer was calibrated from {} to {}; of the scene's {} pixels, {}: there the model extrapolates "
+      "along eq. 2 rather than the circuit's measured periods (aesim calibrate --currents can widen the table)",
+      format_si(pixel.transfer.current.front(), "A"), format_si(pixel.transfer.current.back(), "A"), use.pixels,
+      fmt::join(parts, "; "));
+}
+
+}  // namespace aesim
