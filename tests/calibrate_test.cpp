@@ -364,6 +364,55 @@ TEST_F(NgspiceTest, MonteCarloMeasuresTheSpreadOfAStatisticalCapacitorAndTheTabl
   EXPECT_EQ(calibrate_pixel(pixel, o).mismatch, c.mismatch);
 }
 
+// A foundry PDK's statistical models, on by default: the known deck's capacitor drawn with a
+// 20 % sigma when the PDK's switch (GF180's sw_stat_mismatch, set to 1 in a model file the deck
+// includes) is on. The table is run with the switch at 0, so it is the nominal circuit; the Monte
+// Carlo runs turn it on and measure the PDK's own spread; the preset says which switch it set.
+TEST_F(NgspiceTest, APdksStatisticalSwitchIsOffForTheTableAndOnForMonteCarlo) {
+  std::string deck = slurp(kIdealDeck);
+  const std::string cap = "Cint int gnd 100f";
+  ASSERT_NE(deck.find(cap), std::string::npos);
+  deck.replace(deck.find(cap), cap.size(), "Cint int gnd {100f * (1 + sw_stat_mismatch * agauss(0, 0.2, 1))}");
+  write("models.lib", "* the PDK's statistics, on\n.param sw_stat_global=1 sw_stat_mismatch = 1\n");
+  write("pdk.cir", ".include models.lib\n" + deck);
+  PixelDeck pixel = read_pixel_deck((dir_ / "pdk.cir").string(), "ideal_pixel", "int");
+  EXPECT_EQ(pixel.statistical_switches, (std::vector<std::string>{"sw_stat_global", "sw_stat_mismatch"}));
+  EXPECT_EQ(pixel.statistical_file, (dir_ / "pdk.cir").string());
+  CalibrationOptions o;
+  o.i_low = 1e-12;
+  o.i_high = 1e-10;
+  o.points = 3;
+  o.jobs = 2;
+  const Calibration nominal = calibrate_pixel(pixel, o);
+  EXPECT_NEAR(nominal.fit.charge / (100e-15 * 0.999), 1, 0.005);
+  // Left on, each point is a draw of seed 1: not the nominal capacitor.
+  PixelDeck left_on = pixel;
+  left_on.statistical_switches.clear();
+  EXPECT_GT(std::abs(calibrate_pixel(left_on, o).fit.charge / (100e-15 * 0.999) - 1), 0.01);
+  o.mc = 30;
+  const Calibration mc = calibrate_pixel(pixel, o);
+  ASSERT_TRUE(mc.mismatch.has_value());
+  EXPECT_NEAR(*mc.mismatch, 0.2, 0.08);  // 30 draws of a 20 % sigma
+  const Outcome run = aesim("calibrate pdk.cir --subckt ideal_pixel -o pdk.toml --currents 1pA:100pA --points 3");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(slurp(dir_ / "pdk.toml").find("# Statistical models: the deck's switches sw_stat_global, sw_stat_mismatch "
+                                           "were set to 0 for the table"),
+            std::string::npos);
+}
+
+// A deck that draws at random with no switch and no `mc` parameter: the table is one draw, and the
+// run says so rather than calling it nominal.
+TEST_F(NgspiceTest, ADeckThatDrawsWithoutASwitchIsToldToBeADraw) {
+  std::string deck = slurp(kIdealDeck);
+  const std::string cap = "Cint int gnd 100f";
+  deck.replace(deck.find(cap), cap.size(), "Cint int gnd {100f * (1 + agauss(0, 0.01, 1))}");
+  write("draw.cir", deck);
+  const Outcome o = aesim("calibrate draw.cir --subckt ideal_pixel -o draw.toml --currents 1pA:100pA --points 3");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.err.find("warning: statistical models: 'draw.cir' draws at random"), std::string::npos) << o.err;
+  EXPECT_NE(slurp(dir_ / "draw.toml").find("each point of the table is one draw of ngspice's seed 1"), std::string::npos);
+}
+
 TEST_F(NgspiceTest, APixelThatFiresOnlyAboveItsLeakageIsTabledWhereItFires) {
   // The known deck with 100 Gohm from the node to ground: at 1.5 V it leaks 15 pA, so below that
   // the node never reaches the threshold. Nothing is asked twice, and the warning names the rest.

@@ -87,6 +87,9 @@ int calibrate_command(const CalibrateOptions& opt) {
   if (const std::string note = per_firing_energy_note(c, options.vdd); !note.empty()) {
     std::fprintf(stderr, "aesim calibrate: warning: %s\n", note.c_str());
   }
+  if (const StatisticsNote note = statistics_note(deck); note.warning) {
+    std::fprintf(stderr, "aesim calibrate: warning: %s\n", note.text.c_str());
+  }
   std::printf("pixel %s: Q = %s (c_int %s at dv_int %s), t_reset = %s, i_dark = %s; eq. 2 fits within %.2f %% (rms %.2f %%)\n",
               deck.subckt.c_str(), format_si(c.fit.charge, "C").c_str(), format_si(calibrated.pixel.c_int, "F").c_str(),
               format_si(calibrated.pixel.dv_int, "V").c_str(), format_si(c.fit.t_reset, "s").c_str(),

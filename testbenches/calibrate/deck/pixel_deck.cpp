@@ -138,7 +138,62 @@ std::optional<Subcircuit> find_subckt(const std::vector<std::string>& lines, con
   return std::nullopt;
 }
 
+// A name a PDK gives a switch of its statistical models.
+bool statistical_switch(const std::string& name) {
+  return name.rfind("sw_stat_", 0) == 0 || (name.rfind("mc_", 0) == 0 && name.find("switch") != std::string::npos);
+}
+
+// Notes in `deck` the statistical switches `lines` define and whether they draw at random.
+void find_statistics(const std::vector<std::string>& lines, const std::string& file, PixelDeck& deck) {
+  for (const std::string& line : lines) {
+    const std::string lower = ascii_lower(line);
+    if (deck.statistical_file.empty()) {
+      for (const char* f : {"agauss(", "gauss(", "aunif(", "unif("}) {
+        const auto at = lower.find(f);
+        // A whole word: "agauss(" inside "xagauss(" is someone's own function.
+        if (at != std::string::npos && (at == 0 || !(std::isalnum(static_cast<unsigned char>(lower[at - 1])) || lower[at - 1] == '_'))) {
+          deck.statistical_file = file;
+          break;
+        }
+      }
+    }
+    if (lower.rfind(".param", 0) != 0) continue;
+    // .param a=1 b = 2 ...: each name is the word before an '='.
+    std::string spaced = lower.substr(6);
+    for (std::size_t at = spaced.find('='); at != std::string::npos; at = spaced.find('=', at + 1)) {
+      std::size_t end = at;
+      while (end > 0 && spaced[end - 1] == ' ') --end;
+      std::size_t begin = end;
+      while (begin > 0 && (std::isalnum(static_cast<unsigned char>(spaced[begin - 1])) || spaced[begin - 1] == '_')) --begin;
+      const std::string name = spaced.substr(begin, end - begin);
+      if (statistical_switch(name) &&
+          std::find(deck.statistical_switches.begin(), deck.statistical_switches.end(), name) == deck.statistical_switches.end()) {
+        deck.statistical_switches.push_back(name);
+      }
+    }
+  }
+}
+
 }  // namespace
+
+StatisticsNote statistics_note(const PixelDeck& deck) {
+  if (!deck.statistical_switches.empty()) {
+    std::string names;
+    for (const std::string& n : deck.statistical_switches) names += (names.empty() ? "" : ", ") + n;
+    return {fmt::format("statistical models: the deck's switches {} were set to 0 for the table (nominal models) "
+                        "and to 1 in the Monte Carlo runs",
+                        names),
+            false};
+  }
+  if (!deck.statistical_file.empty() && !deck.mc_parameter) {
+    return {fmt::format("statistical models: '{}' draws at random (agauss, gauss, aunif or unif) and the deck has "
+                        "no switch aesim knows (sw_stat_*, mc_*switch*) nor an `mc` parameter: each point of the "
+                        "table is one draw of ngspice's seed 1, not the nominal circuit",
+                        deck.statistical_file),
+            true};
+  }
+  return {};
+}
 
 PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node) {
   PixelDeck deck;
@@ -160,6 +215,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   refuse_commands(text, path);
   const std::vector<std::string> lines = logical_lines(text);
   std::optional<Subcircuit> found = find_subckt(lines, subckt);
+  find_statistics(lines, path, deck);
   // Every file the deck includes, and those they include (a PDK's .lib files nest), once each.
   std::vector<std::string> pending = includes(lines, fs::path(deck.path).parent_path());
   std::vector<std::string> seen;
@@ -179,6 +235,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
     h = fnv1a(included, h);
     const std::vector<std::string> included_lines = logical_lines(included);
     if (!found) found = find_subckt(included_lines, subckt);
+    find_statistics(included_lines, inc, deck);
     for (const std::string& next : includes(included_lines, fs::path(inc).parent_path())) pending.push_back(next);
   }
   deck.hash = fmt::format("{:016x}", h);

@@ -1,6 +1,7 @@
 #pragma once
 #include <string>
 #include <vector>
+#include <vector>
 
 namespace aesim {
 
@@ -15,6 +16,13 @@ struct PixelDeck {
   // The subcircuit declares a parameter `mc`: aesim passes mc=1 in Monte Carlo runs and mc=0
   // otherwise, so that one deck gives the nominal table and the statistical spread.
   bool mc_parameter = false;
+  // A foundry PDK's statistical models: the switches the deck or its includes define for them
+  // (`.param sw_stat_global`, `sw_stat_mismatch` (GF180), `mc_mm_switch`, `mc_pr_switch` (SKY130),
+  // any sw_stat_* or mc_*switch*), which aesim sets to 0 for the table's runs (nominal models) and
+  // to 1 in Monte Carlo runs; and the first file that draws with agauss, gauss, aunif or unif
+  // (empty if none does).
+  std::vector<std::string> statistical_switches;
+  std::string statistical_file;
 };
 
 // Reads the deck and finds the subcircuit (in the deck or the files it .include's, one level),
@@ -22,5 +30,14 @@ struct PixelDeck {
 // InputError naming the deck and the problem; what only ngspice can judge (syntax, models) is
 // left to the first run.
 PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node);
+
+// What the table's runs make of the deck's statistical models, for the preset's provenance: the
+// switches set to 0 (nominal), or, for a deck that draws at random with no switch and no `mc`
+// parameter, that each point is one draw (`warning` then true). Empty for a deck without them.
+struct StatisticsNote {
+  std::string text;
+  bool warning = false;
+};
+StatisticsNote statistics_note(const PixelDeck& deck);
 
 }  // namespace aesim

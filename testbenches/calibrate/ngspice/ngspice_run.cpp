@@ -98,6 +98,11 @@ const char* solver_level_text(std::size_t level) {
 std::string testbench_text(const PixelDeck& deck, double vdd, const TransientRequest& r, const std::string& data_path) {
   std::string probe;
   if (!deck.probe.empty()) probe = fmt::format(" v(xpix.{})", deck.probe);
+  // After the deck, so that they win over its own values (ngspice keeps a .param's last value).
+  std::string switches;
+  for (const std::string& name : deck.statistical_switches) {
+    switches += fmt::format(".param {}={}\n", name, r.monte_carlo ? 1 : 0);
+  }
   const SolverSettings solver = solver_settings(r.settings, r.iph, vdd);
   // First settings: Gear integration (the trapezoidal rule rings on the pixel's fast edges and
   // fakes firings at slow ramps), tolerances sized for femtoamps and femtocoulombs (the defaults,
@@ -108,6 +113,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "* aesim calibrate: {} at iph = {:.6g} A\n"
       ".options method={} reltol=1e-4 abstol={:g} chgtol={:g} gmin={:g} seed={}\n"
       ".include \"{}\"\n"
+      "{}"
       "Vdd vdd 0 {:.12g}\n"
       "Xpix vdd out 0 {} iph={:.12g}{}\n"
       ".control\n"
@@ -119,7 +125,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "quit 0\n"
       ".endc\n"
       ".end\n",
-      deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.path, vdd,
+      deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.path, switches, vdd,
       deck.subckt, r.iph,
       deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), r.t_max, r.t_stop, r.t_max,
       data_path, probe);

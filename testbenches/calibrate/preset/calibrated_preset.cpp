@@ -1,6 +1,7 @@
 #include "preset/calibrated_preset.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -81,6 +82,9 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
       c.supply.static_current, 100 * c.supply.rms_residual, 100 * c.supply.max_residual);
   if (const std::string note = per_firing_energy_note(c, o.vdd); !note.empty()) text += "# " + note + ".\n";
+  if (const StatisticsNote note = statistics_note(deck); !note.text.empty()) {
+    text += "# " + std::string(1, static_cast<char>(std::toupper(note.text[0]))) + note.text.substr(1) + ".\n";
+  }
   double fired_lo = 0, fired_hi = 0;
   for (const CalibrationPoint& p : c.points) {
     if (!std::isfinite(p.period)) continue;
