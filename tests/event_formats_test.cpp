@@ -132,12 +132,16 @@ TEST_F(EventFormats, EveryFormatIsOneRowOfTheTable) {
       EXPECT_NE(docs.find("`" + ext + "`"), std::string::npos) << ext << " is not in docs/event_files.md";
     }
     EXPECT_NE(recon_help.out.find(row.extensions.front()), std::string::npos);
-    if (row.longest_run > 0) EXPECT_FALSE(std::string(row.stamps).empty());
+    if (row.longest_run > 0) {
+      EXPECT_FALSE(std::string(row.stamps).empty());
+    }
     if (!row.open) continue;
     ++writable;
     const std::string path = write("row" + row.extensions.back(), sample(map));
     EXPECT_EQ(load_events(path).events.size(), sample(map).size());
-    if (row.decode) EXPECT_EQ(decode_events(slurp(path), path, row.format).events.size(), sample(map).size());
+    if (row.decode) {
+      EXPECT_EQ(decode_events(slurp(path), path, row.format).events.size(), sample(map).size());
+    }
   }
   EXPECT_EQ(writable, 4u);
   EXPECT_NE(run_help.out.find(event_formats_help()), std::string::npos) << run_help.out;

@@ -13,6 +13,7 @@
 #include <streambuf>
 
 #include "ceiling_probe.hpp"
+#include "Vaer_receiver_drop_stepped.h"
 #include "config/sensor_config.hpp"
 #include "event_files/aedat.hpp"
 #include "event_files/event_writer.hpp"
@@ -71,6 +72,30 @@ void BM_CycleLetterA_Rtl(benchmark::State& state) {
   c.sim.fidelity = Fidelity::Cycle;
   c.receiver.model = ReceiverModel::Rtl;
   run(state, c, scene_for(c, "scenes/letters/A.pgm"));
+}
+
+// The least work the RTL in the loop must do: the Verilated receiver (the plain C++ model the cycle
+// rung steps) clocked in a bare loop, rising and falling edge each an eval(), inputs idle.
+void BM_RtlEvalProbe(benchmark::State& state) {
+  Vaer_receiver_drop_stepped rtl("rtl");
+  rtl.prescale_i = 50;
+  rtl.fifo_limit_i = 16;
+  rtl.evt_ready_i = 1;
+  rtl.rst_ni = 0;
+  rtl.eval();
+  rtl.rst_ni = 1;
+  constexpr int kCycles = 1000000;
+  for (auto _ : state) {
+    for (int i = 0; i < kCycles; ++i) {
+      rtl.clk_i = 1;
+      rtl.eval();
+      rtl.clk_i = 0;
+      rtl.eval();
+    }
+  }
+  rtl.final();
+  state.counters["edges_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kCycles, benchmark::Counter::kIsRate);
 }
 
 // A receiver with its clock running throughout (no gating): what each costs per clock cycle.
@@ -282,6 +307,7 @@ BENCHMARK(BM_OneLitPixel)->Arg(32)->Arg(1024)->Unit(benchmark::kMillisecond)->Mi
 BENCHMARK(BM_EventLetterA)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_CycleLetterA)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_CycleLetterA_Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_RtlEvalProbe)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Reference, ReceiverModel::Reference)
     ->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_CycleFreeRunningClock, Rtl, ReceiverModel::Rtl)->Unit(benchmark::kMillisecond)->MinTime(2.0);

@@ -9,6 +9,7 @@
 #include "config/sensor_config.hpp"
 #include "receiver/receiver_cycle_model.hpp"
 #include "receiver/receiver_signals.hpp"
+#include "receiver/stepped_receiver.hpp"
 
 namespace aesim {
 
@@ -32,6 +33,9 @@ ReceiverFactory reference_receiver_factory();
 struct CycleOptions {
   // Empty: the reference model (or the RTL, when the run's receiver.model says so).
   ReceiverFactory receiver;
+  // With no `receiver`: a receiver the tile's clock domain steps in place of the reference model
+  // (the RTL as a plain C++ model), made for each tile.
+  std::function<std::unique_ptr<SteppedReceiver>(std::uint32_t tile, const ReceiverCycleModel::Config&)> stepped_receiver;
   // Tiles whose receiver lives outside the tile (the caller's, wired to the tile's signals after
   // the tile is built): such a tile has its clock, consumer and stream monitor but no receiver.
   std::vector<std::uint32_t> outside_receivers;

@@ -15,6 +15,7 @@ ReferenceClockDomain::ReferenceClockDomain(const sc_core::sc_module_name& name, 
       fifo_limit_(config.fifo_limit),
       ts_external_(config.ts_external),
       model_(config),
+      outputs_(&model_.outputs()),
       consumer_(std::move(consumer)) {
   clock_.prescale = std::max(1u, clock_.prescale);
   SC_METHOD(on_wake);
@@ -58,6 +59,11 @@ inline void ReferenceClockDomain::step_edge() {
   in.addr = released_ ? 0 : s_.addr.read();
   in.contention = !released_ && s_.contention.read();
   in.ready = ready;
+  if (stepped_) {
+    // The RTL has the timestamp port whatever its setting, as on a tile's wires.
+    stepped_->clock(in, (k_ / clock_.prescale) & ts_mask_);
+    return;
+  }
   // Only an external timestamp is read: the division would cost more than the rest of the edge.
   if (ts_external_) in.ts = (k_ / clock_.prescale) & ts_mask_;
   model_.clock(in);

@@ -1,18 +1,21 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <systemc>
 
 #include "receiver/receiver_cycle_model.hpp"
 #include "receiver/receiver_signals.hpp"
+#include "receiver/stepped_receiver.hpp"
 #include "receiver/stream_consumer.hpp"
 #include "receiver/stream_rules.hpp"
 
 namespace aesim {
 
-// The reference receiver's whole clock domain as one process: the gated clock, the receiver
+// A receiver's whole clock domain as one process: the gated clock, the receiver
 // (ReceiverCycleModel), the consumer of its event stream and the stream's rules, stepped together
-// once per rising edge. A tile with the reference receiver needs nothing else on its clock: its
+// once per rising edge; or, in the model's place, a SteppedReceiver (the Verilated RTL as a plain
+// C++ model, with its scoreboard). A tile with such a receiver needs nothing else on its clock: its
 // outputs toward the bus (Ack, and the overflow count the bus reads when Ack rises) are the only
 // wires it drives. A Verilated receiver has a clock wire and ports, and its tile keeps GatedClock,
 // EventSink and StreamMonitor as separate processes on those wires (receiver/receiver_module).
@@ -43,6 +46,13 @@ class ReferenceClockDomain : public sc_core::sc_module {
   // firing. Without it, one activation per edge.
   void set_wires_hold_until(std::function<std::uint64_t()> until) { wires_hold_until_ = std::move(until); }
   std::uint64_t violations() const;
+  // Steps `receiver` (the Verilated RTL, say) at each edge in place of the reference model. Called
+  // before the simulation starts.
+  void step(std::unique_ptr<SteppedReceiver> receiver) {
+    stepped_ = std::move(receiver);
+    outputs_ = &stepped_->outputs();
+  }
+  const SteppedReceiver* stepped() const { return stepped_.get(); }
 
  private:
   void on_wake();
@@ -52,7 +62,7 @@ class ReferenceClockDomain : public sc_core::sc_module {
   bool stops_after_edge();
   // The stream and status outputs held now (after the last edge).
   StreamView view() const;
-  const ReceiverCycleModel::Outputs& out() const { return model_.outputs(); }
+  const ReceiverCycleModel::Outputs& out() const { return *outputs_; }
   // Req as the next edge sees it: low once Ack has risen, though the bus lets go only in the
   // delta cycle after this activation.
   bool req() const { return !released_ && s_.req.read(); }
@@ -63,6 +73,8 @@ class ReferenceClockDomain : public sc_core::sc_module {
   std::uint32_t fifo_limit_;
   bool ts_external_;
   ReceiverCycleModel model_;
+  std::unique_ptr<SteppedReceiver> stepped_;  // stepped instead of model_, when set
+  const ReceiverCycleModel::Outputs* outputs_;  // the outputs of whichever is stepped
   bool ready_ = true;  // the consumer's ready, held since the last edge
   StreamConsumer consumer_;
   StreamRules rules_;

@@ -30,6 +30,7 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
     domain_ = std::make_unique<ReferenceClockDomain>(
         "receiver", s_, ReferenceClockDomain::Clock{period, rc.prescale, kReceiverTsWidth, free_running_until}, rc,
         std::move(consumer));
+    if (options.stepped_receiver) domain_->step(options.stepped_receiver(tile, rc));
   } else {
     clock_ = std::make_unique<GatedClock>("clock", s_, period, rc.prescale, kReceiverTsWidth, free_running_until);
     if (!outside_) receiver_ = options.receiver("receiver", tile, s_, rc);
@@ -68,6 +69,9 @@ CycleTile::Stats CycleTile::stats() const {
   if (receiver_) {
     s.scoreboard_beats = receiver_->scoreboard_beats();
     s.scoreboard_mismatches = receiver_->scoreboard_mismatches();
+  } else if (domain_ && domain_->stepped()) {
+    s.scoreboard_beats = domain_->stepped()->scoreboard_beats();
+    s.scoreboard_mismatches = domain_->stepped()->scoreboard_mismatches();
   }
   s.measured_tau = bus_.measured_tau();
   return s;

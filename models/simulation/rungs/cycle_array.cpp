@@ -4,6 +4,7 @@
 
 #include "array/schedule_driver.hpp"
 #include "cosim/rtl_receiver.hpp"
+#include "cosim/stepped_rtl_receiver.hpp"
 
 namespace aesim {
 
@@ -26,10 +27,18 @@ CycleArray::~CycleArray() = default;
 
 CycleOptions cycle_options(const RungRun& run) {
   CycleOptions options = run.request.cycle;
-  if (!options.receiver && run.config.receiver.model == ReceiverModel::Rtl) {
-    options.receiver = rtl_receiver_factory(run.config.receiver.full_policy, run.request.rtl_trace_path,
-                                            sc_core::sc_time(run.request.vcd_from, sc_core::SC_SEC),
-                                            sc_core::sc_time(run.request.vcd_to, sc_core::SC_SEC));
+  if (!options.receiver && !options.stepped_receiver && run.config.receiver.model == ReceiverModel::Rtl) {
+    const FullPolicy policy = run.config.receiver.full_policy;
+    if (run.request.rtl_trace_path) {
+      // Tracing the RTL's internal signals: the Verilated SystemC model on the tile's clock wire.
+      options.receiver = rtl_receiver_factory(policy, run.request.rtl_trace_path,
+                                              sc_core::sc_time(run.request.vcd_from, sc_core::SC_SEC),
+                                              sc_core::sc_time(run.request.vcd_to, sc_core::SC_SEC));
+    } else {
+      options.stepped_receiver = [policy](std::uint32_t, const ReceiverCycleModel::Config& config) {
+        return make_stepped_rtl_receiver(policy, config);
+      };
+    }
   }
   return options;
 }
