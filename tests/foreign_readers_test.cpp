@@ -318,6 +318,52 @@ TEST(ForeignReaders, JaerStampsPastTwoToTheThirtyOneAndAcrossAWrapReadInOrder) {
   for (std::size_t i = 1; i < rec.events.size(); ++i) EXPECT_LE(rec.events[i - 1].t, rec.events[i].t);
 }
 
+// Prophesee's DAT (ATIS cameras, N-CARS, Gen1), laid out as its documentation and expelliarmus's
+// read_dat give it: '%' header lines, a type byte (0, CD) and a size byte (8), then per event a
+// little-endian stamp (us) and a word with x in bits 0-13, y in 14-27, polarity in 28-31. A stamp
+// below the last means the 32-bit counter wrapped. It shares .dat with jAER, whose files begin '#'.
+TEST(ForeignReaders, PropheseeDatGivesItsCdEventsWithWrappedStampsAndItsSize) {
+  std::string file = "% Data file containing Event2D events.\n% Version 2\n% Width 304\n% Height 240\n";
+  file += std::string("\x00\x08", 2);
+  const auto put32 = [&](std::uint32_t v) {
+    for (int b = 0; b < 4; ++b) file += static_cast<char>((v >> (8 * b)) & 0xFF);
+  };
+  const auto event = [&](std::uint32_t t, std::uint32_t x, std::uint32_t y, std::uint32_t p) {
+    put32(t);
+    put32(x | (y << 14) | (p << 28));
+  };
+  event(5, 303, 239, 1);
+  event(900, 0, 7, 0);
+  event(0xFFFFFFF0u, 12, 34, 1);
+  event(0x10, 12, 35, 0);  // the counter wrapped
+  const EventRecording rec = decode_events(file, "atis.dat", EventFileFormat::Aedat2);
+  ASSERT_EQ(rec.events.size(), 4u);
+  EXPECT_EQ(rec.width, 304);
+  EXPECT_EQ(rec.height, 240);
+  EXPECT_TRUE(rec.size_recorded);
+  EXPECT_EQ(rec.events[0].x, 303u);
+  EXPECT_EQ(rec.events[0].y, 239u);
+  EXPECT_EQ(rec.events[0].flags, kNormalEvent);
+  EXPECT_EQ(rec.events[1].flags, kOffEvent);
+  EXPECT_DOUBLE_EQ(rec.events[1].t, 900e-6);
+  EXPECT_DOUBLE_EQ(rec.events[3].t, (4294967296.0 + 16) * 1e-6);
+  EXPECT_EQ(rec.events[3].y, 35u);
+  // Other event types, a file cut inside an event, a header without its end: one-line errors.
+  const auto refused = [](const std::string& data, const std::string& words) {
+    try {
+      decode_events(data, "bad.dat", EventFileFormat::Aedat2);
+      ADD_FAILURE() << "accepted: " << words;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  std::string evt3 = file;
+  evt3[file.find(std::string("\x00\x08", 2))] = 0x0C;
+  refused(evt3, "type 12 and size 8");
+  refused(file.substr(0, file.size() - 3), "ends inside event 3");
+  refused("% no end", "header does not end");
+}
+
 class EmptyRuns : public testing::TempDirTest {};
 
 // A run that delivers no event still writes a file each reader opens: DV's AEDAT 4.0 readers

@@ -20,6 +20,7 @@
 #include "event_files/event_writer.hpp"
 #include "event_files/events_csv.hpp"
 #include "event_files/npy_events.hpp"
+#include "event_files/prophesee_dat.hpp"
 #include "files/input_file.hpp"
 
 namespace aesim {
@@ -244,7 +245,12 @@ ArraySize parse_array_size(const std::string& text, const std::string& option) {
 }
 
 EventRecording decode_aedat_recording(const std::string& data, const std::string& label, const std::string& layout) {
-  // .aedat holds AEDAT 2.0 (jAER) or 3.1 (cAER, jAER); the first line says which.
+  // .aedat holds AEDAT 2.0 (jAER) or 3.1 (cAER, jAER), and .dat jAER's or Prophesee's: the first
+  // line says which.
+  if (is_prophesee_dat(data)) {
+    if (!layout.empty()) throw InputError("--layout: jAER's layouts are for AEDAT 2.0 files; this one is Prophesee DAT");
+    return from_polarity(decode_prophesee_dat(data, label), label);
+  }
   if (is_aedat31(data)) {
     if (!layout.empty()) throw InputError("--layout: jAER's layouts are for AEDAT 2.0 files; this one is AEDAT 3.1");
     return from_polarity(decode_aedat31(data, label), label);

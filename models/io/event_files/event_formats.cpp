@@ -26,6 +26,7 @@ EventRecording read_bytes(const std::string& path, const std::string& layout) {
 std::vector<EventFormatRow> make_rows() {
   std::vector<EventFormatRow> rows;
   {
+    // Read: AEDAT 2.0 or 3.1, and, from a .dat whose header lines begin with '%', Prophesee's DAT.
     EventFormatRow r{EventFileFormat::Aedat2, "AEDAT 2.0", {".aedat", ".aedat2", ".dat"}, "jAER's"};
     r.longest_run = 2147;
     r.stamps = "AEDAT 2.0 timestamps are int32 microseconds";

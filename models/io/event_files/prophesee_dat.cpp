@@ -1,0 +1,74 @@
+#include "event_files/prophesee_dat.hpp"
+
+#include <cstdint>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "errors/input_error.hpp"
+
+namespace aesim {
+namespace {
+
+std::uint32_t le32(const std::string& data, std::size_t at) {
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(data[at])) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(data[at + 1])) << 8 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(data[at + 2])) << 16 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(data[at + 3])) << 24;
+}
+
+// "% Width 304" -> 304 (0 when the line is another or the number is not one from 1 to 65535).
+int header_size(const std::string& line, const char* key) {
+  std::istringstream in(line);
+  std::string percent, word;
+  long value = 0;
+  if (!(in >> percent >> word >> value) || word != key || value < 1 || value > 65535) return 0;
+  return static_cast<int>(value);
+}
+
+}  // namespace
+
+bool is_prophesee_dat(const std::string& data) { return !data.empty() && data[0] == '%'; }
+
+PolarityRecording decode_prophesee_dat(const std::string& data, const std::string& label) {
+  PolarityRecording rec;
+  std::size_t at = 0;
+  while (at < data.size() && data[at] == '%') {
+    const std::size_t end = data.find('\n', at);
+    if (end == std::string::npos) {
+      throw InputError(fmt::format("event file '{}': the Prophesee DAT header does not end", label));
+    }
+    const std::string line = data.substr(at, end - at);
+    if (const int w = header_size(line, "Width")) rec.width = w;
+    if (const int h = header_size(line, "Height")) rec.height = h;
+    at = end + 1;
+  }
+  if (data.size() < at + 2) throw InputError(fmt::format("event file '{}': no event type after the header", label));
+  const int type = static_cast<unsigned char>(data[at]), size = static_cast<unsigned char>(data[at + 1]);
+  if (type != 0 || size != 8) {
+    throw InputError(fmt::format("event file '{}': Prophesee DAT events of type {} and size {} (aesim reads CD "
+                                 "events: type 0, 8 bytes)",
+                                 label, type, size));
+  }
+  at += 2;
+  if ((data.size() - at) % 8 != 0) {
+    throw InputError(fmt::format("event file '{}': the file ends inside event {}", label, (data.size() - at) / 8));
+  }
+  rec.events.reserve((data.size() - at) / 8);
+  std::uint64_t wraps = 0;
+  std::uint32_t last = 0;
+  for (; at < data.size(); at += 8) {
+    const std::uint32_t t = le32(data, at), w = le32(data, at + 4);
+    if (t < last) ++wraps;
+    last = t;
+    PolarityEvent e;
+    e.t_us = static_cast<std::int64_t>((wraps << 32) | t);
+    e.x = static_cast<std::int32_t>(w & 0x3FFF);
+    e.y = static_cast<std::int32_t>((w >> 14) & 0x3FFF);
+    e.on = ((w >> 28) & 0xF) != 0;
+    rec.events.push_back(e);
+  }
+  return rec;
+}
+
+}  // namespace aesim
