@@ -476,6 +476,18 @@ TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
     EXPECT_EQ(last.rfind("aesim: ", 0), 0u) << name << ": " << o.err;
     EXPECT_NE(last.find(spec.second), std::string::npos) << name << ": " << o.err;
     EXPECT_FALSE(fs::exists(dir_ / (name + ".toml"))) << name;
+    // Where ngspice itself rejected the deck, its whole log is kept beside the preset, named in
+    // the error: the testbench aesim ran and ngspice's own words, which the one line abridges.
+    const fs::path log = dir_ / (name + ".ngspice.log");
+    EXPECT_EQ(fs::exists(log), name == "syntax") << name;
+    if (name == "syntax") {
+      EXPECT_NE(last.find("(ngspice's log: " + name + ".ngspice.log)"), std::string::npos) << o.err;
+      // The cause ngspice gave (an unclosed brace), not only its closing "fatal error".
+      EXPECT_NE(last.find("not found"), std::string::npos) << o.err;
+      const std::string kept = slurp(log);
+      EXPECT_NE(kept.find(".include"), std::string::npos) << kept;
+      EXPECT_NE(kept.find("* ngspice's output"), std::string::npos) << kept;
+    }
   }
   // ngspice missing: PATH without it.
   const Outcome o = aesim("calibrate '" + kIdealDeck + "' --subckt ideal_pixel -o x.toml", "PATH=/nonexistent ");

@@ -61,6 +61,8 @@ int calibrate_command(const CalibrateOptions& opt) {
       opt.chart.empty() ? std::string() : std::filesystem::path(opt.chart).replace_extension(".csv").string();
   check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {opt.deck, sensor_file(opt.base)});
   const PixelDeck deck = read_pixel_deck(opt.deck, opt.subckt, opt.probe);
+  // Beside the preset: the testbench and ngspice's whole log when ngspice rejects the deck.
+  options.failure_log = std::filesystem::path(opt.output).replace_extension(".ngspice.log").string();
 
   std::fprintf(stderr, "aesim calibrate: %s (%s), %d photocurrents from %s to %s%s, %d ngspice at once\n",
                deck.subckt.c_str(), opt.deck.c_str(), options.points, format_si(options.i_low, "A").c_str(),

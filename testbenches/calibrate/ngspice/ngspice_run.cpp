@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -67,6 +68,12 @@ std::string first_error(const std::string& log) {
       if (l.find("simulation interrupted") != std::string::npos || l.rfind("note:", 0) == 0 || ++extra > 2) break;
       message += " " + t;
     }
+  }
+  // ngspice's parser says what is wrong first and then only "ERROR: fatal error in ngspice": the
+  // first is the cause.
+  if (in_error && ascii_lower(message).find("fatal error in ngspice") != std::string::npos && !opening.empty() &&
+      ascii_lower(opening).find("fatal error in ngspice") == std::string::npos) {
+    return opening;
   }
   return in_error ? message : opening;
 }
@@ -131,6 +138,26 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       data_path, probe);
 }
 
+namespace {
+
+// Copies the testbench and ngspice's log to `target` for the user, once: the first run that fails
+// there writes it, later ones (other currents, other jobs) leave it. Returns `target` when it now
+// holds a log, empty otherwise.
+std::string keep_failure_log(const std::string& target, const fs::path& cir, const fs::path& log) {
+  if (target.empty()) return "";
+  static std::mutex once;
+  const std::lock_guard<std::mutex> lock(once);
+  std::error_code ec;
+  if (fs::exists(target, ec)) return fs::is_regular_file(target, ec) ? target : "";
+  std::ofstream out(target);
+  out << "* the testbench aesim calibrate ran (" << cir.filename().string() << ")\n"
+      << read_scratch_text(cir) << "\n* ngspice's output\n"
+      << read_scratch_text(log);
+  return out ? target : "";
+}
+
+}  // namespace
+
 Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest& request, const fs::path& scratch,
                        const std::string& name) {
   const fs::path cir = scratch / (name + ".cir"), data = scratch / (name + ".txt"), log = scratch / (name + ".log");
@@ -157,7 +184,10 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
                                  strsignal(*status - 128)));
   }
   if (*status != 0) {
-    const std::string error = first_error(read_scratch_text(log));
+    std::string error = first_error(read_scratch_text(log));
+    if (const std::string kept = keep_failure_log(request.failure_log, cir, log); !kept.empty()) {
+      error += fmt::format(" (ngspice's log: {})", kept);
+    }
     if (ascii_lower(error).find("unknown subckt") != std::string::npos) {
       throw InputError(fmt::format("deck '{}': ngspice finds no subcircuit '{}' ({})", deck.given, deck.subckt, error));
     }

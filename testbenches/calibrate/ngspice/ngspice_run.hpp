@@ -34,6 +34,9 @@ struct TransientRequest {
   unsigned seed = 1;             // ngspice's seed for agauss() and friends
   bool monte_carlo = false;      // sets the deck's `mc` parameter, when it has one
   std::size_t settings = 0;      // solver_settings() level
+  // Where the testbench and ngspice's log of a run that rejects the deck are kept for the user
+  // (the first such run's; empty: nowhere). A file already there is left alone.
+  std::string failure_log{};
 };
 
 // What a run records: the pixel's output, the supply's current (ngspice's sign: negative when the

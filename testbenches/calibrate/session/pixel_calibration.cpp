@@ -89,7 +89,7 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
   for (int run = 0; run < kMaxRuns; ++run) {
     const double t_stop = first_fire > 0 ? first_fire + guess * (o.firings + 1.5) : guess * (o.firings + 2.5);
     TransientRequest request{current, t_stop, guess / kStepsPerPeriod / finer, mc_seed.value_or(kTableSeed),
-                             mc_seed.has_value(), settings};
+                             mc_seed.has_value(), settings, o.failure_log};
     try {
       r.wave = run_transient(deck, o.vdd, request, scratch, name);
     } catch (const InputError&) {

@@ -18,6 +18,7 @@ struct CalibrationOptions {
   int jobs = 1;                            // ngspice processes at once
   double charge_guess = 100e-15;           // C, sizes the first transient of each point
   bool progress = false;                   // a progress bar on stderr
+  std::string failure_log;                 // where ngspice's log of a run rejecting the deck is kept
 };
 
 // One photocurrent's measurement.
