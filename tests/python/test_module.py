@@ -125,21 +125,26 @@ def test_sweep_returns_the_programs_rows(tmp_path):
 
 
 def test_a_run_releases_the_gil():
-    ticks = []
-    stop = threading.Event()
+    # A run long enough to see another thread tick through it: the simulated time grows until the
+    # run takes over 0.2 s of wall time, whatever the machine's speed.
+    for duration in ("4s", "16s", "64s"):
+        ticks = []
+        stop = threading.Event()
 
-    def count():
-        while not stop.is_set():
-            ticks.append(time.monotonic())
-            time.sleep(0.001)
+        def count():
+            while not stop.is_set():
+                ticks.append(time.monotonic())
+                time.sleep(0.001)
 
-    counter = threading.Thread(target=count)
-    counter.start()
-    started = time.monotonic()
-    aesim.run(scene=np.ones((256, 256)), duration="4s", set={"array.rows": 256, "array.cols": 256})
-    ended = time.monotonic()
-    stop.set()
-    counter.join()
+        counter = threading.Thread(target=count)
+        counter.start()
+        started = time.monotonic()
+        aesim.run(scene=np.ones((256, 256)), duration=duration, set={"array.rows": 256, "array.cols": 256})
+        ended = time.monotonic()
+        stop.set()
+        counter.join()
+        if ended - started > 0.2:
+            break
     during = [t for t in ticks if started < t < ended]
     assert ended - started > 0.2
     # The other thread ran all through the run (at ~1 ms a tick when it has the interpreter).
