@@ -131,17 +131,28 @@ TEST(ClockGating, StoppingTheIdleClockChangesNothing) {
 // The RTL as a plain C++ model stepped by the tile's clock domain (what receiver.model=rtl runs
 // when no RTL trace is asked for) and the RTL as a SystemC model on a clock wire (what it runs
 // with one): the same events, fates and stamps, and the same beats compared, under back-pressure.
-TEST(SteppedRtl, GivesTheClockWiresEventsAndBeats) {
+// The natural scene at the cycle fidelity under back-pressure: a 1 MHz receiver with a 2-word
+// FIFO and a consumer ready one cycle in 400, for `duration` s.
+SensorConfig backpressured(double duration) {
   SensorConfig c = load_sensor("aloha");
   c.sim.fidelity = Fidelity::Cycle;
-  c.receiver.model = ReceiverModel::Rtl;
   c.receiver.clock = 1e6;
   c.receiver.fifo_depth = 2;
-  c.sim.duration = 2.0;
-  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
-  const Photocurrents photocurrents(scene, c.pixel);
+  c.sim.duration = duration;
+  return c;
+}
+bool ready_one_in_400(std::uint64_t cycle) { return cycle % 400 == 0; }
+Photocurrents natural_scene(const SensorConfig& c) {
+  return Photocurrents(load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene),
+                       c.pixel);
+}
+
+TEST(SteppedRtl, GivesTheClockWiresEventsAndBeats) {
+  SensorConfig c = backpressured(2.0);
+  c.receiver.model = ReceiverModel::Rtl;
+  const Photocurrents photocurrents = natural_scene(c);
   SimulationRequest stepped = testing::with_truth();
-  stepped.cycle.sink_ready = [](std::uint64_t cycle) { return cycle % 400 == 0; };
+  stepped.cycle.sink_ready = ready_one_in_400;
   SimulationRequest wired = stepped;
   wired.cycle.receiver = rtl_receiver_factory(FullPolicy::Drop);
   const SimulationResult a = simulate(c.resolved(), photocurrents, stepped);
@@ -164,15 +175,10 @@ TEST(SteppedRtl, GivesTheClockWiresEventsAndBeats) {
 // The stepped scoreboard can fail: the RTL built to hold the bus when its FIFO is full, checked
 // against a reference that drops, under back-pressure, disagrees.
 TEST(SteppedRtl, ItsScoreboardCatchesAReceiverThatDiffers) {
-  SensorConfig c = load_sensor("aloha");
-  c.sim.fidelity = Fidelity::Cycle;
-  c.receiver.clock = 1e6;
-  c.receiver.fifo_depth = 2;
-  c.sim.duration = 1.0;
-  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/natural.pgm"), c.array, c.scene);
-  const Photocurrents photocurrents(scene, c.pixel);
+  const SensorConfig c = backpressured(1.0);
+  const Photocurrents photocurrents = natural_scene(c);
   SimulationRequest request;
-  request.cycle.sink_ready = [](std::uint64_t cycle) { return cycle % 400 == 0; };
+  request.cycle.sink_ready = ready_one_in_400;
   request.cycle.stepped_receiver = [](std::uint32_t, const ReceiverCycleModel::Config& config) {
     return make_stepped_rtl_receiver(FullPolicy::Hold, config);  // the reference drops
   };

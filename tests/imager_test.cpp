@@ -151,6 +151,19 @@ std::uint32_t busiest_tile(const SimulationResult& run) {
   return static_cast<std::uint32_t>(std::max_element(n.begin(), n.end()) - n.begin());
 }
 
+// Every event of `got` equal to `want`'s (time, pixel, tile, flags), in order; `on_tile` counts
+// those of tile `tile`.
+void expect_same_events(const std::vector<AddressEvent>& got, const std::vector<AddressEvent>& want, std::uint32_t tile,
+                        std::size_t& on_tile) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const AddressEvent& a = got[i];
+    const AddressEvent& b = want[i];
+    ASSERT_TRUE(a.t == b.t && a.x == b.x && a.y == b.y && a.tile == b.tile && a.flags == b.flags) << "event " << i;
+    on_tile += a.tile == tile;
+  }
+}
+
 const std::vector<Setting> kLoadedBus = {{"sim.duration", "300ms"}, {"bus.t_event", "2us"}, {"receiver.clock", "5MHz"}};
 
 // The busiest tile's receiver outside the Imager, wired to its ports through the caller's sc_signals, with
@@ -167,15 +180,8 @@ TEST(Imager, ATileWiredToAReceiverOutsideGivesTheSameEvents) {
   Imager imager("imager", spec);
   Wiring wiring(imager.tile[t], true);
   sc_core::sc_start();
-  const std::vector<AddressEvent>& events = imager.events();
-  ASSERT_EQ(events.size(), reference.log.events().size());
   std::size_t on_t = 0;
-  for (std::size_t i = 0; i < events.size(); ++i) {
-    const AddressEvent& a = events[i];
-    const AddressEvent& b = reference.log.events()[i];
-    ASSERT_TRUE(a.t == b.t && a.x == b.x && a.y == b.y && a.tile == b.tile && a.flags == b.flags) << "event " << i;
-    on_t += a.tile == t;
-  }
+  ASSERT_NO_FATAL_FAILURE(expect_same_events(imager.events(), reference.log.events(), t, on_t));
   EXPECT_GT(on_t, 1000u);
   EXPECT_EQ(wiring.rx.taken, on_t);
   EXPECT_EQ(imager.protocol_violations(), 0u);
@@ -248,16 +254,8 @@ TEST(Imager, AVerilatedReceiverOnTheTilePortsGivesTheSameEvents) {
   rtl.overflows_o(overflows);
   sc_core::sc_start();
 
-  const std::vector<AddressEvent>& got = imager.events();
-  const std::vector<AddressEvent>& want = reference.log.events();
-  ASSERT_EQ(got.size(), want.size());
   std::size_t on_t = 0;
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    const AddressEvent& a = got[i];
-    const AddressEvent& b = want[i];
-    ASSERT_TRUE(a.t == b.t && a.x == b.x && a.y == b.y && a.tile == b.tile && a.flags == b.flags) << "event " << i;
-    on_t += a.tile == t;
-  }
+  ASSERT_NO_FATAL_FAILURE(expect_same_events(imager.events(), reference.log.events(), t, on_t));
   EXPECT_GT(on_t, 1000u);
   EXPECT_EQ(events.read(), on_t);  // the RTL's own count
   EXPECT_EQ(imager.protocol_violations(), 0u);

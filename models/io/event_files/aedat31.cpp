@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
+#include "event_files/little_endian.hpp"
 
 namespace aesim {
 namespace {
@@ -22,14 +23,6 @@ const char* type_name(std::int16_t type) {
   static const char* names[] = {"SPECIAL", "POLARITY", "FRAME", "IMU6", "IMU9", "SAMPLE", "EAR",
                                 "CONFIG",  "POINT1D",  "POINT2D", "POINT3D", "POINT4D", "SPIKE", "MATRIX4x4"};
   return type >= 0 && type < 14 ? names[type] : "unknown";
-}
-
-template <typename T>
-T little(const std::string& data, std::size_t at) {
-  // x86 and every platform aesim builds on are little-endian, as the format is.
-  T v;
-  std::memcpy(&v, data.data() + at, sizeof v);
-  return v;
 }
 
 }  // namespace

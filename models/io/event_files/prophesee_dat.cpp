@@ -6,16 +6,10 @@
 #include <fmt/format.h>
 
 #include "errors/input_error.hpp"
+#include "event_files/little_endian.hpp"
 
 namespace aesim {
 namespace {
-
-std::uint32_t le32(const std::string& data, std::size_t at) {
-  return static_cast<std::uint32_t>(static_cast<unsigned char>(data[at])) |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(data[at + 1])) << 8 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(data[at + 2])) << 16 |
-         static_cast<std::uint32_t>(static_cast<unsigned char>(data[at + 3])) << 24;
-}
 
 // "% Width 304" -> 304 (0 when the line is another or the number is not one from 1 to 65535).
 int header_size(const std::string& line, const char* key) {
@@ -58,7 +52,7 @@ PolarityRecording decode_prophesee_dat(const std::string& data, const std::strin
   std::uint64_t wraps = 0;
   std::uint32_t last = 0;
   for (; at < data.size(); at += 8) {
-    const std::uint32_t t = le32(data, at), w = le32(data, at + 4);
+    const auto t = little<std::uint32_t>(data, at), w = little<std::uint32_t>(data, at + 4);
     if (t < last) ++wraps;
     last = t;
     PolarityEvent e;

@@ -11,6 +11,7 @@
 #include <verilated_vcd_c.h>
 
 #include "cosim/dot_free_vcd_file.hpp"
+#include "cosim/output_compare.hpp"
 #include "receiver/receiver_cycle_model.hpp"
 #include "receiver/receiver_module.hpp"
 #include "receiver/receiver_signals.hpp"
@@ -99,19 +100,17 @@ class RtlReceiver : public ReceiverModule {
     if (!s_.rst_n.read()) reference_.reset();
   }
   void on_fall() {
-    const ReceiverCycleModel::Outputs m = reference_.outputs();
-    check("ack", s_.ack.read(), m.ack);
-    check("evt_valid", s_.evt_valid.read(), m.valid);
-    if (m.valid && s_.evt_valid.read()) {
-      check("evt_ts", s_.evt_ts.read(), m.beat.ts);
-      check("evt_addr", s_.evt_addr.read(), m.beat.addr);
-      check("evt_flags", s_.evt_flags.read(), m.beat.flags);
-    }
-    check("events", s_.events.read(), m.events);
-    check("collisions", s_.collisions.read(), m.collisions);
-    check("overflows", s_.overflows.read(), m.overflows);
-    check("fifo_count", s_.fifo_count.read(), m.fifo_count);
-    check("idle", s_.idle.read(), m.idle);
+    ReceiverCycleModel::Outputs rtl;
+    rtl.ack = s_.ack.read();
+    rtl.valid = s_.evt_valid.read();
+    rtl.beat = {s_.evt_ts.read(), s_.evt_addr.read(), s_.evt_flags.read()};
+    rtl.events = s_.events.read();
+    rtl.collisions = s_.collisions.read();
+    rtl.overflows = s_.overflows.read();
+    rtl.fifo_count = s_.fifo_count.read();
+    rtl.idle = s_.idle.read();
+    compare_outputs(rtl, reference_.outputs(),
+                    [this](const char* what, std::uint64_t r, std::uint64_t m) { check(what, r, m); });
   }
   void start_of_simulation() override {
     if (!tracing_) return;

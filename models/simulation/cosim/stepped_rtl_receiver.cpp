@@ -4,6 +4,7 @@
 
 #include "Vaer_receiver_drop_stepped.h"
 #include "Vaer_receiver_hold_stepped.h"
+#include "cosim/output_compare.hpp"
 
 namespace aesim {
 namespace {
@@ -64,15 +65,10 @@ class SteppedRtlReceiver : public SteppedReceiver {
     out_.fifo_count = rtl_.fifo_count_o;
     out_.idle = rtl_.idle_o;
   }
-  // Every output, as the scoreboard on the wires compares them at the falling edge.
   void compare() {
-    const ReceiverCycleModel::Outputs& m = reference_.outputs();
-    const bool beat_differs = m.valid && out_.valid && !(m.beat == out_.beat);
-    if (out_.ack != m.ack || out_.valid != m.valid || beat_differs || out_.events != m.events ||
-        out_.collisions != m.collisions || out_.overflows != m.overflows || out_.fifo_count != m.fifo_count ||
-        out_.idle != m.idle) {
-      ++mismatches_;
-    }
+    compare_outputs(out_, reference_.outputs(), [this](const char*, std::uint64_t r, std::uint64_t m) {
+      if (r != m) ++mismatches_;
+    });
   }
 
   // In Verilator's default context, as the SystemC models are: a thread that has constructed a

@@ -1,6 +1,5 @@
 #include "chart/calibration_chart.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -40,17 +39,11 @@ void draw_calibration_chart(const Calibration& c, const PixelParams& calibrated,
     }
     if (!out) throw OutputError(fmt::format("cannot write '{}'", data_path));
   }
-  // The range the circuit fired over (the table's ends): outside it the chart shades the model's
+  // Outside the currents the circuit fired at (the table's ends) the chart shades the model's
   // extrapolation.
-  double fired_lo = 0, fired_hi = 0;
-  for (const CalibrationPoint& p : c.points) {
-    if (!std::isfinite(p.period)) continue;
-    fired_lo = fired_lo == 0 ? p.current : std::min(fired_lo, p.current);
-    fired_hi = std::max(fired_hi, p.current);
-  }
   const std::string script = data_dir() + "/scripts/charts/calibration.gp";
-  if (run_child("gnuplot", {"-c", script, data_path, png_path, fmt::format("{:.6e}", fired_lo),
-                            fmt::format("{:.6e}", fired_hi)}) != 0) {
+  if (run_child("gnuplot", {"-c", script, data_path, png_path, fmt::format("{:.6e}", c.current.front()),
+                            fmt::format("{:.6e}", c.current.back())}) != 0) {
     throw OutputError(fmt::format("gnuplot failed on '{}' (its message above); no chart written", script));
   }
 }

@@ -85,16 +85,10 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
   if (const StatisticsNote note = statistics_note(deck); !note.text.empty()) {
     text += "# " + std::string(1, static_cast<char>(std::toupper(note.text[0]))) + note.text.substr(1) + ".\n";
   }
-  double fired_lo = 0, fired_hi = 0;
-  for (const CalibrationPoint& p : c.points) {
-    if (!std::isfinite(p.period)) continue;
-    fired_lo = fired_lo == 0 ? p.current : std::min(fired_lo, p.current);
-    fired_hi = std::max(fired_hi, p.current);
-  }
   text += fmt::format(
       "# Valid from {:.4g} A to {:.4g} A, the currents at which the circuit fired periodically (pixel.transfer's\n"
       "#   ends): outside them the model extrapolates along eq. 2, and `aesim run` warns how many pixels are there.\n",
-      fired_lo, fired_hi);
+      c.current.front(), c.current.back());
   if (c.mismatch) {
     text += fmt::format("# Monte Carlo: {} runs at {:.4g} A: threshold-charge spread (pixel.mismatch) {:.4g}\n",
                         c.mc_periods.size(), c.mc_current, *c.mismatch);
