@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "errors/input_error.hpp"
-#include "event_files/aedat.hpp"
-#include "event_files/event_file.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/aedat.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
 #include "support/temp_dir_test.hpp"
 

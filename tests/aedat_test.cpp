@@ -5,13 +5,13 @@
 
 #include <gtest/gtest.h>
 
-#include "array/address_map.hpp"
-#include "errors/input_error.hpp"
-#include "event_files/aedat.hpp"
-#include "event_files/event_file.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/aedat.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <random>
 
-#include "array/address_map.hpp"
-#include "bus/aloha_bus.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/bus/aloha_bus.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "summary/summary.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/summary/summary.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

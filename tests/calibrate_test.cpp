@@ -19,19 +19,19 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "config/sensor_config.hpp"
+#include "aesim/config/sensor_config.hpp"
 #include "deck/pixel_deck.hpp"
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 #include "fit/transfer_fit.hpp"
 #include "measure/firing_measure.hpp"
 #include "ngspice/ngspice_run.hpp"
-#include "pixel/transfer_curve.hpp"
+#include "aesim/pixel/transfer_curve.hpp"
 #include "preset/calibrated_preset.hpp"
-#include "process/child_process.hpp"
+#include "aesim/process/child_process.hpp"
 #include "session/pixel_calibration.hpp"
 #include "support/csv_rows.hpp"
 #include "support/temp_dir_test.hpp"
-#include "units/si_units.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

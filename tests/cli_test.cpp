@@ -14,8 +14,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "config/sensor_config.hpp"
-#include "scene/netpbm.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/netpbm.hpp"
 #include "support/csv_rows.hpp"
 #include "support/temp_dir_test.hpp"
 

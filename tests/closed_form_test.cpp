@@ -6,11 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "events/timestamps.hpp"
-#include "random/splitmix64.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/events/timestamps.hpp"
+#include "aesim/random/splitmix64.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "errors/input_error.hpp"
-#include "config/sensor_config.hpp"
-#include "units/si_units.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

@@ -10,13 +10,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "cosim/rtl_receiver.hpp"
-#include "cosim/stepped_rtl_receiver.hpp"
-#include "summary/summary.hpp"
-#include "scene/netpbm.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/cosim/rtl_receiver.hpp"
+#include "aesim/cosim/stepped_rtl_receiver.hpp"
+#include "aesim/summary/summary.hpp"
+#include "aesim/scene/netpbm.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

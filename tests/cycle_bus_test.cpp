@@ -10,15 +10,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bus/pixel_bus_if.hpp"
-#include "bus/clocked_aloha_bus.hpp"
-#include "bus/handshake_rules.hpp"
-#include "scene/photocurrents.hpp"
-#include "tile/cycle_tile.hpp"
-#include "summary/summary.hpp"
+#include "aesim/bus/pixel_bus_if.hpp"
+#include "aesim/bus/clocked_aloha_bus.hpp"
+#include "aesim/bus/handshake_rules.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/tile/cycle_tile.hpp"
+#include "aesim/summary/summary.hpp"
 #include "support/scenes.hpp"
-#include "run/imager_simulation.hpp"
-#include "kernel/systemc_kernel.hpp"
+#include "aesim/run/imager_simulation.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {

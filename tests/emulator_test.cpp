@@ -7,12 +7,12 @@
 
 #include <gtest/gtest.h>
 
-#include "bandwidth/image_bandwidth.hpp"
-#include "classify/template_classifier.hpp"
-#include "errors/input_error.hpp"
-#include "emulator/behaviours.hpp"
-#include "emulator/emulator.hpp"
-#include "emulator/y4m.hpp"
+#include "aesim/bandwidth/image_bandwidth.hpp"
+#include "aesim/classify/template_classifier.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/emulator/behaviours.hpp"
+#include "aesim/emulator/emulator.hpp"
+#include "aesim/emulator/y4m.hpp"
 #include "support/scenes.hpp"
 #include "support/temp_dir_test.hpp"
 

@@ -13,10 +13,10 @@
 #include <tlm>
 #include <tlm_utils/simple_initiator_socket.h>
 
-#include "embed/event_fifo_target.hpp"
-#include "embed/event_source.hpp"
-#include "events/timestamps.hpp"
-#include "kernel/systemc_kernel.hpp"
+#include "aesim/embed/event_fifo_target.hpp"
+#include "aesim/embed/event_source.hpp"
+#include "aesim/events/timestamps.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {

@@ -15,15 +15,15 @@
 
 #include "FileDataTable_generated.h"
 #include "IOHeader_generated.h"
-#include "errors/input_error.hpp"
-#include "event_files/aedat4.hpp"
-#include "event_files/aedat_layout.hpp"
-#include "event_files/event_formats.hpp"
-#include "event_files/event_file.hpp"
-#include "event_files/event_writer.hpp"
-#include "event_files/npy_events.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/aedat4.hpp"
+#include "aesim/event_files/aedat_layout.hpp"
+#include "aesim/event_files/event_formats.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/event_files/event_writer.hpp"
+#include "aesim/event_files/npy_events.hpp"
 #include "events_generated.h"
-#include "output/atomic_file.hpp"
+#include "aesim/output/atomic_file.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {

@@ -7,11 +7,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "array/queue_model.hpp"
-#include "summary/summary.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/array/queue_model.hpp"
+#include "aesim/summary/summary.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -9,8 +9,8 @@
 #include <functional>
 #include <random>
 
-#include "array/address_map.hpp"
-#include "array/firing_schedule.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/array/firing_schedule.hpp"
 #include "support/scenes.hpp"
 
 namespace aesim {

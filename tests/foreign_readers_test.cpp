@@ -12,12 +12,12 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "errors/input_error.hpp"
-#include "event_files/aedat.hpp"
-#include "event_files/aedat_layout.hpp"
-#include "event_files/event_file.hpp"
-#include "event_files/event_writer.hpp"
-#include "output/atomic_file.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/aedat.hpp"
+#include "aesim/event_files/aedat_layout.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/event_files/event_writer.hpp"
+#include "aesim/output/atomic_file.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {

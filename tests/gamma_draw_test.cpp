@@ -9,7 +9,7 @@
 
 #include <boost/math/special_functions/gamma.hpp>
 
-#include "random/gamma_draw.hpp"
+#include "aesim/random/gamma_draw.hpp"
 
 namespace aesim {
 namespace {

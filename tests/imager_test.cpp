@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -11,11 +14,12 @@
 #include <systemc>
 
 #include "Vaer_receiver_drop.h"
-#include "embed/event_source.hpp"
-#include "embed/imager.hpp"
-#include "errors/input_error.hpp"
-#include "run/imager_simulation.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/embed/event_source.hpp"
+#include "aesim/embed/imager.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/receiver/receiver.hpp"
+#include "aesim/run/imager_simulation.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 namespace {
@@ -259,6 +263,93 @@ TEST(Imager, AVerilatedReceiverOnTheTilePortsGivesTheSameEvents) {
   EXPECT_GT(on_t, 1000u);
   EXPECT_EQ(events.read(), on_t);  // the RTL's own count
   EXPECT_EQ(imager.protocol_violations(), 0u);
+}
+
+// aesim's bundled receiver as a module (aesim::Receiver) outside the Imager on every tile, each
+// wired through the caller's sc_signals: on tiles 0 and 1 with the settings' ports bound to the
+// tile's (the receiver reads them at reset, as the RTL does), on 2 and 3 with the settings from
+// receiver_config() alone. The same events as simulate() with the Imager's own receivers; the bus
+// wires traced into the caller's VCD file change as often as there were transactions.
+TEST(Imager, TheBundledReceiverOnEveryTilesPortsGivesTheSameEventsAndTracesItsWires) {
+  ImagerSpec spec;
+  spec.scene = kScene;
+  spec.settings = kLoadedBus;
+  const SimulationResult reference = reference_run(spec, "cycle");
+  spec.outside_receivers = {0, 1, 2, 3};
+
+  Imager imager("imager", spec);
+  struct Wires {
+    sc_core::sc_signal<bool> clk, rst_n, req, contention, ack, discard, ts_external, valid, ready, flags, idle;
+    sc_core::sc_signal<std::uint32_t> addr, prescale, fifo_limit, ts, evt_ts, evt_addr, events, fifo_count;
+  };
+  std::vector<std::unique_ptr<Wires>> wires;
+  std::vector<std::unique_ptr<Receiver>> receivers;
+  for (std::uint32_t t = 0; t < 4; ++t) {
+    wires.push_back(std::make_unique<Wires>());
+    Wires& w = *wires.back();
+    receivers.push_back(std::make_unique<Receiver>(("rx" + std::to_string(t)).c_str(), imager.receiver_config()));
+    Receiver& rx = *receivers.back();
+    TilePorts& p = imager.tile[t];
+    p.clk(w.clk), rx.clk(w.clk);
+    p.rst_n(w.rst_n), rx.rst_n(w.rst_n);
+    p.req(w.req), rx.req(w.req);
+    p.addr(w.addr), rx.addr(w.addr);
+    p.contention(w.contention), rx.contention(w.contention);
+    p.ack(w.ack), rx.ack(w.ack);
+    p.ts(w.ts), rx.ts(w.ts);
+    p.evt_valid(w.valid), rx.evt_valid(w.valid);
+    p.evt_ready(w.ready), rx.evt_ready(w.ready);
+    p.evt_ts(w.evt_ts), rx.evt_ts(w.evt_ts);
+    p.evt_addr(w.evt_addr), rx.evt_addr(w.evt_addr);
+    p.evt_flags(w.flags), rx.evt_flags(w.flags);
+    p.events(w.events), rx.events(w.events);
+    p.fifo_count(w.fifo_count), rx.fifo_count(w.fifo_count);
+    p.idle(w.idle), rx.idle(w.idle);
+    if (t < 2) {
+      p.prescale(w.prescale), rx.prescale(w.prescale);
+      p.fifo_limit(w.fifo_limit), rx.fifo_limit(w.fifo_limit);
+      p.discard_collisions(w.discard), rx.discard_collisions(w.discard);
+      p.ts_external(w.ts_external), rx.ts_external(w.ts_external);
+    }
+  }
+  const std::string vcd = ::testing::TempDir() + "imager_trace";
+  sc_core::sc_trace_file* file = sc_core::sc_create_vcd_trace_file(vcd.c_str());
+  file->set_time_unit(1, sc_core::SC_PS);
+  imager.trace(file);
+  sc_core::sc_start();
+  sc_core::sc_close_vcd_trace_file(file);
+
+  std::size_t on_0 = 0;
+  ASSERT_NO_FATAL_FAILURE(expect_same_events(imager.events(), reference.log.events(), 0, on_0));
+  EXPECT_EQ(imager.protocol_violations(), 0u);
+  std::uint64_t delivered = 0;
+  for (const auto& w : wires) delivered += w->events.read();
+  EXPECT_EQ(delivered, reference.log.events().size());
+
+  // The VCD holds each tile's wires in a scope of its own (imager.tile<t>), and tile 0's Ack rises
+  // once per transaction it answered: at least once per event it delivered.
+  std::ifstream in(vcd + ".vcd");
+  ASSERT_TRUE(in.good());
+  std::string line, scope, ack_code;
+  std::size_t ack_rises = 0;
+  bool tile3_req = false;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string first, type, width, code, name;
+    words >> first;
+    if (first == "$scope") {
+      words >> type >> scope;
+    } else if (first == "$var") {
+      words >> type >> width >> code >> name;
+      if (scope == "tile0" && name == "ack") ack_code = code;
+      if (scope == "tile3" && name == "req") tile3_req = true;
+    } else if (!ack_code.empty() && line == "1" + ack_code) {
+      ++ack_rises;
+    }
+  }
+  EXPECT_TRUE(tile3_req);
+  ASSERT_FALSE(ack_code.empty());
+  EXPECT_GE(ack_rises, on_0);
 }
 
 TEST(Imager, TilePortsBoundWrongAreReportedAtElaboration) {

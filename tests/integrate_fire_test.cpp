@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "pixel/integrate_fire.hpp"
+#include "aesim/pixel/integrate_fire.hpp"
 
 namespace aesim {
 namespace {

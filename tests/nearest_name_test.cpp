@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "text/nearest_name.hpp"
+#include "aesim/text/nearest_name.hpp"
 
 namespace aesim {
 namespace {

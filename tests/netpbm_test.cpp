@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "errors/input_error.hpp"
-#include "scene/netpbm.hpp"
-#include "scene/resample.hpp"
-#include "scene/scene.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/scene/netpbm.hpp"
+#include "aesim/scene/resample.hpp"
+#include "aesim/scene/scene.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {

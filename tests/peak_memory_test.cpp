@@ -2,7 +2,7 @@
 // same, within the slack of buffer growth, whether the run streams its events or counts them.
 #include <gtest/gtest.h>
 
-#include "scene/photocurrents.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/counting_allocator.hpp"
 #include "support/scenes.hpp"
 

@@ -13,10 +13,10 @@
 #include <png.h>
 #include <zlib.h>
 
-#include "errors/input_error.hpp"
-#include "scene/netpbm.hpp"
-#include "scene/photo_image.hpp"
-#include "scene/scene.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/scene/netpbm.hpp"
+#include "aesim/scene/photo_image.hpp"
+#include "aesim/scene/scene.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {

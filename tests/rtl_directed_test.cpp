@@ -23,10 +23,10 @@ using Vaer_receiver_ts8 = Vaer_receiver_cov_ts8;
 #include "Vaer_receiver_hold.h"
 #include "Vaer_receiver_ts8.h"
 #endif
-#include "cosim/rtl_receiver.hpp"
-#include "receiver/stream_monitor.hpp"
-#include "run/imager_simulation.hpp"
-#include "kernel/systemc_kernel.hpp"
+#include "aesim/cosim/rtl_receiver.hpp"
+#include "aesim/receiver/stream_monitor.hpp"
+#include "aesim/run/imager_simulation.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
 
 namespace aesim {
 namespace {

@@ -8,9 +8,9 @@
 #include "Vmutant_ack_early.h"
 #include "Vmutant_fifo_off_by_one.h"
 #include "Vmutant_no_sync.h"
-#include "cosim/rtl_receiver.hpp"
-#include "scene/photocurrents.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/cosim/rtl_receiver.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

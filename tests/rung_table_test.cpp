@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "errors/input_error.hpp"
-#include "kernel/systemc_kernel.hpp"
-#include "rungs/rung.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
+#include "aesim/rungs/rung.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
 
 namespace aesim {

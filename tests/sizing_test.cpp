@@ -6,15 +6,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "errors/input_error.hpp"
-#include "summary/summary.hpp"
-#include "scene/photocurrents.hpp"
-#include "power/power_model.hpp"
-#include "sizing/sizing_report.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/summary/summary.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/power/power_model.hpp"
+#include "aesim/sizing/sizing_report.hpp"
 #include "support/scenes.hpp"
-#include "spec/sweep_spec.hpp"
+#include "aesim/spec/sweep_spec.hpp"
 #include "support/temp_dir_test.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "events/stream_worker.hpp"
+#include "aesim/events/stream_worker.hpp"
 
 namespace aesim {
 namespace {

@@ -23,15 +23,15 @@
 #include <thread>
 #include <vector>
 
-#include "event_files/events_csv.hpp"
-#include "array/address_map.hpp"
-#include "events/event_merger.hpp"
-#include "events/latency_recorder.hpp"
-#include "events/timestamps.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/event_files/events_csv.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/events/event_merger.hpp"
+#include "aesim/events/latency_recorder.hpp"
+#include "aesim/events/timestamps.hpp"
+#include "aesim/scene/photocurrents.hpp"
 #include "support/scenes.hpp"
-#include "threads/thread_placement.hpp"
-#include "threads/worker_pool.hpp"
+#include "aesim/threads/thread_placement.hpp"
+#include "aesim/threads/worker_pool.hpp"
 
 namespace aesim {
 namespace {

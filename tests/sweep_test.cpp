@@ -10,9 +10,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 #include "support/temp_dir_test.hpp"
-#include "spec/sweep_spec.hpp"
+#include "aesim/spec/sweep_spec.hpp"
 
 namespace aesim {
 namespace {

@@ -9,13 +9,13 @@
 
 #include "chart/calibration_chart.hpp"
 #include "commands.hpp"
-#include "config/sensor_config.hpp"
+#include "aesim/config/sensor_config.hpp"
 #include "deck/pixel_deck.hpp"
-#include "errors/input_error.hpp"
-#include "output/atomic_file.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/output/atomic_file.hpp"
 #include "preset/calibrated_preset.hpp"
 #include "session/pixel_calibration.hpp"
-#include "units/si_units.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

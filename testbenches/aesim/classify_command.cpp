@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "classify/template_classifier.hpp"
-#include "files/data_dir.hpp"
-#include "errors/input_error.hpp"
-#include "event_files/event_file.hpp"
-#include "units/si_units.hpp"
+#include "aesim/classify/template_classifier.hpp"
+#include "aesim/files/data_dir.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 

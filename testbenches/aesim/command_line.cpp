@@ -5,9 +5,9 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "errors/input_error.hpp"
-#include "event_files/event_formats.hpp"
-#include "text/nearest_name.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/event_formats.hpp"
+#include "aesim/text/nearest_name.hpp"
 
 namespace aesim {
 namespace {

@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.hpp"
+#include "aesim/scene/scene.hpp"
 
 namespace aesim {
 

@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
-#include "bandwidth/image_bandwidth.hpp"
-#include "classify/template_classifier.hpp"
-#include "emulator/emulator.hpp"
-#include "event_files/event_file.hpp"
+#include "aesim/bandwidth/image_bandwidth.hpp"
+#include "aesim/classify/template_classifier.hpp"
+#include "aesim/emulator/emulator.hpp"
+#include "aesim/event_files/event_file.hpp"
 
 #include <nlohmann/json.hpp>
 

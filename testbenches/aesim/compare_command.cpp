@@ -8,16 +8,16 @@
 
 #include "command_settings.hpp"
 #include "commands.hpp"
-#include "compare/fidelity_errors.hpp"
-#include "files/data_dir.hpp"
-#include "errors/input_error.hpp"
-#include "config/sensor_config.hpp"
-#include "output/atomic_file.hpp"
-#include "pareto/pareto_front.hpp"
-#include "scene/photocurrents.hpp"
-#include "scene/scene.hpp"
-#include "run/imager_simulation.hpp"
-#include "units/si_units.hpp"
+#include "aesim/compare/fidelity_errors.hpp"
+#include "aesim/files/data_dir.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/output/atomic_file.hpp"
+#include "aesim/pareto/pareto_front.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/scene/scene.hpp"
+#include "aesim/run/imager_simulation.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "config/sensor_config.hpp"
-#include "units/si_units.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

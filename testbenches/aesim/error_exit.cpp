@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "output/temp_files.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/output/temp_files.hpp"
 
 namespace aesim {
 namespace {

@@ -4,8 +4,8 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "event_files/event_file.hpp"
-#include "units/si_units.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 

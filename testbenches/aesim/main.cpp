@@ -3,7 +3,7 @@
 
 #include "commands.hpp"
 #include "error_exit.hpp"
-#include "output/temp_files.hpp"
+#include "aesim/output/temp_files.hpp"
 
 int sc_main(int argc, char* argv[]) {
   aesim::install_signal_cleanup();

@@ -4,12 +4,12 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "errors/input_error.hpp"
-#include "output/atomic_file.hpp"
-#include "event_files/event_file.hpp"
-#include "images/image_file.hpp"
-#include "recon/reconstruct.hpp"
-#include "units/si_units.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/output/atomic_file.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/images/image_file.hpp"
+#include "aesim/recon/reconstruct.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "array/address_map.hpp"
-#include "bandwidth/image_bandwidth.hpp"
-#include "errors/input_error.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/bandwidth/image_bandwidth.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 

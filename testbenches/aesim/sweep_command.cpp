@@ -20,20 +20,20 @@
 
 #include "commands.hpp"
 #include "error_exit.hpp"
-#include "files/data_dir.hpp"
-#include "errors/input_error.hpp"
-#include "files/input_path.hpp"
-#include "files/content_hash.hpp"
-#include "files/scratch_folder.hpp"
-#include "output/atomic_file.hpp"
-#include "output/temp_files.hpp"
-#include "process/child_process.hpp"
+#include "aesim/files/data_dir.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/files/content_hash.hpp"
+#include "aesim/files/scratch_folder.hpp"
+#include "aesim/output/atomic_file.hpp"
+#include "aesim/output/temp_files.hpp"
+#include "aesim/process/child_process.hpp"
 #ifdef AESIM_HAVE_MPI
 #include <mpi.h>
 #endif
 
-#include "sizing/sizing_report.hpp"
-#include "spec/sweep_spec.hpp"
+#include "aesim/sizing/sizing_report.hpp"
+#include "aesim/spec/sweep_spec.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;

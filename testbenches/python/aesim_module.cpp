@@ -21,16 +21,16 @@
 
 #include "command_settings.hpp"
 #include "commands.hpp"
-#include "errors/input_error.hpp"
-#include "events/event_stream.hpp"
-#include "events/timestamps.hpp"
-#include "output/temp_files.hpp"
-#include "process/interrupt.hpp"
-#include "run/imager_simulation.hpp"
-#include "rungs/rung.hpp"
-#include "scene/photocurrents.hpp"
-#include "scene/scene.hpp"
-#include "summary/summary.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/events/event_stream.hpp"
+#include "aesim/events/timestamps.hpp"
+#include "aesim/output/temp_files.hpp"
+#include "aesim/process/interrupt.hpp"
+#include "aesim/run/imager_simulation.hpp"
+#include "aesim/rungs/rung.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/scene/scene.hpp"
+#include "aesim/summary/summary.hpp"
 
 namespace py = pybind11;
 

@@ -14,16 +14,16 @@
 
 #include "ceiling_probe.hpp"
 #include "Vaer_receiver_drop_stepped.h"
-#include "config/sensor_config.hpp"
-#include "event_files/aedat.hpp"
-#include "event_files/event_writer.hpp"
-#include "output/atomic_file.hpp"
-#include "pixel/integrate_fire.hpp"
-#include "pixel/pixel_draws.hpp"
-#include "random/gamma_draw.hpp"
-#include "scene/photocurrents.hpp"
-#include "scene/scene.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/event_files/aedat.hpp"
+#include "aesim/event_files/event_writer.hpp"
+#include "aesim/output/atomic_file.hpp"
+#include "aesim/pixel/integrate_fire.hpp"
+#include "aesim/pixel/pixel_draws.hpp"
+#include "aesim/random/gamma_draw.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/scene/scene.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim {
 namespace {

@@ -1,12 +1,14 @@
 # The out-of-tree example (docs/examples/embed) as a user builds it: aesim installed into a fresh
 # prefix, the example configured with find_package(aesim) against that prefix alone, built, run
-# (its own receiver on tile 0, aesim's reference on the others, no protocol violation: exit 0);
+# (its own receiver on tile 0, aesim::Receiver on tile 1's ports, the Imager's own on the others,
+# no protocol violation: exit 0, and the wires traced);
 # its events must equal the installed `aesim run --set sim.fidelity=cycle` on the same preset,
 # scene, duration and seed, byte for byte.
 # The same source is then built without CMake, from `pkg-config --cflags --libs aesim` of the
 # prefix, and must give the same bytes.
 #   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen>
 #         -DCXX=<C++ compiler> -P this
+cmake_policy(VERSION 3.22)
 foreach(v BUILD SOURCE WORK GENERATOR CXX)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "example_against_run: -D${v}= is required")
@@ -28,12 +30,17 @@ run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
 run("configuring the example" ${CMAKE_COMMAND} -S ${SOURCE}/docs/examples/embed -B ${WORK}/example -G ${GENERATOR}
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
 run("building the example" ${CMAKE_COMMAND} --build ${WORK}/example)
-execute_process(COMMAND ${WORK}/example/embed_example ${scene} ${duration}
+execute_process(COMMAND ${WORK}/example/embed_example ${scene} ${duration} ${WORK}/waves
                 OUTPUT_FILE ${WORK}/example.csv ERROR_VARIABLE said RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "embed_example failed (${status}): ${said}")
 endif()
 message(STATUS "${said}")
+# The caller's trace file holds the tiles' wires, tile 1's (the bundled receiver's) among them.
+file(STRINGS ${WORK}/waves.vcd scopes REGEX "^\\$scope module tile")
+if(NOT "$scope module tile1 $end" IN_LIST scopes)
+  message(FATAL_ERROR "the example's waves.vcd has no scope for tile 1: ${scopes}")
+endif()
 run("aesim run" ${prefix}/bin/aesim run --scene ${scene} --set sim.fidelity=cycle --set sim.duration=${duration}
     --csv ${WORK}/run.csv)
 file(STRINGS ${WORK}/example.csv rows)

@@ -11,19 +11,19 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "errors/input_error.hpp"
-#include "config/sensor_config.hpp"
-#include "scene/scene.hpp"
-#include "emulator/y4m.hpp"
-#include "event_files/dsec_h5.hpp"
-#include "event_files/event_file.hpp"
-#include "scene/netpbm.hpp"
-#include "scene/exr_image.hpp"
-#include "scene/photo_image.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/scene.hpp"
+#include "aesim/emulator/y4m.hpp"
+#include "aesim/event_files/dsec_h5.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/scene/netpbm.hpp"
+#include "aesim/scene/exr_image.hpp"
+#include "aesim/scene/photo_image.hpp"
 #include "deck/pixel_deck.hpp"
 #include "description/receiver_description.hpp"
 #include "plan/verification_plan.hpp"
-#include "spec/sweep_spec.hpp"
+#include "aesim/spec/sweep_spec.hpp"
 
 namespace aesim::fuzz {
 namespace {

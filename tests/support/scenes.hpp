@@ -2,10 +2,10 @@
 #include <functional>
 #include <vector>
 
-#include "config/sensor_config.hpp"
-#include "scene/image.hpp"
-#include "scene/scene.hpp"
-#include "run/imager_simulation.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/image.hpp"
+#include "aesim/scene/scene.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 namespace aesim::testing {
 

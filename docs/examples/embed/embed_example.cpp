@@ -1,8 +1,10 @@
 // The aesim imager inside a user's own sc_main: the aloha sensor on a scene at the cycle fidelity,
 // tile 0's bus wired through sc_signals to a receiver written here (plain sc_in/sc_out ports, as a
-// SystemC model or a `verilator --sc` module has), the other tiles with aesim's reference
-// receiver, run by this program's sc_start(); what the receivers delivered is written as
-// `aesim run --csv` writes it.   usage: embed_example [SCENE [DURATION]] > events.csv
+// SystemC model or a `verilator --sc` module has), tile 1's to aesim's bundled receiver
+// (aesim::Receiver) the same way, the other tiles with the receiver inside the Imager, run by this
+// program's sc_start(); what the receivers delivered is written as `aesim run --csv` writes it,
+// and with a third argument the bus wires go to the VCD file WAVES.vcd (sc_trace).
+//   usage: embed_example [SCENE [DURATION [WAVES]]] > events.csv
 #include <cstdint>
 #include <iostream>
 
@@ -60,7 +62,9 @@ int sc_main(int argc, char* argv[]) {
   aesim::ImagerSpec spec;                       // the aloha preset
   if (argc > 1) spec.scene = argv[1];           // default: scenes/letters/A.pgm
   spec.settings = {{"sim.duration", argc > 2 ? argv[2] : "200ms"}};
-  spec.outside_receivers = {0};                 // tile 0's receiver is ours, on its ports
+  spec.outside_receivers = {0, 1};              // tiles 0 and 1: receivers on the tile's ports
+  // SystemC prints its notes (a trace file's time unit, ...) on stdout, where the CSV goes.
+  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
   try {
     aesim::Imager imager("imager", spec);
     MyReceiver rx("my_receiver");
@@ -80,7 +84,29 @@ int sc_main(int argc, char* argv[]) {
     tile0.evt_addr(evt_addr), rx.evt_addr(evt_addr);
     tile0.evt_ts(evt_ts), rx.evt_ts(evt_ts);
     tile0.evt_flags(flags), rx.evt_flags(flags);
+
+    aesim::Receiver bundled("bundled_receiver", imager.receiver_config());
+    sc_core::sc_signal<bool> clk1, rst_n1, req1, contention1, ack1, idle1, valid1, ready1, flags1;
+    sc_core::sc_signal<std::uint32_t> addr1, ts1, evt_addr1, evt_ts1;
+    aesim::TilePorts& tile1 = imager.tile[1];
+    tile1.clk(clk1), bundled.clk(clk1);
+    tile1.rst_n(rst_n1), bundled.rst_n(rst_n1);
+    tile1.req(req1), bundled.req(req1);
+    tile1.addr(addr1), bundled.addr(addr1);
+    tile1.contention(contention1), bundled.contention(contention1);
+    tile1.ts(ts1), bundled.ts(ts1);
+    tile1.ack(ack1), bundled.ack(ack1);
+    tile1.idle(idle1), bundled.idle(idle1);
+    tile1.evt_valid(valid1), bundled.evt_valid(valid1);
+    tile1.evt_ready(ready1), bundled.evt_ready(ready1);
+    tile1.evt_addr(evt_addr1), bundled.evt_addr(evt_addr1);
+    tile1.evt_ts(evt_ts1), bundled.evt_ts(evt_ts1);
+    tile1.evt_flags(flags1), bundled.evt_flags(flags1);
+
+    sc_core::sc_trace_file* waves = argc > 3 ? sc_core::sc_create_vcd_trace_file(argv[3]) : nullptr;
+    if (waves) imager.trace(waves);
     sc_core::sc_start();                        // returns when the run is done
+    if (waves) sc_core::sc_close_vcd_trace_file(waves);
     aesim::write_events_csv(std::cout, imager.events(), imager.tick());
     std::uint64_t fired = 0, collided = 0;
     for (const aesim::TileCounters& t : imager.tiles()) {

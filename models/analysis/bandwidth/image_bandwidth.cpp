@@ -1,8 +1,8 @@
-#include "bandwidth/image_bandwidth.hpp"
+#include "aesim/bandwidth/image_bandwidth.hpp"
 
 #include <cmath>
 
-#include "array/address_map.hpp"
+#include "aesim/array/address_map.hpp"
 
 namespace aesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "classify/template_classifier.hpp"
+#include "aesim/classify/template_classifier.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/input_path.hpp"
-#include "scene/netpbm.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/scene/netpbm.hpp"
 
 namespace aesim {
 

@@ -1,11 +1,11 @@
-#include "compare/fidelity_errors.hpp"
+#include "aesim/compare/fidelity_errors.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
 
-#include "recon/reconstruct.hpp"
+#include "aesim/recon/reconstruct.hpp"
 
 namespace aesim {
 namespace {

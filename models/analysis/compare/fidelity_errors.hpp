@@ -1,8 +1,8 @@
 #pragma once
 #include <vector>
 
-#include "events/event_log.hpp"
-#include "scene/image.hpp"
+#include "aesim/events/event_log.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

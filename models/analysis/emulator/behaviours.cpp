@@ -1,11 +1,11 @@
-#include "emulator/behaviours.hpp"
+#include "aesim/emulator/behaviours.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 namespace {

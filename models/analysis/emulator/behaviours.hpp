@@ -2,7 +2,7 @@
 #include <optional>
 #include <string>
 
-#include "scene/image.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

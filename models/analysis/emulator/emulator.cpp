@@ -1,14 +1,14 @@
-#include "emulator/emulator.hpp"
+#include "aesim/emulator/emulator.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
-#include "array/queue_model.hpp"
-#include "random/splitmix64.hpp"
-#include "scene/resample.hpp"
+#include "aesim/array/queue_model.hpp"
+#include "aesim/random/splitmix64.hpp"
+#include "aesim/scene/resample.hpp"
 
 namespace aesim {
 

@@ -2,9 +2,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "array/queue_model.hpp"
-#include "emulator/behaviours.hpp"
-#include "scene/image.hpp"
+#include "aesim/array/queue_model.hpp"
+#include "aesim/emulator/behaviours.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

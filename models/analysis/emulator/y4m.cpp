@@ -1,4 +1,4 @@
-#include "emulator/y4m.hpp"
+#include "aesim/emulator/y4m.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/input_file.hpp"
-#include "limits/limits.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_file.hpp"
+#include "aesim/limits/limits.hpp"
 
 namespace aesim {
 

@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/image.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

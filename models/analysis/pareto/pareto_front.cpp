@@ -1,4 +1,4 @@
-#include "pareto/pareto_front.hpp"
+#include "aesim/pareto/pareto_front.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "recon/reconstruct.hpp"
+#include "aesim/recon/reconstruct.hpp"
 
 #include <algorithm>
 #include <limits>

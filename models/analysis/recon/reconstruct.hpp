@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "events/address_event.hpp"
-#include "scene/image.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "sizing/sizing_report.hpp"
+#include "aesim/sizing/sizing_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "pareto/pareto_front.hpp"
-#include "errors/input_error.hpp"
-#include "units/si_units.hpp"
+#include "aesim/pareto/pareto_front.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

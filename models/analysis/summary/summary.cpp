@@ -1,11 +1,11 @@
-#include "summary/summary.hpp"
+#include "aesim/summary/summary.hpp"
 
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "compare/fidelity_errors.hpp"
-#include "recon/reconstruct.hpp"
-#include "power/power_model.hpp"
+#include "aesim/compare/fidelity_errors.hpp"
+#include "aesim/recon/reconstruct.hpp"
+#include "aesim/power/power_model.hpp"
 
 namespace aesim {
 namespace {

@@ -4,10 +4,10 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "config/sensor_config.hpp"
-#include "events/event_log.hpp"
-#include "events/run_facts.hpp"
-#include "scene/image.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/events/event_log.hpp"
+#include "aesim/events/run_facts.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

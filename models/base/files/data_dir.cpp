@@ -1,4 +1,4 @@
-#include "files/data_dir.hpp"
+#include "aesim/files/data_dir.hpp"
 
 #include <dlfcn.h>
 

@@ -1,4 +1,4 @@
-#include "files/input_file.hpp"
+#include "aesim/files/input_file.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/input_path.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
 
 namespace aesim {
 

@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <string>
 
-#include "limits/limits.hpp"
+#include "aesim/limits/limits.hpp"
 
 namespace aesim {
 

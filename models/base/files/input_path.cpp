@@ -1,4 +1,4 @@
-#include "files/input_path.hpp"
+#include "aesim/files/input_path.hpp"
 
 #include <cstring>
 #include <filesystem>
@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;

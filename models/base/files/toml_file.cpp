@@ -1,4 +1,4 @@
-#include "files/toml_file.hpp"
+#include "aesim/files/toml_file.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "process/child_process.hpp"
+#include "aesim/process/child_process.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>

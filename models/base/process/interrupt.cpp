@@ -1,4 +1,4 @@
-#include "process/interrupt.hpp"
+#include "aesim/process/interrupt.hpp"
 
 #include <csignal>
 

@@ -1,4 +1,4 @@
-#include "random/gamma_draw.hpp"
+#include "aesim/random/gamma_draw.hpp"
 
 #include <boost/random/normal_distribution.hpp>
 

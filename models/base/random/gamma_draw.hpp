@@ -1,7 +1,7 @@
 #pragma once
 #include <cmath>
 
-#include "random/splitmix64.hpp"
+#include "aesim/random/splitmix64.hpp"
 
 namespace aesim {
 

@@ -1,9 +1,9 @@
-#include "text/nearest_name.hpp"
+#include "aesim/text/nearest_name.hpp"
 
 #include <algorithm>
 #include <cstddef>
 
-#include "text/ascii_case.hpp"
+#include "aesim/text/ascii_case.hpp"
 
 namespace aesim {
 namespace {

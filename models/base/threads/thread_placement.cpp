@@ -1,4 +1,4 @@
-#include "threads/thread_placement.hpp"
+#include "aesim/threads/thread_placement.hpp"
 
 #include <atomic>
 #include <memory>

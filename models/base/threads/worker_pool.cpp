@@ -1,6 +1,6 @@
-#include "threads/worker_pool.hpp"
+#include "aesim/threads/worker_pool.hpp"
 
-#include "threads/thread_placement.hpp"
+#include "aesim/threads/thread_placement.hpp"
 
 namespace aesim {
 

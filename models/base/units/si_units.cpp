@@ -1,4 +1,4 @@
-#include "units/si_units.hpp"
+#include "aesim/units/si_units.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "event_files/aedat.hpp"
+#include "aesim/event_files/aedat.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -11,9 +11,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "errors/input_error.hpp"
-#include "files/input_file.hpp"
-#include "event_files/event_stamps.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_file.hpp"
+#include "aesim/event_files/event_stamps.hpp"
 
 namespace aesim {
 namespace {

@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "events/address_event.hpp"
-#include "event_files/aedat_layout.hpp"
-#include "event_files/event_stamps.hpp"
-#include "event_files/event_writer.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/event_files/aedat_layout.hpp"
+#include "aesim/event_files/event_stamps.hpp"
+#include "aesim/event_files/event_writer.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 

@@ -1,4 +1,4 @@
-#include "event_files/aedat31.hpp"
+#include "aesim/event_files/aedat31.hpp"
 
 #include <cstdint>
 #include <cstring>
@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "event_files/little_endian.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/little_endian.hpp"
 
 namespace aesim {
 namespace {

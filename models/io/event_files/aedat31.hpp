@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "event_files/aedat4.hpp"
+#include "aesim/event_files/aedat4.hpp"
 
 namespace aesim {
 

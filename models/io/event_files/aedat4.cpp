@@ -1,4 +1,4 @@
-#include "event_files/aedat4.hpp"
+#include "aesim/event_files/aedat4.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -12,8 +12,8 @@
 
 #include "FileDataTable_generated.h"
 #include "IOHeader_generated.h"
-#include "errors/input_error.hpp"
-#include "event_files/event_stamps.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/event_stamps.hpp"
 #include "events_generated.h"
 
 namespace aesim {

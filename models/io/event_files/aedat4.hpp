@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "event_files/event_stamps.hpp"
-#include "event_files/event_writer.hpp"
+#include "aesim/event_files/event_stamps.hpp"
+#include "aesim/event_files/event_writer.hpp"
 
 namespace aesim {
 

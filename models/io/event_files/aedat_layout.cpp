@@ -1,10 +1,10 @@
-#include "event_files/aedat_layout.hpp"
+#include "aesim/event_files/aedat_layout.hpp"
 
 #include <cctype>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 namespace {

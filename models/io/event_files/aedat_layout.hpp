@@ -3,8 +3,8 @@
 #include <optional>
 #include <string>
 
-#include "array/address_map.hpp"
-#include "events/address_event.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/events/address_event.hpp"
 
 namespace aesim {
 

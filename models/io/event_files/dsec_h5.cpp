@@ -1,4 +1,4 @@
-#include "event_files/dsec_h5.hpp"
+#include "aesim/event_files/dsec_h5.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -11,11 +11,11 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 
-#include "errors/input_error.hpp"
-#include "event_files/event_stamps.hpp"
-#include "files/input_path.hpp"
-#include "output/temp_files.hpp"
-#include "process/child_process.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/event_stamps.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/output/temp_files.hpp"
+#include "aesim/process/child_process.hpp"
 
 namespace aesim {
 namespace h5 {

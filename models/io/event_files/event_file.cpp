@@ -1,4 +1,4 @@
-#include "event_files/event_file.hpp"
+#include "aesim/event_files/event_file.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -9,19 +9,19 @@
 
 #include <fmt/format.h>
 
-#include "array/address_map.hpp"
-#include "errors/input_error.hpp"
-#include "config/sensor_config.hpp"
-#include "event_files/aedat.hpp"
-#include "event_files/aedat31.hpp"
-#include "event_files/aedat4.hpp"
-#include "event_files/dsec_h5.hpp"
-#include "event_files/event_formats.hpp"
-#include "event_files/event_writer.hpp"
-#include "event_files/events_csv.hpp"
-#include "event_files/npy_events.hpp"
-#include "event_files/prophesee_dat.hpp"
-#include "files/input_file.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/event_files/aedat.hpp"
+#include "aesim/event_files/aedat31.hpp"
+#include "aesim/event_files/aedat4.hpp"
+#include "aesim/event_files/dsec_h5.hpp"
+#include "aesim/event_files/event_formats.hpp"
+#include "aesim/event_files/event_writer.hpp"
+#include "aesim/event_files/events_csv.hpp"
+#include "aesim/event_files/npy_events.hpp"
+#include "aesim/event_files/prophesee_dat.hpp"
+#include "aesim/files/input_file.hpp"
 
 namespace aesim {
 namespace {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "event_files/event_formats.hpp"
-#include "events/address_event.hpp"
+#include "aesim/event_files/event_formats.hpp"
+#include "aesim/events/address_event.hpp"
 
 namespace aesim {
 

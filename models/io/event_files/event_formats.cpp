@@ -1,18 +1,18 @@
-#include "event_files/event_formats.hpp"
+#include "aesim/event_files/event_formats.hpp"
 
 #include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "event_files/aedat.hpp"
-#include "event_files/aedat4.hpp"
-#include "event_files/dsec_h5.hpp"
-#include "event_files/event_file.hpp"
-#include "event_files/event_writer.hpp"
-#include "event_files/npy_events.hpp"
-#include "output/atomic_file.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/aedat.hpp"
+#include "aesim/event_files/aedat4.hpp"
+#include "aesim/event_files/dsec_h5.hpp"
+#include "aesim/event_files/event_file.hpp"
+#include "aesim/event_files/event_writer.hpp"
+#include "aesim/event_files/npy_events.hpp"
+#include "aesim/output/atomic_file.hpp"
 
 namespace aesim {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 #include <cstdint>
 
-#include "events/timestamps.hpp"
+#include "aesim/events/timestamps.hpp"
 
 namespace aesim {
 

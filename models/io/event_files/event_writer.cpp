@@ -1,10 +1,10 @@
-#include "event_files/event_writer.hpp"
+#include "aesim/event_files/event_writer.hpp"
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "event_files/event_formats.hpp"
-#include "event_files/on_array_events.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/event_formats.hpp"
+#include "aesim/event_files/on_array_events.hpp"
 
 namespace aesim {
 

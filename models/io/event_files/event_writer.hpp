@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "event_files/aedat_layout.hpp"
-#include "event_files/event_formats.hpp"
-#include "events/event_stream.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/event_files/aedat_layout.hpp"
+#include "aesim/event_files/event_formats.hpp"
+#include "aesim/events/event_stream.hpp"
 
 namespace aesim {
 

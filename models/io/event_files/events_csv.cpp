@@ -1,4 +1,4 @@
-#include "event_files/events_csv.hpp"
+#include "aesim/event_files/events_csv.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -9,10 +9,10 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "limits/limits.hpp"
-#include "files/input_path.hpp"
-#include "events/timestamps.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/limits/limits.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/events/timestamps.hpp"
 
 namespace aesim {
 

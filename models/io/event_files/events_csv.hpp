@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "events/address_event.hpp"
-#include "events/event_stream.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/events/event_stream.hpp"
 
 namespace aesim {
 

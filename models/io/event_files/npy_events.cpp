@@ -1,4 +1,4 @@
-#include "event_files/npy_events.hpp"
+#include "aesim/event_files/npy_events.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "output/temp_files.hpp"
-#include "event_files/event_stamps.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/output/temp_files.hpp"
+#include "aesim/event_files/event_stamps.hpp"
 
 namespace aesim {
 namespace {

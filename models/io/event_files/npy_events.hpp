@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
-#include "event_files/aedat4.hpp"
-#include "event_files/event_stamps.hpp"
-#include "event_files/event_writer.hpp"
+#include "aesim/event_files/aedat4.hpp"
+#include "aesim/event_files/event_stamps.hpp"
+#include "aesim/event_files/event_writer.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "event_files/on_array_events.hpp"
+#include "aesim/event_files/on_array_events.hpp"
 
 #include <algorithm>
 

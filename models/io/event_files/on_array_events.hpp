@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "event_files/event_writer.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/event_files/event_writer.hpp"
 
 namespace aesim {
 

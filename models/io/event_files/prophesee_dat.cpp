@@ -1,12 +1,12 @@
-#include "event_files/prophesee_dat.hpp"
+#include "aesim/event_files/prophesee_dat.hpp"
 
 #include <cstdint>
 #include <sstream>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "event_files/little_endian.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/little_endian.hpp"
 
 namespace aesim {
 namespace {

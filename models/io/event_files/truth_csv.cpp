@@ -1,4 +1,4 @@
-#include "event_files/truth_csv.hpp"
+#include "aesim/event_files/truth_csv.hpp"
 
 #include <iterator>
 #include <ostream>

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "events/event_stream.hpp"
+#include "aesim/events/event_stream.hpp"
 
 namespace aesim {
 

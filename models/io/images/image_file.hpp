@@ -2,7 +2,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "scene/image.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "output/atomic_file.hpp"
+#include "aesim/output/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "output/temp_files.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/output/temp_files.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;

@@ -1,8 +1,8 @@
-#include "output/temp_files.hpp"
+#include "aesim/output/temp_files.hpp"
 
-#include "process/child_process.hpp"
+#include "aesim/process/child_process.hpp"
 
-#include "process/interrupt.hpp"
+#include "aesim/process/interrupt.hpp"
 
 #include <signal.h>
 #include <unistd.h>

@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "process/interrupt.hpp"
+#include "aesim/process/interrupt.hpp"
 
 namespace aesim {
 

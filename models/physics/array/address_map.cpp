@@ -1,4 +1,4 @@
-#include "array/address_map.hpp"
+#include "aesim/array/address_map.hpp"
 
 namespace aesim {
 

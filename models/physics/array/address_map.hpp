@@ -2,8 +2,8 @@
 #include <cstdint>
 #include <optional>
 
-#include "config/sensor_config.hpp"
-#include "events/address_event.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/events/address_event.hpp"
 
 namespace aesim {
 

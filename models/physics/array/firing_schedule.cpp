@@ -1,9 +1,9 @@
-#include "array/firing_schedule.hpp"
+#include "aesim/array/firing_schedule.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "pixel/pixel_draws.hpp"
+#include "aesim/pixel/pixel_draws.hpp"
 
 static_assert(sizeof(aesim::FiringSchedule::Slot) <= 56, "pixel record grew");
 

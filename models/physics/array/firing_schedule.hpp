@@ -4,13 +4,13 @@
 #include <memory>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "array/firing_window.hpp"
-#include "array/wake_calendar.hpp"
-#include "events/address_event.hpp"
-#include "config/sensor_config.hpp"
-#include "pixel/integrate_fire.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/array/firing_window.hpp"
+#include "aesim/array/wake_calendar.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/pixel/integrate_fire.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 

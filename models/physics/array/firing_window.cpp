@@ -1,4 +1,4 @@
-#include "array/firing_window.hpp"
+#include "aesim/array/firing_window.hpp"
 
 #include <stdexcept>
 

@@ -1,8 +1,8 @@
-#include "array/fixed_step_array.hpp"
+#include "aesim/array/fixed_step_array.hpp"
 
 #include <cmath>
 
-#include "pixel/pixel_draws.hpp"
+#include "aesim/pixel/pixel_draws.hpp"
 
 namespace aesim {
 

@@ -3,10 +3,10 @@
 #include <systemc>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "bus/event_bus.hpp"
-#include "config/sensor_config.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 

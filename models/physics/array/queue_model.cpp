@@ -1,11 +1,11 @@
-#include "array/queue_model.hpp"
+#include "aesim/array/queue_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 

@@ -2,10 +2,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "events/address_event.hpp"
-#include "config/sensor_config.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "array/schedule_driver.hpp"
+#include "aesim/array/schedule_driver.hpp"
 
 #include <algorithm>
 

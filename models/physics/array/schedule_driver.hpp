@@ -4,9 +4,9 @@
 #include <systemc>
 #include <vector>
 
-#include "array/firing_schedule.hpp"
-#include "bus/event_bus.hpp"
-#include "containers/min_heap.hpp"
+#include "aesim/array/firing_schedule.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/containers/min_heap.hpp"
 
 namespace aesim {
 

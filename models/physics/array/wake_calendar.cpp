@@ -1,4 +1,4 @@
-#include "array/wake_calendar.hpp"
+#include "aesim/array/wake_calendar.hpp"
 
 #include <algorithm>
 #include <cmath>

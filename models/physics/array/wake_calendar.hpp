@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "containers/min_heap.hpp"
+#include "aesim/containers/min_heap.hpp"
 
 namespace aesim {
 

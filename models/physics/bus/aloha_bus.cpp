@@ -1,4 +1,4 @@
-#include "bus/aloha_bus.hpp"
+#include "aesim/bus/aloha_bus.hpp"
 
 #include <algorithm>
 

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "bus/event_bus.hpp"
-#include "events/event_log.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/events/event_log.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "bus/bus_waveform.hpp"
+#include "aesim/bus/bus_waveform.hpp"
 
 namespace aesim {
 

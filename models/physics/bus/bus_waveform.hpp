@@ -3,7 +3,7 @@
 #include <string>
 #include <systemc>
 
-#include "waveform/vcd_recorder.hpp"
+#include "aesim/waveform/vcd_recorder.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "bus/clocked_aloha_bus.hpp"
+#include "aesim/bus/clocked_aloha_bus.hpp"
 
 namespace aesim {
 

@@ -3,11 +3,11 @@
 #include <systemc>
 #include <vector>
 
-#include "bus/event_bus.hpp"
-#include "bus/handshake_rules.hpp"
-#include "bus/wired_or_lines.hpp"
-#include "events/event_log.hpp"
-#include "receiver/receiver_signals.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/bus/handshake_rules.hpp"
+#include "aesim/bus/wired_or_lines.hpp"
+#include "aesim/events/event_log.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
 
 namespace aesim {
 

@@ -2,7 +2,7 @@
 #include <cstddef>
 #include <limits>
 
-#include "events/address_event.hpp"
+#include "aesim/events/address_event.hpp"
 
 namespace aesim {
 

@@ -1,9 +1,9 @@
-#include "bus/event_level_bus.hpp"
+#include "aesim/bus/event_level_bus.hpp"
 
 #include <stdexcept>
 
-#include "bus/aloha_bus.hpp"
-#include "bus/ideal_bus.hpp"
+#include "aesim/bus/aloha_bus.hpp"
+#include "aesim/bus/ideal_bus.hpp"
 
 namespace aesim {
 

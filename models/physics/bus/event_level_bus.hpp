@@ -1,10 +1,10 @@
 #pragma once
 #include <memory>
 
-#include "array/address_map.hpp"
-#include "bus/event_bus.hpp"
-#include "config/sensor_config.hpp"
-#include "events/event_log.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/events/event_log.hpp"
 
 namespace aesim {
 

@@ -1,6 +1,6 @@
 #pragma once
-#include "bus/event_bus.hpp"
-#include "events/event_log.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/events/event_log.hpp"
 
 namespace aesim {
 

@@ -1,8 +1,8 @@
 #pragma once
 #include <systemc>
 
-#include "bus/event_bus.hpp"
-#include "events/address_event.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/events/address_event.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "config/sensor_config.hpp"
+#include "aesim/config/sensor_config.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -9,15 +9,15 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "array/address_map.hpp"
-#include "files/data_dir.hpp"
-#include "errors/input_error.hpp"
-#include "files/input_path.hpp"
-#include "files/toml_file.hpp"
-#include "text/ascii_case.hpp"
-#include "text/nearest_name.hpp"
-#include "power/power_model.hpp"
-#include "units/si_units.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/files/data_dir.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/files/toml_file.hpp"
+#include "aesim/text/ascii_case.hpp"
+#include "aesim/text/nearest_name.hpp"
+#include "aesim/power/power_model.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "limits/limits.hpp"
-#include "pixel/transfer_curve.hpp"
-#include "power/power_model.hpp"
+#include "aesim/limits/limits.hpp"
+#include "aesim/pixel/transfer_curve.hpp"
+#include "aesim/power/power_model.hpp"
 
 namespace aesim {
 

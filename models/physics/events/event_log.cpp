@@ -1,10 +1,10 @@
-#include "events/event_log.hpp"
+#include "aesim/events/event_log.hpp"
 
 #include <algorithm>
 #include <limits>
 
-#include "events/merge_pipeline.hpp"
-#include "events/stream_worker.hpp"
+#include "aesim/events/merge_pipeline.hpp"
+#include "aesim/events/stream_worker.hpp"
 
 namespace aesim {
 namespace {

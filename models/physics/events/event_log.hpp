@@ -4,12 +4,12 @@
 #include <memory>
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "events/address_event.hpp"
-#include "events/event_merger.hpp"
-#include "events/event_stream.hpp"
-#include "events/latency_recorder.hpp"
-#include "events/truth_record.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/events/event_merger.hpp"
+#include "aesim/events/event_stream.hpp"
+#include "aesim/events/latency_recorder.hpp"
+#include "aesim/events/truth_record.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "events/event_merger.hpp"
+#include "aesim/events/event_merger.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "events/event_stream.hpp"
+#include "aesim/events/event_stream.hpp"
 
 namespace aesim {
 

@@ -2,8 +2,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "events/address_event.hpp"
-#include "events/truth_record.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/events/truth_record.hpp"
 
 namespace aesim {
 

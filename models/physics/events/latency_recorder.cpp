@@ -1,4 +1,4 @@
-#include "events/latency_recorder.hpp"
+#include "aesim/events/latency_recorder.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-#include "events/merge_pipeline.hpp"
+#include "aesim/events/merge_pipeline.hpp"
 
-#include "threads/thread_placement.hpp"
+#include "aesim/threads/thread_placement.hpp"
 
 namespace aesim {
 

@@ -4,7 +4,7 @@
 #include <mutex>
 #include <thread>
 
-#include "events/event_merger.hpp"
+#include "aesim/events/event_merger.hpp"
 
 namespace aesim {
 

@@ -1,7 +1,7 @@
 #pragma once
 #include <cstdint>
 
-#include "config/sensor_config.hpp"
+#include "aesim/config/sensor_config.hpp"
 
 namespace aesim {
 

@@ -1,6 +1,6 @@
-#include "events/stream_worker.hpp"
+#include "aesim/events/stream_worker.hpp"
 
-#include "threads/thread_placement.hpp"
+#include "aesim/threads/thread_placement.hpp"
 
 namespace aesim {
 

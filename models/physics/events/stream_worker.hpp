@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "events/event_stream.hpp"
+#include "aesim/events/event_stream.hpp"
 
 namespace aesim {
 

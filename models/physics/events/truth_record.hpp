@@ -1,7 +1,7 @@
 #pragma once
 #include <cstdint>
 
-#include "events/address_event.hpp"
+#include "aesim/events/address_event.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "pixel/integrate_fire.hpp"
+#include "aesim/pixel/integrate_fire.hpp"
 
 #include <algorithm>
 

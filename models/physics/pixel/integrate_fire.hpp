@@ -2,8 +2,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "random/gamma_draw.hpp"
-#include "random/splitmix64.hpp"
+#include "aesim/random/gamma_draw.hpp"
+#include "aesim/random/splitmix64.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "pixel/pixel_draws.hpp"
+#include "aesim/pixel/pixel_draws.hpp"
 
 #include <random>
 

@@ -1,8 +1,8 @@
 #pragma once
 #include <cstdint>
 
-#include "config/sensor_config.hpp"
-#include "pixel/integrate_fire.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/pixel/integrate_fire.hpp"
 
 namespace aesim {
 

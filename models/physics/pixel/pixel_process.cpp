@@ -1,6 +1,6 @@
-#include "pixel/pixel_process.hpp"
+#include "aesim/pixel/pixel_process.hpp"
 
-#include "pixel/pixel_draws.hpp"
+#include "aesim/pixel/pixel_draws.hpp"
 
 namespace aesim {
 

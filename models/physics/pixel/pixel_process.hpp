@@ -2,9 +2,9 @@
 #include <cstdint>
 #include <systemc>
 
-#include "bus/pixel_bus_if.hpp"
-#include "pixel/integrate_fire.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/bus/pixel_bus_if.hpp"
+#include "aesim/pixel/integrate_fire.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "pixel/transfer_curve.hpp"
+#include "aesim/pixel/transfer_curve.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/toml_file.hpp"
-#include "units/si_units.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/toml_file.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "power/power_model.hpp"
+#include "aesim/power/power_model.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "receiver/event_sink.hpp"
+#include "aesim/receiver/event_sink.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "receiver/gated_clock.hpp"
+#include "aesim/receiver/gated_clock.hpp"
 
 #include <algorithm>
 

@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <systemc>
 
-#include "receiver/receiver_signals.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
 
 namespace aesim {
 

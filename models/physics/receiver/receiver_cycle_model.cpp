@@ -1,4 +1,4 @@
-#include "receiver/receiver_cycle_model.hpp"
+#include "aesim/receiver/receiver_cycle_model.hpp"
 
 #include <algorithm>
 

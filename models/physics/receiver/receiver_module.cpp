@@ -1,9 +1,9 @@
-#include "receiver/receiver_module.hpp"
+#include "aesim/receiver/receiver_module.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "receiver/reference_receiver.hpp"
+#include "aesim/receiver/receiver.hpp"
 
 namespace aesim {
 namespace {
@@ -12,10 +12,12 @@ class ReferenceReceiverModule : public ReceiverModule {
  public:
   ReferenceReceiverModule(const sc_core::sc_module_name& name, ReceiverSignals& s,
                           const ReceiverCycleModel::Config& config)
-      : ReceiverModule(name), receiver_("model", s, config) {}
+      : ReceiverModule(name), receiver_("model", config) {
+    receiver_.bind(s);
+  }
 
  private:
-  ReferenceReceiver receiver_;
+  Receiver receiver_;
 };
 
 }  // namespace

@@ -6,10 +6,10 @@
 #include <vector>
 #include <systemc>
 
-#include "config/sensor_config.hpp"
-#include "receiver/receiver_cycle_model.hpp"
-#include "receiver/receiver_signals.hpp"
-#include "receiver/stepped_receiver.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/receiver/receiver_cycle_model.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
+#include "aesim/receiver/stepped_receiver.hpp"
 
 namespace aesim {
 

@@ -2,6 +2,8 @@
 #include <cstdint>
 #include <systemc>
 
+#include "aesim/receiver/receiver_cycle_model.hpp"
+
 namespace aesim {
 
 // The wires around one tile's receiver, with the port names of rtl/aer_receiver.v. Widths up to
@@ -24,5 +26,16 @@ struct ReceiverSignals {
       fifo_count{"fifo_count"};
   sc_core::sc_signal<bool> idle{"idle"};
 };
+
+// The inputs a receiver sees at this edge, for models stepped beside it.
+inline ReceiverCycleModel::Inputs sample_inputs(const ReceiverSignals& s) {
+  ReceiverCycleModel::Inputs in;
+  in.req = s.req.read();
+  in.addr = s.addr.read();
+  in.contention = s.contention.read();
+  in.ready = s.evt_ready.read();
+  in.ts = s.ts.read();
+  return in;
+}
 
 }  // namespace aesim

@@ -1,4 +1,4 @@
-#include "receiver/reference_clock_domain.hpp"
+#include "aesim/receiver/reference_clock_domain.hpp"
 
 #include <algorithm>
 

@@ -4,11 +4,11 @@
 #include <memory>
 #include <systemc>
 
-#include "receiver/receiver_cycle_model.hpp"
-#include "receiver/receiver_signals.hpp"
-#include "receiver/stepped_receiver.hpp"
-#include "receiver/stream_consumer.hpp"
-#include "receiver/stream_rules.hpp"
+#include "aesim/receiver/receiver_cycle_model.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
+#include "aesim/receiver/stepped_receiver.hpp"
+#include "aesim/receiver/stream_consumer.hpp"
+#include "aesim/receiver/stream_rules.hpp"
 
 namespace aesim {
 

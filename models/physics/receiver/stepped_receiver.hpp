@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <string>
 
-#include "receiver/receiver_cycle_model.hpp"
+#include "aesim/receiver/receiver_cycle_model.hpp"
 
 namespace aesim {
 

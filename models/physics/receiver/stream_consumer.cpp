@@ -1,4 +1,4 @@
-#include "receiver/stream_consumer.hpp"
+#include "aesim/receiver/stream_consumer.hpp"
 
 namespace aesim {
 

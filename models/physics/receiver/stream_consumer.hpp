@@ -2,8 +2,8 @@
 #include <cstdint>
 #include <functional>
 
-#include "array/address_map.hpp"
-#include "events/event_log.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/events/event_log.hpp"
 
 namespace aesim {
 

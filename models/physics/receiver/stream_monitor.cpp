@@ -1,4 +1,4 @@
-#include "receiver/stream_monitor.hpp"
+#include "aesim/receiver/stream_monitor.hpp"
 
 namespace aesim {
 

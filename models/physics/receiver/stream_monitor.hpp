@@ -2,8 +2,8 @@
 #include <cstdint>
 #include <systemc>
 
-#include "receiver/receiver_signals.hpp"
-#include "receiver/stream_rules.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
+#include "aesim/receiver/stream_rules.hpp"
 
 namespace aesim {
 

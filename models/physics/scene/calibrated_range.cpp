@@ -1,11 +1,11 @@
-#include "scene/calibrated_range.hpp"
+#include "aesim/scene/calibrated_range.hpp"
 
 #include <algorithm>
 #include <vector>
 
 #include <fmt/format.h>
 
-#include "units/si_units.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 

@@ -2,8 +2,8 @@
 #include <cstddef>
 #include <string>
 
-#include "config/sensor_config.hpp"
-#include "scene/scene.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/scene.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "scene/exr_image.hpp"
+#include "aesim/scene/exr_image.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -10,8 +10,8 @@
 #include <ImfRgbaFile.h>
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "scene/scene_file.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/scene/scene_file.hpp"
 
 namespace aesim {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "scene/image.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

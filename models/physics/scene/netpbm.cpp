@@ -1,4 +1,4 @@
-#include "scene/netpbm.hpp"
+#include "aesim/scene/netpbm.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -9,12 +9,12 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/input_path.hpp"
-#include "limits/limits.hpp"
-#include "scene/exr_image.hpp"
-#include "scene/photo_image.hpp"
-#include "scene/scene_file.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/limits/limits.hpp"
+#include "aesim/scene/exr_image.hpp"
+#include "aesim/scene/photo_image.hpp"
+#include "aesim/scene/scene_file.hpp"
 
 namespace aesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "scene/photo_image.hpp"
+#include "aesim/scene/photo_image.hpp"
 
 #include <csetjmp>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <jerror.h>
 #include <png.h>
 
-#include "errors/input_error.hpp"
-#include "scene/scene_file.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/scene/scene_file.hpp"
 
 namespace aesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "scene/photocurrents.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 #include <utility>
 

@@ -3,8 +3,8 @@
 #include <limits>
 #include <vector>
 
-#include "config/sensor_config.hpp"
-#include "scene/scene.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/scene.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "scene/resample.hpp"
+#include "aesim/scene/resample.hpp"
 
 #include <algorithm>
 #include <cmath>

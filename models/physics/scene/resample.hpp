@@ -1,5 +1,5 @@
 #pragma once
-#include "scene/image.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "scene/scene.hpp"
+#include "aesim/scene/scene.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "limits/limits.hpp"
-#include "files/data_dir.hpp"
-#include "files/input_path.hpp"
-#include "scene/netpbm.hpp"
-#include "scene/resample.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/limits/limits.hpp"
+#include "aesim/files/data_dir.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/scene/netpbm.hpp"
+#include "aesim/scene/resample.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;

@@ -5,8 +5,8 @@
 #include <utility>
 #include <vector>
 
-#include "config/sensor_config.hpp"
-#include "scene/image.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/image.hpp"
 
 namespace aesim {
 

@@ -1,10 +1,10 @@
-#include "scene/scene_file.hpp"
+#include "aesim/scene/scene_file.hpp"
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/input_file.hpp"
-#include "limits/limits.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_file.hpp"
+#include "aesim/limits/limits.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "tile/cycle_tile.hpp"
+#include "aesim/tile/cycle_tile.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -75,6 +75,22 @@ CycleTile::Stats CycleTile::stats() const {
   }
   s.measured_tau = bus_.measured_tau();
   return s;
+}
+
+void CycleTile::trace(sc_core::sc_trace_file* file, const std::string& prefix) const {
+  sc_core::sc_trace(file, s_.req, prefix + "req");
+  sc_core::sc_trace(file, s_.addr, prefix + "addr");
+  sc_core::sc_trace(file, s_.contention, prefix + "contention");
+  sc_core::sc_trace(file, s_.ack, prefix + "ack");
+  if (domain_) return;
+  sc_core::sc_trace(file, s_.clk, prefix + "clk");
+  sc_core::sc_trace(file, s_.rst_n, prefix + "rst_n");
+  sc_core::sc_trace(file, s_.idle, prefix + "idle");
+  sc_core::sc_trace(file, s_.evt_valid, prefix + "evt_valid");
+  sc_core::sc_trace(file, s_.evt_ready, prefix + "evt_ready");
+  sc_core::sc_trace(file, s_.evt_addr, prefix + "evt_addr");
+  sc_core::sc_trace(file, s_.evt_ts, prefix + "evt_ts");
+  sc_core::sc_trace(file, s_.evt_flags, prefix + "evt_flags");
 }
 
 }  // namespace aesim

@@ -2,19 +2,20 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <systemc>
 
-#include "array/address_map.hpp"
-#include "bus/clocked_aloha_bus.hpp"
-#include "bus/bus_waveform.hpp"
-#include "events/event_log.hpp"
-#include "receiver/event_sink.hpp"
-#include "receiver/gated_clock.hpp"
-#include "receiver/receiver_module.hpp"
-#include "receiver/reference_clock_domain.hpp"
-#include "receiver/receiver_signals.hpp"
-#include "receiver/stream_monitor.hpp"
-#include "waveform/vcd_recorder.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/bus/clocked_aloha_bus.hpp"
+#include "aesim/bus/bus_waveform.hpp"
+#include "aesim/events/event_log.hpp"
+#include "aesim/receiver/event_sink.hpp"
+#include "aesim/receiver/gated_clock.hpp"
+#include "aesim/receiver/receiver_module.hpp"
+#include "aesim/receiver/reference_clock_domain.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
+#include "aesim/receiver/stream_monitor.hpp"
+#include "aesim/waveform/vcd_recorder.hpp"
 
 namespace aesim {
 
@@ -44,6 +45,11 @@ class CycleTile : public sc_core::sc_module {
   // Gives the reference receiver's clock domain the time (ps) of this tile's next firing, from
   // whatever drives the bus, so that it steps the edges before it in one activation.
   void set_next_firing(std::function<std::uint64_t()> next_firing_ps);
+  // Adds the tile's bus wires (req, addr, contention, ack) to a caller's trace file, each named
+  // `prefix` + its name; with a clock wire (a factory's or an outside receiver) also the clock,
+  // reset, idle and the output stream. The reference receiver's domain has no clock wire: its
+  // stream lives inside the process that steps it.
+  void trace(sc_core::sc_trace_file* file, const std::string& prefix) const;
 
   // What the tile saw: handshake and stream rule breaks, receiver clock edges simulated, the
   // co-simulation scoreboard's compared beats and mismatches (RTL receivers only), and the mean

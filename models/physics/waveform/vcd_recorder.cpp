@@ -1,4 +1,4 @@
-#include "waveform/vcd_recorder.hpp"
+#include "aesim/waveform/vcd_recorder.hpp"
 
 #include <cmath>
 #include <map>

@@ -1,7 +1,7 @@
 #pragma once
 #include <cstdint>
 
-#include "receiver/receiver_cycle_model.hpp"
+#include "aesim/receiver/receiver_cycle_model.hpp"
 
 namespace aesim {
 

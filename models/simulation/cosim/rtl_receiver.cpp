@@ -1,4 +1,4 @@
-#include "cosim/rtl_receiver.hpp"
+#include "aesim/cosim/rtl_receiver.hpp"
 
 #include "Vaer_receiver_drop.h"
 #include "Vaer_receiver_hold.h"

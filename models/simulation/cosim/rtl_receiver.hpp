@@ -10,12 +10,11 @@
 #include <verilated.h>
 #include <verilated_vcd_c.h>
 
-#include "cosim/dot_free_vcd_file.hpp"
-#include "cosim/output_compare.hpp"
-#include "receiver/receiver_cycle_model.hpp"
-#include "receiver/receiver_module.hpp"
-#include "receiver/receiver_signals.hpp"
-#include "receiver/reference_receiver.hpp"
+#include "aesim/cosim/dot_free_vcd_file.hpp"
+#include "aesim/cosim/output_compare.hpp"
+#include "aesim/receiver/receiver_cycle_model.hpp"
+#include "aesim/receiver/receiver_module.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
 
 namespace aesim {
 

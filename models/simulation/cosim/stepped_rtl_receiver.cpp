@@ -1,10 +1,10 @@
-#include "cosim/stepped_rtl_receiver.hpp"
+#include "aesim/cosim/stepped_rtl_receiver.hpp"
 
 #include <verilated.h>
 
 #include "Vaer_receiver_drop_stepped.h"
 #include "Vaer_receiver_hold_stepped.h"
-#include "cosim/output_compare.hpp"
+#include "aesim/cosim/output_compare.hpp"
 
 namespace aesim {
 namespace {

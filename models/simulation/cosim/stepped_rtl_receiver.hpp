@@ -2,9 +2,9 @@
 #include <functional>
 #include <memory>
 
-#include "config/sensor_config.hpp"
-#include "receiver/receiver_cycle_model.hpp"
-#include "receiver/stepped_receiver.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/receiver/receiver_cycle_model.hpp"
+#include "aesim/receiver/stepped_receiver.hpp"
 
 namespace aesim {
 

@@ -1,12 +1,12 @@
-#include "embed/event_fifo_target.hpp"
+#include "aesim/embed/event_fifo_target.hpp"
 
 #include <algorithm>
 #include <cstring>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "events/timestamps.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/events/timestamps.hpp"
 
 namespace aesim {
 

@@ -6,8 +6,8 @@
 #include <tlm>
 #include <tlm_utils/simple_target_socket.h>
 
-#include "embed/event_fifo_registers.hpp"
-#include "events/address_event.hpp"
+#include "aesim/embed/event_fifo_registers.hpp"
+#include "aesim/events/address_event.hpp"
 
 namespace aesim {
 

@@ -1,12 +1,12 @@
-#include "embed/event_source.hpp"
+#include "aesim/embed/event_source.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "run/imager_simulation.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/run/imager_simulation.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 

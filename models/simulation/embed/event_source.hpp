@@ -7,9 +7,9 @@
 
 #include <systemc>
 
-#include "embed/imager.hpp"
-#include "events/address_event.hpp"
-#include "events/event_log.hpp"
+#include "aesim/embed/imager.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/events/event_log.hpp"
 
 namespace aesim {
 

@@ -1,13 +1,13 @@
-#include "embed/imager.hpp"
+#include "aesim/embed/imager.hpp"
 
 #include <optional>
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "rungs/cycle_array.hpp"
-#include "rungs/run_budget.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/rungs/cycle_array.hpp"
+#include "aesim/rungs/run_budget.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 
@@ -60,6 +60,16 @@ Imager::~Imager() = default;
 const ResolvedConfig& Imager::config() const { return run_->config; }
 
 double Imager::tick() const { return rung_for(Fidelity::Cycle).tick(run_->config); }
+
+ReceiverCycleModel::Config Imager::receiver_config() const {
+  return receiver_model_config(run_->config.receiver, run_->config.bus.contention_detect, run_->request.cycle);
+}
+
+void Imager::trace(sc_core::sc_trace_file* file) const {
+  for (std::size_t t = 0; t < array_->tiles().size(); ++t) {
+    array_->tiles()[t]->trace(file, fmt::format("{}.tile{}.", name(), t));
+  }
+}
 
 void Imager::finish() {
   if (finished_) return;

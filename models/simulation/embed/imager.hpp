@@ -5,14 +5,14 @@
 
 #include <systemc>
 
-#include "config/sensor_config.hpp"
-#include "embed/tile_ports.hpp"
-#include "events/address_event.hpp"
-#include "events/event_log.hpp"
-#include "receiver/receiver_module.hpp"
-#include "receiver/receiver_signals.hpp"
-#include "scene/photocurrents.hpp"
-#include "scene/scene.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/embed/tile_ports.hpp"
+#include "aesim/events/address_event.hpp"
+#include "aesim/events/event_log.hpp"
+#include "aesim/receiver/receiver_module.hpp"
+#include "aesim/receiver/receiver_signals.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/scene/scene.hpp"
 
 namespace aesim {
 
@@ -68,6 +68,15 @@ class Imager : public sc_core::sc_module {
   const ResolvedConfig& config() const;
   // The receivers' timestamp resolution, s (receiver.tick): the step of the delivered stamps.
   double tick() const;
+  // How aesim's own receiver is set up on this imager's tiles (widths, FIFO, full policy,
+  // prescale, collisions, stamps from the tile's `ts`): what an aesim::Receiver on a tile's ports
+  // is built with to behave as the Imager's own.
+  ReceiverCycleModel::Config receiver_config() const;
+  // Adds every tile's bus wires to the caller's trace file (sc_create_vcd_trace_file), named
+  // <this module>.tile<t>.<wire>: req, addr, contention and ack of every tile, and for a tile whose
+  // receiver is on a clock wire (outside the Imager, or from ImagerSpec::receiver) the clock, reset,
+  // idle and output stream too. Call during elaboration, as sc_trace requires.
+  void trace(sc_core::sc_trace_file* file) const;
 
   // After sc_start() has returned with the run done: what the receivers delivered, in (time,
   // tile, address) order, each `t` the delivery time; and each tile's counters.

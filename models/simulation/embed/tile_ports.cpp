@@ -1,10 +1,10 @@
-#include "embed/tile_ports.hpp"
+#include "aesim/embed/tile_ports.hpp"
 
 #include <string>
 
 #include <fmt/format.h>
 
-#include "tile/cycle_tile.hpp"
+#include "aesim/tile/cycle_tile.hpp"
 
 namespace aesim {
 namespace {

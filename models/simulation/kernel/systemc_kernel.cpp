@@ -1,10 +1,10 @@
-#include "kernel/systemc_kernel.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
 
 #include <algorithm>
 #include <atomic>
 
-#include "errors/input_error.hpp"
-#include "process/interrupt.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/process/interrupt.hpp"
 
 namespace aesim {
 namespace {

@@ -1,8 +1,8 @@
-#include "run/imager_simulation.hpp"
+#include "aesim/run/imager_simulation.hpp"
 
 #include <chrono>
 
-#include "rungs/run_budget.hpp"
+#include "aesim/rungs/run_budget.hpp"
 
 namespace aesim {
 

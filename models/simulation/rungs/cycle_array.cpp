@@ -1,10 +1,10 @@
-#include "rungs/cycle_array.hpp"
+#include "aesim/rungs/cycle_array.hpp"
 
 #include <fmt/format.h>
 
-#include "array/schedule_driver.hpp"
-#include "cosim/rtl_receiver.hpp"
-#include "cosim/stepped_rtl_receiver.hpp"
+#include "aesim/array/schedule_driver.hpp"
+#include "aesim/cosim/rtl_receiver.hpp"
+#include "aesim/cosim/stepped_rtl_receiver.hpp"
 
 namespace aesim {
 

@@ -4,8 +4,8 @@
 
 #include <systemc>
 
-#include "rungs/rung.hpp"
-#include "tile/cycle_tile.hpp"
+#include "aesim/rungs/rung.hpp"
+#include "aesim/tile/cycle_tile.hpp"
 
 namespace aesim {
 

@@ -4,11 +4,11 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "kernel/systemc_kernel.hpp"
-#include "rungs/cycle_array.hpp"
-#include "rungs/rung.hpp"
-#include "tile/cycle_tile.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
+#include "aesim/rungs/cycle_array.hpp"
+#include "aesim/rungs/rung.hpp"
+#include "aesim/tile/cycle_tile.hpp"
 
 namespace aesim {
 namespace {

@@ -2,9 +2,9 @@
 #include <memory>
 #include <vector>
 
-#include "bus/event_bus.hpp"
-#include "bus/event_level_bus.hpp"
-#include "rungs/rung.hpp"
+#include "aesim/bus/event_bus.hpp"
+#include "aesim/bus/event_level_bus.hpp"
+#include "aesim/rungs/rung.hpp"
 
 namespace aesim {
 

@@ -4,12 +4,12 @@
 #include <memory>
 #include <thread>
 
-#include "array/firing_schedule.hpp"
-#include "rungs/event_level_buses.hpp"
-#include "rungs/rung.hpp"
-#include "errors/input_error.hpp"
-#include "process/interrupt.hpp"
-#include "threads/worker_pool.hpp"
+#include "aesim/array/firing_schedule.hpp"
+#include "aesim/rungs/event_level_buses.hpp"
+#include "aesim/rungs/rung.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/process/interrupt.hpp"
+#include "aesim/threads/worker_pool.hpp"
 
 namespace aesim {
 namespace {

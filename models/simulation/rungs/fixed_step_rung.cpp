@@ -1,7 +1,7 @@
-#include "array/fixed_step_array.hpp"
-#include "kernel/systemc_kernel.hpp"
-#include "rungs/event_level_buses.hpp"
-#include "rungs/rung.hpp"
+#include "aesim/array/fixed_step_array.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
+#include "aesim/rungs/event_level_buses.hpp"
+#include "aesim/rungs/rung.hpp"
 
 namespace aesim {
 namespace {

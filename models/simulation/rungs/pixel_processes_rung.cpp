@@ -3,11 +3,11 @@
 
 #include <fmt/format.h>
 
-#include "bus/pixel_bus_if.hpp"
-#include "kernel/systemc_kernel.hpp"
-#include "pixel/pixel_process.hpp"
-#include "rungs/event_level_buses.hpp"
-#include "rungs/rung.hpp"
+#include "aesim/bus/pixel_bus_if.hpp"
+#include "aesim/kernel/systemc_kernel.hpp"
+#include "aesim/pixel/pixel_process.hpp"
+#include "aesim/rungs/event_level_buses.hpp"
+#include "aesim/rungs/rung.hpp"
 
 namespace aesim {
 namespace {

@@ -1,6 +1,6 @@
-#include "array/queue_model.hpp"
-#include "rungs/event_level_buses.hpp"
-#include "rungs/rung.hpp"
+#include "aesim/array/queue_model.hpp"
+#include "aesim/rungs/event_level_buses.hpp"
+#include "aesim/rungs/rung.hpp"
 
 namespace aesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "rungs/run_budget.hpp"
+#include "aesim/rungs/run_budget.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "scene/scene.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/scene/scene.hpp"
 
 namespace aesim {
 

@@ -1,6 +1,6 @@
 #pragma once
-#include "config/sensor_config.hpp"
-#include "scene/photocurrents.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 

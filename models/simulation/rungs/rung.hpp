@@ -1,13 +1,13 @@
 #pragma once
 #include <vector>
 
-#include "array/address_map.hpp"
-#include "config/sensor_config.hpp"
-#include "events/event_log.hpp"
-#include "events/run_facts.hpp"
-#include "rungs/simulation_request.hpp"
-#include "scene/photocurrents.hpp"
-#include "waveform/vcd_recorder.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/events/event_log.hpp"
+#include "aesim/events/run_facts.hpp"
+#include "aesim/rungs/simulation_request.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/waveform/vcd_recorder.hpp"
 
 namespace aesim {
 

@@ -3,8 +3,8 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "rungs/rung.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/rungs/rung.hpp"
 
 namespace aesim {
 

@@ -3,8 +3,8 @@
 #include <functional>
 #include <string>
 
-#include "events/event_stream.hpp"
-#include "receiver/receiver_module.hpp"
+#include "aesim/events/event_stream.hpp"
+#include "aesim/receiver/receiver_module.hpp"
 
 namespace aesim {
 

@@ -1,4 +1,4 @@
-#include "spec/sweep_spec.hpp"
+#include "aesim/spec/sweep_spec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,15 +8,15 @@
 
 #include <fmt/format.h>
 
-#include "files/data_dir.hpp"
-#include "errors/input_error.hpp"
-#include "text/nearest_name.hpp"
-#include "files/input_path.hpp"
-#include "files/toml_file.hpp"
-#include "config/sensor_config.hpp"
-#include "random/splitmix64.hpp"
-#include "scene/scene.hpp"
-#include "units/si_units.hpp"
+#include "aesim/files/data_dir.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/text/nearest_name.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/files/toml_file.hpp"
+#include "aesim/config/sensor_config.hpp"
+#include "aesim/random/splitmix64.hpp"
+#include "aesim/scene/scene.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;

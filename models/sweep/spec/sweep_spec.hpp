@@ -3,7 +3,7 @@
 #include <utility>
 #include <vector>
 
-#include "sizing/sizing_report.hpp"
+#include "aesim/sizing/sizing_report.hpp"
 
 namespace aesim {
 

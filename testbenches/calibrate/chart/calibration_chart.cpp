@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/data_dir.hpp"
-#include "process/child_process.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/data_dir.hpp"
+#include "aesim/process/child_process.hpp"
 
 namespace aesim {
 namespace {

@@ -10,9 +10,9 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "text/ascii_case.hpp"
-#include "files/input_path.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/text/ascii_case.hpp"
+#include "aesim/files/input_path.hpp"
 
 namespace aesim {
 namespace {

@@ -12,10 +12,10 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/scratch_text.hpp"
-#include "text/ascii_case.hpp"
-#include "process/child_process.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/scratch_text.hpp"
+#include "aesim/text/ascii_case.hpp"
+#include "aesim/process/child_process.hpp"
 
 namespace aesim {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "config/sensor_config.hpp"
+#include "aesim/config/sensor_config.hpp"
 #include "deck/pixel_deck.hpp"
 #include "session/pixel_calibration.hpp"
 

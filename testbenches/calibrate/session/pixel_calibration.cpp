@@ -16,10 +16,10 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "files/scratch_folder.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/scratch_folder.hpp"
 #include "measure/firing_measure.hpp"
-#include "output/temp_files.hpp"
+#include "aesim/output/temp_files.hpp"
 #include "ngspice/ngspice_run.hpp"
 
 namespace aesim {

@@ -8,11 +8,11 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
-#include "text/nearest_name.hpp"
-#include "files/input_path.hpp"
-#include "files/toml_file.hpp"
-#include "units/si_units.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/text/nearest_name.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/files/toml_file.hpp"
+#include "aesim/units/si_units.hpp"
 
 namespace aesim {
 namespace {

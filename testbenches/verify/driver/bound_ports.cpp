@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 namespace {

@@ -5,8 +5,8 @@
 #include <deque>
 #include <limits>
 
-#include "bus/wired_or_lines.hpp"
-#include "random/splitmix64.hpp"
+#include "aesim/bus/wired_or_lines.hpp"
+#include "aesim/random/splitmix64.hpp"
 
 namespace aesim {
 

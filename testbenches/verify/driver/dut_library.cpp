@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "build/dut_glue.hpp"
-#include "errors/input_error.hpp"
+#include "aesim/errors/input_error.hpp"
 
 namespace aesim {
 

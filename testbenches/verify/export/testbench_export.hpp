@@ -4,7 +4,7 @@
 
 #include "build/port_list.hpp"
 #include "description/receiver_description.hpp"
-#include "output/atomic_file.hpp"
+#include "aesim/output/atomic_file.hpp"
 #include "session/verify_session.hpp"
 
 namespace aesim {

@@ -15,11 +15,11 @@
 #include <nlohmann/json.hpp>
 
 #include "driver/bound_ports.hpp"
-#include "errors/input_error.hpp"
-#include "files/content_hash.hpp"
-#include "files/scratch_folder.hpp"
-#include "files/scratch_text.hpp"
-#include "process/child_process.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/content_hash.hpp"
+#include "aesim/files/scratch_folder.hpp"
+#include "aesim/files/scratch_text.hpp"
+#include "aesim/process/child_process.hpp"
 
 namespace aesim {
 namespace {

@@ -6,10 +6,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "errors/input_error.hpp"
-#include "scene/scene.hpp"
-#include "files/input_path.hpp"
-#include "files/toml_file.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/scene/scene.hpp"
+#include "aesim/files/input_path.hpp"
+#include "aesim/files/toml_file.hpp"
 #include "stimulus/directed_cases.hpp"
 
 namespace aesim {

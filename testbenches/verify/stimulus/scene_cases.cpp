@@ -5,12 +5,12 @@
 
 #include <fmt/format.h>
 
-#include "array/address_map.hpp"
-#include "array/firing_schedule.hpp"
+#include "aesim/array/address_map.hpp"
+#include "aesim/array/firing_schedule.hpp"
 #include "driver/case_driver.hpp"
-#include "errors/input_error.hpp"
-#include "scene/photocurrents.hpp"
-#include "scene/scene.hpp"
+#include "aesim/errors/input_error.hpp"
+#include "aesim/scene/photocurrents.hpp"
+#include "aesim/scene/scene.hpp"
 
 namespace aesim {
 namespace {
