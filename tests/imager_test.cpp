@@ -68,6 +68,28 @@ TEST(Imager, RunsInTheCallersKernelWithTheCycleRungsEvents) {
   EXPECT_DOUBLE_EQ(imager.tick(), 1e-6);
 }
 
+// What `aesim run` warns of reaches the caller as SystemC reports: a calibrated preset whose range
+// the scene's light leaves gives one SC_REPORT_WARNING per module, with the program's words, under
+// the module's id; the caller's handler (here: keep it, print nothing) decides.
+TEST(Imager, WarningsAreSystemCReportsUnderTheModulesId) {
+  sc_core::sc_report_handler::set_actions(sc_core::SC_WARNING, sc_core::SC_CACHE_REPORT);
+  ImagerSpec spec;
+  spec.sensor = "aesim_pixel";
+  spec.scene = std::string(AESIM_SOURCE_DIR) + "/scenes/gradient.pgm";
+  spec.settings = {{"sim.duration", "1ms"}, {"pixel.i_max", "2nA"}};
+  Imager imager("imager", spec);
+  EXPECT_EQ(sc_core::sc_report_handler::get_count("aesim/Imager"), 1);
+  const sc_core::sc_report* cached = sc_core::sc_report_handler::get_cached_report();
+  ASSERT_NE(cached, nullptr);
+  EXPECT_NE(std::string(cached->get_msg()).find("calibrated from 1 fA to 1 nA"), std::string::npos) << cached->get_msg();
+  EventSource source("source", spec);
+  EXPECT_EQ(sc_core::sc_report_handler::get_count("aesim/EventSource"), 1);
+  spec.scene = std::string(AESIM_SOURCE_DIR) + "/scenes/uniform.pgm";  // 1 pA: inside the table
+  spec.settings = {{"sim.duration", "1ms"}};
+  Imager quiet("quiet", spec);
+  EXPECT_EQ(sc_core::sc_report_handler::get_count("aesim/Imager"), 1);
+}
+
 TEST(Imager, RefusesAnotherFidelityAndBadKeysBeforeElaborating) {
   ImagerSpec spec;
   spec.settings = {{"sim.fidelity", "event"}};

@@ -26,11 +26,8 @@
 #include "aesim/events/timestamps.hpp"
 #include "aesim/output/temp_files.hpp"
 #include "aesim/process/interrupt.hpp"
-#include "aesim/run/imager_simulation.hpp"
-#include "aesim/rungs/rung.hpp"
-#include "aesim/scene/photocurrents.hpp"
 #include "aesim/scene/scene.hpp"
-#include "aesim/summary/summary.hpp"
+#include "aesim/sensor_run/sensor_run.hpp"
 
 namespace py = pybind11;
 
@@ -181,31 +178,26 @@ void put(char* at, std::size_t offset, T value) {
 py::object py_run(const std::string& sensor, const py::object& scene, const py::object& duration, const py::object& set,
                bool truth, const py::object& max_events) {
   // A path is read as the program reads it; an array is the scene's one frame, as it is.
-  SceneFiles files;
-  std::vector<Image> frames;
-  if (scene.is_none()) {
-    files = find_scene(default_scene_path());
-  } else if (is_path(scene)) {
-    files = find_scene(as_path(scene));
-  } else {
-    frames.push_back(image_from_array(scene, "scene"));
+  RunSpec spec;
+  spec.sensor = sensor;
+  if (!scene.is_none() && is_path(scene)) {
+    spec.scene = as_path(scene);
+  } else if (!scene.is_none()) {
+    spec.frames.push_back(image_from_array(scene, "scene"));
   }
   const std::string duration_text = duration.is_none() ? "" : std::string(py::str(duration));
   const std::string max_text = max_events.is_none() ? "" : std::string(py::str(max_events));
-  const ResolvedConfig config = configure_run(load_sensor(sensor), files, command_settings(settings_text(set), duration_text, max_text));
-  SimulationRequest request;
-  request.keep_events = true;
-  request.keep_truth = truth;
+  spec.settings = command_settings(settings_text(set), duration_text, max_text);
   EventCollector collected;
-  request.stream = &collected;
-  const Rung& rung = choose_rung(config, request);
-  const double tick = rung.tick(config);
-  const Photocurrents photocurrents(frames.empty() ? load_scene(files, config.array, config.scene, config.sim.duration)
-                                                  : load_scene(frames, config.array, config.scene),
-                                   config.pixel);
-  const SimulationResult result = without_gil([&] { return simulate(config, photocurrents, request); });
-  const Image mean = mean_frame(photocurrents.scene(), config.sim.duration);
-  const nlohmann::json summary = make_summary(config, result.log, result.facts, &mean);
+  spec.stream = &collected;
+  spec.keep_truth = truth;
+  const RunReport report = without_gil([&] { return run_sensor(spec); });
+  const double tick = report.tick;
+  const nlohmann::json& summary = report.summary;
+  if (!report.warnings.empty()) {
+    const py::object warn = py::module_::import("warnings").attr("warn");
+    for (const std::string& w : report.warnings) warn(w, py::module_::import("builtins").attr("RuntimeWarning"), 2);
+  }
 
   // t is the receiver's stamp (whole ticks), as in the event files.
   const py::dtype event_type = packed_dtype({{"t", "<f8"}, {"x", "<u2"}, {"y", "<u2"}, {"tile", "<u4"}, {"flags", "u1"}});

@@ -47,6 +47,18 @@ def test_run_gives_the_programs_events_and_summary(tmp_path):
     assert r.truth is None
 
 
+def test_warnings_are_the_programs_raised_as_runtime_warnings(tmp_path):
+    # aesim_pixel is calibrated from 1 fA to 1 nA; the gradient at i_max = 2 nA leaves that range.
+    scene = os.path.join(SCENES, "gradient.pgm")
+    done = cli("run", "--sensor", "aesim_pixel", "--scene", scene, "--duration", "10ms", "--set", "pixel.i_max=2nA",
+               "--summary", str(tmp_path / "s.json"))
+    assert done.returncode == 0, done.stderr
+    assert done.stderr.startswith("aesim: warning: ")
+    with pytest.warns(RuntimeWarning) as caught:
+        aesim.run(sensor="aesim_pixel", scene=scene, duration="10ms", set={"pixel.i_max": "2nA"})
+    assert [str(w.message) for w in caught] == [done.stderr[len("aesim: warning: "):].rstrip("\n")]
+
+
 def test_a_scene_array_is_the_same_scene_as_its_file(tmp_path):
     img = np.zeros((32, 48), np.uint8)
     img[4:20, 10:40] = 200

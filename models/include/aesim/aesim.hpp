@@ -5,7 +5,8 @@
 //   - Receiver: aesim's bundled receiver (the reference model of rtl/aer_receiver.v) with ports;
 //   - EventSource: the event fidelity's events handed over at their times, into an sc_fifo;
 //   - EventFifoTarget: a memory-mapped event FIFO with an interrupt behind a TLM-2.0 socket;
-//   - simulate(): a whole run at any fidelity, in a SystemC context of its own;
+//   - run_sensor(): a whole run as `aesim run` makes it (outputs, summary, warnings returned);
+//   - simulate(): a run's simulation alone, at any fidelity, in a SystemC context of its own;
 //   - the configuration (presets, --set keys), scenes, the record of a run, event files.
 #include "aesim/version.hpp"
 #include "aesim/config/sensor_config.hpp"
@@ -23,3 +24,4 @@
 #include "aesim/run/imager_simulation.hpp"
 #include "aesim/scene/photocurrents.hpp"
 #include "aesim/scene/scene.hpp"
+#include "aesim/sensor_run/sensor_run.hpp"

@@ -22,7 +22,8 @@ struct EventSource::Run {
 EventSource::EventSource(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name), out("out") {
   if (spec.receiver || !spec.outside_receivers.empty()) throw InputError("EventSource: the event fidelity has no clocked receiver to replace (use Imager)");
   SpecInputs in =
-      spec_inputs(spec, Fidelity::Event, "an EventSource is the event fidelity (use Imager for the cycle one)");
+      spec_inputs(spec, Fidelity::Event, "an EventSource is the event fidelity (use Imager for the cycle one)",
+                  "aesim/EventSource");
   SimulationResult result = simulate(in.config, in.photocurrents);
   run_.reset(new Run{std::move(in.config), std::move(result)});
   SC_THREAD(emit);

@@ -7,6 +7,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/rungs/cycle_array.hpp"
 #include "aesim/rungs/run_budget.hpp"
+#include "aesim/scene/calibrated_range.hpp"
 #include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
@@ -20,7 +21,7 @@ struct Imager::Run {
   EventLog log;
 };
 
-SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_instead) {
+SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_instead, const char* report_id) {
   const SceneFiles scene = find_scene(spec.scene.empty() ? default_scene_path() : spec.scene);
   ResolvedConfig config = configure_run(load_sensor(spec.sensor), scene, spec.settings);
   if (config.sim.fidelity != rung && config.sim.fidelity != Fidelity::Auto) {
@@ -29,11 +30,15 @@ SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_in
   config.sim.fidelity = rung;
   rung_for(rung).check(config);
   Photocurrents photocurrents(load_scene(scene, config.array, config.scene, config.sim.duration), config.pixel);
+  const std::string range =
+      calibrated_range_warning(calibrated_range_use(photocurrents.scene(), config.pixel), config.pixel);
+  if (!range.empty()) SC_REPORT_WARNING(report_id, range.c_str());
   return {std::move(config), std::move(photocurrents)};
 }
 
 Imager::Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc_module(name), tile("tile") {
-  SpecInputs in = spec_inputs(spec, Fidelity::Cycle, "an Imager is the cycle fidelity (use simulate() for the others)");
+  SpecInputs in = spec_inputs(spec, Fidelity::Cycle, "an Imager is the cycle fidelity (use simulate() for the others)",
+                              "aesim/Imager");
   check_work(in.config, in.photocurrents, Fidelity::Cycle);
   const AddressMap map(in.config.array);
   for (const std::uint32_t t : spec.outside_receivers) {

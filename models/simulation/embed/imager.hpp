@@ -36,12 +36,14 @@ struct ImagerSpec {
 
 // What an ImagerSpec names, for a module of fidelity `rung`: its configuration (sim.fidelity must be
 // `rung` or auto, else InputError saying `use_instead`; the rung's own checks passed) and the
-// scene's photocurrents. Shared by the embeddable modules.
+// scene's photocurrents. Shared by the embeddable modules. What `aesim run` would warn of (the
+// scene's light outside a calibrated preset's range) is reported as SC_REPORT_WARNING with the
+// module's `report_id`, so the caller's report handler decides what becomes of it.
 struct SpecInputs {
   ResolvedConfig config;
   Photocurrents photocurrents;
 };
-SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_instead);
+SpecInputs spec_inputs(const ImagerSpec& spec, Fidelity rung, const char* use_instead, const char* report_id);
 
 // The imager at the cycle fidelity as a SystemC module for the caller's own sc_main: the pixels
 // of every tile firing onto their tile's clocked ALOHA bus (Req/Ack, 10-bit address, contention)
