@@ -287,6 +287,28 @@ TEST(Imager, AVerilatedReceiverOnTheTilePortsGivesTheSameEvents) {
   EXPECT_EQ(imager.protocol_violations(), 0u);
 }
 
+// A design that never starves (the caller's own free-running clock) runs the Imager in slices of
+// sc_start(T): read before the run is done, the record refuses (it would stop there and lose what
+// is still to come); read after it, it holds every event of the run.
+TEST(Imager, ReadBeforeTheRunIsDoneItRefusesAfterItHoldsEveryEvent) {
+  ImagerSpec spec;
+  spec.scene = kScene;
+  spec.settings = kLoadedBus;
+  const SimulationResult reference = reference_run(spec, "cycle");
+  sc_core::sc_clock clock("callers_clock", 1, sc_core::SC_US);
+  Imager imager("imager", spec);
+  sc_core::sc_start(100, sc_core::SC_MS);
+  try {
+    imager.events();
+    ADD_FAILURE() << "events() gave a record at 100 ms of a 300 ms run";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the run is not done at 100 ms"), std::string::npos) << e.what();
+  }
+  sc_core::sc_start(250, sc_core::SC_MS);
+  std::size_t on_0 = 0;
+  ASSERT_NO_FATAL_FAILURE(expect_same_events(imager.events(), reference.log.events(), 0, on_0));
+}
+
 // aesim's bundled receiver as a module (aesim::Receiver) outside the Imager on every tile, each
 // wired through the caller's sc_signals: on tiles 0 and 1 with the settings' ports bound to the
 // tile's (the receiver reads them at reset, as the RTL does), on 2 and 3 with the settings from

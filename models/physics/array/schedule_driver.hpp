@@ -21,6 +21,8 @@ class ScheduleDriver : public sc_core::sc_module {
 
   // When (ps, as the bus sees it) tile `tile`'s next firing drives its wires; ~0 when none is left.
   std::uint64_t next_firing_ps(std::size_t tile) const { return next_ps_[tile]; }
+  // Whether every firing of the run has been handed to its bus.
+  bool all_fired() const { return heads_.empty(); }
 
  private:
   void run();

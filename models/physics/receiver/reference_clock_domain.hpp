@@ -53,6 +53,8 @@ class ReferenceClockDomain : public sc_core::sc_module {
     outputs_ = &stepped_->outputs();
   }
   const SteppedReceiver* stepped() const { return stepped_.get(); }
+  // Whether the receiver holds nothing (no handshake, an empty FIFO) after the last edge stepped.
+  bool idle() const { return out().idle; }
 
  private:
   void on_wake();

@@ -50,8 +50,15 @@ CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, co
 }
 
 void CycleTile::outside_receiver_reports(bool idle, bool counters, sc_core::sc_time duration) {
+  idle_reported_ = idle;
   if (!idle) clock_->run_free_then_stop_when_quiet(duration);
   if (!counters) stream_monitor_->without_counters();
+}
+
+bool CycleTile::quiescent() const {
+  if (s_.req.read() || s_.ack.read()) return false;
+  if (domain_) return domain_->idle();
+  return !idle_reported_ || s_.idle.read();
 }
 
 void CycleTile::set_next_firing(std::function<std::uint64_t()> next_firing_ps) {

@@ -42,6 +42,9 @@ class CycleTile : public sc_core::sc_module {
   // runs free until `duration` and then stops once Req and Ack are low; without the event and FIFO
   // counters, the stream's rule that nothing vanishes is not checked.
   void outside_receiver_reports(bool idle, bool counters, sc_core::sc_time duration);
+  // Whether nothing more can happen on the tile until a pixel fires: Req and Ack low and the
+  // receiver idle (an outside receiver that reports no idle: Req and Ack low).
+  bool quiescent() const;
   // Gives the reference receiver's clock domain the time (ps) of this tile's next firing, from
   // whatever drives the bus, so that it steps the edges before it in one activation.
   void set_next_firing(std::function<std::uint64_t()> next_firing_ps);
@@ -63,6 +66,7 @@ class CycleTile : public sc_core::sc_module {
  private:
   ReceiverSignals s_;
   bool outside_ = false;
+  bool idle_reported_ = true;  // whether s_.idle is driven (not by an outside receiver without it)
   std::unique_ptr<ReferenceClockDomain> domain_;  // the reference receiver's clock domain, or
   std::unique_ptr<GatedClock> clock_;             // a factory's receiver with its clock wire,
   std::unique_ptr<ReceiverModule> receiver_;

@@ -81,6 +81,12 @@ void Imager::finish() {
   if (sc_core::sc_get_status() == sc_core::SC_ELABORATION) {
     throw InputError("Imager::events(): the simulation has not run yet (call sc_start() first)");
   }
+  // Read early, the record would stop there and lose what is still to come.
+  if (!array_->done()) {
+    throw InputError(fmt::format("Imager::events(): the run is not done at {} (sim.duration {} s): a firing or a "
+                                 "handshake is still to come; call sc_start() further first",
+                                 sc_core::sc_time_stamp().to_string(), run_->config.sim.duration));
+  }
   run_->log.finish();
   finished_ = true;
 }

@@ -80,8 +80,10 @@ class Imager : public sc_core::sc_module {
   // idle and output stream too. Call during elaboration, as sc_trace requires.
   void trace(sc_core::sc_trace_file* file) const;
 
-  // After sc_start() has returned with the run done: what the receivers delivered, in (time,
-  // tile, address) order, each `t` the delivery time; and each tile's counters.
+  // After sc_start() has returned with the run done (every firing of sim.duration on its bus and
+  // every handshake over; an sc_start(T) that stops earlier leaves it undone, and these throw
+  // InputError saying so): what the receivers delivered, in (time, tile, address) order, each `t`
+  // the delivery time; and each tile's counters.
   const std::vector<AddressEvent>& events();
   std::vector<TileCounters> tiles();
   // Handshakes that broke the bus's rules (Ack without Req, Ack too early or late, a stream beat

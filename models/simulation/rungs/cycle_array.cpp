@@ -25,6 +25,14 @@ CycleArray::CycleArray(const sc_core::sc_module_name& name, const RungRun& run, 
 
 CycleArray::~CycleArray() = default;
 
+bool CycleArray::done() const {
+  if (!driver_->all_fired()) return false;
+  for (const auto& tile : tiles_) {
+    if (!tile->quiescent()) return false;
+  }
+  return true;
+}
+
 CycleOptions cycle_options(const RungRun& run) {
   CycleOptions options = run.request.cycle;
   if (!options.receiver && !options.stepped_receiver && run.config.receiver.model == ReceiverModel::Rtl) {

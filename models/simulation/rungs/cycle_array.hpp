@@ -20,6 +20,8 @@ class CycleArray : public sc_core::sc_module {
   CycleArray(const sc_core::sc_module_name& name, const RungRun& run, const CycleOptions& options);
   ~CycleArray() override;
   const std::vector<std::unique_ptr<CycleTile>>& tiles() const { return tiles_; }
+  // Whether the run is over: every firing handed to its bus and every tile quiescent.
+  bool done() const;
 
  private:
   std::vector<std::unique_ptr<CycleTile>> tiles_;
