@@ -87,7 +87,8 @@ int compare_command(CompareOptions opt) {
       base.set(setting.first, setting.second);
     }
     const ResolvedConfig resolved = base.resolved();
-    const Photocurrents photocurrents(load_scene(files, resolved.array, resolved.scene), resolved.pixel);
+    const Photocurrents photocurrents(load_scene(files, resolved.array, resolved.scene, resolved.sim.duration),
+                                      resolved.pixel);
     const Image mean = mean_frame(photocurrents.scene(), resolved.sim.duration);
 
     SensorConfig ref_config = base;
