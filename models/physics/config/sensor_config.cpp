@@ -140,6 +140,10 @@ const std::map<std::string, KeySpec>& registry() {
                              Json table{{"current", c.pixel.transfer.current}, {"period", c.pixel.transfer.period}};
                              if (c.pixel.transfer.charge > 0) table["charge"] = c.pixel.transfer.charge;
                              if (c.pixel.transfer.t_reset >= 0) table["t_reset"] = c.pixel.transfer.t_reset;
+                             if (c.pixel.transfer.silent_below > 0) table["silent_below"] = c.pixel.transfer.silent_below;
+                             if (std::isfinite(c.pixel.transfer.silent_above)) {
+                               table["silent_above"] = c.pixel.transfer.silent_above;
+                             }
                              return table;
                            },
                            "table",

@@ -52,6 +52,7 @@ double TransferCurve::integrating_current(double photocurrent, double threshold_
   const double q = charge > 0 ? charge : threshold_charge;
   const double reset = this->t_reset >= 0 ? this->t_reset : t_reset;
   const auto effective = [&](double i) { return q / (period_at(i) - reset); };
+  if (photocurrent >= silent_above || (silent_below > 0 && photocurrent <= silent_below)) return 0;
   if (photocurrent < current.front()) {
     const double at_end = effective(current.front());
     return at_end * (photocurrent + i_dark) / (current.front() + i_dark);
@@ -75,6 +76,14 @@ void TransferCurve::validate(const std::string& key, double pixel_t_reset) const
     throw InputError(fmt::format("{}: {} currents but {} periods", key, current.size(), period.size()));
   }
   if (current.size() < 2) throw InputError(fmt::format("{}: needs at least 2 points", key));
+  if (!(silent_below >= 0) || !(silent_below < current.front())) {
+    throw InputError(fmt::format("{}: silent_below ({} A) must be below the lowest current ({} A)", key, silent_below,
+                                 current.front()));
+  }
+  if (!(silent_above > current.back())) {
+    throw InputError(fmt::format("{}: silent_above ({} A) must be above the highest current ({} A)", key, silent_above,
+                                 current.back()));
+  }
   for (std::size_t k = 0; k < current.size(); ++k) {
     if (!(current[k] > 0) || !std::isfinite(current[k])) {
       throw InputError(fmt::format("{}: current {} is not a positive number", key, current[k]));
@@ -94,9 +103,11 @@ TransferCurve transfer_from_toml(const TomlValue& value, const std::string& key)
   if (!value.is_table()) throw InputError(fmt::format("{}: expected {{ current = [...], period = [...] }}", key));
   const auto& table = value.as_table();
   for (const auto& entry : table) {
-    if (entry.first != "current" && entry.first != "period" && entry.first != "charge" && entry.first != "t_reset") {
-      throw InputError(
-          fmt::format("{}: unknown field '{}' (expected current, period, charge, t_reset)", key, entry.first));
+    if (entry.first != "current" && entry.first != "period" && entry.first != "charge" && entry.first != "t_reset" &&
+        entry.first != "silent_below" && entry.first != "silent_above") {
+      throw InputError(fmt::format(
+          "{}: unknown field '{}' (expected current, period, charge, t_reset, silent_below, silent_above)", key,
+          entry.first));
     }
   }
   const auto current = table.find("current"), period = table.find("period");
@@ -115,6 +126,8 @@ TransferCurve transfer_from_toml(const TomlValue& value, const std::string& key)
   };
   scalar("charge", "C", t.charge);
   scalar("t_reset", "s", t.t_reset);
+  scalar("silent_below", "A", t.silent_below);
+  scalar("silent_above", "A", t.silent_above);
   if (table.count("charge") && !(t.charge > 0)) throw InputError(fmt::format("{}: charge must be positive", key));
   if (table.count("t_reset") && !(t.t_reset >= 0)) throw InputError(fmt::format("{}: t_reset must not be negative", key));
   return t;

@@ -1,4 +1,5 @@
 #pragma once
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,11 +24,18 @@ class TomlValue;
 // stay in the current. Outside the table the effective current follows eq. 2's current,
 // I + i_dark, scaled to meet the table at its end point, so zero light fires at the dark current's
 // rate (or never).
+//
+// Where the circuit was seen not to fire at all (it latched, or a leak held its node below the
+// threshold), the table says so: at photocurrents at or below `silent_below`, and at or above
+// `silent_above`, the pixel integrates nothing and never fires, as the circuit did. Between such a
+// current and the table's end the model extrapolates as above.
 struct TransferCurve {
   std::vector<double> current;  // A, strictly increasing, positive
   std::vector<double> period;   // s, each longer than the reset
   double charge = 0;            // C, threshold charge the table was measured with (0: the pixel's)
   double t_reset = -1;          // s, reset the table was measured with (< 0: the pixel's)
+  double silent_below = 0;      // A, the circuit never fired at or below it (0: not seen)
+  double silent_above = std::numeric_limits<double>::infinity();  // A, nor at or above it
 
   bool empty() const { return current.empty(); }
   // The table's period at a photocurrent within [current.front(), current.back()].
@@ -39,7 +47,8 @@ struct TransferCurve {
   void validate(const std::string& key, double pixel_t_reset) const;
 };
 
-// From TOML ({ current = [...], period = [...], charge = Q, t_reset = T }, the last two optional;
+// From TOML ({ current = [...], period = [...], charge = Q, t_reset = T, silent_below = I,
+// silent_above = I }, all but the first two optional;
 // numbers in A, s and C or strings with units) or
 // from --set text in the same form; "none" or "" is no table. Throws InputError naming `key`.
 TransferCurve transfer_from_toml(const TomlValue& value, const std::string& key);

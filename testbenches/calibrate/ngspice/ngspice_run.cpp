@@ -168,7 +168,10 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   }
   pid_t pid = 0;
   try {
-    pid = spawn_child("ngspice", {"-b", "-n", cir.string()}, {(scratch / (name + ".out")).string(), log.string()});
+    // In the deck's folder, as the user runs it: ngspice finds a relative .include beside the file
+    // that names it, but a relative .lib (a PDK's model library) only from its working folder.
+    pid = spawn_child("ngspice", {"-b", "-n", cir.string()},
+                      {(scratch / (name + ".out")).string(), log.string(), fs::path(deck.path).parent_path().string()});
   } catch (const ToolMissing&) {
     throw InputError("ngspice is not installed: run scripts/setup (or apt-get install ngspice)");
   }

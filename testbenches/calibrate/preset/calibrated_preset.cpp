@@ -39,12 +39,18 @@ std::string engineering(double v, const char* unit) {
 std::string per_firing_energy_note(const Calibration& c, double vdd) {
   const double short_by = c.fit.charge - c.supply.charge_per_firing;
   if (!(short_by > 0)) return "";
+  const std::string free_fit =
+      c.supply.free_charge_per_firing < 0
+          ? fmt::format(" (the line fitted without bounds gives {:.4g} C per firing and {:.4g} A: a negative charge, "
+                        "which the power model cannot take, so it is held at 0 and the static current refitted)",
+                        c.supply.free_charge_per_firing, c.supply.free_static_current)
+          : std::string();
   return fmt::format(
-      "power.e_pixel_event is 0: the supply's charge per firing, {:.4g} C, is {:.4g} C below the threshold charge the "
-      "power model counts for recharging c_int ({:.4g} C); the circuit draws that charge through paths that grow with "
-      "the period (crowbar current while the node ramps through mid-rail, leakage), which the static part holds, so "
-      "the model's energy per firing is {:.4g} J high",
-      c.supply.charge_per_firing, short_by, c.fit.charge, vdd * short_by);
+      "power.e_pixel_event is 0: the supply's charge per firing, {:.4g} C{}, is {:.4g} C below the threshold charge "
+      "the power model counts for recharging c_int ({:.4g} C); the circuit draws that charge through paths that grow "
+      "with the period (crowbar current while the node ramps through mid-rail, leakage), which the static part holds, "
+      "so the model's energy per firing is {:.4g} J high",
+      c.supply.charge_per_firing, free_fit, short_by, c.fit.charge, vdd * short_by);
 }
 
 SensorConfig calibrated_config(SensorConfig base, const Calibration& c, double vdd) {
@@ -55,6 +61,8 @@ SensorConfig calibrated_config(SensorConfig base, const Calibration& c, double v
   base.pixel.transfer.period = c.period;
   base.pixel.transfer.charge = c.fit.charge;
   base.pixel.transfer.t_reset = c.fit.t_reset;
+  base.pixel.transfer.silent_below = c.silent_below;
+  base.pixel.transfer.silent_above = c.silent_above;
   if (c.mismatch) base.pixel.mismatch = *c.mismatch;
   base.power.vdd = vdd;
   base.power.e_pixel_event = std::max(0.0, vdd * (c.supply.charge_per_firing - c.fit.charge));
@@ -85,10 +93,35 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
   if (const StatisticsNote note = statistics_note(deck); !note.text.empty()) {
     text += "# " + std::string(1, static_cast<char>(std::toupper(note.text[0]))) + note.text.substr(1) + ".\n";
   }
+  if (c.circuit) {
+    const CircuitFit& f = *c.circuit;
+    text += fmt::format(
+        "# The circuit's own form, where eq. 2 does not hold (a leak of either sign, a reset that the light lengthens),\n"
+        "#   period = Q / (I + i_dark) + t_r / (1 - I / I_r), fitted to the measured periods and out pulses:\n"
+        "#   Q = {:.6g} C, i_dark = {:.6g} A{}, t_r = {:.6g} s, I_r = {}\n"
+        "#   residuals: rms {:.3f} %, max {:.3f} %.\n",
+        f.charge, f.i_dark,
+        f.i_dark < 0 ? fmt::format(" (a leak: below {:.4g} A the pixel never fires)", -f.i_dark) : std::string(), f.t_r,
+        std::isfinite(f.i_r) ? fmt::format("{:.6g} A (the reset never ends at and above it: the pixel latches)", f.i_r)
+                             : std::string("none (the reset does not follow the light)"),
+        100 * f.rms_residual, 100 * f.max_residual);
+  }
+  text += "# Runs use pixel.transfer, the measured periods, not the fits: the fits describe the circuit, and\n"
+          "#   eq. 2's sets the keys a resized pixel scales from.\n";
   text += fmt::format(
       "# Valid from {:.4g} A to {:.4g} A, the currents at which the circuit fired periodically (pixel.transfer's\n"
       "#   ends): outside them the model extrapolates along eq. 2, and `aesim run` warns how many pixels are there.\n",
       c.current.front(), c.current.back());
+  if (c.silent_below > 0) {
+    text += fmt::format("# At {:.4g} A and below the circuit does not keep firing{}: pixel.transfer.silent_below, the\n"
+                        "#   model's pixel is silent there too.\n",
+                        c.silent_below, c.silent_below_seen.empty() ? "" : " (" + c.silent_below_seen + ")");
+  }
+  if (std::isfinite(c.silent_above)) {
+    text += fmt::format("# At {:.4g} A and above the circuit does not keep firing{}: pixel.transfer.silent_above, the\n"
+                        "#   model's pixel is silent there too.\n",
+                        c.silent_above, c.silent_above_seen.empty() ? "" : " (" + c.silent_above_seen + ")");
+  }
   if (c.mismatch) {
     text += fmt::format("# Monte Carlo: {} runs at {:.4g} A: threshold-charge spread (pixel.mismatch) {:.4g}\n",
                         c.mc_periods.size(), c.mc_current, *c.mismatch);

@@ -52,9 +52,13 @@ constexpr double kLongestPeriod = 1000;
 std::string why_silent(const Waveform& w, double vdd, const std::string& probe) {
   if (w.t.size() < 10) return "";
   const std::size_t n = w.t.size();
-  std::size_t high = 0;
-  for (double v : w.out) high += v > vdd / 2 ? 1 : 0;
-  if (high * 2 > n && w.out.back() > vdd / 2) return fmt::format("out latched high ({:.3g} V)", w.out.back());
+  // Weighed by time, not samples: ngspice takes long steps over a latched node and short ones over
+  // the ramp before it.
+  double high = 0;
+  for (std::size_t k = 1; k < n; ++k) high += w.out[k] > vdd / 2 ? w.t[k] - w.t[k - 1] : 0;
+  if (high * 2 > w.t.back() - w.t.front() && w.out.back() > vdd / 2) {
+    return fmt::format("out latched high ({:.3g} V)", w.out.back());
+  }
   if (w.probe.size() != n) return "";
   const double cut = w.t.front() + 0.7 * (w.t.back() - w.t.front());
   std::size_t k = 0;
@@ -128,9 +132,14 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
       r.point.supply_charge = r.measure.supply_charge;
       return r;
     }
-    if (fired == 0) {
-      r.point.seen = why_silent(r.wave, o.vdd, deck.probe);
-      if (!r.point.seen.empty()) return r;  // it never will: no longer run is worth waiting for
+    if (fired < 3) {
+      // It never will, or not periodically: no longer run is worth waiting for. A pixel that fired
+      // and then held out high (a reset the light outruns) has latched as surely as one that never rose.
+      const std::string seen = why_silent(r.wave, o.vdd, deck.probe);
+      if (!seen.empty() && (fired == 0 || seen.rfind("out latched", 0) == 0)) {
+        r.point.seen = fired == 0 ? seen : fmt::format("fired {} time{}, then {}", fired, fired > 1 ? "s" : "", seen);
+        return r;
+      }
     }
     if (fired >= 3) {
       guess = r.measure.period;
@@ -193,7 +202,7 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
   const Cooperative stop_politely;
   Calibration c;
   c.ngspice = ngspice_version();
-  const ScratchFolder scratch(fs::temp_directory_path() / fmt::format("aesim-calibrate-{}", ::getpid()));
+  const ScratchFolder scratch(fs::absolute(fs::temp_directory_path()) / fmt::format("aesim-calibrate-{}", ::getpid()));
   std::vector<PointRun> runs;
   auto measure_all = [&](const std::vector<double>& currents, const char* what) {
     const std::size_t first = runs.size();
@@ -340,6 +349,27 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
                  silent.size(), c.points.size(), list.c_str(), c.current.size());
   }
   c.fit = fit_pixel(c.current, c.period);
+  std::vector<double> pulses;
+  for (const CalibrationPoint& p : c.points) {
+    if (std::isfinite(p.period)) pulses.push_back(p.pulse);
+  }
+  try {
+    c.circuit = fit_circuit(c.current, c.period, pulses);
+  } catch (const std::invalid_argument&) {
+    // A pulse unmeasured or as long as its period: the circuit's form cannot be told apart.
+  }
+  // Where the circuit was seen not to fire beyond the table's ends: the pixel is silent there too.
+  for (const CalibrationPoint& p : c.points) {
+    if (std::isfinite(p.period) || !p.aborted.empty()) continue;
+    if (p.current < c.current.front() && p.current > c.silent_below) {
+      c.silent_below = p.current;
+      c.silent_below_seen = p.seen;
+    }
+    if (p.current > c.current.back() && p.current < c.silent_above) {
+      c.silent_above = p.current;
+      c.silent_above_seen = p.seen;
+    }
+  }
   std::vector<double> charge_periods, charges;
   for (const CalibrationPoint& p : c.points) {
     if (std::isfinite(p.period) && std::isfinite(p.supply_charge)) {

@@ -1,4 +1,5 @@
 #pragma once
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,7 +41,12 @@ struct Calibration {
   int refined = 0;                       // of them added between the grid's points (see the .cpp)
   std::vector<double> current, period;   // the points that fired: the transfer table
   PixelFit fit;
+  std::optional<CircuitFit> circuit;     // the circuit's own form (where every fired point has a pulse)
   SupplyFit supply;
+  // The nearest currents beyond the table's ends at which the circuit never fired, and what the run
+  // showed there (0 and infinity: none seen).
+  double silent_below = 0, silent_above = std::numeric_limits<double>::infinity();
+  std::string silent_below_seen, silent_above_seen;
   double trip_level = 0;                 // V of the probe node where the comparator trips (NaN: none)
   std::optional<double> mismatch;        // relative std of the threshold charge (--mc)
   std::vector<double> mc_periods;        // s, one per Monte Carlo run
