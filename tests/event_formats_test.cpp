@@ -220,7 +220,7 @@ TEST_F(EventFormats, NpyIsFormatOneWithTonicsPackedDtype) {
 
 TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
   const AddressMap map{ArrayParams{}};
-  for (const Aedat4Compression c : {Aedat4Compression::None, Aedat4Compression::Lz4}) {
+  for (const Aedat4Compression c : {Aedat4Compression::None, Aedat4Compression::Lz4, Aedat4Compression::Zstd}) {
     const std::string data = slurp(write("e.aedat4", sample(map), c));
     ASSERT_EQ(data.compare(0, 14, "#!AER-DAT4.0\r\n"), 0);
     const auto* b = reinterpret_cast<const std::uint8_t*>(data.data());
@@ -230,7 +230,9 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
     // FlatBuffers reads in place and needs its buffers aligned: read copies.
     const std::vector<std::uint64_t> header_copy = aligned(data.substr(14, 4 + header_size));
     const dv::IOHeader* h = dv::GetSizePrefixedIOHeader(header_copy.data());
-    EXPECT_EQ(h->compression(), c == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE);
+    EXPECT_EQ(h->compression(), c == Aedat4Compression::Lz4    ? dv::CompressionType_LZ4
+                                : c == Aedat4Compression::Zstd ? dv::CompressionType_ZSTD
+                                                               : dv::CompressionType_NONE);
     const std::string info = h->infoNode()->str();
     EXPECT_NE(info.find("<attr key=\"typeIdentifier\" type=\"string\">EVTS</attr>"), std::string::npos);
     EXPECT_NE(info.find("<attr key=\"sizeX\" type=\"int\">64</attr>"), std::string::npos);
@@ -246,6 +248,9 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
     const std::string table = data.substr(at + 8 + size);
     if (c == Aedat4Compression::Lz4) {
       EXPECT_EQ(table.substr(0, 4), std::string("\x04\x22\x4d\x18", 4));
+    }
+    if (c == Aedat4Compression::Zstd) {
+      EXPECT_EQ(table.substr(0, 4), std::string("\x28\xb5\x2f\xfd", 4));  // zstd's frame magic
     }
     if (c == Aedat4Compression::None) {
       const std::uint32_t table_size = b[at + 8 + size] | (b[at + 9 + size] << 8) | (b[at + 10 + size] << 16) |
@@ -265,6 +270,8 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
     }
     if (c == Aedat4Compression::Lz4) {
       EXPECT_EQ(data.substr(at + 8, 4), std::string("\x04\x22\x4d\x18", 4));  // an LZ4 frame
+    } else if (c == Aedat4Compression::Zstd) {
+      EXPECT_EQ(data.substr(at + 8, 4), std::string("\x28\xb5\x2f\xfd", 4));  // a zstd frame
     } else {
       EXPECT_EQ(data.substr(at + 8 + 8, 4), "EVTS");
       const std::vector<std::uint64_t> packet_copy = aligned(data.substr(at + 8, size));

@@ -27,7 +27,7 @@ void add_run(CLI::App& app, int& status) {
   cmd->add_option("--aedat-layout", opt->aedat_layout,
                   "Address words of an AEDAT 2.0 --out: aesim (default), dvs128 or davis (jAER's layouts, y = 0 at the "
                   "bottom, polarity ON for a normal event and OFF for a ghost)");
-  cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4 or none")
+  cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4, zstd or none")
       ->capture_default_str();
   cmd->add_option("--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction image (.png or .pgm)");
@@ -157,7 +157,7 @@ void add_emulate(CLI::App& app, int& status) {
   cmd->add_option("--queue", opt->queue, "The event queue as text, one 'x y' per line in queue order");
   cmd->add_option("--out", opt->out,
                   "Events with synthetic timestamps, by extension: " + event_formats_help());
-  cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4 or none")
+  cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4, zstd or none")
       ->capture_default_str();
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction (.png or .pgm)");
   cmd->add_option("--events", opt->events, "Reconstruct from the first N events (default: all)");

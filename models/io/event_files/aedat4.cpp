@@ -9,6 +9,7 @@
 #include <flatbuffers/flatbuffers.h>
 #include <fmt/format.h>
 #include <lz4frame.h>
+#include <zstd.h>
 
 #include "FileDataTable_generated.h"
 #include "IOHeader_generated.h"
@@ -76,7 +77,9 @@ std::string xml_unescape(const std::string& s) {
 }
 
 std::string info_node(const EventFileSpec& spec) {
-  const std::string compression = spec.compression == Aedat4Compression::Lz4 ? "LZ4" : "NONE";
+  const std::string compression = spec.compression == Aedat4Compression::Lz4    ? "LZ4"
+                                  : spec.compression == Aedat4Compression::Zstd ? "ZSTD"
+                                                                                 : "NONE";
   const std::string path = "/mainloop/aesim/outInfo/0/";
   std::string xml = "<dv version=\"2.0\">\n <node name=\"outInfo\" path=\"/mainloop/aesim/outInfo/\">\n";
   xml += fmt::format("  <node name=\"0\" path=\"{}\">\n", path);
@@ -126,6 +129,24 @@ std::size_t lz4_frame(const char* data, std::size_t size, std::vector<char>& out
   return packed;
 }
 
+// One zstd frame of `size` bytes into `out` at zstd's default level, as DV's ZSTD writes its
+// packets; returns its size.
+std::size_t zstd_frame(const char* data, std::size_t size, std::vector<char>& out) {
+  out.resize(ZSTD_compressBound(size));
+  const std::size_t packed = ZSTD_compress(out.data(), out.size(), data, size, ZSTD_CLEVEL_DEFAULT);
+  if (ZSTD_isError(packed)) throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(packed));
+  return packed;
+}
+
+dv::CompressionType header_compression(Aedat4Compression c) {
+  switch (c) {
+    case Aedat4Compression::Lz4: return dv::CompressionType_LZ4;
+    case Aedat4Compression::Zstd: return dv::CompressionType_ZSTD;
+    case Aedat4Compression::None: break;
+  }
+  return dv::CompressionType_NONE;
+}
+
 // FlatBuffers reads its scalars in place and needs them aligned; in a file they lie wherever the
 // previous bytes end (the IOHeader starts at byte 14), so each buffer is read from a copy.
 class AlignedCopy {
@@ -156,7 +177,8 @@ int parse_size(const std::string& text, const std::string& label, const char* ke
 Aedat4Compression parse_aedat4_compression(const std::string& text) {
   if (text == "lz4") return Aedat4Compression::Lz4;
   if (text == "none") return Aedat4Compression::None;
-  throw InputError(fmt::format("--aedat4-compression: expected lz4 or none (got '{}')", text));
+  if (text == "zstd") return Aedat4Compression::Zstd;
+  throw InputError(fmt::format("--aedat4-compression: expected lz4, zstd or none (got '{}')", text));
 }
 
 Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
@@ -169,8 +191,7 @@ Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
   flatbuffers::FlatBufferBuilder fbb;
   fbb.ForceDefaults(true);
   const auto info = fbb.CreateString(info_node(spec));
-  const auto header = dv::CreateIOHeader(
-      fbb, compression_ == Aedat4Compression::Lz4 ? dv::CompressionType_LZ4 : dv::CompressionType_NONE, kPlaceholder, info);
+  const auto header = dv::CreateIOHeader(fbb, header_compression(compression_), kPlaceholder, info);
   dv::FinishSizePrefixedIOHeaderBuffer(fbb, header);
   const char* bytes = reinterpret_cast<const char*>(fbb.GetBufferPointer());
   const std::string_view view(bytes, fbb.GetSize());
@@ -200,6 +221,15 @@ void Aedat4Writer::events(const AddressEvent* first, std::size_t count) {
   }
 }
 
+std::size_t Aedat4Writer::compress(const char* body, std::size_t size) {
+  switch (compression_) {
+    case Aedat4Compression::Lz4: return lz4_frame(body, size, body_);
+    case Aedat4Compression::Zstd: return zstd_frame(body, size, body_);
+    case Aedat4Compression::None: break;
+  }
+  return size;
+}
+
 void Aedat4Writer::write_packet() {
   // An empty run still gets one (empty) packet: readers that gather the event packets (tonic's)
   // fail on a file with none.
@@ -213,10 +243,8 @@ void Aedat4Writer::write_packet() {
   dv::FinishSizePrefixedEventPacketBuffer(fbb, packet);
   const char* body = reinterpret_cast<const char*>(fbb.GetBufferPointer());
   std::size_t size = fbb.GetSize();
-  if (compression_ == Aedat4Compression::Lz4) {
-    size = lz4_frame(body, size, body_);
-    body = body_.data();
-  }
+  size = compress(body, size);
+  if (compression_ != Aedat4Compression::None) body = body_.data();
   const std::streamoff at = out_.tellp();
   put_le32(out_, 0);  // stream id
   put_le32(out_, static_cast<std::uint32_t>(size));
@@ -246,10 +274,8 @@ void Aedat4Writer::write_data_table() {
   dv::FinishSizePrefixedFileDataTableBuffer(fbb, dv::CreateFileDataTable(fbb, fbb.CreateVector(entries)));
   const char* body = reinterpret_cast<const char*>(fbb.GetBufferPointer());
   std::size_t size = fbb.GetSize();
-  if (compression_ == Aedat4Compression::Lz4) {
-    size = lz4_frame(body, size, body_);
-    body = body_.data();
-  }
+  size = compress(body, size);
+  if (compression_ != Aedat4Compression::None) body = body_.data();
   out_.write(body, static_cast<std::streamsize>(size));
   const std::streamoff end = out_.tellp();
   const std::int64_t value = static_cast<std::int64_t>(position);
@@ -279,11 +305,13 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
   const dv::IOHeader* header = dv::GetSizePrefixedIOHeader(header_bytes.data());
   const dv::CompressionType compression = header->compression();
   if (compression != dv::CompressionType_NONE && compression != dv::CompressionType_LZ4 &&
-      compression != dv::CompressionType_LZ4_HIGH) {
-    throw InputError(fmt::format("event file '{}': compression {} is not supported (aesim reads none and LZ4)", label,
-                                 dv::EnumNameCompressionType(compression)));
+      compression != dv::CompressionType_LZ4_HIGH && compression != dv::CompressionType_ZSTD &&
+      compression != dv::CompressionType_ZSTD_HIGH) {
+    throw InputError(fmt::format("event file '{}': compression {} is not supported (aesim reads none, LZ4 and ZSTD)",
+                                 label, static_cast<int>(compression)));
   }
-  const bool lz4 = compression != dv::CompressionType_NONE;
+  const bool lz4 = compression == dv::CompressionType_LZ4 || compression == dv::CompressionType_LZ4_HIGH;
+  const bool zstd = compression == dv::CompressionType_ZSTD || compression == dv::CompressionType_ZSTD_HIGH;
   pos += 4 + header_size;
   // Packets run up to the data table, where the header says it lies (DV writes one at the end).
   std::size_t packets_end = data.size();
@@ -338,6 +366,11 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
     if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) throw std::bad_alloc();
     dctx.reset(ctx);
   }
+  std::unique_ptr<ZSTD_DStream, decltype(&ZSTD_freeDStream)> dstream(nullptr, &ZSTD_freeDStream);
+  if (zstd) {
+    dstream.reset(ZSTD_createDStream());
+    if (!dstream) throw std::bad_alloc();
+  }
   std::map<long, SkippedPackets> skipped;
   for (std::size_t packet = 0; pos < packets_end; ++packet) {
     if (packets_end - pos < 8) throw InputError(fmt::format("event file '{}': packet {} is truncated", label, packet));
@@ -381,6 +414,32 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
         if (hint == 0) break;
         if (in_at == size && out_size == 0) {
           throw InputError(fmt::format("event file '{}': packet {}: the LZ4 frame is truncated", label, packet));
+        }
+      }
+      body = plain.data();
+      body_size = plain.size();
+    } else if (zstd) {
+      // Streamed into a buffer that grows as it fills, so that a frame claiming gigabytes costs
+      // only what it really holds, up to the packet limit.
+      plain.clear();
+      ZSTD_initDStream(dstream.get());
+      ZSTD_inBuffer in{body, size, 0};
+      for (;;) {
+        const std::size_t at = plain.size();
+        if (at >= kAedat4MaxPacketBytes) {
+          throw InputError(fmt::format("event file '{}': packet {} decompresses to more than {} bytes", label, packet,
+                                       kAedat4MaxPacketBytes));
+        }
+        plain.resize(std::max<std::size_t>(2 * at, 1 << 16));
+        ZSTD_outBuffer out{plain.data() + at, plain.size() - at, 0};
+        const std::size_t hint = ZSTD_decompressStream(dstream.get(), &out, &in);
+        if (ZSTD_isError(hint)) {
+          throw InputError(fmt::format("event file '{}': packet {}: zstd: {}", label, packet, ZSTD_getErrorName(hint)));
+        }
+        plain.resize(at + out.pos);
+        if (hint == 0) break;
+        if (in.pos == in.size && out.pos < out.size) {
+          throw InputError(fmt::format("event file '{}': packet {}: the zstd frame is truncated", label, packet));
         }
       }
       body = plain.data();

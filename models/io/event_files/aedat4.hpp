@@ -22,7 +22,7 @@ class Aedat4Writer : public EventFileWriter {
   void events(const AddressEvent* first, std::size_t count) override;
   void finish() override;
   // LZ4 costs more than the merge that feeds it.
-  bool wants_own_thread() const override { return compression_ == Aedat4Compression::Lz4; }
+  bool wants_own_thread() const override { return compression_ != Aedat4Compression::None; }
 
  private:
   void write_packet();
@@ -30,6 +30,8 @@ class Aedat4Writer : public EventFileWriter {
   std::ostream& out_;
   MicrosecondStamps stamps_;
   Aedat4Compression compression_;
+  // Compresses `size` bytes at `body` into body_ as the header says; returns the size to write.
+  std::size_t compress(const char* body, std::size_t size);
   struct Pending {
     std::int64_t t_us;
     std::int16_t x, y;

@@ -25,8 +25,8 @@ class EventFileWriter : public EventStream {
   virtual std::uint64_t off_array() const { return 0; }
 };
 
-enum class Aedat4Compression { None, Lz4 };
-Aedat4Compression parse_aedat4_compression(const std::string& text);  // "none" | "lz4"
+enum class Aedat4Compression { None, Lz4, Zstd };
+Aedat4Compression parse_aedat4_compression(const std::string& text);  // "none" | "lz4" | "zstd"
 
 // What every format records beside the events: the array (and its tiles), the sensor parameters
 // (sensor_metadata, "section.key" -> text), notes for a text header, the receiver's tick.
