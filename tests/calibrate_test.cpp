@@ -262,6 +262,32 @@ Waveform pulse_train(int pulses) {
   return w;
 }
 
+// ngspice's progress reports judged as the calibration's watch judges them (t_stop 10 s, a 120 s
+// limit, a 10 s window): a run whose pace would end it in time goes on; one that crawls after a
+// good start (its step collapsed at a stiff node) is given up as soon as its last 10 s show it,
+// from 20 s on, with where it stalled; a slow start alone decides nothing.
+TEST(StepCollapseWatch, GivesUpARunOnlyWhenItsPaceCannotFinishItInTime) {
+  StepCollapseWatch steady(10, 120, 10);
+  for (double wall = 0.5; wall <= 60; wall += 0.5) ASSERT_TRUE(steady.keep_waiting(wall, wall / 6)) << wall;
+
+  StepCollapseWatch crawling(10, 120, 10);
+  double gave_up = -1;
+  for (double wall = 0.5; wall <= 120 && gave_up < 0; wall += 0.5) {
+    const double t = wall <= 10 ? wall / 5 : 2 + (wall - 10) * 1e-4;  // 2 s simulated, then a crawl
+    if (!crawling.keep_waiting(wall, t)) gave_up = wall;
+  }
+  EXPECT_GE(gave_up, 20);
+  EXPECT_LE(gave_up, 20.5);  // the first judgement: the last 10 s were all crawl
+  EXPECT_NEAR(crawling.stalled_at(), 2, 0.01);
+
+  StepCollapseWatch slow_start(10, 120, 10);
+  for (double wall = 0.5; wall <= 70; wall += 0.5) {
+    const double t = wall <= 10 ? wall * 1e-3 : 0.01 + (wall - 10) / 6;  // slow first edges, then fast
+    ASSERT_TRUE(slow_start.keep_waiting(wall, std::min(t, 10.0))) << wall;
+  }
+  EXPECT_TRUE(StepCollapseWatch(10, 120, 10).keep_waiting(50, -1));  // nothing reported yet
+}
+
 TEST(FiringMeasure, PeriodPulseAndSupplyChargeOfAHandBuiltWaveform) {
   const FiringMeasure m = measure_firings(pulse_train(6), 3.3);
   ASSERT_EQ(m.fires.size(), 6u);

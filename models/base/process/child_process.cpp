@@ -121,9 +121,16 @@ int wait_child(pid_t pid) {
 }
 
 std::optional<int> wait_child_for(pid_t pid, double seconds) {
+  return wait_child_while(pid, seconds, [] { return true; }, seconds);
+}
+
+std::optional<int> wait_child_while(pid_t pid, double seconds, const std::function<bool()>& keep_waiting,
+                                    double poll_seconds) {
   // Polling keeps SIGCHLD alone (other threads run children too); a child of a tool's run lasts
   // seconds, so a 2 ms poll costs little.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + std::chrono::duration<double>(seconds);
+  auto next_ask = start + std::chrono::duration<double>(poll_seconds);
   for (;;) {
     int status = 0;
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
@@ -135,7 +142,13 @@ std::optional<int> wait_child_for(pid_t pid, double seconds) {
     if (done < 0 && errno != EINTR) {
       throw std::runtime_error(fmt::format("waiting for a child process: {}", std::strerror(errno)));
     }
-    if (std::chrono::steady_clock::now() > deadline) {
+    const auto now = std::chrono::steady_clock::now();
+    bool give_up = now > deadline;
+    if (!give_up && now > next_ask) {
+      next_ask = now + std::chrono::duration<double>(poll_seconds);
+      give_up = !keep_waiting();
+    }
+    if (give_up) {
       ::kill(-pid, SIGKILL);
       wait_child(pid);
       return std::nullopt;

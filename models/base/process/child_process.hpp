@@ -32,6 +32,10 @@ int wait_child(pid_t pid);
 // Waits at most `seconds` for a child; past that, kills it (SIGKILL), reaps it and returns
 // nullopt, so that a tool that runs away cannot hang the command that started it.
 std::optional<int> wait_child_for(pid_t pid, double seconds);
+// The same, and ends the child early (as past the deadline) as soon as `keep_waiting`, asked every
+// `poll_seconds`, says there is no point: a tool whose own progress shows it will not finish.
+std::optional<int> wait_child_while(pid_t pid, double seconds, const std::function<bool()>& keep_waiting,
+                                    double poll_seconds);
 
 // spawn_child then wait_child.
 int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output = {});

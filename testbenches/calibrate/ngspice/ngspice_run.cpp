@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstring>
@@ -26,6 +27,26 @@ namespace fs = std::filesystem;
 // BSIM models a few seconds); one that takes this long has collapsed its time step and would
 // never finish, so the next solver settings are tried.
 constexpr double kRunSeconds = 120;
+// The pace StepCollapseWatch judges a run by: its last 10 s of progress, from 20 s on.
+constexpr double kProgressWindow = 10;
+
+// The simulated time ngspice last reported in `log`, or a negative number before its first report.
+double reported_time(const fs::path& log) {
+  std::ifstream in(log, std::ios::binary | std::ios::ate);
+  if (!in) return -1;
+  const std::streamoff size = in.tellg();
+  const std::streamoff from = std::max<std::streamoff>(0, size - 256);
+  in.seekg(from);
+  std::string tail(static_cast<std::size_t>(size - from), '\0');
+  in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+  const std::size_t at = tail.rfind("Reference value :");
+  if (at == std::string::npos) return -1;
+  try {
+    return std::stod(tail.substr(at + 17));
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
 
 // ngspice's progress lines ("Reference value : 1.2e-05", "No. of Data Rows : 1234"), which say
 // nothing of why a run failed.
@@ -158,6 +179,17 @@ std::string keep_failure_log(const std::string& target, const fs::path& cir, con
 
 }  // namespace
 
+bool StepCollapseWatch::keep_waiting(double wall, double reported) {
+  if (reported < 0) return true;
+  samples_.emplace_back(wall, reported);
+  while (samples_.size() > 2 && samples_.front().first < wall - window_) samples_.pop_front();
+  if (wall < 2 * window_) return true;
+  const double pace = (reported - samples_.front().second) / (wall - samples_.front().first);
+  if (pace > 0 && (t_stop_ - reported) / pace < run_seconds_ - wall) return true;
+  stalled_at_ = reported;
+  return false;
+}
+
 Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest& request, const fs::path& scratch,
                        const std::string& name) {
   const fs::path cir = scratch / (name + ".cir"), data = scratch / (name + ".txt"), log = scratch / (name + ".log");
@@ -175,8 +207,19 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   } catch (const ToolMissing&) {
     throw InputError("ngspice is not installed: run scripts/setup (or apt-get install ngspice)");
   }
-  const std::optional<int> status = wait_child_for(pid, kRunSeconds);
+  StepCollapseWatch watch(request.t_stop, kRunSeconds, kProgressWindow);
+  const auto started = std::chrono::steady_clock::now();
+  const auto will_finish = [&] {
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return watch.keep_waiting(wall, reported_time(log));
+  };
+  const std::optional<int> status = wait_child_while(pid, kRunSeconds, will_finish, 1.0);
   if (!status) {
+    if (const double stalled_at = watch.stalled_at(); stalled_at >= 0) {
+      throw TransientAborted(fmt::format("ngspice's time step collapsed near t = {:.4g} s: at its pace it would not "
+                                         "finish within {:.0f} s",
+                                         stalled_at, kRunSeconds));
+    }
     throw TransientAborted(fmt::format("ngspice ran longer than {:.0f} s (its time step collapsed)", kRunSeconds));
   }
   // Ended by SIGINT or SIGTERM: a Ctrl-C or a kill reaches ngspice with the rest of the process

@@ -2,7 +2,9 @@
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+#include <deque>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "deck/pixel_deck.hpp"
@@ -59,6 +61,25 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
 
 // ngspice gave up part-way ("timestep too small", or a time step that collapsed so far that the
 // run would not end): other solver settings or a finer maximum step may get through.
+// Whether a transient that ngspice reports progress on ("Reference value : t", about twice a
+// second) will end within `run_seconds`: once it has run twice `window` seconds, the pace of its
+// last `window` seconds, kept up, must reach `t_stop` by then. A run whose time step has collapsed
+// (a stiff node under tight tolerances) is given up as soon as that shows, rather than at the
+// limit; its first edges are slow in any run, so the pace is not judged before.
+class StepCollapseWatch {
+ public:
+  StepCollapseWatch(double t_stop, double run_seconds, double window)
+      : t_stop_(t_stop), run_seconds_(run_seconds), window_(window) {}
+  // A progress sample: `wall` s since the start, `reported` s simulated (negative: none yet).
+  bool keep_waiting(double wall, double reported);
+  double stalled_at() const { return stalled_at_; }  // s simulated when it gave up (< 0: it did not)
+
+ private:
+  double t_stop_, run_seconds_, window_;
+  std::deque<std::pair<double, double>> samples_;
+  double stalled_at_ = -1;
+};
+
 class TransientAborted : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

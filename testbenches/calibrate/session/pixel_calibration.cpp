@@ -134,9 +134,12 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
     }
     if (fired < 3) {
       // It never will, or not periodically: no longer run is worth waiting for. A pixel that fired
-      // and then held out high (a reset the light outruns) has latched as surely as one that never rose.
+      // and then held out high (a reset the light outruns) has latched as surely as one that never
+      // rose; one whose node settled after its last firing (a start-up transient through the
+      // feedback capacitor can give one) has stopped as surely as one that never fired.
       const std::string seen = why_silent(r.wave, o.vdd, deck.probe);
-      if (!seen.empty() && (fired == 0 || seen.rfind("out latched", 0) == 0)) {
+      const bool settled_after = fired > 0 && r.measure.fires.back() < r.wave.t.front() + 0.7 * (r.wave.t.back() - r.wave.t.front());
+      if (!seen.empty() && (fired == 0 || seen.rfind("out latched", 0) == 0 || settled_after)) {
         r.point.seen = fired == 0 ? seen : fmt::format("fired {} time{}, then {}", fired, fired > 1 ? "s" : "", seen);
         return r;
       }
