@@ -263,12 +263,16 @@ Waveform pulse_train(int pulses) {
 }
 
 // ngspice's progress reports judged as the calibration's watch judges them (t_stop 10 s, a 120 s
-// limit, a 10 s window): a run whose pace would end it in time goes on; one that crawls after a
-// good start (its step collapsed at a stiff node) is given up as soon as its last 10 s show it,
-// from 20 s on, with where it stalled; a slow start alone decides nothing.
+// limit, a 10 s window): a run whose pace would end it in time goes on, and so does one a few
+// times too slow until its time left is a tenth of what it needs; one that crawls after a good start (its step collapsed at a
+// stiff node) is given up as soon as its last 10 s show it, from 20 s on, with where it stalled; a
+// slow start alone decides nothing.
 TEST(StepCollapseWatch, GivesUpARunOnlyWhenItsPaceCannotFinishItInTime) {
   StepCollapseWatch steady(10, 120, 10);
   for (double wall = 0.5; wall <= 60; wall += 0.5) ASSERT_TRUE(steady.keep_waiting(wall, wall / 6)) << wall;
+
+  StepCollapseWatch slow(10, 120, 10);  // 1 s simulated in 30 s: 300 s in all
+  for (double wall = 0.5; wall <= 90; wall += 0.5) ASSERT_TRUE(slow.keep_waiting(wall, wall / 30)) << wall;
 
   StepCollapseWatch crawling(10, 120, 10);
   double gave_up = -1;

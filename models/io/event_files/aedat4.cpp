@@ -393,17 +393,23 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
       continue;
     }
     std::size_t body_size = size;
+    // Both compressions decode into `plain` as it grows, so that a frame claiming gigabytes costs
+    // only what it really holds, up to the packet limit: the bytes already decoded, and room made.
+    const auto grow = [&](std::vector<char>& buffer, std::size_t index) {
+      const std::size_t at = buffer.size();
+      if (at >= kAedat4MaxPacketBytes) {
+        throw InputError(fmt::format("event file '{}': packet {} decompresses to more than {} bytes", label, index,
+                                     kAedat4MaxPacketBytes));
+      }
+      buffer.resize(std::max<std::size_t>(2 * at, 1 << 16));
+      return at;
+    };
     if (lz4) {
       plain.clear();
       LZ4F_resetDecompressionContext(dctx.get());
       std::size_t in_at = 0;
       for (;;) {
-        const std::size_t at = plain.size();
-        if (at >= kAedat4MaxPacketBytes) {
-          throw InputError(fmt::format("event file '{}': packet {} decompresses to more than {} bytes", label, packet,
-                                       kAedat4MaxPacketBytes));
-        }
-        plain.resize(std::max<std::size_t>(2 * at, 1 << 16));
+        const std::size_t at = grow(plain, packet);
         std::size_t out_size = plain.size() - at, in_size = size - in_at;
         const std::size_t hint = LZ4F_decompress(dctx.get(), plain.data() + at, &out_size, body + in_at, &in_size, nullptr);
         if (LZ4F_isError(hint)) {
@@ -419,18 +425,11 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
       body = plain.data();
       body_size = plain.size();
     } else if (zstd) {
-      // Streamed into a buffer that grows as it fills, so that a frame claiming gigabytes costs
-      // only what it really holds, up to the packet limit.
       plain.clear();
       ZSTD_initDStream(dstream.get());
       ZSTD_inBuffer in{body, size, 0};
       for (;;) {
-        const std::size_t at = plain.size();
-        if (at >= kAedat4MaxPacketBytes) {
-          throw InputError(fmt::format("event file '{}': packet {} decompresses to more than {} bytes", label, packet,
-                                       kAedat4MaxPacketBytes));
-        }
-        plain.resize(std::max<std::size_t>(2 * at, 1 << 16));
+        const std::size_t at = grow(plain, packet);
         ZSTD_outBuffer out{plain.data() + at, plain.size() - at, 0};
         const std::size_t hint = ZSTD_decompressStream(dstream.get(), &out, &in);
         if (ZSTD_isError(hint)) {

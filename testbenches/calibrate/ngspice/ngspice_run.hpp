@@ -63,7 +63,8 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
 // run would not end): other solver settings or a finer maximum step may get through.
 // Whether a transient that ngspice reports progress on ("Reference value : t", about twice a
 // second) will end within `run_seconds`: once it has run twice `window` seconds, the pace of its
-// last `window` seconds, kept up, must reach `t_stop` by then. A run whose time step has collapsed
+// last `window` seconds, kept up, must reach `t_stop` within ten times the time left (its pace
+// swings with the firings' edges: only a collapse is that far off). A run whose time step has collapsed
 // (a stiff node under tight tolerances) is given up as soon as that shows, rather than at the
 // limit; its first edges are slow in any run, so the pace is not judged before.
 class StepCollapseWatch {
