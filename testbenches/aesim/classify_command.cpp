@@ -47,13 +47,10 @@ nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* giv
     throw InputError(fmt::format("event file '{}' records no array size (a CSV or .npy does not): give --size "
                                  "WIDTHxHEIGHT", opt.events));
   }
-  // Events in template coordinates: pixel centres scaled from the recording's array.
-  const double sx = static_cast<double>(templates.front().width) / std::max(1, rec.width);
-  const double sy = static_cast<double>(templates.front().height) / std::max(1, rec.height);
   std::vector<std::pair<double, double>> events;
   for (const AddressEvent& e : rec.events) {
     if (e.flags & kGhostEvent) continue;
-    events.emplace_back((e.x + 0.5) * sx - 0.5, (e.y + 0.5) * sy - 0.5);
+    events.push_back(template_position(e.x, e.y, rec.width, rec.height, templates.front().width, templates.front().height));
   }
   const ClassifyResult r = classify(templates, events, opt.classifier);
   const double seconds = static_cast<double>(r.events_used) * static_cast<double>(templates.size()) *

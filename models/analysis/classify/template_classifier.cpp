@@ -88,17 +88,81 @@ std::vector<Containment> contained_templates(const std::vector<Template>& given,
   return out;
 }
 
+std::pair<double, double> template_position(std::uint32_t x, std::uint32_t y, int array_width, int array_height,
+                                            int template_width, int template_height) {
+  const double sx = static_cast<double>(template_width) / std::max(1, array_width);
+  const double sy = static_cast<double>(template_height) / std::max(1, array_height);
+  return {(x + 0.5) * sx - 0.5, (y + 0.5) * sy - 0.5};
+}
+
+RankRecogniser::RankRecogniser(const std::vector<Template>& templates, const ClassifierOptions& options)
+    : templates_(templates), options_(options), weight_(templates.size(), 1.0), offset_x_(templates.size(), 0.0),
+      offset_y_(templates.size(), 0.0) {
+  if (templates_.empty()) throw InputError("the recogniser needs a template");
+  const std::size_t n = templates_.size();
+  if (options_.ranks) {
+    for (std::size_t i = 0; i < n; ++i) weight_[i] = templates_[i].rank;
+    r_max_ = *std::max_element(weight_.begin(), weight_.end());
+  }
+  width_ = templates_.front().width;
+  height_ = templates_.front().height;
+  // Where each template is read, relative to the (shifted) event.
+  if (options_.center_templates) {
+    for (std::size_t i = 0; i < n; ++i) {
+      offset_x_[i] = templates_[i].centroid_x - (width_ - 1) / 2.0;
+      offset_y_[i] = templates_[i].centroid_y - (height_ - 1) / 2.0;
+    }
+  }
+  result_.scores.assign(n, 0.0);
+}
+
+void RankRecogniser::centre_on(double mean_x, double mean_y) {
+  result_.shift_x = (width_ - 1) / 2.0 - mean_x;
+  result_.shift_y = (height_ - 1) / 2.0 - mean_y;
+}
+
+bool RankRecogniser::add(double ex, double ey) {
+  if (result_.winner >= 0) return true;
+  std::vector<double>& score = result_.scores;
+  const std::size_t n = score.size();
+  ++result_.events_used;
+  ++since_restart_;
+  for (std::size_t i = 0; i < n; ++i) {
+    const long x = std::lround(ex + result_.shift_x + offset_x_[i]), y = std::lround(ey + result_.shift_y + offset_y_[i]);
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
+    if (templates_[i].white[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)]) {
+      score[i] += weight_[i];
+      ++result_.additions;
+    }
+  }
+  // The best and the second best, then the lead test.
+  std::size_t best = 0;
+  double second = -1;
+  for (std::size_t i = 1; i < n; ++i) {
+    ++result_.comparisons;
+    if (score[i] > score[best]) {
+      second = score[best];
+      best = i;
+    } else if (score[i] > second) {
+      second = score[i];
+    }
+  }
+  ++result_.comparisons;
+  if (score[best] - second >= options_.k * r_max_) {
+    result_.winner = static_cast<int>(best);
+    return true;
+  }
+  if (*std::max_element(score.begin(), score.end()) > options_.overflow || since_restart_ >= options_.max_events) {
+    std::fill(score.begin(), score.end(), 0.0);
+    since_restart_ = 0;
+    ++result_.restarts;
+  }
+  return false;
+}
+
 ClassifyResult classify(const std::vector<Template>& templates, const std::vector<std::pair<double, double>>& events,
                         const ClassifierOptions& o) {
-  ClassifyResult r;
-  const std::size_t n = templates.size();
-  std::vector<double> weight(n, 1.0);
-  double r_max = 1.0;
-  if (o.ranks) {
-    for (std::size_t i = 0; i < n; ++i) weight[i] = templates[i].rank;
-    r_max = *std::max_element(weight.begin(), weight.end());
-  }
-  const int w = templates.front().width, h = templates.front().height;
+  RankRecogniser recogniser(templates, o);
   if (o.center_events > 0 && !events.empty()) {
     const std::size_t m = std::min<std::size_t>(o.center_events, events.size());
     double sx = 0, sy = 0;
@@ -106,56 +170,12 @@ ClassifyResult classify(const std::vector<Template>& templates, const std::vecto
       sx += events[j].first;
       sy += events[j].second;
     }
-    r.shift_x = (w - 1) / 2.0 - sx / static_cast<double>(m);
-    r.shift_y = (h - 1) / 2.0 - sy / static_cast<double>(m);
+    recogniser.centre_on(sx / static_cast<double>(m), sy / static_cast<double>(m));
   }
-  // Where each template is read, relative to the (shifted) event.
-  std::vector<double> offset_x(n, 0.0), offset_y(n, 0.0);
-  if (o.center_templates) {
-    for (std::size_t i = 0; i < n; ++i) {
-      offset_x[i] = templates[i].centroid_x - (w - 1) / 2.0;
-      offset_y[i] = templates[i].centroid_y - (h - 1) / 2.0;
-    }
+  for (const auto& [x, y] : events) {
+    if (recogniser.add(x, y)) break;
   }
-  std::vector<double> score(n, 0.0);
-  std::uint64_t since_restart = 0;
-  for (const auto& [ex, ey] : events) {
-    ++r.events_used;
-    ++since_restart;
-    for (std::size_t i = 0; i < n; ++i) {
-      const long x = std::lround(ex + r.shift_x + offset_x[i]), y = std::lround(ey + r.shift_y + offset_y[i]);
-      if (x < 0 || y < 0 || x >= w || y >= h) continue;
-      if (templates[i].white[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]) {
-        score[i] += weight[i];
-        ++r.additions;
-      }
-    }
-    // The best and the second best, then the lead test.
-    std::size_t best = 0;
-    double second = -1;
-    for (std::size_t i = 1; i < n; ++i) {
-      ++r.comparisons;
-      if (score[i] > score[best]) {
-        second = score[best];
-        best = i;
-      } else if (score[i] > second) {
-        second = score[i];
-      }
-    }
-    ++r.comparisons;
-    if (score[best] - second >= o.k * r_max) {
-      r.winner = static_cast<int>(best);
-      r.scores = score;
-      return r;
-    }
-    if (*std::max_element(score.begin(), score.end()) > o.overflow || since_restart >= o.max_events) {
-      std::fill(score.begin(), score.end(), 0.0);
-      since_restart = 0;
-      ++r.restarts;
-    }
-  }
-  r.scores = score;
-  return r;
+  return recogniser.result();
 }
 
 }  // namespace aesim

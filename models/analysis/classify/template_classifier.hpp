@@ -57,10 +57,38 @@ struct ClassifyResult {
   double shift_x = 0, shift_y = 0;  // applied by centring
 };
 
-// The source paper's rank-weighted recogniser: each event at (x, y), in template coordinates,
-// adds r_i to every template i white there; after each event, if the best score leads the second
-// by at least k * r_max, the best template wins. With center_templates, template i is read at the
-// event's position plus (its centroid - the centre), to the nearest pixel.
+// An array pixel's centre in template coordinates, the array scaled onto the templates.
+std::pair<double, double> template_position(std::uint32_t x, std::uint32_t y, int array_width, int array_height,
+                                            int template_width, int template_height);
+
+// The source paper's rank-weighted recogniser, one event at a time, as firmware runs it: each
+// event at (x, y), in template coordinates, adds r_i to every template i white there; after each
+// event, if the best score leads the second by at least k * r_max, the best template wins. With
+// center_templates, template i is read at the event's position plus (its centroid - the centre),
+// to the nearest pixel. `options.center_events` is the caller's to apply (centre_on) before the
+// first event: classify() does it from the list, a firmware model from the events it buffered.
+class RankRecogniser {
+ public:
+  // The templates are held by reference and must outlive the recogniser.
+  RankRecogniser(const std::vector<Template>& templates, const ClassifierOptions& options);
+  // Shifts every later event so that (mean_x, mean_y), the subject's centroid, lies at the centre.
+  void centre_on(double mean_x, double mean_y);
+  // One event; true once a template has won (later events are ignored).
+  bool add(double x, double y);
+  const ClassifyResult& result() const { return result_; }
+  std::size_t templates() const { return templates_.size(); }
+
+ private:
+  const std::vector<Template>& templates_;
+  ClassifierOptions options_;
+  std::vector<double> weight_, offset_x_, offset_y_;
+  double r_max_ = 1.0;
+  int width_ = 0, height_ = 0;
+  std::uint64_t since_restart_ = 0;
+  ClassifyResult result_;
+};
+
+// RankRecogniser over a list, centred on its first options.center_events events (if any).
 ClassifyResult classify(const std::vector<Template>& templates, const std::vector<std::pair<double, double>>& events,
                         const ClassifierOptions& options);
 

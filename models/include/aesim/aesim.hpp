@@ -4,7 +4,10 @@
 //   - Imager: the imager at the cycle fidelity as a module in the caller's own sc_main;
 //   - Receiver: aesim's bundled receiver (the reference model of rtl/aer_receiver.v) with ports;
 //   - EventSource: the event fidelity's events handed over at their times, into an sc_fifo;
-//   - EventFifoTarget: a memory-mapped event FIFO with an interrupt behind a TLM-2.0 socket;
+//   - EventFifoTarget: a memory-mapped event FIFO with an interrupt behind a TLM-2.0 socket, fed by
+//     the event fidelity's timed stream or (ReceiverStreamFeed) a tile's receiver at the cycle one;
+//   - NodeProcessor: the source paper's sensor node processor, running its recogniser as timed
+//     firmware against that FIFO (loosely or approximately timed); templates and the recogniser;
 //   - run_sensor(): a whole run as `aesim run` makes it (outputs, summary, warnings returned);
 //   - simulate(): a run's simulation alone, at any fidelity, in a SystemC context of its own;
 //   - the configuration (presets, --set keys), scenes, the record of a run, event files.
@@ -13,6 +16,7 @@
 #include "aesim/embed/event_fifo_target.hpp"
 #include "aesim/embed/event_source.hpp"
 #include "aesim/embed/imager.hpp"
+#include "aesim/embed/receiver_stream_feed.hpp"
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/events_csv.hpp"
@@ -25,3 +29,5 @@
 #include "aesim/scene/photocurrents.hpp"
 #include "aesim/scene/scene.hpp"
 #include "aesim/sensor_run/sensor_run.hpp"
+#include "aesim/classify/template_classifier.hpp"
+#include "aesim/sensor_node/node_processor.hpp"

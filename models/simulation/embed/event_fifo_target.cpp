@@ -1,6 +1,7 @@
 #include "aesim/embed/event_fifo_target.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -20,12 +21,88 @@ EventFifoTarget::EventFifoTarget(const sc_core::sc_module_name& name, std::uint3
   socket.register_b_transport(this, &EventFifoTarget::b_transport);
   socket.register_transport_dbg(this, &EventFifoTarget::transport_dbg);
   socket.register_get_direct_mem_ptr(this, &EventFifoTarget::get_direct_mem_ptr);
-  // One process drives the interrupt line, whichever process changed the fill or the settings.
+  // One process drives the interrupt line, whichever process changed the fill or the settings;
+  // another brings the FIFO up to date when a delivered event lifts the fill to the threshold.
   SC_METHOD(drive_irq);
   sensitive << irq_changed_;
+  SC_METHOD(on_due);
+  sensitive << due_;
+  dont_initialize();
+}
+
+namespace {
+sc_dt::uint64 now_value() { return sc_core::sc_time_stamp().value(); }
+}  // namespace
+
+void EventFifoTarget::deliver(const std::vector<AddressEvent>& events) {
+  const double step = sc_core::sc_get_time_resolution().to_seconds();
+  sc_dt::uint64 last = stream_at_.empty() ? 0 : stream_at_.back();
+  for (const AddressEvent& e : events) {
+    if (!(e.t >= 0) || !std::isfinite(e.t)) throw InputError("EventFifoTarget::deliver: an event time is negative or not finite");
+    const auto at = static_cast<sc_dt::uint64>(std::llround(e.t / step));
+    if (at < last) throw InputError("EventFifoTarget::deliver: the events are not in time order");
+    last = at;
+    stream_.push_back(e);
+    stream_at_.push_back(at);
+  }
+  if (sc_core::sc_is_running()) {
+    admit(now_value());
+    schedule_due();
+  }
+}
+
+void EventFifoTarget::start_of_simulation() { schedule_due(); }
+
+void EventFifoTarget::admit(sc_dt::uint64 at) {
+  while (stream_next_ < stream_.size() && stream_at_[stream_next_] <= at) enter(stream_[stream_next_++]);
+  if (at > seen_until_) seen_until_ = at;
+  update_irq();
+}
+
+std::optional<sc_core::sc_time> EventFifoTarget::irq_due(const sc_core::sc_time& from) {
+  admit(from.value());
+  if (irq_level_) return from;
+  if ((irq_enable_ & 1u) == 0 || irq_threshold_ > depth_) return std::nullopt;
+  const std::size_t index = stream_next_ + (irq_threshold_ - fill()) - 1;
+  if (index >= stream_.size()) return std::nullopt;
+  return sc_core::sc_time::from_value(stream_at_[index]);
+}
+
+void EventFifoTarget::schedule_due() {
+  if (irq_level_ || (irq_enable_ & 1u) == 0 || irq_threshold_ > depth_) return;
+  const std::size_t index = stream_next_ + (irq_threshold_ - fill()) - 1;
+  if (index >= stream_.size()) return;
+  const sc_dt::uint64 at = stream_at_[index], now = now_value();
+  // An earlier wake-up already set stays: it finds the FIFO as it is then and sets the next one.
+  if (due_at_ && *due_at_ <= at) return;
+  due_at_ = at;
+  due_.notify(sc_core::sc_time::from_value(at > now ? at - now : 0));
+}
+
+void EventFifoTarget::on_due() {
+  due_at_.reset();
+  admit(now_value());
+  schedule_due();
 }
 
 void EventFifoTarget::push(const AddressEvent& e) {
+  admit(now_value());
+  enter(e);
+  update_irq();
+  schedule_due();
+}
+
+std::uint32_t EventFifoTarget::fill() {
+  admit(now_value());
+  return static_cast<std::uint32_t>(fifo_.size());
+}
+
+std::uint64_t EventFifoTarget::overflows() {
+  admit(now_value());
+  return overflows_;
+}
+
+void EventFifoTarget::enter(const AddressEvent& e) {
   if (fifo_.size() >= depth_) {
     ++overflows_;
     overflowed_ = true;
@@ -33,7 +110,6 @@ void EventFifoTarget::push(const AddressEvent& e) {
   }
   fifo_.push_back({reg::event_word(e.x, e.y, e.tile, (e.flags & kGhostEvent) != 0),
                    static_cast<std::uint32_t>(timestamp_ticks(e.t, tick_))});
-  update_irq();
 }
 
 bool EventFifoTarget::valid_access(tlm::tlm_generic_payload& trans) const {
@@ -57,6 +133,7 @@ void EventFifoTarget::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_t
     return;
   }
   if (!valid_access(trans)) return;
+  admit(now_value() + delay.value());
   const auto offset = static_cast<std::uint32_t>(trans.get_address());
   if (trans.is_read()) {
     if (offset == reg::kControl) {
@@ -75,6 +152,7 @@ void EventFifoTarget::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_t
   }
   delay += access_;
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
+  schedule_due();
 }
 
 unsigned int EventFifoTarget::transport_dbg(tlm::tlm_generic_payload& trans) {
@@ -109,7 +187,7 @@ std::uint32_t EventFifoTarget::read(std::uint32_t offset, bool side_effects) {
       return head.word;
     }
     case reg::kStamp: return stamp_;
-    case reg::kFill: return fill();
+    case reg::kFill: return static_cast<std::uint32_t>(fifo_.size());
     case reg::kIrqEnable: return irq_enable_;
     case reg::kIrqThreshold: return irq_threshold_;
     case reg::kOverflows: return static_cast<std::uint32_t>(std::min<std::uint64_t>(overflows_, 0xFFFFFFFFu));
@@ -136,13 +214,19 @@ bool EventFifoTarget::write(std::uint32_t offset, std::uint32_t value) {
 }
 
 void EventFifoTarget::update_irq() {
-  const bool level = (irq_enable_ & 1u) != 0 && fifo_.size() >= irq_threshold_;
-  if (level != irq_level_) {
-    irq_level_ = level;
+  irq_level_ = (irq_enable_ & 1u) != 0 && fifo_.size() >= irq_threshold_;
+  // One wake-up of the driver however often the level flips before it runs (a decoupled
+  // processor draining the FIFO flips it at every event).
+  if (irq_level_ != irq_driven_ && !irq_notified_) {
+    irq_notified_ = true;
     irq_changed_.notify(sc_core::SC_ZERO_TIME);
   }
 }
 
-void EventFifoTarget::drive_irq() { irq.write(irq_level_); }
+void EventFifoTarget::drive_irq() {
+  irq_notified_ = false;
+  irq_driven_ = irq_level_;
+  irq.write(irq_level_);
+}
 
 }  // namespace aesim
