@@ -10,7 +10,8 @@
 //     firmware against that FIFO (loosely or approximately timed); templates and the recogniser;
 //   - run_sensor(): a whole run as `aesim run` makes it (outputs, summary, warnings returned);
 //   - simulate(): a run's simulation alone, at any fidelity, in a SystemC context of its own;
-//   - the configuration (presets, --set keys), scenes, the record of a run, event files.
+//   - the configuration (presets, --set keys), scenes, the record of a run, event files, and
+//     data_dir(): where the shipped presets, scenes and templates are.
 #include "aesim/version.hpp"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/embed/event_fifo_target.hpp"
@@ -18,6 +19,7 @@
 #include "aesim/embed/imager.hpp"
 #include "aesim/embed/receiver_stream_feed.hpp"
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/data_dir.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/events_csv.hpp"
 #include "aesim/events/address_event.hpp"

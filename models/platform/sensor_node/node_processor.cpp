@@ -26,6 +26,11 @@ NodeProcessor::NodeProcessor(const sc_core::sc_module_name& name, const std::vec
   if (config_.array_width < 1 || config_.array_height < 1) throw InputError("NodeProcessor: the array size must be positive");
   if (templates_.size() < 2) throw InputError("NodeProcessor: the recogniser needs at least two templates");
   recogniser_.emplace(templates_, config_.classifier);
+  per_event_ = sc_core::sc_time(config_.cycles_per_template * static_cast<double>(templates_.size()) / config_.clock_hz,
+                                sc_core::SC_SEC);
+  per_interrupt_ = sc_core::sc_time(config_.isr_cycles / config_.clock_hz, sc_core::SC_SEC);
+  scale_x_ = static_cast<double>(templates_.front().width) / config_.array_width;
+  scale_y_ = static_cast<double>(templates_.front().height) / config_.array_height;
   socket.register_nb_transport_bw(this, &NodeProcessor::nb_transport_bw);
   SC_THREAD(firmware);
 }
@@ -34,10 +39,9 @@ sc_core::sc_time NodeProcessor::local_now() const {
   return config_.approximately_timed ? sc_core::sc_time_stamp() : sc_core::sc_time_stamp() + keeper_.get_local_time();
 }
 
-void NodeProcessor::compute(double cycles) {
-  if (cycles <= 0) return;
-  const sc_core::sc_time t(cycles / config_.clock_hz, sc_core::SC_SEC);
-  busy_s_ += t.to_seconds();
+void NodeProcessor::compute(const sc_core::sc_time& t) {
+  if (t == sc_core::SC_ZERO_TIME) return;
+  busy_ += t;
   if (config_.approximately_timed) {
     sc_core::wait(t);
     return;
@@ -58,7 +62,9 @@ tlm::tlm_sync_enum NodeProcessor::nb_transport_bw(tlm::tlm_generic_payload&, tlm
 std::uint32_t NodeProcessor::access(tlm::tlm_command command, std::uint32_t offset, std::uint32_t value) {
   unsigned char data[4];
   std::memcpy(data, &value, 4);
-  tlm::tlm_generic_payload t;
+  // One payload for every access (its extension array is allocated once, not per access); the
+  // fields a target may change are set again each time.
+  tlm::tlm_generic_payload& t = payload_;
   t.set_command(command);
   t.set_address(offset);
   t.set_data_ptr(data);
@@ -67,8 +73,8 @@ std::uint32_t NodeProcessor::access(tlm::tlm_command command, std::uint32_t offs
   t.set_byte_enable_ptr(nullptr);
   t.set_dmi_allowed(false);
   t.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-  const sc_core::sc_time before = local_now();
   if (config_.approximately_timed) {
+    const sc_core::sc_time before = sc_core::sc_time_stamp();
     tlm::tlm_phase phase = tlm::BEGIN_REQ;
     sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
     const tlm::tlm_sync_enum sync = socket->nb_transport_fw(t, phase, delay);
@@ -77,16 +83,19 @@ std::uint32_t NodeProcessor::access(tlm::tlm_command command, std::uint32_t offs
     } else {
       sc_core::wait(response_);
     }
+    busy_ += sc_core::sc_time_stamp() - before;
   } else {
-    sc_core::sc_time delay = keeper_.get_local_time();
+    const sc_core::sc_time before = keeper_.get_local_time();
+    sc_core::sc_time delay = before;
     socket->b_transport(t, delay);
     keeper_.set(delay);
+    busy_ += delay - before;
   }
-  busy_s_ += (local_now() - before).to_seconds();
   if (!t.is_response_ok()) {
     SC_REPORT_ERROR("aesim/NodeProcessor", fmt::format("access to the event FIFO at 0x{:02X} failed: {}", offset,
                                                        t.get_response_string()).c_str());
   }
+  t.set_data_ptr(nullptr);
   std::memcpy(&value, data, 4);
   return value;
 }
@@ -120,43 +129,39 @@ void NodeProcessor::firmware() {
 
 void NodeProcessor::handle_interrupt() {
   ++interrupts_;
-  compute(config_.isr_cycles);
+  compute(per_interrupt_);
   const std::uint32_t held = access(tlm::TLM_READ_COMMAND, reg::kFill);
   for (std::uint32_t i = 0; i < held && !stopped_; ++i) take(access(tlm::TLM_READ_COMMAND, reg::kEvent));
 }
 
 void NodeProcessor::take(std::uint32_t word) {
   if (word == reg::kEmptyEvent || reg::event_ghost(word)) return;
-  const std::pair<double, double> p =
-      template_position(reg::event_x(word), reg::event_y(word), config_.array_width, config_.array_height,
-                        templates_.front().width, templates_.front().height);
+  // template_position() with the scale worked out once.
+  const std::pair<double, double> p{(reg::event_x(word) + 0.5) * scale_x_ - 0.5, (reg::event_y(word) + 0.5) * scale_y_ - 0.5};
   ++events_read_;
   ++recognition_read_;
-  positions_.push_back(p);
+  if (config_.record_positions) positions_.push_back(p);
   if (config_.classifier.center_events == 0 || centred_) {
     score(p);
     return;
   }
-  buffer_.push_back(p);
-  if (buffer_.size() < config_.classifier.center_events) return;
-  double sx = 0, sy = 0;
-  for (const auto& [x, y] : buffer_) {
-    sx += x;
-    sy += y;
-  }
-  recogniser_->centre_on(sx / static_cast<double>(buffer_.size()), sy / static_cast<double>(buffer_.size()));
+  // The paper's accounting charges every event read the recogniser's cycles, centring ones too.
+  if (config_.charge_centring) charge_recognition();
+  centre_x_ += p.first;
+  centre_y_ += p.second;
+  if (++centring_ < config_.classifier.center_events) return;
+  recogniser_->centre_on(centre_x_ / static_cast<double>(centring_), centre_y_ / static_cast<double>(centring_));
   centred_ = true;
-  const std::vector<std::pair<double, double>> centring = std::move(buffer_);
-  buffer_.clear();
-  for (const auto& q : centring) {
-    if (score(q)) break;
-  }
+}
+
+void NodeProcessor::charge_recognition() {
+  compute(per_event_);
+  // The cycles' own time, not the kernel's rounding of it to its resolution.
+  recognition_s_ += config_.cycles_per_template * static_cast<double>(templates_.size()) / config_.clock_hz;
 }
 
 bool NodeProcessor::score(const std::pair<double, double>& p) {
-  const double cycles = config_.cycles_per_template * static_cast<double>(templates_.size());
-  compute(cycles);
-  recognition_s_ += cycles / config_.clock_hz;
+  charge_recognition();
   ++recognition_scored_;
   if (!recogniser_->add(p.first, p.second)) return false;
   decide();
@@ -178,7 +183,8 @@ void NodeProcessor::decide() {
   }
   recogniser_.emplace(templates_, config_.classifier);
   centred_ = false;
-  buffer_.clear();
+  centring_ = 0;
+  centre_x_ = centre_y_ = 0;
   recognition_read_ = recognition_scored_ = 0;
   recognition_s_ = 0;
 }

@@ -37,6 +37,10 @@ struct NodeProcessorConfig {
   }();
   int array_width = 64, array_height = 64;  // event coordinates are scaled onto the templates
   bool keep_recognising = true;             // after a decision, start again on the next events
+  // The paper's accounting (its 1281.8 events x 6 templates x 100 cycles): the centring events cost
+  // the recogniser's cycles too. False: they cost nothing (a centroid's two additions).
+  bool charge_centring = true;
+  bool record_positions = false;  // keep every event read (read_positions()), for checks
 };
 
 // What the firmware concluded, once per decision.
@@ -45,7 +49,7 @@ struct NodeDecision {
   std::uint64_t events_read = 0;    // events taken from the FIFO for this recognition (ghosts skipped)
   std::uint64_t events_scored = 0;  // of them, run through the recogniser (the rest were centring)
   double at_s = 0;                  // simulation time of the decision
-  double recognition_s = 0;         // processor time spent scoring this recognition's events
+  double recognition_s = 0;         // processor time charged for this recognition's events
   std::uint32_t overflows = 0;      // the FIFO's kOverflows, read by the firmware at the decision
 };
 
@@ -55,10 +59,11 @@ double recognition_seconds(double events, std::size_t templates, double cycles_p
 
 // A processor model whose firmware reads the event FIFO on its interrupt and runs aesim's
 // RankRecogniser on each event, charging the recogniser's cycles. Interrupt handler: read kFill,
-// then kEvent that many times; a ghost (a collision's corrupted address) is skipped. Recognition:
-// buffer the first center_events events, centre on their mean, score the buffer, then every later
-// event, until a template leads by k r_max (RankRecogniser); a decision restarts it from the next
-// event when keep_recognising. Bind `socket` to the FIFO's socket and `irq` to its interrupt line.
+// then kEvent that many times; a ghost (a collision's corrupted address) is skipped. Recognition,
+// as the paper's node does it: the first center_events events find the subject's centre (their
+// mean), then every later event is scored until a template leads by k r_max (RankRecogniser); a
+// decision starts a new recognition (centring again) from the next event when keep_recognising.
+// Bind `socket` to the FIFO's socket and `irq` to its interrupt line.
 //
 // Loosely timed, the processor runs ahead of the kernel by up to the global quantum; while it waits
 // for its interrupt it asks the FIFO when the line will rise (EventFifoTarget::irq_due, exact for
@@ -79,8 +84,9 @@ class NodeProcessor : public sc_core::sc_module {
   std::uint64_t events_read() const { return events_read_; }
   std::uint64_t interrupts() const { return interrupts_; }
   // Time the processor was not waiting for its interrupt (computing or on the bus), s.
-  double busy_s() const { return busy_s_; }
-  // The positions (template coordinates) of every event read, in order: what the recogniser saw.
+  double busy_s() const { return busy_.to_seconds(); }
+  // With record_positions, the positions (template coordinates) of every event read, in order:
+  // what the recogniser saw.
   const std::vector<std::pair<double, double>>& read_positions() const { return positions_; }
 
  private:
@@ -90,8 +96,9 @@ class NodeProcessor : public sc_core::sc_module {
   void take(std::uint32_t word);
   // Scores one event; true when it decided.
   bool score(const std::pair<double, double>& p);
+  void charge_recognition();
   void decide();
-  void compute(double cycles);
+  void compute(const sc_core::sc_time& t);
   std::uint32_t access(tlm::tlm_command command, std::uint32_t offset, std::uint32_t value = 0);
   sc_core::sc_time local_now() const;
   tlm::tlm_sync_enum nb_transport_bw(tlm::tlm_generic_payload& trans, tlm::tlm_phase& phase, sc_core::sc_time& delay);
@@ -100,12 +107,18 @@ class NodeProcessor : public sc_core::sc_module {
   NodeProcessorConfig config_;
   EventFifoTarget* forecast_;
   tlm_utils::tlm_quantumkeeper keeper_;
+  tlm::tlm_generic_payload payload_;
+  sc_core::sc_time per_event_, per_interrupt_;  // the recogniser's cycles for one event; the handler's
   sc_core::sc_event response_;
   std::optional<RankRecogniser> recogniser_;
   bool centred_ = false, stopped_ = false;
-  std::vector<std::pair<double, double>> buffer_, positions_;
+  std::vector<std::pair<double, double>> positions_;
+  double centre_x_ = 0, centre_y_ = 0;
+  std::uint64_t centring_ = 0;
   std::uint64_t recognition_read_ = 0, recognition_scored_ = 0;
-  double recognition_s_ = 0, busy_s_ = 0;
+  double recognition_s_ = 0;
+  sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
+  double scale_x_ = 1, scale_y_ = 1;  // array pixels to template pixels
   std::uint64_t events_read_ = 0, interrupts_ = 0;
   std::vector<NodeDecision> decisions_;
 };

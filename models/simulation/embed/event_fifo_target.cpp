@@ -42,7 +42,7 @@ void EventFifoTarget::deliver(const std::vector<AddressEvent>& events) {
     const auto at = static_cast<sc_dt::uint64>(std::llround(e.t / step));
     if (at < last) throw InputError("EventFifoTarget::deliver: the events are not in time order");
     last = at;
-    stream_.push_back(e);
+    stream_.push_back(entry(e));
     stream_at_.push_back(at);
   }
   if (sc_core::sc_is_running()) {
@@ -54,8 +54,8 @@ void EventFifoTarget::deliver(const std::vector<AddressEvent>& events) {
 void EventFifoTarget::start_of_simulation() { schedule_due(); }
 
 void EventFifoTarget::admit(sc_dt::uint64 at) {
+  if (stream_next_ == stream_.size() || stream_at_[stream_next_] > at) return;
   while (stream_next_ < stream_.size() && stream_at_[stream_next_] <= at) enter(stream_[stream_next_++]);
-  if (at > seen_until_) seen_until_ = at;
   update_irq();
 }
 
@@ -87,7 +87,7 @@ void EventFifoTarget::on_due() {
 
 void EventFifoTarget::push(const AddressEvent& e) {
   admit(now_value());
-  enter(e);
+  enter(entry(e));
   update_irq();
   schedule_due();
 }
@@ -102,14 +102,18 @@ std::uint64_t EventFifoTarget::overflows() {
   return overflows_;
 }
 
-void EventFifoTarget::enter(const AddressEvent& e) {
+EventFifoTarget::Entry EventFifoTarget::entry(const AddressEvent& e) const {
+  return {reg::event_word(e.x, e.y, e.tile, (e.flags & kGhostEvent) != 0),
+          static_cast<std::uint32_t>(timestamp_ticks(e.t, tick_))};
+}
+
+void EventFifoTarget::enter(const Entry& e) {
   if (fifo_.size() >= depth_) {
     ++overflows_;
     overflowed_ = true;
     return;
   }
-  fifo_.push_back({reg::event_word(e.x, e.y, e.tile, (e.flags & kGhostEvent) != 0),
-                   static_cast<std::uint32_t>(timestamp_ticks(e.t, tick_))});
+  fifo_.push_back(e);
 }
 
 bool EventFifoTarget::valid_access(tlm::tlm_generic_payload& trans) const {

@@ -71,7 +71,8 @@ class EventFifoTarget : public sc_core::sc_module {
   bool valid_access(tlm::tlm_generic_payload& trans) const;
   std::uint32_t read(std::uint32_t offset, bool side_effects);
   bool write(std::uint32_t offset, std::uint32_t value);
-  void enter(const AddressEvent& e);
+  Entry entry(const AddressEvent& e) const;
+  void enter(const Entry& e);
   // Every delivered event due by `at` (ps of simulation time) enters, in order.
   void admit(sc_dt::uint64 at);
   void update_irq();
@@ -84,10 +85,9 @@ class EventFifoTarget : public sc_core::sc_module {
   double tick_;
   sc_core::sc_time access_;
   std::deque<Entry> fifo_;
-  std::vector<AddressEvent> stream_;       // delivered, not yet entered from stream_next_ on
+  std::vector<Entry> stream_;              // delivered, not yet entered from stream_next_ on
   std::vector<sc_dt::uint64> stream_at_;   // their arrival times, ps
   std::size_t stream_next_ = 0;
-  sc_dt::uint64 seen_until_ = 0;           // the latest time an access or arrival was at
   std::uint32_t stamp_ = 0, irq_enable_ = 0, irq_threshold_ = 1;
   std::uint64_t overflows_ = 0;
   bool overflowed_ = false, irq_level_ = false, irq_driven_ = false, irq_notified_ = false;

@@ -29,7 +29,8 @@ std::ostream& operator<<(std::ostream& out, const AddressEvent& e);
 // no meaning here (the event rung has no clocked receiver) and is refused.
 class EventSource : public sc_core::sc_module {
  public:
-  // Zero or one FIFO: unbound, the events go to the callback only.
+  // Zero or one FIFO: unbound, the events go to the callback only (with neither, the module only
+  // holds the run: events(), as EventFifoTarget::deliver takes it).
   sc_core::sc_port<sc_core::sc_fifo_out_if<AddressEvent>, 1, sc_core::SC_ZERO_OR_MORE_BOUND> out;
 
   EventSource(const sc_core::sc_module_name& name, const ImagerSpec& spec);
