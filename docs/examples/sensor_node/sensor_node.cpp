@@ -63,7 +63,11 @@ Options parse(int argc, char* argv[]) {
       if (eq == std::string::npos) throw std::invalid_argument("--set: '" + value + "' is not KEY=VALUE");
       o.settings.push_back({value.substr(0, eq), value.substr(eq + 1)});
     } else if (flag == "--fifo") {
-      o.fifo = static_cast<std::uint32_t>(number(flag, value));
+      const double depth = number(flag, value);
+      if (depth != static_cast<double>(static_cast<std::uint32_t>(depth))) {
+        throw std::invalid_argument("--fifo: '" + value + "' is not a whole number of events");
+      }
+      o.fifo = static_cast<std::uint32_t>(depth);
     } else if (flag == "--clock") {
       o.cpu.clock_hz = number(flag, value);
     } else if (flag == "--cycles-per-template") {
