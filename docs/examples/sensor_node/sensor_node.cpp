@@ -176,12 +176,18 @@ int sc_main(int argc, char* argv[]) {
                    "decisions,first_winner,first_events_read,first_decision_s,first_recognition_ms,first_lost,"
                    "events_read,events_lost,utilisation\n";
     }
-    std::printf("%s,%s,%s,%u,%.6g,%.6g,%.6g,%llu,%.6g,%zu,%s,%llu,%.9g,%.9g,%u,%llu,%llu,%.6g\n", o.sign.c_str(),
-                o.fidelity.c_str(), o.cpu.approximately_timed ? "approximate" : "loose", o.fifo, o.cpu.clock_hz,
-                o.cpu.cycles_per_template, duration, static_cast<unsigned long long>(delivered), delivered / duration,
-                decisions.size(), winner.c_str(), static_cast<unsigned long long>(first.events_read), first.at_s,
-                first.recognition_s * 1e3, first.overflows, static_cast<unsigned long long>(cpu.events_read()),
-                static_cast<unsigned long long>(fifo->overflows()), cpu.busy_s() / duration);
+    // A run without a decision leaves the decision's fields empty.
+    char first_fields[160] = ",,,,";
+    if (!decisions.empty()) {
+      std::snprintf(first_fields, sizeof first_fields, "%s,%llu,%.9g,%.9g,%u", winner.c_str(),
+                    static_cast<unsigned long long>(first.events_read), first.at_s, first.recognition_s * 1e3,
+                    first.overflows);
+    }
+    std::printf("%s,%s,%s,%u,%.6g,%.6g,%.6g,%llu,%.6g,%zu,%s,%llu,%llu,%.6g\n", o.sign.c_str(), o.fidelity.c_str(),
+                o.cpu.approximately_timed ? "approximate" : "loose", o.fifo, o.cpu.clock_hz, o.cpu.cycles_per_template,
+                duration, static_cast<unsigned long long>(delivered), delivered / duration, decisions.size(), first_fields,
+                static_cast<unsigned long long>(cpu.events_read()), static_cast<unsigned long long>(fifo->overflows()),
+                cpu.busy_s() / duration);
     std::fprintf(stderr,
                  "sensor_node: %s at the %s fidelity, %.3g s: %llu events delivered (%.4g/s); FIFO of %u, processor at "
                  "%.4g MHz (%s timed)\n",
