@@ -18,18 +18,9 @@ set(prefix ${WORK}/prefix)
 set(scene ${SOURCE}/scenes/hdr/window.pfm)
 set(duration 300ms)
 
-function(run what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "${what} failed (${status}):\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/installed_example.cmake)
 
-file(REMOVE_RECURSE ${WORK})
-run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
-run("configuring the example" ${CMAKE_COMMAND} -S ${SOURCE}/docs/examples/embed -B ${WORK}/example -G ${GENERATOR}
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
-run("building the example" ${CMAKE_COMMAND} --build ${WORK}/example)
+build_installed_example(embed)
 execute_process(COMMAND ${WORK}/example/embed_example ${scene} ${duration} ${WORK}/waves
                 OUTPUT_FILE ${WORK}/example.csv ERROR_VARIABLE said RESULT_VARIABLE status)
 if(NOT status EQUAL 0)

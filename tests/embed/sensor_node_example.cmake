@@ -12,14 +12,8 @@ foreach(v BUILD SOURCE WORK GENERATOR)
     message(FATAL_ERROR "sensor_node_example: -D${v}= is required")
   endif()
 endforeach()
-set(prefix ${WORK}/prefix)
 
-function(run what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "${what} failed (${status}):\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/installed_example.cmake)
 
 # Runs the example; sets <var> to its CSV row as a list and <var>_said to its stderr.
 set(columns sign fidelity timing fifo_depth clock_hz cycles_per_template duration_s events_delivered events_per_s
@@ -46,11 +40,7 @@ function(node var)
   set(${var}_said "${said}" PARENT_SCOPE)
 endfunction()
 
-file(REMOVE_RECURSE ${WORK})
-run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
-run("configuring the example" ${CMAKE_COMMAND} -S ${SOURCE}/docs/examples/sensor_node -B ${WORK}/example -G ${GENERATOR}
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
-run("building the example" ${CMAKE_COMMAND} --build ${WORK}/example)
+build_installed_example(sensor_node)
 
 node(loose --sign rock --set sim.duration=2s)
 message(STATUS "${loose_said}")
