@@ -44,6 +44,7 @@ using testing::slurp;
 const std::string kSource = AESIM_SOURCE_DIR;
 const std::string kShippedDeck = kSource + "/models/circuits/aesim_pixel.cir";
 const std::string kIdealDeck = kSource + "/tests/circuits/ideal_pixel.cir";
+const std::string kBsimDeck = kSource + "/tests/circuits/bsim_axon_hillock.cir";
 
 // Text of a number with every digit (std::to_string would print 2.5e-14 as 0.000000).
 std::string num(double v) {
@@ -217,7 +218,9 @@ TEST(TransferFit, RecoversALeakAndALatchingResetFromExactPeriodsAndPulses) {
     }
     EXPECT_LT(fit.max_residual, 1e-6);
     // eq. 2 cannot hold it where it bends: the leak and the latch leave residuals of percents.
-    if (k.i_dark < 0) EXPECT_GT(fit_pixel(current, period).max_residual, 0.05);
+    if (k.i_dark < 0) {
+      EXPECT_GT(fit_pixel(current, period).max_residual, 0.05);
+    }
   }
   EXPECT_THROW(fit_circuit({1e-12, 1e-11, 1e-10}, {1.0, 0.1, 0.01}, {1e-3, 1e-3, 0.02}), std::invalid_argument);
 }
@@ -624,17 +627,104 @@ TEST_F(NgspiceTest, APixelThatNeverFiresIsToldSoWithWhatTheRunShowed) {
   reversed.replace(reversed.find("Iph vdd int {iph}"), 17, "Iph int vdd {iph}");
   latched.replace(latched.find("Mp2 out n1 vdd vdd pch w=1u l=2u"), 32, "");
   latched.replace(latched.find("Mn2 out n1 gnd gnd nch w=1u l=4u"), 32, "Rpu out vdd 1k");
-  const std::pair<const char*, const char*> cases[] = {{"reversed", "node 'int' settles at"},
-                                                       {"latched", "out latched high (3.3 V)"}};
+  // The node that settles at the brightest current settles at every weaker one, and out that
+  // latches at the weakest latches at every stronger one: the other twelve currents are not
+  // waited for, and the error names the current that showed it.
+  const std::pair<const char*, const char*> cases[] = {{"reversed", "at 1e-09 A node 'int' settles at"},
+                                                       {"latched", "at 1e-15 A out latched high (3.3 V)"}};
   const std::map<std::string, std::string> decks = {{"reversed", reversed}, {"latched", latched}};
   for (const auto& [name, seen] : cases) {
     write(std::string(name) + ".cir", decks.at(name));
     const Outcome o = aesim(std::string("calibrate ") + name + ".cir --subckt aesim_pixel -o " + name + ".toml");
     EXPECT_EQ(o.status, 2) << o.err;
     EXPECT_NE(o.err.find("never fires between 1e-15 A and 1e-09 A"), std::string::npos) << o.err;
-    EXPECT_NE(o.err.find(std::string("at 1e-09 A ") + seen), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find(seen), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("(12 of the 13 currents, beyond it, were not waited for)"), std::string::npos) << o.err;
     EXPECT_FALSE(fs::exists(dir_ / (std::string(name) + ".toml")));
   }
+}
+
+// A deck written as foundry decks are (tests/circuits/bsim_axon_hillock.cir: BSIM4 transistors,
+// a behavioural MIM capacitor with its leak, statistical switches on) calibrates with the default
+// currents: the switches are found and set to 0, the reset that the light lengthens and the latch
+// past it are fitted, the currents past the latch are silent beyond it. An independent ngspice
+// testbench (its own tolerances and step, the period from `meas` of the 2nd to the 6th rising edge)
+// at 0.2 pA, between two table points, gives the period `aesim run` fires at with the preset.
+TEST_F(NgspiceTest, ABsimDeckCalibratesWithTheDefaultCurrentsAndRunsAsTheCircuitDoes) {
+  const Outcome o = aesim("calibrate " + kBsimDeck + " --subckt bsim_axon_hillock --probe mem -o bsim.toml");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string preset = slurp(dir_ / "bsim.toml");
+  EXPECT_NE(preset.find("the deck's switches sw_stat_global, sw_stat_mismatch were set to 0 for the table"),
+            std::string::npos)
+      << preset;
+  EXPECT_NE(preset.find("At 1e-11 A and above the circuit does not keep firing (fired 1 time, then out latched high"),
+            std::string::npos)
+      << preset;
+  EXPECT_NE(preset.find("the pixel latches"), std::string::npos) << preset;
+  std::size_t beyond = 0;
+  for (std::size_t at = preset.find("silent beyond"); at != std::string::npos; at = preset.find("silent beyond", at + 1)) ++beyond;
+  EXPECT_EQ(beyond, 4u) << preset;  // 31.6 pA to 1 nA, past the latch seen at 10 pA
+  SensorConfig c;
+  apply_toml_file(c, (dir_ / "bsim.toml").string(), "");
+  ASSERT_GE(c.pixel.transfer.current.size(), 20u);
+  EXPECT_DOUBLE_EQ(c.pixel.transfer.current.front(), 1e-15);
+  EXPECT_DOUBLE_EQ(c.pixel.transfer.silent_above, 1e-11);
+
+  write("independent.cir", fmt::format(R"(* the BSIM deck at 0.2 pA, nominal
+.include "{}"
+.param sw_stat_global=0 sw_stat_mismatch=0
+.options method=gear reltol=1e-5 abstol=1e-17 chgtol=1e-19 gmin=1e-18
+Vdd vdd 0 3.3
+X1 vdd out 0 bsim_axon_hillock iph=2e-13
+.control
+set num_threads=1
+tran 1e-4 4 0 2e-4 uic
+meas tran first when v(out)=1.65 rise=2
+meas tran last when v(out)=1.65 rise=6
+quit 0
+.endc
+.end
+)", kBsimDeck));
+  ASSERT_EQ(run_child("ngspice", {"-b", "-n", "independent.cir"},
+                      {(dir_ / "independent.out").string(), (dir_ / "independent.err").string(), dir_.string()}),
+            0);
+  const std::string measured = slurp(dir_ / "independent.out");
+  const auto value = [&measured](const std::string& name) {
+    const std::size_t at = measured.find("\n" + name + " ");
+    EXPECT_NE(at, std::string::npos) << measured;
+    return at == std::string::npos ? 0.0 : std::stod(measured.substr(measured.find('=', at) + 1));
+  };
+  const double circuit = (value("last") - value("first")) / 4;
+  ASSERT_GT(circuit, 0.4);
+  const Outcome run = aesim("run --sensor bsim.toml --scene " + std::string(AESIM_SOURCE_DIR) +
+                            "/scenes/uniform.pgm --set pixel.i_max=2e-13A --set pixel.mismatch=0 --set "
+                            "pixel.initial=reset --set bus.access=ideal --duration 3s --truth truth.csv");
+  ASSERT_EQ(run.status, 0) << run.err;
+  std::istringstream rows(slurp(dir_ / "truth.csv"));
+  std::string line;
+  std::vector<double> fires;
+  std::getline(rows, line);
+  while (std::getline(rows, line)) {
+    if (line.rfind("0,0,", 0) == 0) fires.push_back(std::stod(line.substr(line.find(',', 4) + 1)) * 1e-6);
+  }
+  ASSERT_GE(fires.size(), 4u);
+  const double model = (fires.back() - fires.front()) / static_cast<double>(fires.size() - 1);
+  EXPECT_NEAR(model / circuit, 1, 0.003) << model << " s against the circuit's " << circuit << " s";
+}
+
+// The same deck with its photocurrent reversed: the node settles at the brightest current, and no
+// weaker one is waited for.
+TEST_F(NgspiceTest, ABsimDeckThatNeverFiresIsToldSoFromItsBrightestCurrent) {
+  std::string deck = slurp(kBsimDeck);
+  deck.replace(deck.find("Iph vdd mem {iph}"), 17, "Iph mem vdd {iph}");
+  write("reversed.cir", deck);
+  const Outcome o = aesim("calibrate reversed.cir --subckt bsim_axon_hillock --probe mem -o reversed.toml");
+  EXPECT_EQ(o.status, 2) << o.err;
+  EXPECT_NE(o.err.find("never fires between 1e-15 A and 1e-09 A"), std::string::npos) << o.err;
+  // Its start-up fires once (from ngspice's all-zero state), then the node settles below ground.
+  EXPECT_NE(o.err.find("at 1e-09 A fired 1 time, then node 'mem' settles at"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("(12 of the 13 currents, beyond it, were not waited for)"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(dir_ / "reversed.toml"));
 }
 
 TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {

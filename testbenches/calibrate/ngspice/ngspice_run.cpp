@@ -136,7 +136,10 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
   // fakes firings at slow ramps), tolerances sized for femtoamps and femtocoulombs (the defaults,
   // 1 pA and 10 fC, are the size of what is measured), and gmin, the conductance ngspice puts
   // across every junction (1 pS by default, i.e. picoamps of fake leakage), far below the deck's
-  // own leakage. The deck comes after them, so its own .options win.
+  // own leakage. The deck comes after them, so its own .options win. One thread: ngspice's BSIM3
+  // and BSIM4 models evaluate devices on two OpenMP threads by default, which on a pixel's handful
+  // of transistors only spins the second (a GF180 transient: 25 s of CPU on one thread, 54 s on two,
+  // no sooner done), and with `--jobs` runs at once the spinning threads starve the others.
   return fmt::format(
       "* aesim calibrate: {} at iph = {:.6g} A\n"
       ".options method={} reltol=1e-4 abstol={:g} chgtol={:g} gmin={:g} seed={}\n"
@@ -145,6 +148,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "Vdd vdd 0 {:.12g}\n"
       "Xpix vdd out 0 {} iph={:.12g}{}\n"
       ".control\n"
+      "set num_threads=1\n"
       "tran {:.6g} {:.12g} 0 {:.6g} uic\n"
       "set wr_singlescale\n"
       "set numdgt=15\n"
@@ -211,11 +215,17 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   }
   StepCollapseWatch watch(request.t_stop, kRunSeconds, kProgressWindow);
   const auto started = std::chrono::steady_clock::now();
+  bool abandoned = false;
   const auto will_finish = [&] {
+    if (request.abandon && request.abandon()) {
+      abandoned = true;
+      return false;
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return watch.keep_waiting(wall, reported_time(log));
   };
   const std::optional<int> status = wait_child_while(pid, kRunSeconds, will_finish, 1.0);
+  if (!status && abandoned) throw TransientAbandoned();
   if (!status) {
     if (const double stalled_at = watch.stalled_at(); stalled_at >= 0) {
       throw TransientAborted(fmt::format("ngspice's time step collapsed near t = {:.4g} s: at its pace it would not "

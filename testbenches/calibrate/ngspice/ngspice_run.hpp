@@ -1,5 +1,6 @@
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <deque>
@@ -39,6 +40,9 @@ struct TransientRequest {
   // Where the testbench and ngspice's log of a run that rejects the deck are kept for the user
   // (the first such run's; empty: nowhere). A file already there is left alone.
   std::string failure_log{};
+  // Asked about once a second while ngspice runs: true stops it (TransientAbandoned), for a run
+  // whose answer another run has made known.
+  std::function<bool()> abandon{};
 };
 
 // What a run records: the pixel's output, the supply's current (ngspice's sign: negative when the
@@ -84,6 +88,12 @@ class StepCollapseWatch {
 class TransientAborted : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// The run was stopped because TransientRequest::abandon said so.
+class TransientAbandoned : public std::runtime_error {
+ public:
+  TransientAbandoned() : std::runtime_error("abandoned") {}
 };
 
 // "ngspice-39", from `ngspice -v`.

@@ -155,8 +155,9 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
     const bool fired = std::isfinite(p.period);
     text += fmt::format("#   {:<14} {:<13} {:<13} {:<13} {:<13} {}\n", engineering(p.current, "A"),
                         fired                ? engineering(p.period, "s")
-                        : p.aborted.empty() ? std::string("never fired")
-                                            : std::string("gave up"),
+                        : !p.aborted.empty() ? std::string("gave up")
+                        : p.inferred         ? std::string("silent beyond")
+                                             : std::string("never fired"),
                         fired ? fmt::format("{:+.3f} %", 100 * c.fit.residuals[fitted]) : std::string("-"),
                         engineering(p.pulse, "s"), engineering(p.comparator_delay, "s"),
                         engineering(p.supply_charge, "C"));

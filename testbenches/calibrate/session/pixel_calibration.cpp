@@ -74,10 +74,12 @@ struct PointRun {
   CalibrationPoint point;
   Waveform wave;
   FiringMeasure measure;
+  bool abandoned = false;  // stopped by `abandon` before it had an answer
 };
 
 PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, double current, std::optional<unsigned> mc_seed,
-                       double guess, const fs::path& scratch, const std::string& name) {
+                       double guess, const fs::path& scratch, const std::string& name,
+                       const std::function<bool()>& abandon = {}) {
   PointRun r;
   r.point.current = current;
   r.point.period = r.point.pulse = r.point.comparator_delay = r.point.supply_charge = kUnmeasured;
@@ -91,11 +93,18 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
   // than a period: once a run has seen it, the next runs last that long plus the periods.
   double first_fire = 0;
   for (int run = 0; run < kMaxRuns; ++run) {
+    if (abandon && abandon()) {
+      r.abandoned = true;
+      return r;
+    }
     const double t_stop = first_fire > 0 ? first_fire + guess * (o.firings + 1.5) : guess * (o.firings + 2.5);
     TransientRequest request{current, t_stop, guess / kStepsPerPeriod / finer, mc_seed.value_or(kTableSeed),
-                             mc_seed.has_value(), settings, o.failure_log};
+                             mc_seed.has_value(), settings, o.failure_log, abandon};
     try {
       r.wave = run_transient(deck, o.vdd, request, scratch, name);
+    } catch (const TransientAbandoned&) {
+      r.abandoned = true;
+      return r;
     } catch (const InputError&) {
       // A Ctrl-C reaches ngspice too, which then fails: the interruption, not the deck, is why.
       if (interrupt_requested()) throw Interrupted(interrupt_requested());
@@ -207,6 +216,41 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
   c.ngspice = ngspice_version();
   const ScratchFolder scratch(fs::absolute(fs::temp_directory_path()) / fmt::format("aesim-calibrate-{}", ::getpid()));
   std::vector<PointRun> runs;
+  // Where the grid's runs showed the pixel stop: the brightest current at which its node settled
+  // without firing periodically (a weaker light settles it lower still: a leak or a clamp that
+  // balances one photocurrent balances a smaller one further from the threshold), and the weakest
+  // at which out latched (a stronger light outruns the reset sooner). Currents beyond them are
+  // not run, and a run under way there is stopped: a pixel that fires nowhere is told so after a
+  // few transients, not after every current's.
+  std::mutex bounds_lock;
+  double settled_at = 0, latched_at = std::numeric_limits<double>::infinity();
+  std::string settled_seen, latched_seen;
+  auto beyond = [&](double current) {
+    std::lock_guard<std::mutex> g(bounds_lock);
+    return current < settled_at || current > latched_at;
+  };
+  auto learn = [&](const CalibrationPoint& p) {
+    if (std::isfinite(p.period) || p.seen.empty() || p.inferred) return;
+    std::lock_guard<std::mutex> g(bounds_lock);
+    if (p.seen.find("out latched") != std::string::npos) {
+      if (p.current < latched_at) {
+        latched_at = p.current;
+        latched_seen = p.seen;
+      }
+    } else if (p.seen.find(" settles at ") != std::string::npos && p.current > settled_at) {
+      settled_at = p.current;
+      settled_seen = p.seen;
+    }
+  };
+  // A current beyond the bounds: silent as the one that set them. Said the same way whether its own
+  // run finished before the bound was known, was stopped, or never started, so that the preset is
+  // the same whatever order the runs finished in.
+  auto as_beyond = [&](CalibrationPoint& p) {
+    p.period = p.pulse = p.comparator_delay = p.supply_charge = kUnmeasured;
+    p.inferred = true;
+    p.seen = p.current < settled_at ? fmt::format("as at {:.3g} A, a stronger light: {}", settled_at, settled_seen)
+                                    : fmt::format("as at {:.3g} A, a weaker light: {}", latched_at, latched_seen);
+  };
   auto measure_all = [&](const std::vector<double>& currents, const char* what) {
     const std::size_t first = runs.size();
     runs.resize(first + currents.size());
@@ -215,17 +259,34 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
         [&](int k) {
           const std::size_t index = first + static_cast<std::size_t>(k);
           const double current = currents[static_cast<std::size_t>(k)];
+          const auto abandon = [&beyond, current] { return beyond(current); };
           runs[index] = measure_point(deck, o, current, std::nullopt, o.charge_guess / current, scratch.path(),
-                                      fmt::format("p{:03d}", index));
+                                      fmt::format("p{:03d}", index), abandon);
+          if (!runs[index].abandoned) learn(runs[index].point);
         },
         progress_bar(o.progress, static_cast<int>(currents.size()), what));
     std::sort(runs.begin(), runs.end(), [](const PointRun& a, const PointRun& b) { return a.point.current < b.point.current; });
   };
-  std::vector<double> grid;
-  for (int k = 0; k < o.points; ++k) {
-    grid.push_back(o.i_low * std::pow(o.i_high / o.i_low, static_cast<double>(k) / (o.points - 1)));
+  // The grid's currents from both ends inwards, halving (the brightest, the weakest, the middle,
+  // the quarters, ...): where the pixel stops shows at the fewest runs.
+  const auto grid_current = [&](int k) {
+    return o.i_low * std::pow(o.i_high / o.i_low, static_cast<double>(k) / (o.points - 1));
+  };
+  std::vector<double> grid{grid_current(o.points - 1), grid_current(0)};
+  std::vector<std::pair<int, int>> spans{{0, o.points - 1}};
+  for (std::size_t next = 0; next < spans.size(); ++next) {
+    const auto [a, b] = spans[next];
+    if (b - a < 2) continue;
+    const int m = (a + b) / 2;
+    grid.push_back(grid_current(m));
+    spans.emplace_back(a, m);
+    spans.emplace_back(m, b);
   }
   measure_all(grid, "photocurrents");
+  for (PointRun& r : runs) {
+    const bool silent = !std::isfinite(r.point.period) && r.point.aborted.empty();
+    if (r.abandoned || (silent && beyond(r.point.current))) as_beyond(r.point);
+  }
   auto fired = [&] {
     std::vector<const PointRun*> out;
     for (const PointRun& r : runs) {
@@ -257,8 +318,16 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     if (fired().empty()) {
       // What the runs showed, at the brightest current that showed something.
       std::string seen;
-      for (auto it = runs.rbegin(); it != runs.rend() && seen.empty(); ++it) {
-        if (!it->point.seen.empty()) seen = fmt::format("; at {:.3g} A {}", it->point.current, it->point.seen);
+      std::size_t not_run = 0;  // beyond the current named
+      for (auto it = runs.rbegin(); it != runs.rend(); ++it) {
+        if (it->point.inferred) {
+          ++not_run;
+        } else if (seen.empty() && !it->point.seen.empty()) {
+          seen = fmt::format("; at {:.3g} A {}", it->point.current, it->point.seen);
+        }
+      }
+      if (not_run > 0) {
+        seen += fmt::format(" ({} of the {} currents, beyond it, were not waited for)", not_run, runs.size());
       }
       throw InputError(fmt::format("deck '{}': the pixel never fires between {:.3g} A and {:.3g} A (no rising edge "
                                    "of out through vdd/2 = {:.3g} V){}{}",
@@ -347,9 +416,13 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
   if (!silent.empty()) {
     std::string list;
     for (double i : silent) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", i);
+    const auto beyond_count = std::count_if(c.points.begin(), c.points.end(), [](const CalibrationPoint& p) { return p.inferred; });
+    const std::string beyond_text =
+        beyond_count == 0 ? std::string()
+                          : fmt::format(" ({} of them beyond a current where it settled or latched, not waited for)", beyond_count);
     std::fprintf(stderr, "aesim calibrate: warning: the pixel never fired (or never settled to a period) at %zu of %zu "
-                         "photocurrents (%s A); the table holds the other %zu\n",
-                 silent.size(), c.points.size(), list.c_str(), c.current.size());
+                         "photocurrents (%s A)%s; the table holds the other %zu\n",
+                 silent.size(), c.points.size(), list.c_str(), beyond_text.c_str(), c.current.size());
   }
   c.fit = fit_pixel(c.current, c.period);
   std::vector<double> pulses;

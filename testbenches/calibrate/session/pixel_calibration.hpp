@@ -34,6 +34,9 @@ struct CalibrationPoint {
   std::size_t settings = 0;    // the solver settings level it was measured with (solver_settings())
   std::string aborted;         // why ngspice gave up on it under every setting ("" when it did not)
   std::string seen;            // when it never fired and was not waited for longer: what the run showed
+  // Not run (or stopped): a weaker light than one whose node settled, or a stronger one than one that
+  // latched, does the same; `seen` says which current showed it.
+  bool inferred = false;
 };
 
 struct Calibration {
