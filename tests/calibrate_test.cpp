@@ -712,6 +712,34 @@ quit 0
   EXPECT_NEAR(model / circuit, 1, 0.003) << model << " s against the circuit's " << circuit << " s";
 }
 
+// The same deck with a short reset and a leakier capacitor: the leak is fitted as a negative dark
+// current and the node settles at 1 fA (silent below the table), and the supply's charge per firing
+// comes out negative (a crowbar current that grows with the period): said, with the figures, and
+// the energy per firing held at 0 rather than clamped in silence.
+TEST_F(NgspiceTest, ABsimDeckWithALeakAndAShortResetSaysBoth) {
+  std::string deck = slurp(kBsimDeck);
+  const std::string defaults = "params: iph=1p vbias=0.5 gleak=1.9e-6";
+  ASSERT_NE(deck.find(defaults), std::string::npos);
+  deck.replace(deck.find(defaults), defaults.size(), "params: iph=1p vbias=0.9 gleak=5e-5");
+  write("leaky.cir", deck);
+  const Outcome o = aesim("calibrate leaky.cir --subckt bsim_axon_hillock --probe mem -o leaky.toml");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.err.find("warning: power.e_pixel_event is 0: the supply's charge per firing, 0 C (the line fitted without "
+                       "bounds gives -"),
+            std::string::npos)
+      << o.err;
+  const std::string preset = slurp(dir_ / "leaky.toml");
+  EXPECT_NE(preset.find("(a leak: below "), std::string::npos) << preset;
+  EXPECT_NE(preset.find("At 1e-15 A and below the circuit does not keep firing (node 'mem' settles at"), std::string::npos)
+      << preset;
+  EXPECT_NE(preset.find("I_r = none (the reset does not follow the light)"), std::string::npos) << preset;
+  SensorConfig c;
+  apply_toml_file(c, (dir_ / "leaky.toml").string(), "");
+  EXPECT_DOUBLE_EQ(c.pixel.transfer.silent_below, 1e-15);
+  EXPECT_EQ(c.power.e_pixel_event, 0.0);
+  EXPECT_GT(c.power.p_static_pixel, 0.0);
+}
+
 // The same deck with its photocurrent reversed: the node settles at the brightest current, and no
 // weaker one is waited for.
 TEST_F(NgspiceTest, ABsimDeckThatNeverFiresIsToldSoFromItsBrightestCurrent) {
