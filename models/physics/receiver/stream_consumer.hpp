@@ -4,18 +4,18 @@
 
 #include "aesim/array/address_map.hpp"
 #include "aesim/events/event_log.hpp"
+#include "aesim/receiver/beat_decoder.hpp"
 
 namespace aesim {
 
 // The consumer of a receiver's event stream, one rising clock edge at a time: a beat with valid
-// and ready both high before the edge is taken. Its timestamp is unwrapped (the counter wraps at
-// 2^ts_width) and turned into seconds with the receiver's tick, its address into a pixel of the
-// tile. `ready` decides, per edge, whether the consumer accepts in the next cycle (always, by
-// default). Shared by the SystemC sink (receiver/event_sink) and the reference receiver's clock
+// and ready both high before the edge is taken, decoded (BeatDecoder) into the log. `ready`
+// decides, per edge, whether the consumer accepts in the next cycle (always, by default). Shared by the SystemC sink (receiver/event_sink) and the reference receiver's clock
 // domain (receiver/reference_clock_domain), so both take the same beats.
 class StreamConsumer {
  public:
-  StreamConsumer(std::uint32_t tile, const AddressMap& map, double tick, int ts_width, EventLog& log);
+  StreamConsumer(std::uint32_t tile, const AddressMap& map, double tick, int ts_width, EventLog& log)
+      : decoder_(tile, map, tick, ts_width), log_(log) {}
 
   void set_ready_pattern(std::function<bool(std::uint64_t cycle)> ready) { ready_ = std::move(ready); }
   // A rising edge, with the values the wires held before it; returns ready for the next cycle.
@@ -26,16 +26,12 @@ class StreamConsumer {
   }
 
  private:
-  void take(std::uint64_t ts, std::uint32_t addr, bool flags);
+  void take(std::uint64_t ts, std::uint32_t addr, bool flags) { log_.output(decoder_.decode(ts, addr, flags)); }
 
-  std::uint32_t tile_;
-  const AddressMap& map_;
-  double tick_;
-  std::uint64_t ts_modulus_;
+  BeatDecoder decoder_;
   EventLog& log_;
   std::function<bool(std::uint64_t)> ready_;
   std::uint64_t cycle_ = 0;
-  std::uint64_t last_ts_ = 0, wraps_ = 0;
 };
 
 }  // namespace aesim

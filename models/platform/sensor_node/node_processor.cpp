@@ -29,8 +29,6 @@ NodeProcessor::NodeProcessor(const sc_core::sc_module_name& name, const std::vec
   per_event_ = sc_core::sc_time(config_.cycles_per_template * static_cast<double>(templates_.size()) / config_.clock_hz,
                                 sc_core::SC_SEC);
   per_interrupt_ = sc_core::sc_time(config_.isr_cycles / config_.clock_hz, sc_core::SC_SEC);
-  scale_x_ = static_cast<double>(templates_.front().width) / config_.array_width;
-  scale_y_ = static_cast<double>(templates_.front().height) / config_.array_height;
   socket.register_nb_transport_bw(this, &NodeProcessor::nb_transport_bw);
   SC_THREAD(firmware);
 }
@@ -136,8 +134,9 @@ void NodeProcessor::handle_interrupt() {
 
 void NodeProcessor::take(std::uint32_t word) {
   if (word == reg::kEmptyEvent || reg::event_ghost(word)) return;
-  // template_position() with the scale worked out once.
-  const std::pair<double, double> p{(reg::event_x(word) + 0.5) * scale_x_ - 0.5, (reg::event_y(word) + 0.5) * scale_y_ - 0.5};
+  const std::pair<double, double> p =
+      template_position(reg::event_x(word), reg::event_y(word), config_.array_width, config_.array_height,
+                        templates_.front().width, templates_.front().height);
   ++events_read_;
   ++recognition_read_;
   if (config_.record_positions) positions_.push_back(p);
@@ -149,15 +148,15 @@ void NodeProcessor::take(std::uint32_t word) {
   if (config_.charge_centring) charge_recognition();
   centre_x_ += p.first;
   centre_y_ += p.second;
-  if (++centring_ < config_.classifier.center_events) return;
-  recogniser_->centre_on(centre_x_ / static_cast<double>(centring_), centre_y_ / static_cast<double>(centring_));
+  // Until centred, every event this recognition read was a centring one.
+  if (recognition_read_ < config_.classifier.center_events) return;
+  recogniser_->centre_on(centre_x_ / static_cast<double>(recognition_read_), centre_y_ / static_cast<double>(recognition_read_));
   centred_ = true;
 }
 
 void NodeProcessor::charge_recognition() {
   compute(per_event_);
-  // The cycles' own time, not the kernel's rounding of it to its resolution.
-  recognition_s_ += config_.cycles_per_template * static_cast<double>(templates_.size()) / config_.clock_hz;
+  ++recognition_charged_;
 }
 
 bool NodeProcessor::score(const std::pair<double, double>& p) {
@@ -174,7 +173,9 @@ void NodeProcessor::decide() {
   d.events_read = recognition_read_;
   d.events_scored = recognition_scored_;
   d.at_s = local_now().to_seconds();
-  d.recognition_s = recognition_s_;
+  // The cycles' own time, not the kernel's rounding of each event's to its resolution.
+  d.recognition_s = recognition_seconds(static_cast<double>(recognition_charged_), templates_.size(),
+                                        config_.cycles_per_template, config_.clock_hz);
   d.overflows = access(tlm::TLM_READ_COMMAND, reg::kOverflows);
   decisions_.push_back(d);
   if (!config_.keep_recognising) {
@@ -183,10 +184,8 @@ void NodeProcessor::decide() {
   }
   recogniser_.emplace(templates_, config_.classifier);
   centred_ = false;
-  centring_ = 0;
   centre_x_ = centre_y_ = 0;
-  recognition_read_ = recognition_scored_ = 0;
-  recognition_s_ = 0;
+  recognition_read_ = recognition_scored_ = recognition_charged_ = 0;
 }
 
 }  // namespace aesim

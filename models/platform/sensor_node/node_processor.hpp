@@ -114,11 +114,9 @@ class NodeProcessor : public sc_core::sc_module {
   bool centred_ = false, stopped_ = false;
   std::vector<std::pair<double, double>> positions_;
   double centre_x_ = 0, centre_y_ = 0;
-  std::uint64_t centring_ = 0;
-  std::uint64_t recognition_read_ = 0, recognition_scored_ = 0;
-  double recognition_s_ = 0;
+  // This recognition's events: read, scored, and charged the recogniser's cycles.
+  std::uint64_t recognition_read_ = 0, recognition_scored_ = 0, recognition_charged_ = 0;
   sc_core::sc_time busy_ = sc_core::SC_ZERO_TIME;
-  double scale_x_ = 1, scale_y_ = 1;  // array pixels to template pixels
   std::uint64_t events_read_ = 0, interrupts_ = 0;
   std::vector<NodeDecision> decisions_;
 };

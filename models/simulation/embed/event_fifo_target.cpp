@@ -54,29 +54,34 @@ void EventFifoTarget::deliver(const std::vector<AddressEvent>& events) {
 void EventFifoTarget::start_of_simulation() { schedule_due(); }
 
 void EventFifoTarget::admit(sc_dt::uint64 at) {
-  if (stream_next_ == stream_.size() || stream_at_[stream_next_] > at) return;
+  const std::size_t before = stream_next_;
   while (stream_next_ < stream_.size() && stream_at_[stream_next_] <= at) enter(stream_[stream_next_++]);
-  update_irq();
+  if (stream_next_ != before) update_irq();
+}
+
+std::optional<sc_dt::uint64> EventFifoTarget::threshold_arrival() const {
+  if ((irq_enable_ & 1u) == 0 || irq_threshold_ > depth_) return std::nullopt;
+  const std::size_t index = stream_next_ + (irq_threshold_ - fifo_.size()) - 1;
+  if (index >= stream_.size()) return std::nullopt;
+  return stream_at_[index];
 }
 
 std::optional<sc_core::sc_time> EventFifoTarget::irq_due(const sc_core::sc_time& from) {
   admit(from.value());
   if (irq_level_) return from;
-  if ((irq_enable_ & 1u) == 0 || irq_threshold_ > depth_) return std::nullopt;
-  const std::size_t index = stream_next_ + (irq_threshold_ - fill()) - 1;
-  if (index >= stream_.size()) return std::nullopt;
-  return sc_core::sc_time::from_value(stream_at_[index]);
+  const std::optional<sc_dt::uint64> at = threshold_arrival();
+  if (!at) return std::nullopt;
+  return sc_core::sc_time::from_value(*at);
 }
 
 void EventFifoTarget::schedule_due() {
-  if (irq_level_ || (irq_enable_ & 1u) == 0 || irq_threshold_ > depth_) return;
-  const std::size_t index = stream_next_ + (irq_threshold_ - fill()) - 1;
-  if (index >= stream_.size()) return;
-  const sc_dt::uint64 at = stream_at_[index], now = now_value();
+  if (irq_level_) return;
+  const std::optional<sc_dt::uint64> at = threshold_arrival();
   // An earlier wake-up already set stays: it finds the FIFO as it is then and sets the next one.
-  if (due_at_ && *due_at_ <= at) return;
-  due_at_ = at;
-  due_.notify(sc_core::sc_time::from_value(at > now ? at - now : 0));
+  if (!at || (due_at_ && *due_at_ <= *at)) return;
+  const sc_dt::uint64 now = now_value();
+  due_at_ = *at;
+  due_.notify(sc_core::sc_time::from_value(*at > now ? *at - now : 0));
 }
 
 void EventFifoTarget::on_due() {

@@ -78,6 +78,9 @@ class EventFifoTarget : public sc_core::sc_module {
   void update_irq();
   void drive_irq();
   void on_due();
+  // When the delivered event that lifts the fill to the threshold arrives (ps), if nothing is read
+  // first: none while the interrupt is disabled or the stream ends short of it.
+  std::optional<sc_dt::uint64> threshold_arrival() const;
   void schedule_due();
   void start_of_simulation() override;
 

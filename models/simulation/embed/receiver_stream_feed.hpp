@@ -6,15 +6,15 @@
 #include "aesim/array/address_map.hpp"
 #include "aesim/embed/event_fifo_target.hpp"
 #include "aesim/embed/imager.hpp"
+#include "aesim/receiver/beat_decoder.hpp"
 
 namespace aesim {
 
 // A tile's receiver output stream at the cycle fidelity into an EventFifoTarget: the FIFO as the
 // stream's consumer. One beat is taken at each rising edge of `clk` with evt_valid high (evt_ready
 // is held high: the peripheral takes every beat, and one that finds the FIFO full is dropped and
-// counted there, as with the timed stream). The beat's address becomes the tile's pixel and its
-// stamp (unwrapped over the receiver's stamp width) the event's stamp; it enters the FIFO at the
-// edge. Bind the ports to the signals a receiver on Imager::tile[t]'s ports drives, in place of the
+// counted there, as with the timed stream). The beat becomes its event (BeatDecoder: the tile's
+// pixel, the stamp unwrapped) and enters the FIFO at the edge. Bind the ports to the signals a receiver on Imager::tile[t]'s ports drives, in place of the
 // tile's own evt_* ports (the FIFO, not Imager::events(), then holds that tile's events).
 class ReceiverStreamFeed : public sc_core::sc_module {
  public:
@@ -33,11 +33,9 @@ class ReceiverStreamFeed : public sc_core::sc_module {
   void on_clock();
 
   EventFifoTarget& fifo_;
-  AddressMap map_;
-  std::uint32_t tile_;
-  double tick_;
-  std::uint64_t ts_modulus_;
-  std::uint64_t last_ts_ = 0, wraps_ = 0, beats_ = 0;
+  AddressMap map_;  // before decoder_, which refers to it
+  BeatDecoder decoder_;
+  std::uint64_t beats_ = 0;
 };
 
 }  // namespace aesim

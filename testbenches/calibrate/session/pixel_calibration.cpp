@@ -45,29 +45,35 @@ constexpr std::size_t kMaxTablePoints = 400;
 constexpr int kMaxRuns = 6;
 constexpr double kLongestPeriod = 1000;
 
+// What a silent run showed: the kind, for the calibration's bounds, and the words, for the user.
+struct Silence {
+  Stop stop = Stop::none;
+  std::string text;
+};
+
 // A run in which the pixel never fired, looked at for the reason it never will: out held high
 // (latched), or the probe node settled (it moved by under 1 % in the run's last 30 % of what it
 // moved before: a leak or a clamp balances the photocurrent, not a ramp too slow for the run).
-// "" when neither: the next run waits longer.
-std::string why_silent(const Waveform& w, double vdd, const std::string& probe) {
-  if (w.t.size() < 10) return "";
+// Stop::none when neither: the next run waits longer.
+Silence why_silent(const Waveform& w, double vdd, const std::string& probe) {
+  if (w.t.size() < 10) return {};
   const std::size_t n = w.t.size();
   // Weighed by time, not samples: ngspice takes long steps over a latched node and short ones over
   // the ramp before it.
   double high = 0;
   for (std::size_t k = 1; k < n; ++k) high += w.out[k] > vdd / 2 ? w.t[k] - w.t[k - 1] : 0;
   if (high * 2 > w.t.back() - w.t.front() && w.out.back() > vdd / 2) {
-    return fmt::format("out latched high ({:.3g} V)", w.out.back());
+    return {Stop::latched, fmt::format("out latched high ({:.3g} V)", w.out.back())};
   }
-  if (w.probe.size() != n) return "";
+  if (w.probe.size() != n) return {};
   const double cut = w.t.front() + 0.7 * (w.t.back() - w.t.front());
   std::size_t k = 0;
   while (k + 1 < n && w.t[k] < cut) ++k;
   const double early = std::fabs(w.probe[k] - w.probe.front()), late = std::fabs(w.probe.back() - w.probe[k]);
   if (late <= 0.01 * early + 1e-6) {
-    return fmt::format("node '{}' settles at {:.3g} V without out rising", probe, w.probe.back());
+    return {Stop::settled, fmt::format("node '{}' settles at {:.3g} V without out rising", probe, w.probe.back())};
   }
-  return "";
+  return {};
 }
 
 struct PointRun {
@@ -146,10 +152,12 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
       // and then held out high (a reset the light outruns) has latched as surely as one that never
       // rose; one whose node settled after its last firing (a start-up transient through the
       // feedback capacitor can give one) has stopped as surely as one that never fired.
-      const std::string seen = why_silent(r.wave, o.vdd, deck.probe);
+      const Silence seen = why_silent(r.wave, o.vdd, deck.probe);
       const bool settled_after = fired > 0 && r.measure.fires.back() < r.wave.t.front() + 0.7 * (r.wave.t.back() - r.wave.t.front());
-      if (!seen.empty() && (fired == 0 || seen.rfind("out latched", 0) == 0 || settled_after)) {
-        r.point.seen = fired == 0 ? seen : fmt::format("fired {} time{}, then {}", fired, fired > 1 ? "s" : "", seen);
+      if (seen.stop != Stop::none && (fired == 0 || seen.stop == Stop::latched || settled_after)) {
+        r.point.stop = seen.stop;
+        r.point.seen =
+            fired == 0 ? seen.text : fmt::format("fired {} time{}, then {}", fired, fired > 1 ? "s" : "", seen.text);
         return r;
       }
     }
@@ -230,14 +238,14 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     return current < settled_at || current > latched_at;
   };
   auto learn = [&](const CalibrationPoint& p) {
-    if (std::isfinite(p.period) || p.seen.empty() || p.inferred) return;
+    if (std::isfinite(p.period) || p.inferred) return;
     std::lock_guard<std::mutex> g(bounds_lock);
-    if (p.seen.find("out latched") != std::string::npos) {
+    if (p.stop == Stop::latched) {
       if (p.current < latched_at) {
         latched_at = p.current;
         latched_seen = p.seen;
       }
-    } else if (p.seen.find(" settles at ") != std::string::npos && p.current > settled_at) {
+    } else if (p.stop == Stop::settled && p.current > settled_at) {
       settled_at = p.current;
       settled_seen = p.seen;
     }

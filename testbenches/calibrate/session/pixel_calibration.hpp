@@ -23,6 +23,9 @@ struct CalibrationOptions {
 };
 
 // One photocurrent's measurement.
+// Why a run showed a pixel will not fire at its current.
+enum class Stop { none, latched, settled };
+
 struct CalibrationPoint {
   double current = 0;          // A
   double period = 0;           // s, mean firing period (NaN: never fired)
@@ -34,6 +37,7 @@ struct CalibrationPoint {
   std::size_t settings = 0;    // the solver settings level it was measured with (solver_settings())
   std::string aborted;         // why ngspice gave up on it under every setting ("" when it did not)
   std::string seen;            // when it never fired and was not waited for longer: what the run showed
+  Stop stop = Stop::none;      // and which of the two it was
   // Not run (or stopped): a weaker light than one whose node settled, or a stronger one than one that
   // latched, does the same; `seen` says which current showed it.
   bool inferred = false;
