@@ -3,8 +3,9 @@
 # and run. Checked: on the rock sign (2 s at the aloha preset's light) the node decides "rock", loses
 # nothing behind a 64-event FIFO at 57.6 MHz, and the approximately timed processor's row equals the
 # loosely timed one's; at the cycle fidelity (each tile's aesim::Receiver streaming into the FIFO)
-# it decides "rock" too; a 1.8 MHz processor behind a 4-event FIFO loses events; the paper's inputs
-# give 13.35 ms of processing; a bad option exits 2 with one line.
+# it decides "rock" too; the letter C with the letters' templates decides "C"; a 1.8 MHz processor
+# behind a 4-event FIFO loses events; the paper's inputs give 13.35 ms of processing; a bad option
+# exits 2 with one line.
 #   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen> -P this
 cmake_policy(VERSION 3.22)
 foreach(v BUILD SOURCE WORK GENERATOR)
@@ -69,6 +70,12 @@ endif()
 node(lossy --sign rock --set sim.duration=2s --clock 1.8e6 --fifo 4)
 if(lossy_events_lost LESS 1000 OR NOT lossy_events_read LESS lossy_events_delivered)
   message(FATAL_ERROR "a 1.8 MHz processor behind 4 events lost only ${lossy_events_lost}")
+endif()
+
+# Another scene and other templates: the letter C among the letters' templates.
+node(letter --scene ${SOURCE}/scenes/letters/C.pgm --templates ${SOURCE}/scenes/templates/letters --set sim.duration=1s)
+if(NOT letter_first_winner STREQUAL "C")
+  message(FATAL_ERROR "the letter C was taken for '${letter_first_winner}'")
 endif()
 
 execute_process(COMMAND ${WORK}/example/sensor_node --fifo 2.5 RESULT_VARIABLE status OUTPUT_VARIABLE out

@@ -4,7 +4,8 @@
 // paper's rank-weighted recogniser as timed firmware, reading the FIFO over its socket on the
 // interrupt. One scene a run; a CSV row of what the node did on stdout, a summary on stderr.
 //
-//   usage: sensor_node [--sign NAME] [--set KEY=VALUE]... [--fifo DEPTH] [--clock HZ]
+//   usage: sensor_node [--sign NAME | --scene FILE] [--templates FOLDER] [--set KEY=VALUE]...
+//                      [--fifo DEPTH] [--clock HZ]
 //                      [--cycles-per-template N] [--k K] [--fidelity event|cycle]
 //                      [--timing loose|approximate] [--quantum SECONDS] [--csv-header]
 //
@@ -26,6 +27,7 @@ namespace {
 
 struct Options {
   std::string sign = "victory";
+  std::string scene, templates;  // empty: the sign's scene; the hand-sign templates
   std::vector<aesim::Setting> settings;
   std::uint32_t fifo = 64;
   aesim::NodeProcessorConfig cpu;
@@ -58,6 +60,10 @@ Options parse(int argc, char* argv[]) {
     const std::string value = argv[++i];
     if (flag == "--sign") {
       o.sign = value;
+    } else if (flag == "--scene") {
+      o.scene = value;
+    } else if (flag == "--templates") {
+      o.templates = value;
     } else if (flag == "--set") {
       const std::size_t eq = value.find('=');
       if (eq == std::string::npos) throw std::invalid_argument("--set: '" + value + "' is not KEY=VALUE");
@@ -122,9 +128,11 @@ int sc_main(int argc, char* argv[]) {
   try {
     Options o = parse(argc, argv);
     const std::string data = aesim::data_dir();
-    const std::vector<aesim::Template> templates = aesim::load_templates(data + "/scenes/templates/hand_signs");
+    const std::vector<aesim::Template> templates =
+        aesim::load_templates(o.templates.empty() ? data + "/scenes/templates/hand_signs" : o.templates);
     aesim::ImagerSpec spec;
-    spec.scene = data + "/scenes/hand_signs/" + o.sign + ".pgm";
+    spec.scene = o.scene.empty() ? data + "/scenes/hand_signs/" + o.sign + ".pgm" : o.scene;
+    if (!o.scene.empty()) o.sign = o.scene;
     spec.settings = o.settings;
     // Loosely timed: the processor runs ahead of the kernel by up to this quantum.
     tlm::tlm_global_quantum::instance().set(sc_core::sc_time(o.quantum_s, sc_core::SC_SEC));
