@@ -52,7 +52,7 @@ double TransferCurve::integrating_current(double photocurrent, double threshold_
   const double q = charge > 0 ? charge : threshold_charge;
   const double reset = this->t_reset >= 0 ? this->t_reset : t_reset;
   const auto effective = [&](double i) { return q / (period_at(i) - reset); };
-  if (photocurrent >= silent_above || (silent_below > 0 && photocurrent <= silent_below)) return 0;
+  if (silent_at(photocurrent)) return 0;
   if (photocurrent < current.front()) {
     const double at_end = effective(current.front());
     return at_end * (photocurrent + i_dark) / (current.front() + i_dark);

@@ -38,6 +38,10 @@ struct TransferCurve {
   double silent_above = std::numeric_limits<double>::infinity();  // A, nor at or above it
 
   bool empty() const { return current.empty(); }
+  // Whether the circuit was seen not to fire at this photocurrent (at or past a silent bound).
+  bool silent_at(double photocurrent) const {
+    return photocurrent >= silent_above || (silent_below > 0 && photocurrent <= silent_below);
+  }
   // The table's period at a photocurrent within [current.front(), current.back()].
   double period_at(double photocurrent) const;
   // The current the pixel integrates at this photocurrent (see above).

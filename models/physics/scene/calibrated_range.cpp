@@ -26,7 +26,7 @@ CalibratedRangeUse calibrated_range_use(const Scene& scene, const PixelParams& p
       use.highest = std::max(use.highest, current);
       if (current < lo) seen[i] |= 1;
       if (current > hi) seen[i] |= 2;
-      if (current >= t.silent_above || (t.silent_below > 0 && current <= t.silent_below)) seen[i] |= 4;
+      if (t.silent_at(current)) seen[i] |= 4;
     }
   }
   for (const unsigned char s : seen) {

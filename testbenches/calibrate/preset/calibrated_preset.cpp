@@ -112,16 +112,13 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       "# Valid from {:.4g} A to {:.4g} A, the currents at which the circuit fired periodically (pixel.transfer's\n"
       "#   ends): outside them the model extrapolates along eq. 2, and `aesim run` warns how many pixels are there.\n",
       c.current.front(), c.current.back());
-  if (c.silent_below > 0) {
-    text += fmt::format("# At {:.4g} A and below the circuit does not keep firing{}: pixel.transfer.silent_below, the\n"
+  const auto silent_line = [&text](double at, const char* side, const char* key, const std::string& seen) {
+    text += fmt::format("# At {:.4g} A and {} the circuit does not keep firing{}: pixel.transfer.{}, the\n"
                         "#   model's pixel is silent there too.\n",
-                        c.silent_below, c.silent_below_seen.empty() ? "" : " (" + c.silent_below_seen + ")");
-  }
-  if (std::isfinite(c.silent_above)) {
-    text += fmt::format("# At {:.4g} A and above the circuit does not keep firing{}: pixel.transfer.silent_above, the\n"
-                        "#   model's pixel is silent there too.\n",
-                        c.silent_above, c.silent_above_seen.empty() ? "" : " (" + c.silent_above_seen + ")");
-  }
+                        at, side, seen.empty() ? "" : " (" + seen + ")", key);
+  };
+  if (c.silent_below > 0) silent_line(c.silent_below, "below", "silent_below", c.silent_below_seen);
+  if (std::isfinite(c.silent_above)) silent_line(c.silent_above, "above", "silent_above", c.silent_above_seen);
   if (c.mismatch) {
     text += fmt::format("# Monte Carlo: {} runs at {:.4g} A: threshold-charge spread (pixel.mismatch) {:.4g}\n",
                         c.mc_periods.size(), c.mc_current, *c.mismatch);
