@@ -555,6 +555,15 @@ TEST_F(NgspiceTest, APixelThatFiresOnlyAboveItsLeakageIsTabledWhereItFires) {
   const double below = std::stod(preset.substr(leak + 15));
   EXPECT_GT(below, 5e-12);
   EXPECT_LT(below, 15e-12);
+
+  // Where only one current of the grid fires, the error names it and what the nearest silent one showed.
+  const Outcome narrow = aesim("calibrate leaky.cir --subckt ideal_pixel -o narrow.toml --currents 1pA:31.6pA --points 4");
+  EXPECT_EQ(narrow.status, 2) << narrow.err;
+  EXPECT_NE(narrow.err.find("the pixel fires at only 1 of the 4 photocurrents (3.16e-11 A; at 1e-11 A node 'int' settles "
+                            "at "),
+            std::string::npos)
+      << narrow.err;
+  EXPECT_FALSE(fs::exists(dir_ / "narrow.toml"));
 }
 
 // The known deck with an axon hillock's reset: the photocurrent stays on, and while out is high a
@@ -645,29 +654,68 @@ TEST_F(NgspiceTest, APixelThatNeverFiresIsToldSoWithWhatTheRunShowed) {
 }
 
 // A deck written as foundry decks are (tests/circuits/bsim_axon_hillock.cir: BSIM4 transistors,
-// a behavioural MIM capacitor with its leak, statistical switches on) calibrates with the default
-// currents: the switches are found and set to 0, the reset that the light lengthens and the latch
-// past it are fitted, the currents past the latch are silent beyond it. An independent ngspice
-// testbench (its own tolerances and step, the period from `meas` of the 2nd to the 6th rising edge)
-// at 0.2 pA, between two table points, gives the period `aesim run` fires at with the preset.
+// a behavioural MIM capacitor with its leak, a photodiode with 2 fA of dark current, statistical
+// switches on) calibrates with the default currents: the switches are found and set to 0; at 1 fA,
+// below the dark current, the node settles a few tens of millivolts above ground, where ngspice
+// itself gives up under the first solver settings (the capacitor's branch, as on the GF180 PDK's
+// MIM capacitor), and the trapezoidal fallback runs it and is said; the dark current is fitted as a
+// leak; the reset that the light lengthens and the latch past it are fitted, the currents past the
+// latch are silent beyond it. An independent ngspice testbench (its own tolerances and step, the
+// period from `meas` of the 2nd to the 6th rising edge) at 0.2 pA, between two table points, gives
+// the period `aesim run` fires at with the preset.
 TEST_F(NgspiceTest, ABsimDeckCalibratesWithTheDefaultCurrentsAndRunsAsTheCircuitDoes) {
+  // ngspice alone, under the first settings at 1 fA: it gives up (no stand-in here).
+  write("first_settings.cir", fmt::format(R"(* the BSIM deck at 1 fA under aesim's first solver settings
+.options method=gear reltol=1e-4 abstol=1e-17 chgtol=1e-19 gmin=1e-18
+.include "{}"
+.param sw_stat_global=0 sw_stat_mismatch=0
+Vdd vdd 0 3.3
+X1 vdd out 0 bsim_axon_hillock iph=1e-15
+.control
+set num_threads=1
+tran 0.2 1050 0 0.2 uic
+quit 0
+.endc
+.end
+)", kBsimDeck));
+  run_child("ngspice", {"-b", "-n", "first_settings.cir"},
+            {(dir_ / "first_settings.out").string(), (dir_ / "first_settings.err").string(), dir_.string()});
+  EXPECT_NE((slurp(dir_ / "first_settings.out") + slurp(dir_ / "first_settings.err")).find("Timestep too small"),
+            std::string::npos);
+
   const Outcome o = aesim("calibrate " + kBsimDeck + " --subckt bsim_axon_hillock --probe mem -o bsim.toml");
   ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.err.find("1 photocurrent (1e-15 A) run with fallback settings (trap, abstol and gmin x vdd at 1e-3 of "
+                       "the photocurrent) after ngspice gave up under tighter ones"),
+            std::string::npos)
+      << o.err;
   const std::string preset = slurp(dir_ / "bsim.toml");
   EXPECT_NE(preset.find("the deck's switches sw_stat_global, sw_stat_mismatch were set to 0 for the table"),
+            std::string::npos)
+      << preset;
+  EXPECT_NE(preset.find("#   1 point: trap, abstol and gmin x vdd at 1e-3 of the photocurrent (1e-15 A)"),
+            std::string::npos)
+      << preset;
+  EXPECT_NE(preset.find("At 1e-15 A and below the circuit does not keep firing (node 'mem' settles at 0.0"),
             std::string::npos)
       << preset;
   EXPECT_NE(preset.find("At 1e-11 A and above the circuit does not keep firing (fired 1 time, then out latched high"),
             std::string::npos)
       << preset;
   EXPECT_NE(preset.find("the pixel latches"), std::string::npos) << preset;
+  // The circuit's own form: the photodiode's 2 fA (its reverse current is its saturation current a
+  // few kT/q above ground) plus the capacitor's leak (0.06 fA at 1 V), as a negative dark current.
+  const std::size_t leak_at = preset.find("i_dark = -", preset.find("# The circuit's own form"));
+  ASSERT_NE(leak_at, std::string::npos) << preset;
+  EXPECT_NEAR(std::stod(preset.substr(leak_at + 9)), -2.06e-15, 0.2e-15) << preset;
   std::size_t beyond = 0;
   for (std::size_t at = preset.find("silent beyond"); at != std::string::npos; at = preset.find("silent beyond", at + 1)) ++beyond;
   EXPECT_EQ(beyond, 4u) << preset;  // 31.6 pA to 1 nA, past the latch seen at 10 pA
   SensorConfig c;
   apply_toml_file(c, (dir_ / "bsim.toml").string(), "");
   ASSERT_GE(c.pixel.transfer.current.size(), 20u);
-  EXPECT_DOUBLE_EQ(c.pixel.transfer.current.front(), 1e-15);
+  EXPECT_NEAR(c.pixel.transfer.current.front(), 3.16227766e-15, 1e-23);
+  EXPECT_DOUBLE_EQ(c.pixel.transfer.silent_below, 1e-15);
   EXPECT_DOUBLE_EQ(c.pixel.transfer.silent_above, 1e-11);
 
   write("independent.cir", fmt::format(R"(* the BSIM deck at 0.2 pA, nominal
@@ -713,7 +761,8 @@ quit 0
 }
 
 // The same deck with a short reset and a leakier capacitor: the leak is fitted as a negative dark
-// current and the node settles at 1 fA (silent below the table), and the supply's charge per firing
+// current and the node settles at 3.16 fA (silent below the table: the photodiode's 2 fA and the
+// capacitor's 1.5 fS at the node's 0.77 V), and the supply's charge per firing
 // comes out negative (a crowbar current that grows with the period): said, with the figures, and
 // the energy per firing held at 0 rather than clamped in silence.
 TEST_F(NgspiceTest, ABsimDeckWithALeakAndAShortResetSaysBoth) {
@@ -730,12 +779,13 @@ TEST_F(NgspiceTest, ABsimDeckWithALeakAndAShortResetSaysBoth) {
       << o.err;
   const std::string preset = slurp(dir_ / "leaky.toml");
   EXPECT_NE(preset.find("(a leak: below "), std::string::npos) << preset;
-  EXPECT_NE(preset.find("At 1e-15 A and below the circuit does not keep firing (node 'mem' settles at"), std::string::npos)
+  EXPECT_NE(preset.find("At 3.162e-15 A and below the circuit does not keep firing (node 'mem' settles at"),
+            std::string::npos)
       << preset;
   EXPECT_NE(preset.find("I_r = none (the reset does not follow the light)"), std::string::npos) << preset;
   SensorConfig c;
   apply_toml_file(c, (dir_ / "leaky.toml").string(), "");
-  EXPECT_DOUBLE_EQ(c.pixel.transfer.silent_below, 1e-15);
+  EXPECT_NEAR(c.pixel.transfer.silent_below, 3.16227766e-15, 1e-23);
   EXPECT_EQ(c.power.e_pixel_event, 0.0);
   EXPECT_GT(c.power.p_static_pixel, 0.0);
 }
@@ -749,8 +799,8 @@ TEST_F(NgspiceTest, ABsimDeckThatNeverFiresIsToldSoFromItsBrightestCurrent) {
   const Outcome o = aesim("calibrate reversed.cir --subckt bsim_axon_hillock --probe mem -o reversed.toml");
   EXPECT_EQ(o.status, 2) << o.err;
   EXPECT_NE(o.err.find("never fires between 1e-15 A and 1e-09 A"), std::string::npos) << o.err;
-  // Its start-up fires once (from ngspice's all-zero state), then the node settles below ground.
-  EXPECT_NE(o.err.find("at 1e-09 A fired 1 time, then node 'mem' settles at"), std::string::npos) << o.err;
+  // The node settles below ground, where the photodiode, forward biased, holds it.
+  EXPECT_NE(o.err.find("at 1e-09 A node 'mem' settles at -0.3"), std::string::npos) << o.err;
   EXPECT_NE(o.err.find("(12 of the 13 currents, beyond it, were not waited for)"), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(dir_ / "reversed.toml"));
 }
@@ -765,6 +815,10 @@ TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
   cases["ports"] = {".subckt ideal_pixel vdd out gnd extra params: iph=1p\nR1 out gnd 1k\n.ends\n", "has 4 ports"};
   cases["never_fires"] = {".subckt ideal_pixel vdd out gnd params: iph=1p\nR1 out gnd 1k\nI1 vdd out {iph}\n.ends\n",
                           "never fires"};
+  // An analog node given as out, resting mid-rail (1.2 k over 1 k from 3.3 V: 1.8 V), is not said to
+  // have latched high.
+  cases["out_mid_rail"] = {".subckt ideal_pixel vdd out gnd params: iph=1p\nR1 vdd out 1k\nR2 out gnd 1.2k\n.ends\n",
+                           "out held at 1.8 V, between the logic levels"};
   for (const auto& [name, spec] : cases) {
     write(name + ".cir", spec.first);
     const Outcome o = aesim("calibrate " + name + ".cir --subckt ideal_pixel -o " + name +
@@ -933,14 +987,15 @@ exec '{}' "$@"
 TEST_F(FallbackTest, CurrentsTheFirstSettingsCannotRunAreMeasuredWithCheckedFallbacksAndSaidSo) {
   const Outcome o = aesim("calibrate " + kShippedDeck + " --subckt aesim_pixel -o pixel.toml", stand_in(1e-12, false));
   ASSERT_EQ(o.status, 0) << o.err;
-  EXPECT_NE(o.err.find("4 photocurrents measured with fallback settings (gear, abstol and gmin x vdd at 1e-3 of the "
-                       "photocurrent)"),
+  EXPECT_NE(o.err.find("4 photocurrents (3.16e-14, 5.62e-14, 1e-13, 3.16e-13 A) run with fallback settings (gear, "
+                       "abstol and gmin x vdd at 1e-3 of the photocurrent)"),
             std::string::npos)
       << o.err;
   EXPECT_NE(o.err.find("warning: ngspice gave up at 3 photocurrents (1e-15, 3.16e-15, 1e-14 A)"), std::string::npos)
       << o.err;
   const std::string preset = slurp(dir_ / "pixel.toml");
-  EXPECT_NE(preset.find("#   4 points: gear, abstol and gmin x vdd at 1e-3 of the photocurrent"), std::string::npos)
+  EXPECT_NE(preset.find("#   4 points: gear, abstol and gmin x vdd at 1e-3 of the photocurrent (3.162e-14, 5.623e-14, 1e-13, "
+                        "3.162e-13 A)"), std::string::npos)
       << preset;
   EXPECT_NE(preset.find("# Left out: ngspice gave up at 1e-15, 3.162e-15, 1e-14 A under every setting"),
             std::string::npos)

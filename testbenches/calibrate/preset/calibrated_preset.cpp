@@ -128,7 +128,7 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
   }
   // The solver settings each point needed, when ngspice gave up on some under the first ones.
   bool fallback = false;
-  for (std::size_t k = 1; k < c.points_per_settings.size(); ++k) fallback = fallback || c.points_per_settings[k] > 0;
+  for (std::size_t k = 1; k < c.currents_per_settings.size(); ++k) fallback = fallback || !c.currents_per_settings[k].empty();
   std::string left_out, why;
   for (const CalibrationPoint& p : c.points) {
     if (p.aborted.empty()) continue;
@@ -136,11 +136,17 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
     if (why.empty()) why = p.aborted;
   }
   if (fallback) {
-    text += "# ngspice gave up on some transients under the first solver settings; the points were measured with:\n";
-    for (std::size_t k = 0; k < c.points_per_settings.size(); ++k) {
-      if (c.points_per_settings[k] > 0) {
-        text += fmt::format("#   {} points: {}\n", c.points_per_settings[k], solver_level_text(k));
+    text += "# ngspice gave up on some transients under the first solver settings; the points were run with:\n";
+    for (std::size_t k = 0; k < c.currents_per_settings.size(); ++k) {
+      const std::vector<double>& currents = c.currents_per_settings[k];
+      if (currents.empty()) continue;
+      text += fmt::format("#   {} point{}: {}", currents.size(), currents.size() == 1 ? "" : "s", solver_level_text(k));
+      if (k > 0) {
+        std::string list;
+        for (double i : currents) list += fmt::format("{}{:.4g}", list.empty() ? "" : ", ", i);
+        text += fmt::format(" ({} A)", list);
       }
+      text += "\n";
     }
   }
   if (!left_out.empty()) {

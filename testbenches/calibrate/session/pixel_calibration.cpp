@@ -63,7 +63,10 @@ Silence why_silent(const Waveform& w, double vdd, const std::string& probe) {
   double high = 0;
   for (std::size_t k = 1; k < n; ++k) high += w.out[k] > vdd / 2 ? w.t[k] - w.t[k - 1] : 0;
   if (high * 2 > w.t.back() - w.t.front() && w.out.back() > vdd / 2) {
-    return {Stop::latched, fmt::format("out latched high ({:.3g} V)", w.out.back())};
+    // Held mid-rail rather than at the supply, out is more likely an analog node than a spike.
+    return {Stop::latched, w.out.back() > 0.75 * vdd
+                               ? fmt::format("out latched high ({:.3g} V)", w.out.back())
+                               : fmt::format("out held at {:.3g} V, between the logic levels", w.out.back())};
   }
   if (w.probe.size() != n) return {};
   const double cut = w.t.front() + 0.7 * (w.t.back() - w.t.front());
@@ -341,9 +344,27 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
                                    "of out through vdd/2 = {:.3g} V){}{}",
                                    deck.given, o.i_low, o.i_high, o.vdd / 2, seen, gave_up));
     }
-    throw InputError(fmt::format("deck '{}': the pixel fires at only {} of the {} photocurrents{}; a table needs 3: "
-                                 "widen --currents",
-                                 deck.given, fired().size(), runs.size(), gave_up));
+    // Where it fired, and what the nearest currents on either side showed: where to look next.
+    std::string where;
+    for (const PointRun* r : fired()) where += fmt::format("{}{:.3g}", where.empty() ? "" : ", ", r->point.current);
+    where += " A";
+    const auto nearest = [](auto from, auto to) {
+      for (auto it = from; it != to; ++it) {
+        if (!std::isfinite(it->point.period) && !it->point.inferred && !it->point.seen.empty()) {
+          return fmt::format("at {:.3g} A {}", it->point.current, it->point.seen);
+        }
+      }
+      return std::string();
+    };
+    const auto first_fired = std::find_if(runs.begin(), runs.end(), [](const PointRun& r) { return std::isfinite(r.point.period); });
+    const auto last_fired = std::find_if(runs.rbegin(), runs.rend(), [](const PointRun& r) { return std::isfinite(r.point.period); });
+    for (const std::string& side :
+         {nearest(std::make_reverse_iterator(first_fired), runs.rend()), nearest(last_fired.base(), runs.end())}) {
+      if (!side.empty()) where += "; " + side;
+    }
+    throw InputError(fmt::format("deck '{}': the pixel fires at only {} of the {} photocurrents ({}){}; a table "
+                                 "needs 3: widen --currents, or add --points",
+                                 deck.given, fired().size(), runs.size(), where, gave_up));
   }
   // The model interpolates the table log-log, which bends away from eq. 2 where the dark current
   // or the reset matter (3.6 % between points half a decade apart at the dark current's knee).
@@ -394,43 +415,46 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     c.points.push_back(r.point);
   }
   std::vector<double> silent, given_up;
-  std::vector<std::size_t> per_settings(kSolverLevels, 0);
+  std::vector<std::vector<double>> per_settings(kSolverLevels);
   std::string why;
   for (const CalibrationPoint& p : c.points) {
     if (!p.aborted.empty()) {
       given_up.push_back(p.current);
       if (why.empty()) why = p.aborted;
-    } else if (!std::isfinite(p.period)) {
-      silent.push_back(p.current);
-    } else {
-      ++per_settings[p.settings];
+      continue;
     }
+    if (!std::isfinite(p.period)) silent.push_back(p.current);
+    // A point beyond a settle or a latch may or may not have been run (the jobs' order decides), so
+    // only the points that decide are counted, and the preset is the same whatever the order.
+    if (std::isfinite(p.period) || (!p.inferred && p.runs > 0)) per_settings[p.settings].push_back(p.current);
   }
-  c.points_per_settings = per_settings;
-  if (!given_up.empty()) {
+  c.currents_per_settings = per_settings;
+  const auto listed = [](const std::vector<double>& currents) {
     std::string list;
-    for (double i : given_up) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", i);
+    for (double i : currents) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", i);
+    return list;
+  };
+  if (!given_up.empty()) {
     std::fprintf(stderr, "aesim calibrate: warning: ngspice gave up at %zu photocurrents (%s A) under every solver "
                          "setting (%s); the table leaves them out\n",
-                 given_up.size(), list.c_str(), why.c_str());
+                 given_up.size(), listed(given_up).c_str(), why.c_str());
   }
   for (std::size_t k = 1; k < per_settings.size(); ++k) {
-    if (per_settings[k] > 0) {
-      std::fprintf(stderr, "aesim calibrate: %zu photocurrents measured with fallback settings (%s) after ngspice "
+    if (!per_settings[k].empty()) {
+      std::fprintf(stderr, "aesim calibrate: %zu photocurrent%s (%s A) run with fallback settings (%s) after ngspice "
                            "gave up under tighter ones; the preset says which\n",
-                   per_settings[k], solver_level_text(k));
+                   per_settings[k].size(), per_settings[k].size() == 1 ? "" : "s", listed(per_settings[k]).c_str(),
+                   solver_level_text(k));
     }
   }
   if (!silent.empty()) {
-    std::string list;
-    for (double i : silent) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", i);
     const auto beyond_count = std::count_if(c.points.begin(), c.points.end(), [](const CalibrationPoint& p) { return p.inferred; });
     const std::string beyond_text =
         beyond_count == 0 ? std::string()
                           : fmt::format(" ({} of them beyond a current where it settled or latched, not waited for)", beyond_count);
     std::fprintf(stderr, "aesim calibrate: warning: the pixel never fired (or never settled to a period) at %zu of %zu "
                          "photocurrents (%s A)%s; the table holds the other %zu\n",
-                 silent.size(), c.points.size(), list.c_str(), beyond_text.c_str(), c.current.size());
+                 silent.size(), c.points.size(), listed(silent).c_str(), beyond_text.c_str(), c.current.size());
   }
   c.fit = fit_pixel(c.current, c.period);
   std::vector<double> pulses;

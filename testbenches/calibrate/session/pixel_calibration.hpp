@@ -59,7 +59,9 @@ struct Calibration {
   std::vector<double> mc_periods;        // s, one per Monte Carlo run
   double mc_current = 0;                 // A
   std::string ngspice;                   // version
-  std::vector<std::size_t> points_per_settings;  // table points measured at each solver_settings() level
+  // At each solver_settings() level, the currents run to an answer with it (fired, or seen to settle
+  // or latch): a fallback is said even where it showed the pixel silent.
+  std::vector<std::vector<double>> currents_per_settings;
   double wall = 0;                       // s
 };
 
