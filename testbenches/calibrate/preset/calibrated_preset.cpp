@@ -141,11 +141,7 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       const std::vector<double>& currents = c.currents_per_settings[k];
       if (currents.empty()) continue;
       text += fmt::format("#   {} point{}: {}", currents.size(), currents.size() == 1 ? "" : "s", solver_level_text(k));
-      if (k > 0) {
-        std::string list;
-        for (double i : currents) list += fmt::format("{}{:.4g}", list.empty() ? "" : ", ", i);
-        text += fmt::format(" ({} A)", list);
-      }
+      if (k > 0) text += fmt::format(" ({:.4g} A)", fmt::join(currents, ", "));
       text += "\n";
     }
   }

@@ -345,9 +345,9 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
                                    deck.given, o.i_low, o.i_high, o.vdd / 2, seen, gave_up));
     }
     // Where it fired, and what the nearest currents on either side showed: where to look next.
-    std::string where;
-    for (const PointRun* r : fired()) where += fmt::format("{}{:.3g}", where.empty() ? "" : ", ", r->point.current);
-    where += " A";
+    std::vector<double> fired_at;
+    for (const PointRun* r : fired()) fired_at.push_back(r->point.current);
+    std::string where = fmt::format("{:.3g} A", fmt::join(fired_at, ", "));
     const auto nearest = [](auto from, auto to) {
       for (auto it = from; it != to; ++it) {
         if (!std::isfinite(it->point.period) && !it->point.inferred && !it->point.seen.empty()) {
@@ -429,11 +429,7 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     if (std::isfinite(p.period) || (!p.inferred && p.runs > 0)) per_settings[p.settings].push_back(p.current);
   }
   c.currents_per_settings = per_settings;
-  const auto listed = [](const std::vector<double>& currents) {
-    std::string list;
-    for (double i : currents) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", i);
-    return list;
-  };
+  const auto listed = [](const std::vector<double>& currents) { return fmt::format("{:.3g}", fmt::join(currents, ", ")); };
   if (!given_up.empty()) {
     std::fprintf(stderr, "aesim calibrate: warning: ngspice gave up at %zu photocurrents (%s A) under every solver "
                          "setting (%s); the table leaves them out\n",
