@@ -385,6 +385,16 @@ TEST_F(HostileInputTest, OutputsThatAreDevicesOrFifosAreWrittenThroughNeverRepla
   EXPECT_TRUE(S_ISCHR(st.st_mode)) << "/dev/null was replaced";
   const Outcome to_null = bounded("run --duration 50ms --summary /dev/null --csv /dev/null");
   EXPECT_EQ(to_null.status, 0) << to_null.err;
+  // A folder below /dev is an ordinary folder (the tmpfs /dev/shm): its file is made and committed.
+  const fs::path shm = fs::path("/dev/shm") / ("aesim-test-" + std::to_string(::getpid()));
+  std::error_code ec;
+  if (fs::create_directory(shm, ec)) {
+    const Outcome in_shm = bounded("run --duration 50ms --summary " + (shm / "s.json").string() + " --out " + (shm / "e.aedat").string());
+    EXPECT_EQ(in_shm.status, 0) << in_shm.err;
+    EXPECT_TRUE(fs::is_regular_file(shm / "e.aedat"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(shm), fs::directory_iterator()), 2) << "a temporary left";
+    fs::remove_all(shm, ec);
+  }
 
   ASSERT_EQ(::mkfifo((dir_ / "events.csv").c_str(), 0644), 0);
   std::string received;
@@ -414,6 +424,29 @@ TEST_F(HostileInputTest, OutputsThatAreDevicesOrFifosAreWrittenThroughNeverRepla
   write("spec.toml", "sensor = \"aloha\"\nduration = \"10ms\"\n[[group]]\nscene = \"u.pgm\"\n");
   ASSERT_EQ(::mkfifo((dir_ / "r.csv.partial").c_str(), 0644), 0);
   expect_refused("sweep spec.toml -o r.csv", "resume journal 'r.csv.partial': is a FIFO");
+}
+
+// Standard output as an output, whatever stands behind it (here a shell's `> stdout.txt`, a regular
+// file): the data go to the redirection at its own offset, byte for byte what a file gets, and the
+// report goes to stderr; through a pipe (a shell's `| cat`), the same. Under its other names too.
+TEST_F(HostileInputTest, StandardOutputAsAnOutputHoldsOnlyTheData) {
+  const Outcome to_file = bounded("run --duration 50ms --csv events.csv --summary s.json");
+  ASSERT_EQ(to_file.status, 0) << to_file.err;
+  const std::string expected = slurp(dir_ / "events.csv");
+  ASSERT_GT(std::count(expected.begin(), expected.end(), '\n'), 100);
+  for (const char* name : {"/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"}) {
+    const Outcome o = bounded(fmt::format("run --duration 50ms --csv={}", name));
+    EXPECT_EQ(o.status, 0) << name << ": " << o.err;
+    EXPECT_EQ(o.out, expected) << name;
+    EXPECT_NE(o.err.find("aesim run: sensor aloha"), std::string::npos) << name << ": " << o.err;
+    EXPECT_NE(o.err.find(std::string("wrote ") + name), std::string::npos) << o.err;
+  }
+  const Outcome piped = bounded("run --duration 50ms --csv /dev/stdout 2>report.txt | cat");
+  EXPECT_EQ(piped.out, expected);
+  // A file the command writes by name still gets its report on stdout.
+  const Outcome named = bounded("run --duration 50ms --csv again.csv");
+  EXPECT_NE(named.out.find("aesim run: sensor aloha"), std::string::npos) << named.out;
+  EXPECT_EQ(slurp(dir_ / "again.csv"), expected);
 }
 
 // Inputs that are not files say what they are; a name with a newline stays on one line.

@@ -16,6 +16,7 @@
 #include "preset/calibrated_preset.hpp"
 #include "session/pixel_calibration.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 namespace {
@@ -92,18 +93,18 @@ int calibrate_command(const CalibrateOptions& opt) {
   if (const StatisticsNote note = statistics_note(deck); note.warning) {
     std::fprintf(stderr, "aesim calibrate: warning: %s\n", note.text.c_str());
   }
-  std::printf("pixel %s: Q = %s (c_int %s at dv_int %s), t_reset = %s, i_dark = %s; eq. 2 fits within %.2f %% (rms %.2f %%)\n",
+  std::fprintf(report_stream(), "pixel %s: Q = %s (c_int %s at dv_int %s), t_reset = %s, i_dark = %s; eq. 2 fits within %.2f %% (rms %.2f %%)\n",
               deck.subckt.c_str(), format_si(c.fit.charge, "C").c_str(), format_si(calibrated.pixel.c_int, "F").c_str(),
               format_si(calibrated.pixel.dv_int, "V").c_str(), format_si(c.fit.t_reset, "s").c_str(),
               format_si(c.fit.i_dark, "A").c_str(), 100 * c.fit.max_residual, 100 * c.fit.rms_residual);
-  std::printf("energy per firing %s (e_pixel_event %s), static %s; ",
+  std::fprintf(report_stream(), "energy per firing %s (e_pixel_event %s), static %s; ",
               format_si(options.vdd * c.supply.charge_per_firing, "J").c_str(),
               format_si(calibrated.power.e_pixel_event, "J").c_str(), format_si(calibrated.power.p_static_pixel, "W").c_str());
-  if (c.mismatch) std::printf("mismatch %.4g from %d runs; ", *c.mismatch, options.mc);
+  if (c.mismatch) std::fprintf(report_stream(), "mismatch %.4g from %d runs; ", *c.mismatch, options.mc);
   int runs = 0;
   for (const CalibrationPoint& p : c.points) runs += p.runs;
-  std::printf("%d ngspice transients in %.1f s\n", runs + options.mc, c.wall);
-  std::printf("wrote %s%s\n", opt.output.c_str(),
+  std::fprintf(report_stream(), "%d ngspice transients in %.1f s\n", runs + options.mc, c.wall);
+  std::fprintf(report_stream(), "wrote %s%s\n", opt.output.c_str(),
               opt.chart.empty() ? "" : fmt::format(", {} (its data: {})", opt.chart, chart_data).c_str());
   return 0;
 }

@@ -12,6 +12,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 
@@ -84,15 +85,15 @@ int classify_command(ClassifyOptions opt) {
     std::fprintf(stderr, "aesim classify: warning: %s\n", w.get<std::string>().c_str());
   }
   if (opt.json) {
-    fmt::print("{}\n", j.dump(2));
+    fmt::print(report_stream(), "{}\n", j.dump(2));
     return 0;
   }
   if (!j["winner"].is_null()) {
-    fmt::print("winner: {} after {} of {} events ({} restarts)\n", j["winner"].get<std::string>(),
+    fmt::print(report_stream(), "winner: {} after {} of {} events ({} restarts)\n", j["winner"].get<std::string>(),
                j["events_used"].get<std::uint64_t>(), j["events_available"].get<std::uint64_t>(),
                j["restarts"].get<std::uint64_t>());
   } else {
-    fmt::print("winner: none after {} events ({} restarts)\n", j["events_used"].get<std::uint64_t>(),
+    fmt::print(report_stream(), "winner: none after {} events ({} restarts)\n", j["events_used"].get<std::uint64_t>(),
                j["restarts"].get<std::uint64_t>());
   }
   std::string scores;
@@ -100,9 +101,9 @@ int classify_command(ClassifyOptions opt) {
     scores += fmt::format("{}{} {:.2f} (rank {:.2f})", scores.empty() ? "" : ", ", name, score.get<double>(),
                           j["ranks"].get<bool>() ? j["ranks_by_template"][name].get<double>() : 1.0);
   }
-  fmt::print("  scores: {}\n", scores);
-  fmt::print("  {} additions, {} comparisons\n", j["additions"].get<std::uint64_t>(), j["comparisons"].get<std::uint64_t>());
-  fmt::print("  estimated {} on a {} processor at {} cycles per template per event\n",
+  fmt::print(report_stream(), "  scores: {}\n", scores);
+  fmt::print(report_stream(), "  {} additions, {} comparisons\n", j["additions"].get<std::uint64_t>(), j["comparisons"].get<std::uint64_t>());
+  fmt::print(report_stream(), "  estimated {} on a {} processor at {} cycles per template per event\n",
              format_si(j["estimated_time_s"].get<double>(), "s"), format_si(j["clock_hz"].get<double>(), "Hz"),
              j["cycles_per_template"].get<double>());
   return 0;

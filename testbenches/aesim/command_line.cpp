@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "report_stream.hpp"
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/event_formats.hpp"
 #include "aesim/text/nearest_name.hpp"
@@ -256,6 +257,7 @@ int run_command_line(int argc, char** argv) {
                                    command_list(app)));
     }
   }
+  report_beside_standard_output(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -18,6 +18,7 @@
 #include "aesim/scene/scene.hpp"
 #include "aesim/run/imager_simulation.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 namespace {
@@ -133,7 +134,7 @@ int compare_command(CompareOptions opt) {
                        r.pareto ? 1 : 0);
   }
   files.commit();
-  fmt::print("aesim compare: {} rungs on {} scenes -> {}\n", rungs.size(), opt.scenes.size(), opt.output);
+  fmt::print(report_stream(), "aesim compare: {} rungs on {} scenes -> {}\n", rungs.size(), opt.scenes.size(), opt.output);
   return 0;
 }
 

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 namespace {
@@ -30,7 +31,7 @@ int config_keys_command(const std::string& sensor, bool markdown) {
   const nlohmann::json values = config.to_json();
   const std::vector<KeyInfo> keys = SensorConfig::key_table();
   if (markdown) {
-    fmt::print("| key | unit or values | {} | meaning |\n|---|---|---|---|\n", sensor);
+    fmt::print(report_stream(), "| key | unit or values | {} | meaning |\n|---|---|---|---|\n", sensor);
   }
   std::size_t key_width = 0, unit_width = 0, value_width = 0;
   std::vector<std::string> shown;
@@ -47,9 +48,9 @@ int config_keys_command(const std::string& sensor, bool markdown) {
       // A '|' would end the table's cell.
       std::string unit = k.unit.empty() ? "-" : k.unit;
       for (auto bar = unit.find('|'); bar != std::string::npos; bar = unit.find('|')) unit.replace(bar, 1, ", ");
-      fmt::print("| `{}` | {} | {} | {} |\n", k.key, unit, shown[i], k.meaning);
+      fmt::print(report_stream(), "| `{}` | {} | {} | {} |\n", k.key, unit, shown[i], k.meaning);
     } else {
-      fmt::print("{:<{}}  {:<{}}  {:<{}}  {}\n", k.key, key_width, k.unit.empty() ? "-" : k.unit, unit_width, shown[i],
+      fmt::print(report_stream(), "{:<{}}  {:<{}}  {:<{}}  {}\n", k.key, key_width, k.unit.empty() ? "-" : k.unit, unit_width, shown[i],
                  value_width, k.meaning);
     }
   }

@@ -21,6 +21,7 @@
 #include "aesim/recon/reconstruct.hpp"
 #include "aesim/scene/scene.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 namespace {
@@ -161,13 +162,13 @@ int emulate_command(EmulateOptions opt) {
     write_image(files.open(opt.recon), opt.recon, reconstruct(used, s.width, s.height, ReconMode::Histogram));
   }
   files.commit();
-  fmt::print("aesim emulate: {} frames {}x{} -> {} events ({} behaviour, f_max {} per frame)\n", frames.size(),
+  fmt::print(report_stream(), "aesim emulate: {} frames {}x{} -> {} events ({} behaviour, f_max {} per frame)\n", frames.size(),
              s.width, s.height, events.size(), opt.behaviour, s.f_max);
   std::string written;
   for (const std::string* p : {&opt.queue, &opt.out, &opt.recon}) {
     if (!p->empty()) written += (written.empty() ? "" : ", ") + *p;
   }
-  fmt::print("  wrote {}\n", written);
+  fmt::print(report_stream(), "  wrote {}\n", written);
   return 0;
 }
 

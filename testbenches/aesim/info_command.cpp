@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 
@@ -20,20 +21,20 @@ int info_command(const std::string& path, const std::string& layout) {
     ghosts += (e.flags & kGhostEvent) ? 1 : 0;
     off += (e.flags & kOffEvent) ? 1 : 0;
   }
-  fmt::print("{}: {} events, array {}x{}{}, {} tiles\n", path, n, rec.width, rec.height,
+  fmt::print(report_stream(), "{}: {} events, array {}x{}{}, {} tiles\n", path, n, rec.width, rec.height,
              rec.size_recorded ? "" : " (not recorded in the file: the span of its events)", rec.tiles);
   if (n > 0) {
-    fmt::print("  first {:.6f} s, last {:.6f} s, span {}\n", rec.events.front().t, rec.events.back().t,
+    fmt::print(report_stream(), "  first {:.6f} s, last {:.6f} s, span {}\n", rec.events.front().t, rec.events.back().t,
                format_si(span, "s"));
   }
-  if (span > 0) fmt::print("  rate {}\n", format_si(static_cast<double>(n) / span, "events/s"));
-  if (ghosts > 0) fmt::print("  ghost events {}\n", ghosts);
-  if (off > 0) fmt::print("  OFF events {} (polarity as contrast: a recording of another tool's)\n", off);
-  for (const std::string& s : rec.skipped) fmt::print("  left out {}\n", s);
-  if (rec.reordered > 0) fmt::print("  {} events stamped before the one ahead of them in the file, read in time order\n", rec.reordered);
-  if (rec.stamp_wraps > 0) fmt::print("  stamps wrapped past 2^32 us {} times, unwrapped\n", rec.stamp_wraps);
+  if (span > 0) fmt::print(report_stream(), "  rate {}\n", format_si(static_cast<double>(n) / span, "events/s"));
+  if (ghosts > 0) fmt::print(report_stream(), "  ghost events {}\n", ghosts);
+  if (off > 0) fmt::print(report_stream(), "  OFF events {} (polarity as contrast: a recording of another tool's)\n", off);
+  for (const std::string& s : rec.skipped) fmt::print(report_stream(), "  left out {}\n", s);
+  if (rec.reordered > 0) fmt::print(report_stream(), "  {} events stamped before the one ahead of them in the file, read in time order\n", rec.reordered);
+  if (rec.stamp_wraps > 0) fmt::print(report_stream(), "  stamps wrapped past 2^32 us {} times, unwrapped\n", rec.stamp_wraps);
   for (std::size_t t = 0; t < per_tile.size() && n > 0; ++t) {
-    fmt::print("  tile {}: {} events ({:.1f} %){}\n", t, per_tile[t], 100.0 * per_tile[t] / n,
+    fmt::print(report_stream(), "  tile {}: {} events ({:.1f} %){}\n", t, per_tile[t], 100.0 * per_tile[t] / n,
                span > 0 ? ", " + format_si(per_tile[t] / span, "events/s") : "");
   }
   return 0;

@@ -10,6 +10,7 @@
 #include "aesim/images/image_file.hpp"
 #include "aesim/recon/reconstruct.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 
@@ -43,7 +44,7 @@ int recon_command(const ReconOptions& opt) {
   scale_to_percentile(image, 99.5);  // a recording's hot pixels would leave the rest black
   write_image(files.open(opt.output), opt.output, image);
   files.commit();
-  fmt::print("aesim recon: {} of {} events, {} reconstruction {}x{} -> {}\n", chosen.size(), rec.events.size(),
+  fmt::print(report_stream(), "aesim recon: {} of {} events, {} reconstruction {}x{} -> {}\n", chosen.size(), rec.events.size(),
              opt.mode, rec.width, rec.height, opt.output);
   return 0;
 }

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "aesim/sensor_run/sensor_run.hpp"
 #include "aesim/units/si_units.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 namespace {
@@ -19,28 +20,28 @@ namespace {
 void print_report(const RunOptions& opt, const RunReport& r) {
   const ResolvedConfig& config = r.config;
   const AddressMap map(config.array);
-  std::printf("aesim run: sensor %s, %dx%d pixels in %d tiles of %dx%d, scene %s (%dx%d%s%s)\n", opt.sensor.c_str(),
+  std::fprintf(report_stream(), "aesim run: sensor %s, %dx%d pixels in %d tiles of %dx%d, scene %s (%dx%d%s%s)\n", opt.sensor.c_str(),
               map.cols(), map.rows(), map.tiles(), config.array.tile_cols, config.array.tile_rows, r.scene.c_str(),
               r.scene_width, r.scene_height, r.scene_frames > 1 ? fmt::format(", {} frames", r.scene_frames).c_str() : "",
               r.default_scene ? ", the default" : "");
-  std::printf("  simulated %s at fidelity %s%s, bus %s (tau %s%s), in %.3g s wall time\n",
+  std::fprintf(report_stream(), "  simulated %s at fidelity %s%s, bus %s (tau %s%s), in %.3g s wall time\n",
               format_si(config.sim.duration, "s").c_str(), to_string(r.fidelity),
               config.sim.fidelity == Fidelity::Auto ? " (chosen by auto)" : "", to_string(config.bus.access),
               format_si(r.facts.tau_s, "s").c_str(), r.fidelity == Fidelity::Cycle ? " measured" : "", r.facts.wall_time_s);
   const TileCounters& total = r.totals;
-  std::printf("  events: %llu fired (%s), %llu delivered, %llu lost to collisions (%.2f %%), %llu ghosts\n",
+  std::fprintf(report_stream(), "  events: %llu fired (%s), %llu delivered, %llu lost to collisions (%.2f %%), %llu ghosts\n",
               static_cast<unsigned long long>(total.fired),
               format_si(static_cast<double>(total.fired) / config.sim.duration, "events/s").c_str(),
               static_cast<unsigned long long>(total.delivered), static_cast<unsigned long long>(total.collided),
               100.0 * total.collision_fraction(), static_cast<unsigned long long>(total.ghost));
-  std::printf("  bus load per tile: G = %.4g offered, S = %.4g delivered\n", r.summary["offered_load"].get<double>(),
+  std::fprintf(report_stream(), "  bus load per tile: G = %.4g offered, S = %.4g delivered\n", r.summary["offered_load"].get<double>(),
               r.summary["throughput"].get<double>());
   const auto figure = [&r](const char* key) {
     const nlohmann::json& v = r.summary[key];
     return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
   };
   const double psnr = figure("psnr_db");
-  std::printf("  sizing: power %s (%s per tile, %s of it static), PSNR %s and %.1f %% of pixels firing %d+ times "
+  std::fprintf(report_stream(), "  sizing: power %s (%s per tile, %s of it static), PSNR %s and %.1f %% of pixels firing %d+ times "
               "within the %s readout window\n",
               format_si(figure("power_w"), "W").c_str(), format_si(figure("power_per_tile_w"), "W").c_str(),
               format_si(figure("power_static_w"), "W").c_str(),
@@ -54,7 +55,7 @@ void print_report(const RunOptions& opt, const RunReport& r) {
   if (!r.rtl_traces.empty()) {
     written += fmt::format(" (and RTL internals in {} .. tile{}.rtl.vcd)", r.rtl_traces.front(), r.rtl_traces.size() - 1);
   }
-  std::printf("  wrote %s\n", written.c_str());
+  std::fprintf(report_stream(), "  wrote %s\n", written.c_str());
 }
 
 }  // namespace

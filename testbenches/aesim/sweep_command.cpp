@@ -34,6 +34,7 @@
 
 #include "aesim/sizing/sizing_report.hpp"
 #include "aesim/spec/sweep_spec.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;
@@ -440,13 +441,13 @@ int sweep_command(SweepOptions opt) {
   std::error_code ignored;
   fs::remove(journal, ignored);  // complete: the CSV holds it all
   if (!spec.constraints.empty()) {
-    fmt::print("aesim sweep: {} of {} designs feasible in every condition; report {}\n",
+    fmt::print(report_stream(), "aesim sweep: {} of {} designs feasible in every condition; report {}\n",
                std::count(analysis.feasible.begin(), analysis.feasible.end(), true), design.size(), report_path);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  fmt::print("aesim sweep: {} points on {} jobs in {:.1f} s -> {}\n", spec.points.size(), jobs, wall, opt.output);
+  fmt::print(report_stream(), "aesim sweep: {} points on {} jobs in {:.1f} s -> {}\n", spec.points.size(), jobs, wall, opt.output);
 
-  if (drawn) fmt::print("  chart {}.png, {}.svg\n", stem, stem);
+  if (drawn) fmt::print(report_stream(), "  chart {}.png, {}.svg\n", stem, stem);
   return 0;
 }
 

@@ -18,6 +18,7 @@
 #include "plan/verification_plan.hpp"
 #include "report/verify_report.hpp"
 #include "session/verify_session.hpp"
+#include "report_stream.hpp"
 
 namespace aesim {
 
@@ -134,40 +135,40 @@ int verify_command(const VerifyCommandOptions& opt) {
   if (result.rtl_output.empty()) std::filesystem::remove(rtl_log, ec);
   if (!formal || formal->counterexample_vcd.empty()) std::filesystem::remove(formal_vcd, ec);
 
-  std::printf("%s: %llu transactions, %llu beats checked, %llu receiver cycles in %.2f s (%.3g cycles/s)\n",
+  std::fprintf(report_stream(), "%s: %llu transactions, %llu beats checked, %llu receiver cycles in %.2f s (%.3g cycles/s)\n",
               result.passed() ? "PASS" : "FAIL", static_cast<unsigned long long>(result.transactions),
               static_cast<unsigned long long>(result.beats_checked),
               static_cast<unsigned long long>(result.receiver_cycles), result.run_seconds,
               result.run_seconds > 0 ? static_cast<double>(result.receiver_cycles) / result.run_seconds : 0.0);
   if (result.first_failure) {
     const VerifyFailure& f = *result.first_failure;
-    std::printf("first failure: %s in case '%s' at cycle %llu (%.9f s): expected %s, observed %s\n", f.check.c_str(),
+    std::fprintf(report_stream(), "first failure: %s in case '%s' at cycle %llu (%.9f s): expected %s, observed %s\n", f.check.c_str(),
                 f.case_name.c_str(), static_cast<unsigned long long>(f.cycle), f.time_s, f.expected.c_str(),
                 f.observed.c_str());
-    std::printf("%llu failed checks (%llu protocol violations); trace: %s\n",
+    std::fprintf(report_stream(), "%llu failed checks (%llu protocol violations); trace: %s\n",
                 static_cast<unsigned long long>(result.failures),
                 static_cast<unsigned long long>(result.protocol_violations), vcd_path.c_str());
   }
-  if (!result.stamp_rule.empty()) std::printf("stamps: %s\n", result.stamp_rule.c_str());
+  if (!result.stamp_rule.empty()) std::fprintf(report_stream(), "stamps: %s\n", result.stamp_rule.c_str());
   for (const std::string& note : notes) {
-    if (note.find("$finish") != std::string::npos) std::printf("note: %s\n", note.c_str());
+    if (note.find("$finish") != std::string::npos) std::fprintf(report_stream(), "note: %s\n", note.c_str());
   }
-  if (!result.rtl_output.empty()) std::printf("the RTL's own output: %s\n", rtl_log.c_str());
+  if (!result.rtl_output.empty()) std::fprintf(report_stream(), "the RTL's own output: %s\n", rtl_log.c_str());
   if (formal) {
     std::map<std::string, int> count;
     for (const FormalVerdict& v : formal->verdicts) ++count[v.verdict];
-    std::printf("formal: %zu properties: %d proved, %d bounded to %d steps, %d failed (%.1f s%s)\n", formal->verdicts.size(),
+    std::fprintf(report_stream(), "formal: %zu properties: %d proved, %d bounded to %d steps, %d failed (%.1f s%s)\n", formal->verdicts.size(),
                 count["proved"], count["bounded"], formal->depth, count["failed"], formal->seconds,
                 formal->cached ? ", cached" : "");
     for (const FormalVerdict& v : formal->verdicts) {
       if (v.verdict == "failed") {
-        std::printf("formal failure: %s (%s)%s%s\n", v.property.c_str(), v.text.c_str(), v.detail.empty() ? "" : ": ",
+        std::fprintf(report_stream(), "formal failure: %s (%s)%s%s\n", v.property.c_str(), v.text.c_str(), v.detail.empty() ? "" : ": ",
                     v.detail.c_str());
       }
     }
-    if (!formal->counterexample_vcd.empty()) std::printf("counterexample: %s; %s\n", formal_vcd.c_str(), replay_text.c_str());
+    if (!formal->counterexample_vcd.empty()) std::fprintf(report_stream(), "counterexample: %s; %s\n", formal_vcd.c_str(), replay_text.c_str());
   }
-  std::printf("wrote %s%s\n", report_path.c_str(), opt.export_tb.empty() ? "" : (", " + opt.export_tb + "/tb.v").c_str());
+  std::fprintf(report_stream(), "wrote %s%s\n", report_path.c_str(), opt.export_tb.empty() ? "" : (", " + opt.export_tb + "/tb.v").c_str());
   if (!formal_error.empty()) throw InputError(formal_error);
   return result.passed() && !(formal && formal->failed()) ? 0 : 1;
 }

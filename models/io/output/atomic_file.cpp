@@ -22,14 +22,19 @@ fs::path folder_of(const std::string& path) {
   return parent.empty() ? fs::path(".") : parent;
 }
 
-// An output that is a device or a FIFO (or a name for one, such as /dev/stdout) is written through:
-// opened and written as it is, never replaced by a file renamed over it.
+// An output that is a character device or a FIFO, or a name the system gives an open file (/dev/stdout,
+// /dev/fd/N, /proc/self/fd/N: whatever it leads to is the caller's, a shell's redirection say), is
+// written through: opened and written as it is, never replaced by a file renamed over it. A file in
+// a folder below /dev (a tmpfs such as /dev/shm) is an ordinary file.
 bool write_through(const std::string& path) {
   std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (st.type() == fs::file_type::character || st.type() == fs::file_type::fifo) return true;
-  const std::string p = fs::absolute(path, ec).lexically_normal().string();
-  return p.rfind("/dev/", 0) == 0 || p.rfind("/proc/", 0) == 0;
+  const fs::file_type type = fs::status(path, ec).type();
+  if (type == fs::file_type::character || type == fs::file_type::fifo) return true;
+  const fs::path absolute = fs::absolute(path, ec).lexically_normal();
+  fs::path folder = fs::weakly_canonical(absolute.parent_path(), ec);
+  if (ec) folder = absolute.parent_path();
+  const std::string f = folder.string();
+  return f == "/dev" || f == "/proc" || f.rfind("/proc/", 0) == 0;
 }
 
 // The file a link names (an output through a link replaces the file, not the link).
@@ -48,6 +53,22 @@ bool same_file(const std::string& a, const std::string& b) {
 }
 
 }  // namespace
+
+int descriptor_named(const std::string& path) {
+  std::error_code ec;
+  const std::string p = fs::absolute(path, ec).lexically_normal().string();
+  if (p == "/dev/stdin") return 0;
+  if (p == "/dev/stdout") return 1;
+  if (p == "/dev/stderr") return 2;
+  for (const std::string& folder : {std::string("/dev/fd/"), std::string("/proc/self/fd/"), std::string("/proc/thread-self/fd/"),
+                                    fmt::format("/proc/{}/fd/", ::getpid())}) {
+    if (p.size() <= folder.size() || p.compare(0, folder.size(), folder) != 0) continue;
+    const std::string number = p.substr(folder.size());
+    if (number.size() > 9 || number.find_first_not_of("0123456789") != std::string::npos) return -1;
+    return std::stoi(number);
+  }
+  return -1;
+}
 
 void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
@@ -98,7 +119,9 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const std::vecto
 // failed write (std::ofstream loses errno): a full disk is reported as "No space left on device".
 class OutputFiles::FileBuffer : public std::streambuf {
  public:
-  explicit FileBuffer(int fd) : fd_(fd) { setp(buffer_, buffer_ + sizeof buffer_); }
+  // `seekable` false for an output written through: its offset may be shared with whoever opened
+  // the descriptor, so a position read from it is not the output's own.
+  FileBuffer(int fd, bool seekable) : fd_(fd), seekable_(seekable) { setp(buffer_, buffer_ + sizeof buffer_); }
   ~FileBuffer() override { close(); }
 
   bool close() {
@@ -124,7 +147,7 @@ class OutputFiles::FileBuffer : public std::streambuf {
   // Seeking, for writers that patch what they wrote first (AEDAT 4.0's header); a device or FIFO
   // cannot seek, and says so by -1.
   pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
-    if (!drain()) return pos_type(off_type(-1));
+    if (!seekable_ || !drain()) return pos_type(off_type(-1));
     const int whence = dir == std::ios_base::beg ? SEEK_SET : dir == std::ios_base::cur ? SEEK_CUR : SEEK_END;
     const off_t at = ::lseek(fd_, static_cast<off_t>(off), whence);
     return at < 0 ? pos_type(off_type(-1)) : pos_type(static_cast<off_type>(at));
@@ -147,6 +170,7 @@ class OutputFiles::FileBuffer : public std::streambuf {
   }
 
   int fd_;
+  bool seekable_;
   int error_ = 0;
   char buffer_[1 << 16];
 };
@@ -164,8 +188,17 @@ OutputFiles::~OutputFiles() {
   }
 }
 
-// A device or FIFO, opened for writing. A FIFO with no reader is refused rather than waited on.
+// A device or FIFO, opened for writing. A FIFO with no reader is refused rather than waited on. A
+// name for one of the process's own descriptors is that descriptor, duplicated: opened anew, a
+// regular file behind it (a shell's `> file`) would get an offset of its own, and the run's data and
+// anything else written to the descriptor would overwrite each other from the file's start.
 int open_through(const std::string& path) {
+  const int named = descriptor_named(path);
+  if (named >= 0) {
+    const int fd = ::fcntl(named, F_DUPFD_CLOEXEC, 0);
+    if (fd < 0) throw InputError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+    return fd;
+  }
   int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0 && errno == ENXIO) throw InputError(fmt::format("output '{}': a FIFO with no reader", path));
   if (fd < 0) throw InputError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
@@ -179,7 +212,7 @@ std::ostream& OutputFiles::open(const std::string& path) {
   f->target = path;
   if (write_through(path)) {
     f->direct = true;
-    f->buffer = std::make_unique<FileBuffer>(open_through(path));
+    f->buffer = std::make_unique<FileBuffer>(open_through(path), false);
     f->stream = std::make_unique<std::ostream>(f->buffer.get());
     files_.push_back(std::move(f));
     return *files_.back()->stream;
@@ -198,7 +231,7 @@ std::ostream& OutputFiles::open(const std::string& path) {
     unregister_temp(f->temp);
     throw InputError(fmt::format("cannot write '{}': {}", path, std::strerror(err)));
   }
-  f->buffer = std::make_unique<FileBuffer>(fd);
+  f->buffer = std::make_unique<FileBuffer>(fd, true);
   f->stream = std::make_unique<std::ostream>(f->buffer.get());
   files_.push_back(std::move(f));
   return *files_.back()->stream;
@@ -221,7 +254,7 @@ std::string OutputFiles::adopt(const std::string& path) {
       throw InputError(fmt::format("cannot write a temporary for '{}': {}", path, std::strerror(errno)));
     }
     ::close(fd);
-    f->buffer = std::make_unique<FileBuffer>(-1);
+    f->buffer = std::make_unique<FileBuffer>(-1, false);
     files_.push_back(std::move(f));
     return files_.back()->temp;
   }
@@ -260,7 +293,7 @@ void OutputFiles::commit() {
     if (!f->direct || f->temp.empty()) continue;
     const int in = ::open(f->temp.c_str(), O_RDONLY | O_CLOEXEC);
     if (in < 0) throw OutputError(fmt::format("reading the temporary for '{}': {}", f->target, std::strerror(errno)));
-    FileBuffer out(open_through(f->target));
+    FileBuffer out(open_through(f->target), false);
     std::ostream stream(&out);
     char chunk[1 << 16];
     for (ssize_t n; (n = ::read(in, chunk, sizeof chunk)) != 0;) {

@@ -17,14 +17,20 @@ struct OutputPath {
 // and no two outputs are the same file. Empty paths are skipped. Throws InputError naming the option.
 void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
 
+// The descriptor a path names when it is a name for one of the process's own open descriptors
+// (/dev/stdin, /dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N, /proc/<this pid>/fd/N), else -1.
+int descriptor_named(const std::string& path);
+
 // A set of output files written to temporary names beside their targets (see temp_files.hpp)
 // and renamed into place only by commit(), all or none: a run that fails part-way, or is
 // interrupted, leaves no half-written output and no temporaries. Files not committed are
 // removed when the set is destroyed. An output that is a link is written to the file it names.
-// An output that is a character device or a FIFO (or a name under /dev or /proc, such as
-// /dev/stdout) is written through, never replaced: opened at once and written as the run goes
-// (what a library writes goes through a temporary copied in at the commit), so it has no
-// all-or-none promise; a FIFO with no reader is refused.
+// An output that is a character device or a FIFO (or a name in /dev or under /proc, such as
+// /dev/stdout or /dev/fd/3; not a file in a folder below /dev, such as /dev/shm) is written
+// through, never replaced: opened at once (a name for a descriptor of this process is that
+// descriptor, duplicated, so its offset is shared) and written as the run goes, never seeked (what a
+// library writes goes through a temporary copied in at the commit), so it has no all-or-none
+// promise; a FIFO with no reader is refused.
 class OutputFiles {
  public:
   OutputFiles();
