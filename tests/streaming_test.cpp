@@ -205,44 +205,56 @@ TEST(Streaming, GhostsPastTheEdgeLeaveTheTruthIntact) {
 // The merge orders by (time, tile, bus address) whatever the windows: many records share a time
 // (a coarse grid of times, zero among them, written both as +0.0 and -0.0, which are the same
 // time), across tiles and within one. Expected: the whole set sorted by the triple.
+// Against a stable sort of every record on (time, tile, address): few instants (every bucket of the
+// merge's counting sort crowded, one slice), and many records over many instants (several slices,
+// a bucket now and then holding two or more tiles' records, some instants shared by many).
 TEST(Streaming, TheMergeOrdersTiesByTileThenAddress) {
   constexpr std::uint32_t kTiles = 5;
-  std::mt19937_64 rng(11);
-  std::vector<AddressEvent> all;
-  TileRecords batch(kTiles);
-  for (std::uint32_t tile = 0; tile < kTiles; ++tile) {
-    std::vector<AddressEvent> mine;
-    for (int i = 0; i < 400; ++i) {
-      AddressEvent e;
-      e.t = 1e-6 * static_cast<double>(rng() % 50);
-      if (e.t == 0 && rng() % 2) e.t = -0.0;
-      e.tile = tile;
-      e.bus_address = static_cast<std::uint32_t>(rng() % 1024);
-      e.x = e.bus_address % 32;
-      e.y = e.bus_address / 32;
-      mine.push_back(e);
+  for (const auto [per_tile, instants] : {std::pair<int, int>{400, 50}, {8000, 20000}}) {
+    std::mt19937_64 rng(11);
+    std::vector<AddressEvent> all;
+    TileRecords batch(kTiles);
+    for (std::uint32_t tile = 0; tile < kTiles; ++tile) {
+      std::vector<AddressEvent> mine;
+      for (int i = 0; i < per_tile; ++i) {
+        AddressEvent e;
+        // One record in eight at one of a few instants every tile shares; with many instants, the
+        // others anywhere between them.
+        const bool shared = rng() % 8 == 0;
+        const auto instant = shared ? rng() % 8 * (instants / 8) : rng() % instants;
+        const double within = shared || instants < 1000 ? 0.0 : static_cast<double>(rng() % 1000) / 1000;
+        e.t = 1e-6 * (static_cast<double>(instant) + within);
+        if (e.t == 0 && rng() % 2) e.t = -0.0;
+        e.tile = tile;
+        e.bus_address = static_cast<std::uint32_t>(rng() % 1024);
+        e.x = e.bus_address % 32;
+        e.y = e.bus_address / 32;
+        mine.push_back(e);
+      }
+      // A tile produces its records in its own (time, address) order.
+      std::sort(mine.begin(), mine.end(), [](const AddressEvent& a, const AddressEvent& b) {
+        return std::make_pair(a.t, a.bus_address) < std::make_pair(b.t, b.bus_address);
+      });
+      for (const AddressEvent& e : mine) batch.events[tile].push_back(TileEvent::of(e));
+      all.insert(all.end(), mine.begin(), mine.end());
     }
-    // A tile produces its records in its own (time, address) order.
-    std::sort(mine.begin(), mine.end(), [](const AddressEvent& a, const AddressEvent& b) {
-      return std::make_pair(a.t, a.bus_address) < std::make_pair(b.t, b.bus_address);
+    std::stable_sort(all.begin(), all.end(), [](const AddressEvent& a, const AddressEvent& b) {
+      return std::make_tuple(a.t, a.tile, a.bus_address) < std::make_tuple(b.t, b.tile, b.bus_address);
     });
-    for (const AddressEvent& e : mine) batch.events[tile].push_back(TileEvent::of(e));
-    all.insert(all.end(), mine.begin(), mine.end());
-  }
-  std::stable_sort(all.begin(), all.end(), [](const AddressEvent& a, const AddressEvent& b) {
-    return std::make_tuple(a.t, a.tile, a.bus_address) < std::make_tuple(b.t, b.tile, b.bus_address);
-  });
-  EventCollector out;
-  EventMerger merger(kTiles, out);
-  TileRecords empty(kTiles);
-  merger.merge(batch, 20e-6);  // a cut between two times: part now, the rest next
-  merger.merge(empty, std::numeric_limits<double>::infinity());
-  ASSERT_EQ(out.events().size(), all.size());
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    const AddressEvent& got = out.events()[i];
-    ASSERT_EQ(got.t, all[i].t) << i;  // -0.0 == +0.0
-    ASSERT_EQ(got.tile, all[i].tile) << i;
-    ASSERT_EQ(got.bus_address, all[i].bus_address) << i;
+    EventCollector out;
+    EventMerger merger(kTiles, out);
+    TileRecords empty(kTiles);
+    // A cut between two times: part now, the rest next.
+    merger.merge(batch, 1e-6 * (static_cast<double>(instants) * 0.4 + 0.5));
+    merger.merge(empty, std::numeric_limits<double>::infinity());
+    ASSERT_EQ(out.events().size(), all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const AddressEvent& got = out.events()[i];
+      ASSERT_EQ(got.t, all[i].t) << i;  // -0.0 == +0.0
+      ASSERT_EQ(got.tile, all[i].tile) << i;
+      ASSERT_EQ(got.bus_address, all[i].bus_address) << i;
+      ASSERT_EQ(got.x, all[i].x) << i;
+    }
   }
 }
 

@@ -9,10 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <ostream>
 #include <streambuf>
 
 #include "ceiling_probe.hpp"
+#include "merge_probe.hpp"
 #include "Vaer_receiver_drop_stepped.h"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/event_files/aedat.hpp"
@@ -159,7 +161,8 @@ void BM_QcifBright(benchmark::State& state, int threads, bool aedat, bool shot_n
 }
 
 // The bright QCIF with its events written to a file of each format, as `aesim run --out` writes it
-// (to a temporary under /tmp, never committed: the page cache takes it, the disk is not waited for).
+// (to a temporary under the system's temporary folder, never committed: the page cache takes it,
+// the disk is not waited for; removed between rounds, outside the time measured).
 void BM_QcifWritten(benchmark::State& state, const char* name) {
   const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, 1);
   const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
@@ -172,13 +175,18 @@ void BM_QcifWritten(benchmark::State& state, const char* name) {
   const std::string path = (std::filesystem::temp_directory_path() / (std::string("aesim_bench_") + name)).string();
   double events = 0;
   for (auto _ : state) {
-    OutputFiles files;
-    const auto writer = open_event_writer(files, path, spec);
+    auto files = std::make_unique<OutputFiles>();
+    auto writer = open_event_writer(*files, path, spec);
     SimulationRequest request;
     request.keep_events = true;
     request.stream = writer.get();
     events += static_cast<double>(simulate(config, photocurrents, request).log.totals().fired);
     writer->finish();
+    // The file is written; removing it for the next round is not part of writing it.
+    state.PauseTiming();
+    writer.reset();
+    files.reset();
+    state.ResumeTiming();
   }
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
@@ -214,6 +222,44 @@ void BM_Lz4Probe(benchmark::State& state) {
     }
     events += static_cast<double>(packed.size());
   }
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
+// The merge of the bright QCIF's tiles' streams (its 5 M delivered events in 20 windows, as the
+// event log hands them over) by the run's own EventMerger into a stream that keeps nothing, and
+// the probe of the least work a merge must do (merge_probe.hpp) on the same windows.
+const RecordedWindows& qcif_windows() {
+  static const RecordedWindows recorded = record_qcif_windows(20);
+  return recorded;
+}
+
+class NullStream : public EventStream {
+ public:
+  void events(const AddressEvent* first, std::size_t count) override { benchmark::DoNotOptimize(first + count); }
+};
+
+void BM_QcifMerge(benchmark::State& state) {
+  const RecordedWindows& recorded = qcif_windows();
+  double events = 0;
+  NullStream null;
+  // One merger throughout, as in a run (its buffers reused); each pass over the windows ends with
+  // nothing held, so the next starts afresh.
+  EventMerger merger(recorded.windows.front().events.size(), null);
+  std::vector<TileRecords> windows;
+  for (auto _ : state) {
+    state.PauseTiming();
+    windows = recorded.windows;
+    state.ResumeTiming();
+    for (std::size_t i = 0; i < windows.size(); ++i) merger.merge(windows[i], recorded.before[i]);
+    events += static_cast<double>(recorded.events);
+  }
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
+void BM_MergeProbe(benchmark::State& state) {
+  const RecordedWindows& recorded = qcif_windows();
+  double events = 0;
+  for (auto _ : state) events += static_cast<double>(merge_probe(recorded));
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
@@ -331,6 +377,8 @@ BENCHMARK_CAPTURE(BM_QcifWritten, aedat4_plain, "plain.aedat4")->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, npy, "e.npy")->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, h5, "e.h5")->Apply(qcif);
 BENCHMARK(BM_Lz4Probe)->Apply(qcif);
+BENCHMARK(BM_QcifMerge)->Apply(qcif);
+BENCHMARK(BM_MergeProbe)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false, false)->Apply(qcif);
 BENCHMARK(BM_QcifPixelProcesses)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 

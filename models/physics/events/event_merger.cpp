@@ -37,20 +37,13 @@ bool before_in_tile(const TileEvent& a, const TileEvent& b) {
 bool before_in_tile(const TruthRecord& a, const TruthRecord& b) { return key_of(a, 0) < key_of(b, 0); }
 
 constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
-// Records sorted at a time: a slice of the window's time holding about this many, gathered from
-// every tile, sorted by a counting sort on time and passed on. Two buffers of them (32 bytes a
-// record) stay in the core's own cache.
+// Records sorted at a time: a slice of the window's time holding about this many, from every tile,
+// sorted by a counting sort on time and passed on. Their entries (16 bytes a record) and counts stay
+// in the core's own cache.
 constexpr std::size_t kSlice = 4096;
 // A bucket of the slice's counting sort holding more records than this (many firings at one
-// instant) is sorted by a merge sort rather than by insertion.
+// instant) is sorted by a merge sort before the insertion pass.
 constexpr std::size_t kInsertionMost = 16;
-
-double time_of_key(OrderKey key) {
-  const auto bits = static_cast<std::uint64_t>(key >> 64);
-  double t;
-  std::memcpy(&t, &bits, sizeof t);
-  return t;
-}
 
 // Merges every tile's records earlier than `before` into `chunk`, passing full chunks to `emit`.
 // A tile's records are those it held back last time followed by its new ones; in the event rung
@@ -60,27 +53,24 @@ double time_of_key(OrderKey key) {
 // order) they are joined and sorted; a stable sort keeps production order among equal keys, as a
 // sort of the whole run would.
 //
-// The window's span of time is cut into slices of about kSlice records. Each slice takes every
-// tile's records in it (each tile's in order, so a slice is a prefix of what is left of each) and
-// counting-sorts them on time into about a bucket a record, then orders each bucket by the whole
-// key (time, tile, address), keeping production order among equal keys. A record costs the same
-// whatever the number of tiles, where a k-way merge pays log2(tiles) comparisons for it.
+// The window's span of time is cut into slices of about kSlice records. A slice's records are
+// counted into buckets of time straight from the tiles' buffers (about two buckets a record), then
+// each is placed at its bucket's next free place as a 16-byte entry (its time, its run of records
+// and its place in it), tile after tile, so equal keys keep production order. The few buckets that
+// got more than one record are put in key order by one insertion pass over the slice (a merge sort
+// for a bucket of many records at one instant). A record costs the same whatever the number of
+// tiles, where a k-way merge pays log2(tiles) comparisons for it; the records themselves are read
+// twice where they lie and copied once, into the chunk.
 template <typename T, typename Out, typename Emit>
 void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector<T>>& held, double before,
-                  std::vector<Out>& chunk, MergeScratch<T>& scratch, Emit emit) {
+                  std::vector<Out>& chunk, MergeScratch& scratch, Emit emit) {
   // Within one tile's records (the tile part of the key is the same).
   auto less = [](const T& a, const T& b) { return before_in_tile(a, b); };
   auto early = [before](const T& r) { return time_of(r) < before; };
   const std::size_t tiles = held.size();
-  // A tile's records to merge: [a, a_end) then [b, b_end).
-  struct Cursor {
-    const T *a, *a_end, *b, *b_end;
-    bool done() const { return a == a_end && b == b_end; }
-    const T& peek() const { return a != a_end ? *a : *b; }
-    const T& last() const { return b != b_end ? b_end[-1] : a_end[-1]; }
-    void skip() { (a != a_end ? a : b)++; }
-  };
-  std::vector<Cursor> cursor(tiles);
+  // The records to merge as runs, each in order: a tile's held ones, then its new ones.
+  std::vector<MergeRun<T>>& runs = scratch.runs<T>();
+  runs.clear();
   std::vector<std::size_t> from_held(tiles, 0), from_new(tiles, 0);
   std::size_t live = 0;
   double t_first = 0, t_last = 0;
@@ -98,70 +88,87 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
     from_new[i] = from_held[i] < h.size()
                       ? 0
                       : static_cast<std::size_t>(std::partition_point(in.begin(), in.end(), early) - in.begin());
-    cursor[i] = {h.data(), h.data() + from_held[i], in.data(), in.data() + from_new[i]};
-    if (!cursor[i].done()) {
-      const double first = time_of(cursor[i].peek()), last = time_of(cursor[i].last());
-      t_first = live == 0 ? first : std::min(t_first, first);
-      t_last = live == 0 ? last : std::max(t_last, last);
-      live += from_held[i] + from_new[i];
+    for (const auto& [first, n] : {std::pair<const T*, std::size_t>{h.data(), from_held[i]}, {in.data(), from_new[i]}}) {
+      if (n == 0) continue;
+      t_first = live == 0 ? time_of(first[0]) : std::min(t_first, time_of(first[0]));
+      t_last = live == 0 ? time_of(first[n - 1]) : std::max(t_last, time_of(first[n - 1]));
+      live += n;
+      runs.push_back({first, first, first + n, static_cast<std::uint32_t>(i)});
     }
   }
   const std::size_t slices = std::max<std::size_t>(1, live / kSlice);
   const double span = t_last - t_first;
-  std::vector<Sorted<T>>& gathered = scratch.gathered;
-  std::vector<Sorted<T>>& sorted = scratch.sorted;
+  std::vector<SliceEntry>& sorted = scratch.sorted;
   std::vector<std::uint32_t>& count = scratch.count;
+  // Order of two placed entries by the whole key (time, tile, address): the time nearly always
+  // decides; a tie reads the records.
+  const auto entry_less = [&runs](const SliceEntry& a, const SliceEntry& b) {
+    if (a.t != b.t) return a.t < b.t;
+    const MergeRun<T>& ra = runs[a.run];
+    const MergeRun<T>& rb = runs[b.run];
+    return key_of(ra.first[a.index], ra.tile) < key_of(rb.first[b.index], rb.tile);
+  };
   std::size_t used = 0;
   for (std::size_t s = 0; s < slices && live > 0; ++s) {
     // The slice [lo, hi): the last one takes whatever is left.
     const double lo = t_first + span * static_cast<double>(s) / static_cast<double>(slices);
     const bool last_slice = s + 1 == slices;
     const double hi = last_slice ? t_last : t_first + span * static_cast<double>(s + 1) / static_cast<double>(slices);
-    gathered.clear();
-    for (std::size_t i = 0; i < tiles; ++i) {
-      Cursor& c = cursor[i];
-      while (!c.done() && (last_slice || time_of(c.peek()) < hi)) {
-        gathered.push_back({key_of(c.peek(), static_cast<std::uint32_t>(i)), &c.peek(), static_cast<std::uint32_t>(i)});
-        c.skip();
-      }
+    std::size_t n = 0;
+    for (MergeRun<T>& r : runs) {
+      r.slice_end = last_slice ? r.end
+                               : std::partition_point(r.next, r.end, [hi](const T& x) { return time_of(x) < hi; });
+      n += static_cast<std::size_t>(r.slice_end - r.next);
     }
-    const std::size_t n = gathered.size();
     live -= n;
     if (n == 0) continue;
-    // Buckets of time over [lo, hi], about one a record; (t - lo) * scale never decreases as t
+    // Buckets of time over [lo, hi], one to two a record; (t - lo) * scale never decreases as t
     // grows, so records in a lower bucket come first.
-    std::size_t buckets = 1;
+    std::size_t buckets = 2;
     while (buckets < n) buckets *= 2;
     const double width = hi - lo;
     const double scale = width > 0 ? static_cast<double>(buckets) / width : 0;
-    const auto bucket_of = [&](OrderKey key) {
-      const double b = (time_of_key(key) - lo) * scale;
-      return b < static_cast<double>(buckets - 1) ? static_cast<std::size_t>(b) : buckets - 1;
+    const double top = static_cast<double>(buckets - 1);
+    const auto bucket_of = [lo, scale, top](double t) {
+      const double b = (t - lo) * scale;
+      return static_cast<std::size_t>(static_cast<std::int64_t>(b < top ? b : top));
     };
     count.assign(buckets + 1, 0);
-    for (const Sorted<T>& g : gathered) ++count[bucket_of(g.key) + 1];
+    std::uint32_t crowded = 0;  // records in buckets of more than kInsertionMost
+    for (const MergeRun<T>& r : runs) {
+      for (const T* x = r.next; x != r.slice_end; ++x) {
+        crowded += ++count[bucket_of(time_of(*x)) + 1] > kInsertionMost;
+      }
+    }
     for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
     sorted.resize(n);
-    for (const Sorted<T>& g : gathered) sorted[count[bucket_of(g.key)]++] = g;
-    // count[b] is now where bucket b ends; each bucket in key order, stably.
-    std::size_t begin = 0;
-    for (std::size_t b = 0; b < buckets; ++b) {
-      const std::size_t end = count[b];
-      if (end - begin > kInsertionMost) {
-        std::stable_sort(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
-                         [](const Sorted<T>& x, const Sorted<T>& y) { return x.key < y.key; });
-      } else {
-        for (std::size_t k = begin + 1; k < end; ++k) {
-          const Sorted<T> moving = sorted[k];
-          std::size_t j = k;
-          for (; j > begin && moving.key < sorted[j - 1].key; --j) sorted[j] = sorted[j - 1];
-          sorted[j] = moving;
+    for (std::uint32_t k = 0; k < runs.size(); ++k) {
+      MergeRun<T>& r = runs[k];
+      for (const T* x = r.next; x != r.slice_end; ++x) {
+        sorted[count[bucket_of(time_of(*x))]++] = {time_of(*x), k, static_cast<std::uint32_t>(x - r.first)};
+      }
+      r.next = r.slice_end;
+    }
+    // count[b] is now where bucket b ends.
+    if (crowded > 0) {
+      for (std::size_t b = 0, begin = 0; b < buckets; begin = count[b++]) {
+        if (count[b] - begin > kInsertionMost) {
+          std::stable_sort(sorted.begin() + static_cast<std::ptrdiff_t>(begin),
+                           sorted.begin() + static_cast<std::ptrdiff_t>(count[b]), entry_less);
         }
       }
-      begin = end;
     }
-    for (const Sorted<T>& r : sorted) {
-      put(chunk[used], *r.record, r.tile);
+    // Every entry is at most a few places past where it belongs, all within its own bucket.
+    for (std::size_t k = 1; k < n; ++k) {
+      if (sorted[k].t > sorted[k - 1].t || !entry_less(sorted[k], sorted[k - 1])) continue;
+      const SliceEntry moving = sorted[k];
+      std::size_t j = k;
+      for (; j > 0 && entry_less(moving, sorted[j - 1]); --j) sorted[j] = sorted[j - 1];
+      sorted[j] = moving;
+    }
+    for (const SliceEntry& e : sorted) {
+      const MergeRun<T>& r = runs[e.run];
+      put(chunk[used], r.first[e.index], r.tile);
       if (++used == kChunk) {
         emit(chunk.data(), used);
         used = 0;
@@ -190,9 +197,9 @@ EventMerger::EventMerger(std::size_t tiles, EventStream& out) : events_(tiles), 
 }
 
 void EventMerger::merge(TileRecords& batch, double before) {
-  merge_window(batch.events, events_, before, event_chunk_, event_scratch_,
+  merge_window(batch.events, events_, before, event_chunk_, scratch_,
                [this](const AddressEvent* c, std::size_t n) { out_.events(c, n); });
-  merge_window(batch.truth, truth_, before, truth_chunk_, truth_scratch_,
+  merge_window(batch.truth, truth_, before, truth_chunk_, scratch_,
                [this](const TruthRecord* c, std::size_t n) { out_.truth(c, n); });
 }
 

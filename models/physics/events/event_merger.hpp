@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "aesim/events/event_stream.hpp"
@@ -48,19 +49,33 @@ struct TileRecords {
   std::vector<std::vector<TruthRecord>> truth;
 };
 
-// A record on its way through a merge's sort (event_merger.cpp): its order key (time, tile, bus
-// address as one 128-bit number), where it lies, its tile.
+// A run of one tile's records, in order, on its way through a merge (event_merger.cpp): where it
+// starts, the next record to merge, the end of the slice being merged, its end, its tile.
 template <typename T>
-struct Sorted {
-  unsigned __int128 key;
-  const T* record;
+struct MergeRun {
+  const T *first, *next, *end;
   std::uint32_t tile;
+  const T* slice_end = nullptr;
+};
+// A record placed by a merge's counting sort: its time, its run, its place in the run.
+struct SliceEntry {
+  double t;
+  std::uint32_t run, index;
 };
 // Where a merge sorts a slice of records, kept between windows.
-template <typename T>
 struct MergeScratch {
-  std::vector<Sorted<T>> gathered, sorted;
+  std::vector<MergeRun<TileEvent>> event_runs;
+  std::vector<MergeRun<TruthRecord>> truth_runs;
+  std::vector<SliceEntry> sorted;
   std::vector<std::uint32_t> count;
+  template <typename T>
+  std::vector<MergeRun<T>>& runs() {
+    if constexpr (std::is_same_v<T, TileEvent>) {
+      return event_runs;
+    } else {
+      return truth_runs;
+    }
+  }
 };
 
 // Merges the tiles' records into one stream, outputs in (time, tile, bus address) order and truth
@@ -81,8 +96,7 @@ class EventMerger {
   std::vector<std::vector<TruthRecord>> truth_;
   std::vector<AddressEvent> event_chunk_;  // kChunk records, filled from the front
   std::vector<TruthRecord> truth_chunk_;
-  MergeScratch<TileEvent> event_scratch_;
-  MergeScratch<TruthRecord> truth_scratch_;
+  MergeScratch scratch_;
   EventStream& out_;
 };
 

@@ -1,0 +1,25 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "aesim/events/event_merger.hpp"
+
+namespace aesim {
+
+// The tiles' records of a run as the event log hands them to the merge: per window, each tile's
+// records in the order it produced them, and the time before which the window's records are final.
+struct RecordedWindows {
+  std::vector<TileRecords> windows;
+  std::vector<double> before;
+  std::size_t events = 0;
+};
+
+// The bright QCIF's delivered events (20 s) cut into `windows` windows of equal counts.
+RecordedWindows record_qcif_windows(std::size_t windows);
+
+// The least work a merge of the tiles' sorted streams must do: a k-way merge (a binary heap of the
+// tiles' next records, keyed by time, tile and address) into 8-byte records (a microsecond stamp and
+// a bus address), appended to a cache-resident buffer. Returns the records made.
+std::uint64_t merge_probe(const RecordedWindows& recorded);
+
+}  // namespace aesim
