@@ -15,6 +15,7 @@
 #include "IOHeader_generated.h"
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/event_stamps.hpp"
+#include "aesim/threads/serial_worker.hpp"
 #include "events_generated.h"
 
 namespace aesim {
@@ -181,6 +182,15 @@ Aedat4Compression parse_aedat4_compression(const std::string& text) {
   throw InputError(fmt::format("--aedat4-compression: expected lz4, zstd or none (got '{}')", text));
 }
 
+// The packet filling, and the thread that compresses and writes full ones (none uncompressed).
+struct Aedat4Writer::Packets {
+  std::vector<dv::Event> filling;
+  std::unique_ptr<SerialWorker> worker;
+};
+
+// Packets waiting for the writer's thread: enough to ride out a slow write, 64 KiB each.
+constexpr std::size_t kPacketsWaiting = 8;
+
 Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
     : out_(out), stamps_(spec.tick), compression_(spec.compression) {
   const std::streamoff start = out_.tellp();
@@ -207,56 +217,80 @@ Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
     std::memcpy(header_bytes.data() + at, &none, 8);
   }
   out_.write(header_bytes.data(), static_cast<std::streamsize>(header_bytes.size()));
-  pending_.reserve(kAedat4PacketEvents);
+  packets_ = std::make_unique<Packets>();
+  packets_->filling.reserve(kAedat4PacketEvents);
+  if (compression_ != Aedat4Compression::None) packets_->worker = std::make_unique<SerialWorker>(kPacketsWaiting);
 }
 
-Aedat4Writer::~Aedat4Writer() = default;
+// The worker goes first: a job still running uses the members.
+Aedat4Writer::~Aedat4Writer() { packets_->worker.reset(); }
 
 void Aedat4Writer::events(const AddressEvent* first, std::size_t count) {
+  std::vector<dv::Event>& filling = packets_->filling;
   for (std::size_t i = 0; i < count; ++i) {
     const AddressEvent& e = first[i];
-    pending_.push_back({static_cast<std::int64_t>(stamps_(e.t)), static_cast<std::int16_t>(e.x),
-                        static_cast<std::int16_t>(e.y), e.flags != kGhostEvent});
-    if (pending_.size() == kAedat4PacketEvents) write_packet();
+    filling.emplace_back(static_cast<std::int64_t>(stamps_(e.t)), static_cast<std::int16_t>(e.x),
+                         static_cast<std::int16_t>(e.y), e.flags != kGhostEvent);
+    if (filling.size() == kAedat4PacketEvents) write_packet();
   }
 }
 
-std::size_t Aedat4Writer::compress(const char* body, std::size_t size) {
+std::size_t Aedat4Writer::compress(const char* body, std::size_t size, std::vector<char>& out) const {
   switch (compression_) {
-    case Aedat4Compression::Lz4: return lz4_frame(body, size, body_);
-    case Aedat4Compression::Zstd: return zstd_frame(body, size, body_);
+    case Aedat4Compression::Lz4: return lz4_frame(body, size, out);
+    case Aedat4Compression::Zstd: return zstd_frame(body, size, out);
     case Aedat4Compression::None: break;
   }
+  out.assign(body, body + size);
   return size;
 }
 
 void Aedat4Writer::write_packet() {
+  std::vector<dv::Event>& filling = packets_->filling;
   // An empty run still gets one (empty) packet: readers that gather the event packets (tonic's)
   // fail on a file with none.
-  if (pending_.empty() && any_packet_) return;
+  if (filling.empty() && any_packet_) return;
   any_packet_ = true;
-  flatbuffers::FlatBufferBuilder fbb(pending_.size() * sizeof(dv::Event) + 64);
-  std::vector<dv::Event> elements;
-  elements.reserve(pending_.size());
-  for (const Pending& p : pending_) elements.emplace_back(p.t_us, p.x, p.y, p.on);
-  const auto packet = dv::CreateEventPacket(fbb, fbb.CreateVectorOfStructs(elements));
+  flatbuffers::FlatBufferBuilder fbb(filling.size() * sizeof(dv::Event) + 64);
+  const auto packet = dv::CreateEventPacket(fbb, fbb.CreateVectorOfStructs(filling));
   dv::FinishSizePrefixedEventPacketBuffer(fbb, packet);
-  const char* body = reinterpret_cast<const char*>(fbb.GetBufferPointer());
-  std::size_t size = fbb.GetSize();
-  size = compress(body, size);
-  if (compression_ != Aedat4Compression::None) body = body_.data();
+  const Written entry{-1, 0, static_cast<std::int64_t>(filling.size()), filling.empty() ? 0 : filling.front().timestamp(),
+                      filling.empty() ? 0 : filling.back().timestamp()};
+  filling.clear();
+  const char* plain = reinterpret_cast<const char*>(fbb.GetBufferPointer());
+  if (!packets_->worker) {  // uncompressed
+    write_body(plain, fbb.GetSize(), entry);
+    return;
+  }
+  // Compressed on the writer's thread; or here, while that thread is behind (half its queue
+  // waiting), so that this thread compresses rather than waits. Written there, in order, either way.
+  auto packed = std::make_shared<std::vector<char>>();
+  if (packets_->worker->waiting() >= kPacketsWaiting / 2) {
+    const std::size_t size = compress(plain, fbb.GetSize(), *packed);
+    packed->resize(size);
+    packets_->worker->post([this, packed, entry] { write_body(packed->data(), packed->size(), entry); });
+  } else {
+    auto body = std::make_shared<flatbuffers::DetachedBuffer>(fbb.Release());
+    packets_->worker->post([this, body, packed, entry] {
+      const std::size_t size = compress(reinterpret_cast<const char*>(body->data()), body->size(), *packed);
+      write_body(packed->data(), size, entry);
+    });
+  }
+}
+
+void Aedat4Writer::write_body(const char* body, std::size_t size, Written entry) {
   const std::streamoff at = out_.tellp();
   put_le32(out_, 0);  // stream id
   put_le32(out_, static_cast<std::uint32_t>(size));
   out_.write(body, static_cast<std::streamsize>(size));
-  written_.push_back({at < 0 ? -1 : static_cast<std::int64_t>(at) + 8, static_cast<std::int64_t>(size),
-                      static_cast<std::int64_t>(pending_.size()), pending_.empty() ? 0 : pending_.front().t_us,
-                      pending_.empty() ? 0 : pending_.back().t_us});
-  pending_.clear();
+  entry.offset = at < 0 ? -1 : static_cast<std::int64_t>(at) + 8;
+  entry.size = static_cast<std::int64_t>(size);
+  written_.push_back(entry);
 }
 
 void Aedat4Writer::finish() {
   write_packet();
+  if (packets_->worker) packets_->worker->drain();
   write_data_table();
 }
 
@@ -273,10 +307,8 @@ void Aedat4Writer::write_data_table() {
   }
   dv::FinishSizePrefixedFileDataTableBuffer(fbb, dv::CreateFileDataTable(fbb, fbb.CreateVector(entries)));
   const char* body = reinterpret_cast<const char*>(fbb.GetBufferPointer());
-  std::size_t size = fbb.GetSize();
-  size = compress(body, size);
-  if (compression_ != Aedat4Compression::None) body = body_.data();
-  out_.write(body, static_cast<std::streamsize>(size));
+  const std::size_t size = compress(body, fbb.GetSize(), body_);
+  out_.write(body_.data(), static_cast<std::streamsize>(size));
   const std::streamoff end = out_.tellp();
   const std::int64_t value = static_cast<std::int64_t>(position);
   char le[8];

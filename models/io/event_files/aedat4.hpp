@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -15,38 +16,39 @@ namespace aesim {
 // and sizeY and aesim's sensor parameters), then packets: int32 stream id, int32 body size, and
 // the body, a size-prefixed EventPacket FlatBuffer, as an LZ4 frame when compressed. x and y are
 // global (0, 0 top-left); polarity is 1 for a normal event and 0 for a ghost.
+//
+// Events are put in a packet's layout as they come, on the caller's thread (the merge's); a full
+// packet's compression and writing run on a thread of the writer's own (SerialWorker) while the
+// next packet fills: LZ4 costs more than the merge that feeds it. Uncompressed, they are written
+// at once.
 class Aedat4Writer : public EventFileWriter {
  public:
   Aedat4Writer(std::ostream& out, const EventFileSpec& spec);
   ~Aedat4Writer() override;
   void events(const AddressEvent* first, std::size_t count) override;
   void finish() override;
-  // LZ4 costs more than the merge that feeds it.
-  bool wants_own_thread() const override { return compression_ != Aedat4Compression::None; }
 
  private:
-  void write_packet();
-  void write_data_table();
-  std::ostream& out_;
-  MicrosecondStamps stamps_;
-  Aedat4Compression compression_;
-  // Compresses `size` bytes at `body` into body_ as the header says; returns the size to write.
-  std::size_t compress(const char* body, std::size_t size);
-  struct Pending {
-    std::int64_t t_us;
-    std::int16_t x, y;
-    bool on;
-  };
-  std::vector<Pending> pending_;
-  std::vector<char> body_;
+  struct Packets;
   // The data table DV writes at the end: one entry a packet, and where the header's
   // dataTablePosition lies in the file, to be patched (-1 when the output cannot seek).
   struct Written {
     std::int64_t offset, size, elements, first_us, last_us;
   };
+  void write_packet();
+  void write_body(const char* body, std::size_t size, Written entry);
+  void write_data_table();
+  // Compresses `size` bytes at `body` into `out` as the header says (copies them uncompressed);
+  // returns the size to write.
+  std::size_t compress(const char* body, std::size_t size, std::vector<char>& out) const;
+  std::ostream& out_;
+  MicrosecondStamps stamps_;
+  Aedat4Compression compression_;
+  std::vector<char> body_;
   std::vector<Written> written_;
   std::int64_t table_field_at_ = -1;
   bool any_packet_ = false;
+  std::unique_ptr<Packets> packets_;  // last: its worker's jobs use the members above
 };
 
 // A polarity event as the field's formats carry it.

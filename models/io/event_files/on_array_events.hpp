@@ -26,7 +26,6 @@ class OnArrayEvents : public EventFileWriter {
   void finish() override { writer_->finish(); }
   std::uint64_t off_array() const override { return off_array_; }
   std::string reader_warning() const override { return writer_->reader_warning(); }
-  bool wants_own_thread() const override { return writer_->wants_own_thread(); }
 
  private:
   std::unique_ptr<EventFileWriter> writer_;

@@ -4,7 +4,6 @@
 #include <limits>
 
 #include "aesim/events/merge_pipeline.hpp"
-#include "aesim/events/stream_worker.hpp"
 
 namespace aesim {
 namespace {
@@ -34,9 +33,7 @@ EventLog::EventLog(int tiles, LogOutputs outputs)
   for (std::size_t i = 0; i < n; ++i) {
     tiles_.push_back(Tile{{}, LatencyRecorder(std::max<std::size_t>(4096, kExactLatencies / n)), 0});
   }
-  // Writers that compress do so on a thread of their own while the merge goes on.
-  if (outputs_.stream && outputs_.stream->wants_own_thread()) writer_ = std::make_unique<StreamWorker>(*outputs_.stream);
-  EventStream& out = writer_ ? *writer_ : outputs_.stream ? *outputs_.stream : static_cast<EventStream&>(*collector_);
+  EventStream& out = outputs_.stream ? *outputs_.stream : static_cast<EventStream&>(*collector_);
   merger_ = std::make_unique<EventMerger>(n, out);
 }
 
@@ -94,7 +91,6 @@ void EventLog::finish() {
     pipeline_->drain();
     pipeline_.reset();
   }
-  if (writer_) writer_->drain();
   for (Tile& t : tiles_) latency_.absorb(t.latencies);
 }
 

@@ -14,7 +14,6 @@
 namespace aesim {
 
 class MergePipeline;
-class StreamWorker;
 
 // Set bits of a word, without the library call __builtin_popcount becomes on a baseline x86-64.
 inline unsigned ones(std::uint32_t v) {
@@ -138,7 +137,6 @@ class EventLog {
   std::vector<Tile> tiles_;
   LogOutputs outputs_;
   std::unique_ptr<EventCollector> collector_;
-  std::unique_ptr<StreamWorker> writer_;  // a stream's writers on a thread of their own
   std::unique_ptr<EventMerger> merger_;
   std::unique_ptr<MergePipeline> pipeline_;
   TileRecords filling_;  // the tiles' records since the last hand-over

@@ -20,10 +20,6 @@ class EventStream {
     (void)first;
     (void)count;
   }
-  // Whether taking the records costs enough (compression) that the run should hand them over on a
-  // thread of their own (StreamWorker) rather than on the merge's: beside a cheap writer a third
-  // thread only competes for the cores.
-  virtual bool wants_own_thread() const { return false; }
 };
 
 // An EventStream that keeps everything: for runs whose records are analysed after the run
@@ -49,12 +45,6 @@ class EventStreams : public EventStream {
   }
   void truth(const TruthRecord* first, std::size_t count) override {
     for (EventStream* s : streams_) s->truth(first, count);
-  }
-  bool wants_own_thread() const override {
-    for (const EventStream* s : streams_) {
-      if (s->wants_own_thread()) return true;
-    }
-    return false;
   }
 
  private:
