@@ -191,6 +191,37 @@ void BM_QcifWritten(benchmark::State& state, const char* name) {
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
+// A large array (N x N pixels in 32x32 tiles, uniform full light, 1 s: 10 events a pixel) with its
+// events written to an AEDAT 2.0 file, set-up included: against the QCIF's AEDAT, how the rate
+// holds as the tiles grow in number.
+void BM_ArrayWritten(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  SensorConfig c = qcif_bright(Fidelity::Event, 1.0, 1);
+  c.array.rows = c.array.cols = n;
+  const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
+  const ResolvedConfig config = c.resolved();
+  EventFileSpec spec;
+  spec.array = config.array;
+  spec.tick = config.receiver.tick;
+  spec.duration = config.sim.duration;
+  const std::string path = (std::filesystem::temp_directory_path() / "aesim_bench_large.aedat").string();
+  double events = 0;
+  for (auto _ : state) {
+    auto files = std::make_unique<OutputFiles>();
+    auto writer = open_event_writer(*files, path, spec);
+    SimulationRequest request;
+    request.keep_events = true;
+    request.stream = writer.get();
+    events += static_cast<double>(simulate(config, photocurrents, request).log.totals().fired);
+    writer->finish();
+    state.PauseTiming();
+    writer.reset();
+    files.reset();
+    state.ResumeTiming();
+  }
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
 // LZ4 alone on the packets an .aedat4 holds: 4096 events of DV's 16-byte Event (stamp, x, y,
 // polarity) from the bright QCIF's firing pattern, each packet one LZ4 frame, as the writer makes
 // them. The least work compressed AEDAT 4.0 must do.
@@ -380,6 +411,7 @@ BENCHMARK(BM_Lz4Probe)->Apply(qcif);
 BENCHMARK(BM_QcifMerge)->Apply(qcif);
 BENCHMARK(BM_MergeProbe)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false, false)->Apply(qcif);
+BENCHMARK(BM_ArrayWritten)->Arg(1024)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3);
 BENCHMARK(BM_QcifPixelProcesses)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace

@@ -41,6 +41,7 @@ constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few p
 // sorted by a counting sort on time and passed on. Their entries (16 bytes a record) and counts stay
 // in the core's own cache.
 constexpr std::size_t kSlice = 4096;
+constexpr std::size_t kSliceRecordsPerRun = 4;
 // A bucket of the slice's counting sort holding more records than this (many firings at one
 // instant) is sorted by a merge sort before the insertion pass.
 constexpr std::size_t kInsertionMost = 16;
@@ -53,7 +54,7 @@ constexpr std::size_t kInsertionMost = 16;
 // order) they are joined and sorted; a stable sort keeps production order among equal keys, as a
 // sort of the whole run would.
 //
-// The window's span of time is cut into slices of about kSlice records. A slice's records are
+// The window's span of time is cut into slices of about kSlice records (more with many tiles). A slice's records are
 // counted into buckets of time straight from the tiles' buffers (about two buckets a record), then
 // each is placed at its bucket's next free place as a 16-byte entry (its time, its run of records
 // and its place in it), tile after tile, so equal keys keep production order. The few buckets that
@@ -96,7 +97,9 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
       runs.push_back({first, first, first + n, static_cast<std::uint32_t>(i)});
     }
   }
-  const std::size_t slices = std::max<std::size_t>(1, live / kSlice);
+  // Every slice looks at every run once: with thousands of tiles, slices hold a few records a run,
+  // so that the look costs less than the records.
+  const std::size_t slices = std::max<std::size_t>(1, live / std::max(kSlice, kSliceRecordsPerRun * runs.size()));
   const double span = t_last - t_first;
   std::vector<SliceEntry>& sorted = scratch.sorted;
   std::vector<std::uint32_t>& count = scratch.count;
