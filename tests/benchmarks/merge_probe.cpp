@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <queue>
+#include <limits>
 
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/run/imager_simulation.hpp"
@@ -42,38 +42,56 @@ RecordedWindows record_qcif_windows(std::size_t windows) {
 }
 
 std::uint64_t merge_probe(const RecordedWindows& recorded) {
+  // A tournament tree of losers over the tiles (Knuth's replacement selection): each record
+  // climbs one path of log2(tiles) matches, the least comparisons a k-way merge can do.
   struct Head {
     double t;
-    std::uint32_t tile, address;
-    std::uint32_t index;
-    bool operator>(const Head& o) const {
-      return t != o.t ? t > o.t : tile != o.tile ? tile > o.tile : address > o.address;
-    }
+    std::uint64_t rest;  // tile << 32 | bus address: the order of equal times
+    bool before(const Head& o) const { return t < o.t || (t == o.t && rest < o.rest); }
   };
+  constexpr double kDone = std::numeric_limits<double>::infinity();
   std::vector<std::uint64_t> out;
   out.reserve(1 << 14);
   std::uint64_t made = 0;
-  std::vector<Head> storage;
   for (const TileRecords& w : recorded.windows) {
-    storage.clear();
-    std::priority_queue<Head, std::vector<Head>, std::greater<Head>> heap(std::greater<Head>(), std::move(storage));
-    const auto head_of = [&](std::uint32_t tile, std::uint32_t index) {
-      const TileEvent& e = w.events[tile][index];
-      return Head{e.t, tile, e.address_ghost & ~TileEvent::kGhostBit, index};
+    const std::size_t k = w.events.size();
+    std::size_t leaves = 1;
+    while (leaves < k) leaves *= 2;
+    std::vector<std::size_t> at(leaves, 0);
+    const auto head = [&](std::size_t tile) {
+      if (tile >= k || at[tile] >= w.events[tile].size()) return Head{kDone, ~std::uint64_t(0)};
+      const TileEvent& e = w.events[tile][at[tile]];
+      return Head{e.t, (std::uint64_t(tile) << 32) | (e.address_ghost & ~TileEvent::kGhostBit)};
     };
-    for (std::uint32_t tile = 0; tile < w.events.size(); ++tile) {
-      if (!w.events[tile].empty()) heap.push(head_of(tile, 0));
+    // loser[node] for the inner nodes 1..leaves-1; the winner of the whole tree apart.
+    std::vector<std::size_t> loser(leaves);
+    std::vector<std::size_t> winner(2 * leaves);
+    for (std::size_t i = 0; i < leaves; ++i) winner[leaves + i] = i;
+    for (std::size_t node = leaves - 1; node >= 1; --node) {
+      const std::size_t a = winner[2 * node], b = winner[2 * node + 1];
+      const bool a_first = head(a).before(head(b)) || head(b).t == kDone;
+      winner[node] = a_first ? a : b;
+      loser[node] = a_first ? b : a;
     }
-    while (!heap.empty()) {
-      const Head h = heap.top();
-      heap.pop();
-      out.push_back((std::uint64_t(h.address) << 32) | static_cast<std::uint32_t>(h.t * 1e6));
+    std::size_t top = leaves > 1 ? winner[1] : 0;
+    for (;;) {
+      const Head h = head(top);
+      if (h.t == kDone) break;
+      out.push_back((h.rest << 32) | static_cast<std::uint32_t>(h.t * 1e6));
       if (out.size() == out.capacity()) {
         benchmark::DoNotOptimize(out.data());
         out.clear();
       }
       ++made;
-      if (h.index + 1 < w.events[h.tile].size()) heap.push(head_of(h.tile, h.index + 1));
+      ++at[top];
+      Head current = head(top);
+      for (std::size_t node = (leaves + top) / 2; node >= 1; node /= 2) {
+        const Head other = head(loser[node]);
+        if (other.before(current)) {
+          std::swap(top, loser[node]);
+          current = other;
+        }
+      }
     }
   }
   benchmark::DoNotOptimize(out.data());

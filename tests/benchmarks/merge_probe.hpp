@@ -17,9 +17,10 @@ struct RecordedWindows {
 // The bright QCIF's delivered events (20 s) cut into `windows` windows of equal counts.
 RecordedWindows record_qcif_windows(std::size_t windows);
 
-// The least work a merge of the tiles' sorted streams must do: a k-way merge (a binary heap of the
-// tiles' next records, keyed by time, tile and address) into 8-byte records (a microsecond stamp and
-// a bus address), appended to a cache-resident buffer. Returns the records made.
+// The least work a merge of the tiles' sorted streams must do by comparisons: a k-way merge (a tree
+// of losers over the tiles' next records, keyed by time, tile and address) into 8-byte records (a
+// microsecond stamp and a bus address), appended to a cache-resident buffer. Returns the records
+// made.
 std::uint64_t merge_probe(const RecordedWindows& recorded);
 
 }  // namespace aesim
