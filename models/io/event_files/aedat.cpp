@@ -25,7 +25,7 @@ void put_be32(char* p, std::uint32_t v) {
   p[3] = static_cast<char>(v);
 }
 
-constexpr std::size_t kBufferBytes = std::size_t(1) << 16;
+constexpr std::size_t kBufferBytes = std::size_t(1) << 20;
 
 std::uint32_t get_be32(const unsigned char* p) {
   return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];

@@ -18,7 +18,7 @@ namespace {
 
 constexpr char kNpyMagic[] = "\x93NUMPY";
 constexpr std::size_t kNpyRecordBytes = 13;
-constexpr std::size_t kNpyBufferBytes = std::size_t(1) << 16;
+constexpr std::size_t kNpyBufferBytes = std::size_t(1) << 20;
 // The header of format 1.0 is 10 bytes of preamble and a text padded to a multiple of 64 bytes.
 constexpr std::size_t kNpyHeaderBytes = 256;
 
