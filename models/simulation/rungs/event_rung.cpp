@@ -14,14 +14,17 @@
 namespace aesim {
 namespace {
 
-// Windows of an eighth of an event per pixel, 256 Ki at least: each tile works through a batch of
-// events while its pixels' state is in cache (at 64 Ki, QCIF tiles took ~2 events a pixel a
-// window and writing AEDAT ran at 0.7 of counting; at 256 Ki, at par), for 4 MB of records in each
-// of the two buffer sets, or 2 bytes a pixel on large arrays, up to twice that as the per-tile
-// vectors grow by doubling (growing them by a quarter fragmented the heap: 100 MB more at
-// 2048x2048). A quarter of an event per pixel ran no faster at 2048x2048 and held 35 MB more.
+// Windows of half an event per pixel, 256 Ki at least: each tile works through a batch of events
+// while its pixels' state is in cache (at 64 Ki, QCIF tiles took ~2 events a pixel a window and
+// writing AEDAT ran at 0.7 of counting; at 256 Ki, at par), for 4 MB of records in each of the two
+// buffer sets, or 8 bytes a pixel on large arrays, up to twice that as the per-tile vectors grow by
+// doubling (growing them by a quarter fragmented the heap: 100 MB more at 2048x2048). On a large
+// array a tile's window of firings ends with the run's window, and each visits every pixel of the
+// tile: AEDAT written at 2048x2048 (1 s, uniform light) took 3.25 s and 400 MB with an eighth of
+// an event a pixel, 2.8 s and 443 MB with a quarter, 2.4 s and 479 MB with a half, 2.0-2.4 s and
+// 576 MB with one (/usr/bin/time aesim run ... --out big.aedat).
 constexpr double kMinWindowEvents = 262144;
-constexpr double kWindowEventsPerPixel = 0.125;
+constexpr double kWindowEventsPerPixel = 0.5;
 
 // Firings pass from a tile's schedule to its bus a batch at a time (8 KiB, in L1).
 using FiringBatch = std::array<AddressEvent, 256>;
