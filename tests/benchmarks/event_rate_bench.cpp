@@ -160,19 +160,18 @@ void BM_QcifBright(benchmark::State& state, int threads, bool aedat, bool shot_n
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
-// The bright QCIF with its events written to a file of each format, as `aesim run --out` writes it
-// (to a temporary under the system's temporary folder, never committed: the page cache takes it,
-// the disk is not waited for; removed between rounds, outside the time measured).
-void BM_QcifWritten(benchmark::State& state, const char* name) {
-  const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, 1);
-  const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
-  const ResolvedConfig config = c.resolved();
+// Runs `config` with its events written to `path` (a file of the format its extension names, under
+// the system's temporary folder, as `aesim run --out` writes it, never committed: the page cache
+// takes it, the disk is not waited for), set-up included; the file is removed between rounds,
+// outside the time measured (removing a previous output is not part of writing one).
+void run_written(benchmark::State& state, const ResolvedConfig& config, const Photocurrents& photocurrents,
+                 const std::string& name, Aedat4Compression compression) {
   EventFileSpec spec;
   spec.array = config.array;
   spec.tick = config.receiver.tick;
   spec.duration = config.sim.duration;
-  spec.compression = std::string(name) == "plain.aedat4" ? Aedat4Compression::None : Aedat4Compression::Lz4;
-  const std::string path = (std::filesystem::temp_directory_path() / (std::string("aesim_bench_") + name)).string();
+  spec.compression = compression;
+  const std::string path = (std::filesystem::temp_directory_path() / ("aesim_bench_" + name)).string();
   double events = 0;
   for (auto _ : state) {
     auto files = std::make_unique<OutputFiles>();
@@ -182,7 +181,6 @@ void BM_QcifWritten(benchmark::State& state, const char* name) {
     request.stream = writer.get();
     events += static_cast<double>(simulate(config, photocurrents, request).log.totals().fired);
     writer->finish();
-    // The file is written; removing it for the next round is not part of writing it.
     state.PauseTiming();
     writer.reset();
     files.reset();
@@ -191,35 +189,22 @@ void BM_QcifWritten(benchmark::State& state, const char* name) {
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
-// A large array (N x N pixels in 32x32 tiles, uniform full light, 1 s: 10 events a pixel) with its
-// events written to an AEDAT 2.0 file, set-up included: against the QCIF's AEDAT, how the rate
-// holds as the tiles grow in number.
-void BM_ArrayWritten(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  SensorConfig c = qcif_bright(Fidelity::Event, 1.0, 1);
-  c.array.rows = c.array.cols = n;
+// The bright QCIF with its events written to a file of each format.
+void BM_QcifWritten(benchmark::State& state, const char* name) {
+  const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, 1);
   const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
-  const ResolvedConfig config = c.resolved();
-  EventFileSpec spec;
-  spec.array = config.array;
-  spec.tick = config.receiver.tick;
-  spec.duration = config.sim.duration;
-  const std::string path = (std::filesystem::temp_directory_path() / "aesim_bench_large.aedat").string();
-  double events = 0;
-  for (auto _ : state) {
-    auto files = std::make_unique<OutputFiles>();
-    auto writer = open_event_writer(*files, path, spec);
-    SimulationRequest request;
-    request.keep_events = true;
-    request.stream = writer.get();
-    events += static_cast<double>(simulate(config, photocurrents, request).log.totals().fired);
-    writer->finish();
-    state.PauseTiming();
-    writer.reset();
-    files.reset();
-    state.ResumeTiming();
-  }
-  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+  run_written(state, c.resolved(), photocurrents, name,
+              std::string(name) == "plain.aedat4" ? Aedat4Compression::None : Aedat4Compression::Lz4);
+}
+
+// A large array (N x N pixels in 32x32 tiles, uniform full light, 1 s: 10 events a pixel) with its
+// events written to an AEDAT 2.0 file: against the QCIF's AEDAT, how the rate holds as the tiles
+// grow in number.
+void BM_ArrayWritten(benchmark::State& state) {
+  SensorConfig c = qcif_bright(Fidelity::Event, 1.0, 1);
+  c.array.rows = c.array.cols = static_cast<int>(state.range(0));
+  const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
+  run_written(state, c.resolved(), photocurrents, "large.aedat", Aedat4Compression::Lz4);
 }
 
 // LZ4 alone on the packets an .aedat4 holds: 4096 events of DV's 16-byte Event (stamp, x, y,
