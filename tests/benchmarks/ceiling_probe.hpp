@@ -11,21 +11,21 @@ namespace aesim {
 // rung measured in the same run: pop the earliest pixel from a calendar queue (a ring of buckets,
 // each an intrusive unsorted list, no tie order), add its next period, push it back, append an
 // 8-byte record to a cache-resident buffer. No physics, no bus, no merge, no files. Returns the
-// events made until `t_end` (s) from pixels starting at `phases` (s); `next_period(i)` is pixel
-// i's next period (s): a constant for a still scene, a draw from the shot-noise law with it.
+// events made from `t_begin` until `t_end` (s) by pixels whose next firings are `t` (s, each at or
+// after `t_begin`; left at the next firing after `t_end`); `next_period(i)` is pixel i's next
+// period (s): a constant for a still scene, a draw from the shot-noise law with it.
 // `median_period` sizes the calendar's year.
 template <typename NextPeriod>
-std::uint64_t ceiling_probe(const std::vector<double>& phases, double median_period, double t_end,
+std::uint64_t ceiling_probe(std::vector<double>& t, double median_period, double t_begin, double t_end,
                             NextPeriod&& next_period) {
   constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-  const std::size_t pixels = phases.size();
+  const std::size_t pixels = t.size();
   std::size_t buckets = 16;
   while (buckets < pixels) buckets *= 2;
   const double per_width = static_cast<double>(buckets) / (2 * median_period);
   // Intrusive lists: a bucket is its first pixel, a pixel names the next; nothing is allocated per
   // event. A year of two median periods holds every pixel of a uniform scene.
   std::vector<std::uint32_t> head(buckets, kNone), next(pixels, kNone);
-  std::vector<double> t(phases);
   auto push = [&](std::uint32_t i) {
     std::uint32_t& h = head[static_cast<std::size_t>(t[i] * per_width) & (buckets - 1)];
     next[i] = h;
@@ -36,7 +36,7 @@ std::uint64_t ceiling_probe(const std::vector<double>& phases, double median_per
   records.reserve(1 << 16);
   std::uint64_t events = 0;
   const std::size_t last = static_cast<std::size_t>(t_end * per_width);
-  for (std::size_t now = 0; now <= last; ++now) {
+  for (std::size_t now = static_cast<std::size_t>(t_begin * per_width); now <= last; ++now) {
     std::uint32_t& h = head[now & (buckets - 1)];
     std::uint32_t later = kNone;  // a later year's pixels met in this bucket
     while (h != kNone) {

@@ -337,13 +337,53 @@ void BM_QcifCeilingProbe(benchmark::State& state, bool shot_noise) {
   const double t_reset = c.pixel.t_reset;
   double events = 0;
   for (auto _ : state) {
+    std::vector<double> t = phases;
     if (shot_noise) {
-      events += static_cast<double>(ceiling_probe(phases, median, c.sim.duration, [&](std::uint32_t i) {
+      events += static_cast<double>(ceiling_probe(t, median, 0.0, c.sim.duration, [&](std::uint32_t i) {
         return t_reset + seconds_per_electron[i] * electrons[i](streams[i]);
       }));
     } else {
       events += static_cast<double>(
-          ceiling_probe(phases, median, c.sim.duration, [&](std::uint32_t i) { return periods[i]; }));
+          ceiling_probe(t, median, 0.0, c.sim.duration, [&](std::uint32_t i) { return periods[i]; }));
+    }
+  }
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
+// The least work the moving disc must do (BM_QcifMoving's scene, 200 frame changes in 2 s): the
+// ceiling probe through each frame on that frame's periods, and at each change every pixel
+// re-timed, its remaining charge now crossed at the new rate (one multiply a pixel), and put back
+// in the calendar.
+void BM_FrameChangeProbe(benchmark::State& state) {
+  SensorConfig c = qcif_bright(Fidelity::Event, 2.0, 1);
+  c.pixel.i_max = 100e-12;
+  Scene scene = scene_for(c, "scenes/moving_disc");
+  scene.frame_period = 0.01;
+  scene.loop = true;
+  const Photocurrents photocurrents(scene, c.pixel);
+  const std::size_t pixels = std::size_t(144) * 176, frames = photocurrents.frames();
+  std::vector<std::vector<double>> periods(frames, std::vector<double>(pixels));
+  std::vector<double> phases(pixels), all;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const double threshold = pixel_threshold(c.pixel, c.sim.seed, i);
+    for (std::size_t k = 0; k < frames; ++k) {
+      periods[k][i] = threshold / photocurrents.current(k, i) + c.pixel.t_reset;
+      all.push_back(periods[k][i]);
+    }
+    phases[i] = (1 - initial_fraction(c.pixel, c.sim.seed, i)) * periods[0][i];
+  }
+  std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2), all.end());
+  const double median = all[all.size() / 2];
+  const auto changes = static_cast<std::size_t>(std::llround(c.sim.duration / scene.frame_period));
+  double events = 0;
+  for (auto _ : state) {
+    std::vector<double> t = phases;
+    for (std::size_t s = 0; s < changes; ++s) {
+      const std::vector<double>& now = periods[s % frames];
+      const double begin = static_cast<double>(s) * scene.frame_period, end = begin + scene.frame_period;
+      events += static_cast<double>(ceiling_probe(t, median, begin, end, [&](std::uint32_t i) { return now[i]; }));
+      const std::vector<double>& next = periods[(s + 1) % frames];
+      for (std::size_t i = 0; i < pixels; ++i) t[i] = end + (t[i] - end) * (next[i] / now[i]);
     }
   }
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
@@ -390,6 +430,7 @@ BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false, false)->Apply(qcif)
 BENCHMARK_CAPTURE(BM_QcifBright, shot_noise_1_thread, 1, false, true)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifMoving, still, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifMoving, moving, true)->Apply(qcif);
+BENCHMARK(BM_FrameChangeProbe)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, aedat, "e.aedat")->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, aedat4, "e.aedat4")->Apply(qcif);
