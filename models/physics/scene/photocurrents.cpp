@@ -23,11 +23,18 @@ std::size_t Photocurrents::frame_at(std::uint64_t boundary) const {
 std::uint64_t Photocurrents::next_change(std::uint64_t boundary, std::size_t pixel) const {
   const std::size_t n = frames();
   if (n < 2) return kNoChange;
-  const double now = current(boundary, pixel);
-  // A held sequence changes only up to its last frame; a looped one repeats within n frames.
-  const std::uint64_t last = scene_.loop ? boundary + n : static_cast<std::uint64_t>(n - 1);
-  for (std::uint64_t b = boundary + 1; b <= last; ++b) {
-    if (current(b, pixel) != now) return b;
+  // A held sequence changes only up to its last frame; a looped one repeats within n frames. The
+  // frames are walked by index (one division, not one a frame: this runs for every pixel the
+  // light changes at each change).
+  const std::size_t start = frame_at(boundary);
+  if (!scene_.loop && start == n - 1) return kNoChange;
+  const double* column = currents_.data() + pixel;
+  const double now = column[start * pixels_];
+  std::size_t f = start;
+  for (std::uint64_t b = boundary + 1, last = scene_.loop ? boundary + n : static_cast<std::uint64_t>(n - 1); b <= last;
+       ++b) {
+    f = f + 1 == n ? 0 : f + 1;
+    if (column[f * pixels_] != now) return b;
   }
   return kNoChange;
 }

@@ -30,9 +30,11 @@ class Photocurrents {
   double boundary_time(std::uint64_t boundary) const { return static_cast<double>(boundary) * period_; }
   // Which frame is shown after `boundary`: sequences loop or hold their last frame.
   std::size_t frame_at(std::uint64_t boundary) const;
-  double current(std::uint64_t boundary, std::size_t pixel) const {
+  double current(std::uint64_t boundary, std::size_t pixel) const { return frame_current(frame_at(boundary), pixel); }
+  // The current in frame `frame` (< frames()), without the boundary's division.
+  double frame_current(std::size_t frame, std::size_t pixel) const {
     if (currents_.empty()) return pixel_.integrating_current(scene_.frames.front().pixels[pixel]);
-    return currents_[frame_at(boundary) * pixels_ + pixel];
+    return currents_[frame * pixels_ + pixel];
   }
   // The first boundary after `boundary` at which this pixel's current changes, or kNoChange.
   // Pixels whose light does not change are never woken by the frame clock.

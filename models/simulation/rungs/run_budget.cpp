@@ -22,7 +22,7 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& phot
     if (shown[f] == 0) continue;
     double rate_sum = 0;
     for (std::size_t i = 0; i < pixels; ++i) {
-      const double current = photocurrents.current(f, i);
+      const double current = photocurrents.frame_current(f, i);
       // Written so that a huge current gives a huge rate, never inf/inf.
       if (current > 0) rate_sum += 1.0 / (q / current + config.pixel.t_reset);
     }
@@ -35,7 +35,7 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& phot
     for (std::size_t f = 0; f < frames; ++f) {
       const std::size_t before = f == 0 ? frames - 1 : f - 1;
       for (std::size_t i = 0; i < pixels; ++i)
-        changed[f] += photocurrents.current(f, i) != photocurrents.current(before, i) ? 1 : 0;
+        changed[f] += photocurrents.frame_current(f, i) != photocurrents.frame_current(before, i) ? 1 : 0;
     }
     const double boundaries = std::ceil(duration / photocurrents.frame_period());
     if (photocurrents.loops()) {
@@ -51,7 +51,7 @@ WorkEstimate estimate_work(const SensorConfig& config, const Photocurrents& phot
     for (std::size_t f = 0; f < frames; ++f) {
       double p_max = 0;
       for (std::size_t i = 0; i < pixels; ++i)
-        p_max = std::max(p_max, photocurrents.current(f, i) - config.pixel.i_dark);
+        p_max = std::max(p_max, photocurrents.frame_current(f, i) - config.pixel.i_dark);
       const double showings = std::ceil(shown[f] / period);
       w.scan_steps += showings * (std::round(f_max * p_max / config.pixel.i_max * period) + 1) * static_cast<double>(pixels);
     }
