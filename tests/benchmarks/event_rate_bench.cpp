@@ -245,7 +245,10 @@ void BM_Lz4Probe(benchmark::State& state) {
 // event log hands them over) by the run's own EventMerger into a stream that keeps nothing, and
 // the probe of the least work a merge must do (merge_probe.hpp) on the same windows.
 const RecordedWindows& qcif_windows() {
-  static const RecordedWindows recorded = record_qcif_windows(20);
+  static const RecordedWindows recorded = [] {
+    const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, 1);
+    return record_windows(c.resolved(), Photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel), 20);
+  }();
   return recorded;
 }
 

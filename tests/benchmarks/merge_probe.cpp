@@ -5,29 +5,19 @@
 #include <algorithm>
 #include <limits>
 
-#include "aesim/config/sensor_config.hpp"
+#include "aesim/array/address_map.hpp"
 #include "aesim/run/imager_simulation.hpp"
-#include "aesim/scene/photocurrents.hpp"
-#include "aesim/scene/scene.hpp"
 
 namespace aesim {
 
-RecordedWindows record_qcif_windows(std::size_t windows) {
-  SensorConfig c = load_sensor("aloha");
-  c.array.rows = 144;
-  c.array.cols = 176;
-  c.sim.duration = 20.0;
-  c.sim.fidelity = Fidelity::Event;
-  const Scene scene = load_scene(find_scene(std::string(AESIM_SOURCE_DIR) + "/scenes/uniform.pgm"), c.array, c.scene);
-  const ResolvedConfig config = c.resolved();
+RecordedWindows record_windows(const ResolvedConfig& config, const Photocurrents& photocurrents, std::size_t windows) {
   EventCollector collected;
   SimulationRequest request;
   request.keep_events = true;
   request.stream = &collected;
-  simulate(config, Photocurrents(scene, c.pixel), request);
+  simulate(config, photocurrents, request);
   const std::vector<AddressEvent>& events = collected.events();
-  std::size_t tiles = 0;
-  for (const AddressEvent& e : events) tiles = std::max<std::size_t>(tiles, e.tile + 1);
+  const auto tiles = static_cast<std::size_t>(AddressMap(config.array).tiles());
   RecordedWindows r;
   r.events = events.size();
   const std::size_t per_window = (events.size() + windows - 1) / windows;

@@ -2,7 +2,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "aesim/config/sensor_config.hpp"
 #include "aesim/events/event_merger.hpp"
+#include "aesim/scene/photocurrents.hpp"
 
 namespace aesim {
 
@@ -14,8 +16,8 @@ struct RecordedWindows {
   std::size_t events = 0;
 };
 
-// The bright QCIF's delivered events (20 s) cut into `windows` windows of equal counts.
-RecordedWindows record_qcif_windows(std::size_t windows);
+// A run's delivered events cut into `windows` windows of equal counts.
+RecordedWindows record_windows(const ResolvedConfig& config, const Photocurrents& photocurrents, std::size_t windows);
 
 // The least work a merge of the tiles' sorted streams must do by comparisons: a k-way merge (a tree
 // of losers over the tiles' next records, keyed by time, tile and address) into 8-byte records (a

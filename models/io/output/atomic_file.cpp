@@ -123,7 +123,10 @@ class OutputFiles::FileBuffer : public std::streambuf {
  public:
   // `seekable` false for an output written through: its offset may be shared with whoever opened
   // the descriptor, so a position read from it is not the output's own.
-  FileBuffer(int fd, bool seekable) : fd_(fd), seekable_(seekable), buffer_(kFileBufferBytes) { reset_put_area(); }
+  // No descriptor (a file a library writes by its name): no buffer either.
+  FileBuffer(int fd, bool seekable) : fd_(fd), seekable_(seekable), buffer_(fd >= 0 ? kFileBufferBytes : 0) {
+    reset_put_area();
+  }
   ~FileBuffer() override { close(); }
 
   bool close() {
