@@ -129,5 +129,61 @@ TEST(IntegrateFire, ShotNoiseIntegrationTimesFollowTheGammaLaw) {
   EXPECT_GT(std::sqrt(var) / mean, 0.025);
 }
 
+// The firings of IntegrateFire::Periodic up to `to`, passed through count_through and restart as
+// FiringSchedule's still tiles do; the speculative first write of each call is dropped unless kept.
+template <bool speculate>
+std::vector<double> periodic_until(IntegrateFire::Periodic& p, double t_reset, double to) {
+  std::vector<double> times;
+  const auto emit = [&times](double t, bool kept) {
+    if (kept) times.push_back(t);
+  };
+  using P = IntegrateFire::Periodic;
+  while (!P::count_through<speculate>(p.first, p.period, p.cycles, to, emit)) {
+    P::restart(p.first, p.period, p.cycles, p.integration, sensor(t_reset), emit);
+  }
+  return times;
+}
+
+TEST(IntegrateFire, PeriodicFormFiresAsFireDoes) {
+  const double t_reset = 1e-3;
+  for (const double fraction : {0.0, 0.4}) {
+    IntegrateFire reference = make(1e-12, t_reset, fraction);
+    IntegrateFire::Periodic fast = reference.periodic();
+    IntegrateFire::Periodic speculating = reference.periodic();
+    const std::vector<double> expected = fire_until(reference, t_reset, 10.0);
+    std::vector<double> got, got_speculating;
+    // Windows of every width from under a period to several, as a schedule's windows come.
+    for (double to = 0.03; to <= 10.0; to += 0.037) {
+      for (const double t : periodic_until<false>(fast, t_reset, to)) got.push_back(t);
+      for (const double t : periodic_until<true>(speculating, t_reset, to)) got_speculating.push_back(t);
+    }
+    for (const double t : periodic_until<false>(fast, t_reset, 10.0)) got.push_back(t);
+    for (const double t : periodic_until<true>(speculating, t_reset, 10.0)) got_speculating.push_back(t);
+    EXPECT_EQ(got, expected);
+    EXPECT_EQ(got_speculating, expected);
+  }
+}
+
+// Every 2^30 firings the count restarts from a new anchor (before it could overflow): the firings
+// go on a period apart, as eq. 2 gives them, in both forms.
+TEST(IntegrateFire, PeriodicFormRestartsAt2To30CyclesWithoutAGap) {
+  const double t_reset = 1e-6, integration = 1e-5, period = integration + t_reset;
+  const std::uint32_t before_restart = (1u << 30) - 3;
+  for (const bool speculate : {false, true}) {
+    IntegrateFire::Periodic p{integration, period, integration, before_restart};
+    const double t0 = integration + static_cast<double>(before_restart) * period;  // the next firing
+    const double to = t0 + 7.5 * period;
+    const std::vector<double> times =
+        speculate ? periodic_until<true>(p, t_reset, to) : periodic_until<false>(p, t_reset, to);
+    ASSERT_EQ(times.size(), 8u);
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      EXPECT_NEAR(times[i], t0 + static_cast<double>(i) * period, 1e-12 * t0) << "firing " << i;
+    }
+    // Three firings before the restart, the 2^30th itself, then four from the new anchor.
+    EXPECT_EQ(p.cycles, 4u);
+    EXPECT_GT(p.first, times[3]);
+  }
+}
+
 }  // namespace
 }  // namespace aesim

@@ -210,7 +210,7 @@ TEST(Streaming, GhostsPastTheEdgeLeaveTheTruthIntact) {
 // a bucket now and then holding two or more tiles' records, some instants shared by many).
 TEST(Streaming, TheMergeOrdersTiesByTileThenAddress) {
   constexpr std::uint32_t kTiles = 5;
-  for (const auto [per_tile, instants] : {std::pair<int, int>{400, 50}, {8000, 20000}}) {
+  for (const auto& [per_tile, instants] : {std::pair<int, int>{400, 50}, {8000, 20000}}) {
     std::mt19937_64 rng(11);
     std::vector<AddressEvent> all;
     TileRecords batch(kTiles);

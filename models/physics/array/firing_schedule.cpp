@@ -20,6 +20,10 @@ constexpr double kVisitsPerCalendarWake = 4;
 // the mean, and a window's firings exceed their expected count by the room's 3 per pixel (plus
 // 64) with a probability far below one in 10^30.
 constexpr double kWindowElectrons = 10;
+// Below this many firings a pixel a window (a large array's tiles, whose windows end with the
+// run's), a pixel's next firing is written whether or not it falls in the window: see
+// IntegrateFire::Periodic::count_through.
+constexpr double kSpeculateBelow = 2;
 
 }  // namespace
 
@@ -81,6 +85,12 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       // Every pixel is lit (a pixel dark all run has no slot), so the rate is the sum of its rates.
       for (const double period : periods) rate_ += 1 / period;
       windowed_ = true;
+      if (shot_noise_.empty()) {
+        periodic_.reserve(pixels_.size());
+        for (const Slot& p : pixels_) periodic_.push_back(p.periodic());
+        pixels_.clear();
+        pixels_.shrink_to_fit();
+      }
     } else {
       windowed_ = windows_pay(thresholds);
     }
@@ -219,7 +229,7 @@ void FiringSchedule::make_window(double last) {
   // The window ends at `last`, at the next boundary where the tile's light changes, or after about
   // kWindowFirings firings a pixel at the rate of the light it starts in, whichever comes first;
   // and at least one representable step on, so that every window moves on.
-  const std::size_t n = pixels_.size();
+  const std::size_t n = keys_.size();
   double rate = rate_, to = last;
   if (!frame_rates_.empty()) {
     const std::uint64_t k = interval_at(made_to_);
@@ -240,10 +250,17 @@ void FiringSchedule::make_window(double last) {
   const std::uint32_t* const keys = keys_.data();
   const bool noisy = !shot_noise_.empty();
   // Pixel by pixel, so in bus-address order; each pixel's firings in time order.
-  for (std::size_t i = 0; i < n; ++i) {
+  if (!periodic_.empty()) {
+    if ((to - made_to_) * rate < kSpeculateBelow * static_cast<double>(n)) {
+      fire_periodic<true>(to, writer);
+    } else {
+      fire_periodic<false>(to, writer);
+    }
+  }
+  for (std::size_t i = 0; i < pixels_.size(); ++i) {
     const std::uint32_t key = keys[i];
     Slot& p = pixels[i];
-    const auto emit = [&writer, key](double t) { writer.add(t, key); };
+    const auto emit = [&writer, key](double t, bool kept = true) { writer.add(t, key, kept); };
     for (;;) {
       const double boundary =
           p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
@@ -268,6 +285,22 @@ void FiringSchedule::make_window(double last) {
   } else {
     next_ = window->first();
     made_ = std::move(window);
+  }
+}
+
+template <bool speculate>
+void FiringSchedule::fire_periodic(double to, FiringWindow::Writer& writer) {
+  const std::size_t n = keys_.size();
+  const std::uint32_t* const keys = keys_.data();
+  double* const first = periodic_.first.data();
+  double* const period = periodic_.period.data();
+  std::uint32_t* const cycles = periodic_.cycles.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t key = keys[i];
+    const auto emit = [&writer, key](double t, bool kept) { writer.add(t, key, kept); };
+    while (!__builtin_expect(IntegrateFire::Periodic::count_through<speculate>(first[i], period[i], cycles[i], to, emit), 1)) {
+      IntegrateFire::Periodic::restart(first[i], period[i], cycles[i], periodic_.integration[i], sensor_, emit);
+    }
   }
 }
 

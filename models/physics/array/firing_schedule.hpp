@@ -48,8 +48,8 @@ class FiringSchedule {
   bool windowed() const { return windowed_; }
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
-  // 68 bytes per lit pixel; a still tile's 56 and its 4-byte bus address, with no calendar (a still
-  // scene's photocurrents are not held; see Photocurrents). Its bus address is its key in the
+  // 68 bytes per lit pixel; a still tile's 28 (PeriodicPixels; 56 with shot noise) and its 4-byte
+  // bus address, with no calendar (a still scene's photocurrents are not held; see Photocurrents). Its bus address is its key in the
   // calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
   // in IntegrateFire's tail padding.
   struct Slot : IntegrateFire {
@@ -84,6 +84,9 @@ class FiringSchedule {
   // holds ten electrons or more.
   std::size_t fill_windows(AddressEvent* out, std::size_t capacity, double until);
   void make_window(double last);
+  // A still tile's pixels without shot noise, into a window ending at `to`.
+  template <bool speculate>
+  void fire_periodic(double to, FiringWindow::Writer& writer);
   // For a moving scene: each frame's firing rate and count of changed pixels over the tile; true
   // when windows cost less than the calendar over the run.
   bool windows_pay(const std::vector<double>& thresholds);
@@ -92,7 +95,29 @@ class FiringSchedule {
   std::uint64_t interval_at(double t) const;
   double next_change_after(std::uint64_t k) const;
 
-  std::vector<Slot> pixels_;
+  std::vector<Slot> pixels_;  // empty for a still tile without shot noise: periodic_ holds its pixels
+  // A still tile without shot noise keeps its pixels as IntegrateFire::Periodic, each field an
+  // array: its windows read 20 bytes a pixel and write 4 (the cycles), where whole records cost a
+  // cache line read and written back for each pixel a window (on large arrays, where a window
+  // holds under one firing a pixel, the memory traffic was the tiles' thread's limit).
+  struct PeriodicPixels {
+    std::vector<double> first, period, integration;
+    std::vector<std::uint32_t> cycles;
+    bool empty() const { return first.empty(); }
+    void reserve(std::size_t n) {
+      first.reserve(n);
+      period.reserve(n);
+      integration.reserve(n);
+      cycles.reserve(n);
+    }
+    void push_back(const IntegrateFire::Periodic& p) {
+      first.push_back(p.first);
+      period.push_back(p.period);
+      integration.push_back(p.integration);
+      cycles.push_back(p.cycles);
+    }
+  };
+  PeriodicPixels periodic_;
   std::vector<IntegrateFire::ShotNoise> shot_noise_;  // per pixel, only with pixel.shot_noise
   IntegrateFire::ShotNoise no_noise_;                 // untouched: without shot noise nothing is random
   WakeCalendar calendar_;

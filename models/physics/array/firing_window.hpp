@@ -24,20 +24,23 @@ class FiringWindow {
   // the stack). Room for them is made before: see start().
   class Writer {
    public:
-    void add(double t, std::uint32_t key) {
+    // A firing not `kept` is written in the next free place and left there to be overwritten:
+    // a caller that cannot predict whether it falls in the window passes it without a branch.
+    void add(double t, std::uint32_t key, bool kept = true) {
       if (n_ == room_) {
-        overflow_ = true;
+        overflow_ = overflow_ || kept;
         return;
       }
-      // Times in the window are never before `from`; the clamp keeps `to` in the last bucket.
+      // Times in the window are never before `from`, nor (kept ones) past `to`; the clamp keeps
+      // `to` and any later time in the last bucket.
       double b = (t - from_) * per_width_;
       b = b < last_bucket_ ? b : last_bucket_;
       const auto bucket = static_cast<std::uint32_t>(b);
       out_[n_].t = t;
       out_[n_].key = key;
       out_[n_].bucket = bucket;
-      ++n_;
-      ++count_[bucket];
+      n_ += kept;
+      count_[bucket] += kept;
     }
 
    private:
