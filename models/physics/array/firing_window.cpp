@@ -5,8 +5,11 @@
 namespace aesim {
 
 FiringWindow::Writer FiringWindow::start(double from, double to, std::size_t expected, std::size_t room) {
+  // Two buckets a firing: with one, a uniform scene's pixels shared buckets so often that the
+  // insertion pass after the counting sort took a third of the sort (bright QCIF, summary only:
+  // 116 -> 131 M events/s with two; four gained nothing more).
   std::size_t buckets = 16;
-  while (buckets < expected && buckets < (std::size_t(1) << 20)) buckets *= 2;
+  while (buckets < 2 * expected && buckets < (std::size_t(1) << 20)) buckets *= 2;
   const double width = (to - from) / static_cast<double>(buckets);
   per_width_ = width > 0 ? 1.0 / width : 0.0;
   last_bucket_ = static_cast<double>(buckets - 1);

@@ -1,11 +1,15 @@
 #include "aesim/events/merge_pipeline.hpp"
 
+#include <utility>
+
 #include "aesim/threads/thread_placement.hpp"
 
 namespace aesim {
 
 MergePipeline::MergePipeline(EventMerger& merger, std::size_t tiles)
-    : merger_(merger), batch_(tiles), thread_(start_off_callers_cpu([this] { work(); })) {}
+    : merger_(merger), thread_(start_off_callers_cpu([this] { work(); })) {
+  for (std::size_t i = 0; i < kWaiting; ++i) emptied_.emplace_back(tiles);
+}
 
 MergePipeline::~MergePipeline() {
   {
@@ -16,8 +20,7 @@ MergePipeline::~MergePipeline() {
   thread_.join();
 }
 
-void MergePipeline::wait_idle(std::unique_lock<std::mutex>& lock) {
-  changed_.wait(lock, [this] { return !busy_; });
+void MergePipeline::rethrow(std::unique_lock<std::mutex>&) {
   if (error_) {
     std::exception_ptr e = error_;
     error_ = nullptr;
@@ -28,34 +31,45 @@ void MergePipeline::wait_idle(std::unique_lock<std::mutex>& lock) {
 void MergePipeline::submit(TileRecords& filled, double before) {
   {
     std::unique_lock<std::mutex> lock(mutex_);
-    wait_idle(lock);
-    std::swap(batch_, filled);
-    before_ = before;
-    busy_ = true;
+    changed_.wait(lock, [this] { return !emptied_.empty() || error_; });
+    rethrow(lock);
+    TileRecords spare = std::move(emptied_.back());
+    emptied_.pop_back();
+    std::swap(spare, filled);
+    waiting_.push_back({std::move(spare), before});
   }
   changed_.notify_all();
 }
 
 void MergePipeline::drain() {
   std::unique_lock<std::mutex> lock(mutex_);
-  wait_idle(lock);
+  changed_.wait(lock, [this] { return (waiting_.empty() && !busy_) || error_; });
+  rethrow(lock);
 }
 
 void MergePipeline::work() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
-    changed_.wait(lock, [this] { return busy_ || stop_; });
-    if (!busy_) return;
+    changed_.wait(lock, [this] { return !waiting_.empty() || stop_; });
+    if (waiting_.empty()) return;
+    busy_ = true;
+    Batch& batch = waiting_.front();
     lock.unlock();
     std::exception_ptr error;
     try {
-      merger_.merge(batch_, before_);
+      merger_.merge(batch.records, batch.before);
     } catch (...) {
       error = std::current_exception();
     }
     lock.lock();
     // After an error the rest of the run's records are discarded: the run fails and writes nothing.
     if (error && !error_) error_ = error;
+    emptied_.push_back(std::move(batch.records));
+    waiting_.pop_front();
+    if (error_) {
+      for (Batch& b : waiting_) emptied_.push_back(std::move(b.records));
+      waiting_.clear();
+    }
     busy_ = false;
     changed_.notify_all();
   }
