@@ -298,8 +298,9 @@ void FiringSchedule::fire_periodic(double to, FiringWindow::Writer& writer) {
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t key = keys[i];
     const auto emit = [&writer, key](double t, bool kept) { writer.add(t, key, kept); };
-    while (!__builtin_expect(IntegrateFire::Periodic::count_through<speculate>(first[i], period[i], cycles[i], to, emit), 1)) {
-      IntegrateFire::Periodic::restart(first[i], period[i], cycles[i], periodic_.integration[i], sensor_, emit);
+    using Periodic = IntegrateFire::Periodic;
+    while (!__builtin_expect(Periodic::count_through<speculate>(first[i], period[i], cycles[i], to, emit), 1)) {
+      Periodic::restart(first[i], period[i], cycles[i], periodic_.integration[i], sensor_, emit);
     }
   }
 }

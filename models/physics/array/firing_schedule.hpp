@@ -49,8 +49,8 @@ class FiringSchedule {
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
   // 68 bytes per lit pixel; a still tile's 28 (PeriodicPixels; 56 with shot noise) and its 4-byte
-  // bus address, with no calendar (a still scene's photocurrents are not held; see Photocurrents). Its bus address is its key in the
-  // calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
+  // bus address, with no calendar (a still scene's photocurrents are not held; see
+  // Photocurrents). Its bus address is its key in the calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
   // in IntegrateFire's tail padding.
   struct Slot : IntegrateFire {
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again
@@ -97,9 +97,9 @@ class FiringSchedule {
 
   std::vector<Slot> pixels_;  // empty for a still tile without shot noise: periodic_ holds its pixels
   // A still tile without shot noise keeps its pixels as IntegrateFire::Periodic, each field an
-  // array: its windows read 20 bytes a pixel and write 4 (the cycles), where whole records cost a
-  // cache line read and written back for each pixel a window (on large arrays, where a window
-  // holds under one firing a pixel, the memory traffic was the tiles' thread's limit).
+  // array: half the state (28 bytes a pixel, not 56), and its windows read 20 bytes a pixel and
+  // write 4 (the cycles), where a whole record was read and written back for each pixel a window
+  // (on large arrays a window holds under one firing a pixel, so that is most of its work).
   struct PeriodicPixels {
     std::vector<double> first, period, integration;
     std::vector<std::uint32_t> cycles;

@@ -42,38 +42,9 @@ EventLog& EventLog::operator=(EventLog&&) noexcept = default;
 EventLog::~EventLog() = default;
 
 void EventLog::count_pixels(const AddressMap& map, double window) {
-  tile_cols_ = static_cast<std::size_t>(map.tile_cols());
-  tile_area_ = static_cast<std::size_t>(map.tile_rows()) * tile_cols_;
-  xbits_ = static_cast<std::uint32_t>(map.xbits());
-  xmask_ = (1u << xbits_) - 1u;
-  pixels_.assign(static_cast<std::size_t>(map.tiles()) * tile_area_, PixelCounts{});
+  pixels_.assign(static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols()), PixelCounts{});
   window_ = window;
   map_ = map;
-}
-
-template <typename Visit>
-void EventLog::for_each_pixel(Visit visit) const {
-  const AddressMap& map = *map_;
-  const auto rows = static_cast<std::uint32_t>(map.rows()), cols = static_cast<std::uint32_t>(map.cols());
-  const auto tile_rows = static_cast<std::uint32_t>(map.tile_rows()), tile_cols = static_cast<std::uint32_t>(map.tile_cols());
-  for (std::uint32_t tile = 0; tile < static_cast<std::uint32_t>(map.tiles()); ++tile) {
-    const PixelAddress origin = map.locate(tile, 0);
-    const std::uint32_t height = std::min(tile_rows, rows - origin.y), width = std::min(tile_cols, cols - origin.x);
-    for (std::uint32_t yl = 0; yl < height; ++yl) {
-      for (std::uint32_t xl = 0; xl < width; ++xl) {
-        const std::uint32_t bus_address = (yl << xbits_) | xl;
-        visit(std::size_t(origin.y + yl) * cols + origin.x + xl, bus_address, pixels_[count_index(tile, bus_address)]);
-      }
-    }
-  }
-}
-
-std::vector<std::uint32_t> EventLog::per_pixel(std::uint32_t PixelCounts::*field) const {
-  std::vector<std::uint32_t> out;
-  if (pixels_.empty()) return out;
-  out.resize(static_cast<std::size_t>(map_->rows()) * static_cast<std::size_t>(map_->cols()));
-  for_each_pixel([&out, field](std::size_t at, std::uint32_t, const PixelCounts& p) { out[at] = p.*field; });
-  return out;
 }
 
 void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
@@ -133,9 +104,11 @@ std::uint64_t EventLog::address_ones() const {
   std::uint64_t n = 0;
   if (!pixels_.empty()) {
     // Each firing of a pixel put the pixel's address on the bus.
-    for_each_pixel([&n](std::size_t, std::uint32_t bus_address, const PixelCounts& p) {
-      n += static_cast<std::uint64_t>(p.fired) * ones(bus_address);
-    });
+    const auto cols = static_cast<std::size_t>(map_->cols());
+    for (std::size_t i = 0; i < pixels_.size(); ++i) {
+      const auto x = static_cast<std::uint32_t>(i % cols), y = static_cast<std::uint32_t>(i / cols);
+      n += static_cast<std::uint64_t>(pixels_[i].fired) * ones(map_->bus_address({x, y}));
+    }
     return n;
   }
   for (const Tile& t : tiles_) n += t.address_ones;

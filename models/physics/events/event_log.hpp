@@ -54,7 +54,7 @@ class EventLog {
   EventLog& operator=(EventLog&&) noexcept;
   ~EventLog();
 
-  // Counts firings per pixel in all and within [0, window], and output events per
+  // Counts firings per pixel (y * cols + x) in all and within [0, window], and output events per
   // pixel (the histogram image) in all and, without ghosts, within the window (the sizing
   // metrics). Tiles on separate threads touch separate pixels. An output whose address names no
   // pixel of its tile (a ghost, the OR of several addresses, may name a column past a narrow edge
@@ -145,13 +145,7 @@ class EventLog {
   struct PixelCounts {
     std::uint32_t fired = 0, fired_in_window = 0, output = 0, output_in_window = 0;
   };
-  // Kept tile by tile, each tile's pixels in bus-address rows: a tile's counts are one block that
-  // stays in cache while its firings are counted (kept row by row, each firing of a 2048x2048
-  // array reached a cache line of its own, 10 ns a firing).
-  std::size_t count_index(std::uint32_t tile, std::uint32_t bus_address) const {
-    return std::size_t(tile) * tile_area_ + std::size_t(bus_address >> xbits_) * tile_cols_ + (bus_address & xmask_);
-  }
-  PixelCounts& pixel_of(const AddressEvent& e) { return pixels_[count_index(e.tile, e.bus_address)]; }
+  PixelCounts& pixel_of(const AddressEvent& e) { return pixels_[std::size_t(e.y) * std::size_t(map_->cols()) + e.x]; }
   void count_fired(PixelCounts& p, const AddressEvent& firing) const {
     ++p.fired;
     p.fired_in_window += firing.t <= window_ ? 1 : 0;
@@ -165,15 +159,14 @@ class EventLog {
     for (std::size_t i = 0; i < n; ++i) sum += ones(firings[i].bus_address);
     return sum;
   }
-  // Row-major (y * cols + x), as the callers read them.
-  std::vector<std::uint32_t> per_pixel(std::uint32_t PixelCounts::*field) const;
-  // visit(row-major index, bus address, counts) for every pixel of the array, tile by tile.
-  template <typename Visit>
-  void for_each_pixel(Visit visit) const;
+  std::vector<std::uint32_t> per_pixel(std::uint32_t PixelCounts::*field) const {
+    std::vector<std::uint32_t> out;
+    out.reserve(pixels_.size());
+    for (const PixelCounts& p : pixels_) out.push_back(p.*field);
+    return out;
+  }
   std::vector<PixelCounts> pixels_;
   std::optional<AddressMap> map_;  // with the pixels counted
-  std::size_t tile_area_ = 0, tile_cols_ = 0;
-  std::uint32_t xbits_ = 0, xmask_ = 0;
   double window_ = 0;
 };
 

@@ -13,7 +13,8 @@ namespace aesim {
 // Merging (and the stream's writing) on a thread of its own, behind the tiles: while the tiles
 // simulate window k+2, windows k and k+1 wait or are merged and written. Two batches may wait, so
 // that a window the tiles finish quickly does not make them wait for a slow merge, nor the merge
-// for the tiles, as long as the two keep pace on average. A submitted batch's vectors come back,
+// for the tiles, as long as the two keep pace on average (bright QCIF to .aedat4: 39 -> 44 M
+// events/s), for a third window's records in memory. A submitted batch's vectors come back,
 // emptied, with a later submit.
 class MergePipeline {
  public:
