@@ -14,16 +14,19 @@
 namespace aesim {
 namespace {
 
-// Windows of half an event per pixel, 256 Ki at least: each tile works through a batch of events
-// while its pixels' state is in cache (at 64 Ki, QCIF tiles took ~2 events a pixel a window and
-// writing AEDAT ran at 0.7 of counting; at 256 Ki, at par), for 4 MB of records in each of the two
-// buffer sets, or 8 bytes a pixel on large arrays, up to twice that as the per-tile vectors grow by
-// doubling (growing them by a quarter fragmented the heap: 100 MB more at 2048x2048). On a large
-// array a tile's window of firings ends with the run's window, and each visits every pixel of the
+// Windows of half an event per pixel, 128 Ki at least: a small array's tiles work through about
+// five firings a pixel a window while its pixels' state is in cache, and a window's records (2 MB)
+// are still in the caches when the merge reads them; with two windows waiting for the merge that
+// suited the bright QCIF better than 256 Ki (AEDAT 2.0, .npy and .aedat4 written 2-8 % faster,
+// side by side in event_rate_bench) or 1 Mi (a quarter slower). On large arrays half an event a
+// pixel is 8 bytes a pixel of records in each buffer set, up to twice that as the per-tile vectors
+// grow by doubling (growing them by a quarter fragmented the heap: 100 MB more at 2048x2048), and
+// a tile's window of firings ends with the run's window, so each window visits every pixel of the
 // tile: AEDAT written at 2048x2048 (1 s, uniform light) took 3.25 s and 400 MB with an eighth of
 // an event a pixel, 2.8 s and 443 MB with a quarter, 2.4 s and 479 MB with a half, 2.0-2.4 s and
-// 576 MB with one (/usr/bin/time aesim run ... --out big.aedat).
-constexpr double kMinWindowEvents = 262144;
+// 576 MB with one (/usr/bin/time aesim run ... --out big.aedat, before a still tile's pixels were
+// kept as arrays).
+constexpr double kMinWindowEvents = 131072;
 constexpr double kWindowEventsPerPixel = 0.5;
 
 // Firings pass from a tile's schedule to its bus a batch at a time (8 KiB, in L1).
