@@ -117,9 +117,9 @@ bool FiringSchedule::windows_pay(const std::vector<double>& thresholds) {
   frame_changes_.assign(frames, 0);
   for (std::size_t s = 0; s < pixels_.size(); ++s) {
     const std::size_t index = std::size_t(y_of(keys_[s])) * cols_ + x_of(keys_[s]);
-    double before = pc.current(frames - 1, index);  // on a loop, the frame before the first
+    double before = pc.frame_current(frames - 1, index);  // on a loop, the frame before the first
     for (std::size_t f = 0; f < frames; ++f) {
-      const double current = pc.current(f, index);
+      const double current = pc.frame_current(f, index);
       if (current > 0) frame_rates_[f] += 1 / (thresholds[s] / current + sensor_.t_reset);
       if (current != before && (f > 0 || pc.loops())) ++frame_changes_[f];
       before = current;

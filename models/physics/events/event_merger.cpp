@@ -56,8 +56,9 @@ constexpr std::size_t kInsertionMost = 16;
 //
 // The window's span of time is cut into slices of about kSlice records (more with many tiles). A
 // slice's records are counted into buckets of time straight from the tiles' buffers (one to two
-// buckets a record), then each is placed at its bucket's next free place as a 16-byte entry (its time, its run of records
-// and its place in it), tile after tile, so equal keys keep production order. The few buckets that
+// buckets a record), then each is placed at its bucket's next free place as a 16-byte entry (its
+// time, its run of records and its place in it), tile after tile, so equal keys keep production
+// order. The few buckets that
 // got more than one record are put in key order by one insertion pass over the slice (a merge sort
 // for a bucket of many records at one instant). A record costs the same whatever the number of
 // tiles, where a k-way merge pays log2(tiles) comparisons for it; the records themselves are read
