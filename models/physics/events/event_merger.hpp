@@ -57,23 +57,29 @@ struct MergeRun {
   std::uint32_t tile;
   const T* slice_end = nullptr;
 };
-// A record placed by a merge's counting sort: its time, its run, its place in the run.
+// A record copied out of its tile's buffer for a merge's counting sort, with its tile.
+template <typename T>
 struct SliceEntry {
-  double t;
-  std::uint32_t run, index;
+  T record;
+  std::uint32_t tile;
 };
-// Where a merge sorts a slice of records, kept between windows.
+// Where a merge sorts a slice of one kind of record, kept between windows: the runs, the slice's
+// records in run order, and the same in time order.
+template <typename T>
+struct SliceScratch {
+  std::vector<MergeRun<T>> runs;
+  std::vector<SliceEntry<T>> staged, sorted;
+};
 struct MergeScratch {
-  std::vector<MergeRun<TileEvent>> event_runs;
-  std::vector<MergeRun<TruthRecord>> truth_runs;
-  std::vector<SliceEntry> sorted;
+  SliceScratch<TileEvent> events;
+  SliceScratch<TruthRecord> truth;
   std::vector<std::uint32_t> count;
   template <typename T>
-  std::vector<MergeRun<T>>& runs() {
+  SliceScratch<T>& of() {
     if constexpr (std::is_same_v<T, TileEvent>) {
-      return event_runs;
+      return events;
     } else {
-      return truth_runs;
+      return truth;
     }
   }
 };
