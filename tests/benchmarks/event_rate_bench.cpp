@@ -190,8 +190,8 @@ void run_written(benchmark::State& state, const ResolvedConfig& config, const Ph
 }
 
 // The bright QCIF with its events written to a file of each format.
-void BM_QcifWritten(benchmark::State& state, const char* name) {
-  const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, 1);
+void BM_QcifWritten(benchmark::State& state, const char* name, int threads) {
+  const SensorConfig c = qcif_bright(Fidelity::Event, 20.0, threads);
   const Photocurrents photocurrents(scene_for(c, "scenes/uniform.pgm"), c.pixel);
   run_written(state, c.resolved(), photocurrents, name,
               std::string(name) == "plain.aedat4" ? Aedat4Compression::None : Aedat4Compression::Lz4);
@@ -289,8 +289,8 @@ void BM_MergeProbe(benchmark::State& state) {
 // The QCIF array at i_max 100 pA on the moving disc (the disc at about 1 kHz a pixel, the field at
 // about 20 Hz): its 24 frames shown at 100 Hz and looped, so the light changes every 10 ms for the
 // whole 2 s; and, as the still scene of the same light, its first frame alone. Summary only.
-void BM_QcifMoving(benchmark::State& state, bool moving) {
-  SensorConfig c = qcif_bright(Fidelity::Event, 2.0, 1);
+void BM_QcifMoving(benchmark::State& state, bool moving, int threads) {
+  SensorConfig c = qcif_bright(Fidelity::Event, 2.0, threads);
   c.pixel.i_max = 100e-12;
   Scene scene = scene_for(c, "scenes/moving_disc");
   if (moving) {
@@ -431,15 +431,17 @@ BENCHMARK_CAPTURE(BM_QcifCeilingProbe, still, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifCeilingProbe, shot_noise, true)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, summary_1_thread, 1, false, false)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, shot_noise_1_thread, 1, false, true)->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifMoving, still, false)->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifMoving, moving, true)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifMoving, still, false, 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifMoving, moving, true, 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifMoving, moving_2_threads, true, 2)->Apply(qcif);
 BENCHMARK(BM_FrameChangeProbe)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, aedat_1_thread, 1, true, false)->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifWritten, aedat, "e.aedat")->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifWritten, aedat4, "e.aedat4")->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifWritten, aedat4_plain, "plain.aedat4")->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifWritten, npy, "e.npy")->Apply(qcif);
-BENCHMARK_CAPTURE(BM_QcifWritten, h5, "e.h5")->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, aedat, "e.aedat", 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, aedat4, "e.aedat4", 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, aedat4_plain, "plain.aedat4", 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, npy, "e.npy", 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, h5, "e.h5", 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, aedat_2_threads, "e2.aedat", 2)->Apply(qcif);
 BENCHMARK(BM_Lz4Probe)->Apply(qcif);
 BENCHMARK(BM_QcifMerge)->Apply(qcif);
 BENCHMARK(BM_MergeProbe)->Apply(qcif);
