@@ -50,8 +50,8 @@ class FiringSchedule {
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
   // 68 bytes per lit pixel; a still tile's 28 (PeriodicPixels; 56 with shot noise) and its 4-byte
   // bus address, with no calendar (a still scene's photocurrents are not held; see
-  // Photocurrents). Its bus address is its key in the calendar, its coordinates follow from it. Derived, not a member, so that next_boundary sits
-  // in IntegrateFire's tail padding.
+  // Photocurrents). Its bus address is its key in the calendar, its coordinates follow from it.
+  // Derived, not a member, so that next_boundary sits in IntegrateFire's tail padding.
   struct Slot : IntegrateFire {
     std::uint32_t next_boundary;  // kNoBoundary when its light never changes again
   };
