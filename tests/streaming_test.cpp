@@ -299,14 +299,20 @@ TEST(Streaming, BufferedEventsKeepEveryFieldAtTheLimitsOfTheArray) {
   }
 }
 
+// On one thread the merge (and so the writer) runs on a thread of its own; on more, among the
+// tiles' threads: either way its error ends the run.
 TEST(Streaming, AWriterErrorEndsTheRun) {
-  const SensorConfig c = busy_sensor();
-  const Photocurrents p(disc_scene(), c.pixel);
-  FailingStream failing;
-  SimulationRequest request;
-  request.stream = &failing;
-  request.window_events = 500;
-  EXPECT_THROW(simulate(c.resolved(), p, request), std::runtime_error);
+  for (const int threads : {1, 2}) {
+    SCOPED_TRACE(fmt::format("{} threads", threads));
+    SensorConfig c = busy_sensor();
+    c.sim.threads = threads;
+    const Photocurrents p(disc_scene(), c.pixel);
+    FailingStream failing;
+    SimulationRequest request;
+    request.stream = &failing;
+    request.window_events = 500;
+    EXPECT_THROW(simulate(c.resolved(), p, request), std::runtime_error);
+  }
 }
 
 TEST(Streaming, ARunWithoutRecordsCountsTheSame) {

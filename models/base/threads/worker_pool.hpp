@@ -21,8 +21,10 @@ class WorkerPool {
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
 
+  // Threads in all, the caller included.
+  int threads() const { return static_cast<int>(threads_.size()) + 1; }
   // Returns when every fn(i) has returned; rethrows the first exception one threw (the others'
-  // indices still run).
+  // indices still run). Indices are handed out in order: 0 starts first.
   void for_each(std::size_t n, const std::function<void(std::size_t)>& fn);
 
  private:

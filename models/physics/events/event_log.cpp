@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "aesim/events/merge_pipeline.hpp"
 
@@ -85,11 +86,30 @@ void EventLog::hand_over(double before) {
   pipeline_->submit(filling_, before);
 }
 
+void EventLog::set_aside(double before) {
+  if (!keeps_records()) return;
+  merge_set_aside();
+  if (set_aside_.events.size() != filling_.events.size()) set_aside_ = TileRecords(tiles_.size());
+  std::swap(filling_, set_aside_);
+  set_aside_before_ = before;
+  set_aside_pending_ = true;
+}
+
+void EventLog::merge_set_aside() {
+  if (!set_aside_pending_) return;
+  set_aside_pending_ = false;
+  merger_->merge(set_aside_, set_aside_before_);
+}
+
 void EventLog::finish() {
-  hand_over(std::numeric_limits<double>::infinity());
+  merge_set_aside();
   if (pipeline_) {
+    hand_over(std::numeric_limits<double>::infinity());
     pipeline_->drain();
     pipeline_.reset();
+  } else if (keeps_records()) {
+    // Nothing is being merged in the background: the rest is merged here, without a thread.
+    merger_->merge(filling_, std::numeric_limits<double>::infinity());
   }
   for (Tile& t : tiles_) latency_.absorb(t.latencies);
 }

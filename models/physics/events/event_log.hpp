@@ -113,6 +113,13 @@ class EventLog {
   // firing, earlier than `before`. Passes those records on (in the background) and hands the
   // tiles fresh buffers.
   void hand_over(double before);
+  // hand_over() for a rung that merges on its own threads, beside its tiles, instead of on one
+  // more: sets the records aside with `before` and hands the tiles the buffers of the batch set
+  // aside before (merged by then). merge_set_aside() merges them, on one thread, while the tiles
+  // record into the new buffers; it does nothing when nothing is set aside. A batch set aside is
+  // merged before the next one is set aside, and by finish() at the latest.
+  void set_aside(double before);
+  void merge_set_aside();
   // Whether records (events or truth) are kept, so that their order across tiles matters.
   bool keeps_records() const { return outputs_.events || outputs_.truth; }
   // After the run: passes on everything left and waits until the stream has it all. Rethrows an
@@ -140,6 +147,9 @@ class EventLog {
   std::unique_ptr<EventMerger> merger_;
   std::unique_ptr<MergePipeline> pipeline_;
   TileRecords filling_;  // the tiles' records since the last hand-over
+  TileRecords set_aside_;  // set aside and not yet merged when set_aside_pending_
+  double set_aside_before_ = 0;
+  bool set_aside_pending_ = false;
   LatencyRecorder latency_;
   // A pixel's four counters side by side: one cache line touched per event, not four.
   struct PixelCounts {

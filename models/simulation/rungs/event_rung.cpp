@@ -82,10 +82,21 @@ class EventRung : public Rung {
     // light; the windows do not change the output (the merge is exact), only its pace.
     double width = t_end * 1e-6;
     std::uint64_t fired = 0;
+    // On one thread the merge runs beside it, on a thread of the log's own. On more, it is one more
+    // item of each window's loop, first, merging the window before while the tiles fill this one:
+    // a thread of its own beside them kept one more thread busy than the threads asked for, and
+    // two tile threads then waited at each window's end for the one the merge had descheduled.
+    const bool merge_in_pool = pool.threads() > 1;
+    const std::size_t first_tile = merge_in_pool ? 1 : 0;
     for (double from = 0; from < t_end;) {
       // A window never shrinks below one representable step, so the run always advances.
       const double until = std::min(t_end, std::max(from + width, std::nextafter(from, t_end)));
-      pool.for_each(tiles, [&](std::size_t t) {
+      pool.for_each(first_tile + tiles, [&](std::size_t i) {
+        if (i < first_tile) {
+          run.log.merge_set_aside();
+          return;
+        }
+        const std::size_t t = i - first_tile;
         FiringBatch batch;
         while (const std::size_t n = schedules[t]->fill(batch.data(), batch.size(), until)) {
           buses[t].request_all(batch.data(), n);
@@ -97,7 +108,11 @@ class EventRung : public Rung {
       // Every later firing comes after `until`; what a bus still holds is the earliest undecided.
       double before = until;
       for (std::size_t t = 0; t < tiles; ++t) before = std::min(before, buses[t].held_since());
-      run.log.hand_over(before);
+      if (merge_in_pool) {
+        run.log.set_aside(before);
+      } else {
+        run.log.hand_over(before);
+      }
       const std::uint64_t now = run.log.totals().fired;
       const double in_window = static_cast<double>(now - fired);
       fired = now;
