@@ -71,7 +71,7 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
   }
   if (outputs_.events) {
     // Grown once and written in place: a push_back an event checked the capacity every time.
-    std::vector<TileEvent>& events = filling_.events[t];
+    UninitializedGrowthVector<TileEvent>& events = filling_.events[t];
     const std::size_t at = events.size();
     events.resize(at + n);
     TileEvent* out = events.data() + at;

@@ -80,9 +80,10 @@ const T* slice_end(const T* next, const T* end, double hi) {
 // order: with thousands of tiles, each a few records of a slice on a page of its own, reading them
 // where they lay for the placing and again for the output missed the TLB on each (the output's
 // read was a seventh of the merge at 2048x2048).
-template <typename T, typename Out, typename Emit>
-void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector<T>>& held, double before,
+template <typename Buffer, typename Out, typename Emit>
+void merge_window(std::vector<Buffer>& incoming, std::vector<Buffer>& held, double before,
                   std::vector<Out>& chunk, MergeScratch& scratch, Emit emit) {
+  using T = typename Buffer::value_type;
   // Within one tile's records (the tile part of the key is the same).
   auto less = [](const T& a, const T& b) { return before_in_tile(a, b); };
   auto early = [before](const T& r) { return time_of(r) < before; };
@@ -94,8 +95,8 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
   std::size_t live = 0;
   double t_first = 0, t_last = 0;
   for (std::size_t i = 0; i < tiles; ++i) {
-    std::vector<T>& h = held[i];
-    std::vector<T>& in = incoming[i];
+    Buffer& h = held[i];
+    Buffer& in = incoming[i];
     const bool in_order = std::is_sorted(in.begin(), in.end(), less) &&
                           (h.empty() || in.empty() || !less(in.front(), h.back()));
     if (!in_order) {
@@ -194,8 +195,8 @@ void merge_window(std::vector<std::vector<T>>& incoming, std::vector<std::vector
   if (used > 0) emit(chunk.data(), used);
   // What stays: the held records from the cut on, then the new ones from theirs.
   for (std::size_t i = 0; i < tiles; ++i) {
-    std::vector<T>& h = held[i];
-    std::vector<T>& in = incoming[i];
+    Buffer& h = held[i];
+    Buffer& in = incoming[i];
     h.erase(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(from_held[i]));
     h.insert(h.end(), in.begin() + static_cast<std::ptrdiff_t>(from_new[i]), in.end());
     in.clear();

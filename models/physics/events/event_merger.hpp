@@ -4,6 +4,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "aesim/containers/uninitialized_growth.hpp"
 #include "aesim/events/event_stream.hpp"
 
 namespace aesim {
@@ -45,7 +46,7 @@ static_assert(sizeof(TileEvent) == 16, "a buffered event grew");
 // Each tile's records since the last hand-over, in the order the tile produced them.
 struct TileRecords {
   explicit TileRecords(std::size_t tiles = 0) : events(tiles), truth(tiles) {}
-  std::vector<std::vector<TileEvent>> events;
+  std::vector<UninitializedGrowthVector<TileEvent>> events;
   std::vector<std::vector<TruthRecord>> truth;
 };
 
@@ -98,7 +99,7 @@ class EventMerger {
   void merge(TileRecords& batch, double before);
 
  private:
-  std::vector<std::vector<TileEvent>> events_;  // held: not yet earlier than a `before`
+  std::vector<UninitializedGrowthVector<TileEvent>> events_;  // held: not yet earlier than a `before`
   std::vector<std::vector<TruthRecord>> truth_;
   std::vector<AddressEvent> event_chunk_;  // kChunk records, filled from the front
   std::vector<TruthRecord> truth_chunk_;
