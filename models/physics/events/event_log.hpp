@@ -44,7 +44,8 @@ struct LogOutputs {
 // records apart, so tiles may be simulated on separate threads (one thread per tile at a time).
 // Records are streamed, not hoarded: at each hand_over() the rung names a time before which no
 // tile will produce another record, and the records before it are merged in order (EventMerger)
-// on a background thread into the stream while the tiles go on. A run that keeps no events holds
+// into the stream while the tiles go on, on a background thread (hand_over) or on one of the
+// rung's own (set_aside). A run that keeps no events holds
 // counters only, so memory does not grow with the run's length.
 class EventLog {
  public:
