@@ -2,7 +2,6 @@
 #include <memory>
 #include <new>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
 namespace aesim {
@@ -24,13 +23,11 @@ class UninitializedGrowth : public std::allocator<T> {
   template <typename U>
   UninitializedGrowth(const UninitializedGrowth<U>&) noexcept {}
 
+  // Default-initialised: nothing written. Constructions with arguments (push_back, insert) go by
+  // std::allocator_traits, which places them as usual.
   template <typename U>
   void construct(U* at) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(at)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* at, Args&&... args) {
-    ::new (static_cast<void*>(at)) U(std::forward<Args>(args)...);
   }
 };
 

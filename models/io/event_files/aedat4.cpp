@@ -298,20 +298,15 @@ void Aedat4Writer::write_packet() {
   }
   // Compressed on the writer's thread; or here, while that thread is behind (half its queue
   // waiting), so that this thread compresses rather than waits. Written there, in order, either way.
-  if (packets_->worker->waiting() >= kPacketsWaiting / 2) {
-    const std::size_t size = compress(plain, fbb.GetSize(), buffers->packed);
-    packets_->worker->post([this, buffers, size, entry] {
-      write_body(buffers->packed.data(), size, entry);
-      packets_->give_back(buffers);
-    });
-  } else {
-    packets_->worker->post([this, buffers, entry] {
-      const flatbuffers::FlatBufferBuilder& built = buffers->fbb;
-      const std::size_t size = compress(reinterpret_cast<const char*>(built.GetBufferPointer()), built.GetSize(), buffers->packed);
-      write_body(buffers->packed.data(), size, entry);
-      packets_->give_back(buffers);
-    });
-  }
+  const bool here = packets_->worker->waiting() >= kPacketsWaiting / 2;
+  const std::size_t packed_here = here ? compress(plain, fbb.GetSize(), buffers->packed) : 0;
+  packets_->worker->post([this, buffers, here, packed_here, entry] {
+    const flatbuffers::FlatBufferBuilder& built = buffers->fbb;
+    const std::size_t size =
+        here ? packed_here : compress(reinterpret_cast<const char*>(built.GetBufferPointer()), built.GetSize(), buffers->packed);
+    write_body(buffers->packed.data(), size, entry);
+    packets_->give_back(buffers);
+  });
 }
 
 void Aedat4Writer::write_body(const char* body, std::size_t size, Written entry) {

@@ -28,7 +28,7 @@ const char* to_string(Fate fate) {
 
 EventLog::EventLog(int tiles, LogOutputs outputs)
     : outputs_(outputs), collector_(std::make_unique<EventCollector>()), filling_(static_cast<std::size_t>(tiles)),
-      latency_(kExactLatencies) {
+      set_aside_(static_cast<std::size_t>(tiles)), latency_(kExactLatencies) {
   const std::size_t n = static_cast<std::size_t>(tiles);
   tiles_.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -89,7 +89,6 @@ void EventLog::hand_over(double before) {
 void EventLog::set_aside(double before) {
   if (!keeps_records()) return;
   merge_set_aside();
-  if (set_aside_.events.size() != filling_.events.size()) set_aside_ = TileRecords(tiles_.size());
   std::swap(filling_, set_aside_);
   set_aside_before_ = before;
   set_aside_pending_ = true;
