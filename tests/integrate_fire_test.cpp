@@ -1,5 +1,7 @@
 // The pixel arithmetic against eq. 2 and hand-computed cases.
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -182,6 +184,60 @@ TEST(IntegrateFire, PeriodicFormRestartsAt2To30CyclesWithoutAGap) {
     // Three firings before the restart, the 2^30th itself, then four from the new anchor.
     EXPECT_EQ(p.cycles, 4u);
     EXPECT_GT(p.first, times[3]);
+    // Counted after the run: the ended cycles and the restart's firing, then the new ones, at or
+    // before each firing's time and between them.
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      for (const double t : {times[i], times[i] + 0.5 * period}) {
+        const IntegrateFire::Periodic::Firings ended =
+            IntegrateFire::Periodic::ended_by_restart(integration, period, 1u << 30, t);
+        EXPECT_EQ(ended.all + p.cycles, before_restart + times.size());
+        EXPECT_EQ(ended.within + IntegrateFire::Periodic::count_at_or_before(p.first, p.period, p.cycles, t),
+                  before_restart + i + 1)
+            << "firing " << i;
+      }
+    }
+  }
+}
+
+// A periodic pixel's firings at or before a time, as the log's per-pixel counts take them, against
+// counting the firings count_through gives one by one: at each firing's own time and beside it,
+// where the quotient rounds either way, and where a period is below the anchor's resolution
+// (many firings share a time, so the quotient is far off and only the search finds the count).
+TEST(IntegrateFire, PeriodicCountAtOrBeforeIsTheFiringsCountedOneByOne) {
+  using P = IntegrateFire::Periodic;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  struct Form {
+    double first, period;
+    std::uint32_t cycles;
+  };
+  std::vector<Form> forms = {{0.0, 1e-3, 1}, {0.0, 1e-3, 5000}, {0.1, 0.1, 3000}, {1e3, 1e-13, 4000},
+                             {1e3, 1e-15, 20000}, {0.3, 1e-15, 2000}};
+  for (int i = 0; i < 20; ++i) {
+    forms.push_back({unit(rng) * 0.01, 1e-6 + unit(rng) * 1e-3, 1 + static_cast<std::uint32_t>(unit(rng) * 20000)});
+  }
+  for (const Form& f : forms) {
+    SCOPED_TRACE(testing::Message() << "first " << f.first << " period " << f.period << " cycles " << f.cycles);
+    // The firings count_through gives up to the last one's time (past it only firings that tie it).
+    const double last = f.first + static_cast<double>(f.cycles - 1) * f.period;
+    std::vector<double> times;
+    std::uint32_t cycles = 0;
+    ASSERT_TRUE(P::count_through<false>(f.first, f.period, cycles, last, [&times](double t, bool kept) {
+      if (kept) times.push_back(t);
+    }));
+    ASSERT_GE(times.size(), f.cycles);
+    times.resize(f.cycles);
+    const auto counted = [&times](double t) {
+      return static_cast<std::uint32_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+    };
+    std::vector<double> probes = {-1.0, 0.0, f.first, times.back(), std::nextafter(times.back(), 1e300), 1e300};
+    for (std::size_t k = 0; k < times.size(); k += 1 + times.size() / 300) {
+      probes.push_back(times[k]);
+      probes.push_back(std::nextafter(times[k], -1e300));
+      probes.push_back(std::nextafter(times[k], 1e300));
+      probes.push_back(times[k] + 0.5 * f.period);
+    }
+    for (const double t : probes) EXPECT_EQ(P::count_at_or_before(f.first, f.period, f.cycles, t), counted(t)) << t;
   }
 }
 

@@ -329,6 +329,73 @@ TEST(Streaming, ARunWithoutRecordsCountsTheSame) {
   EXPECT_EQ(counted.log.output_per_pixel(), kept.log.output_per_pixel());
 }
 
+// The log's per-pixel counters (firings and outputs, in all and within the counting window: the
+// histogram image and the sizing metrics) are those of the run's records, counted pixel by pixel
+// from the truth and the output events: whether the log counts each firing as it comes or takes a
+// still tile's firings from its schedule after the run (a bus that delivers or loses each firing
+// as it fires), on one thread or two, with records or counters only.
+TEST(Streaming, PerPixelCountsAreThoseOfTheRecords) {
+  struct Case {
+    const char* name;
+    BusAccess access;
+    bool detect;
+    bool moving;
+  };
+  const Scene still = testing::make_scene({disc_scene().frames[1]});
+  for (const Case& k : {Case{"ALOHA, ghosts", BusAccess::Aloha, false, false},
+                        Case{"ALOHA, detected", BusAccess::Aloha, true, false},
+                        Case{"ideal", BusAccess::Ideal, true, false},
+                        Case{"arbitrated", BusAccess::Arbitrated, true, false},
+                        Case{"ALOHA, moving", BusAccess::Aloha, false, true}}) {
+    SensorConfig c = busy_sensor();
+    c.bus.access = k.access;
+    c.bus.contention_detect = k.detect;
+    c.analysis.window = 0.6 * c.sim.duration;
+    const Photocurrents p(k.moving ? disc_scene() : still, c.pixel);
+    const AddressMap map(c.resolved().array);
+    for (const int threads : {1, 2}) {
+      SCOPED_TRACE(fmt::format("{}, {} threads", k.name, threads));
+      const SimulationResult r = run_with(c, p, threads, 700);
+      const std::size_t pixels = static_cast<std::size_t>(map.rows()) * static_cast<std::size_t>(map.cols());
+      std::vector<std::uint32_t> fired(pixels), fired_within(pixels), output(pixels), output_within(pixels);
+      const auto at = [&map](const AddressEvent& e) { return std::size_t(e.y) * std::size_t(map.cols()) + e.x; };
+      for (const TruthRecord& t : r.log.truth()) {
+        ++fired[at(t.firing)];
+        fired_within[at(t.firing)] += t.firing.t <= c.analysis.window;
+      }
+      std::uint64_t ghosts = 0;
+      for (const AddressEvent& e : r.log.events()) {
+        const bool ghost = (e.flags & kGhostEvent) != 0;
+        ghosts += ghost;
+        if (!map.names_pixel(e)) continue;
+        ++output[at(e)];
+        output_within[at(e)] += !ghost && e.t <= c.analysis.window;
+      }
+      ASSERT_GT(r.log.truth().size(), 20000u);
+      if (k.access == BusAccess::Aloha) {
+        ASSERT_GT(r.log.totals().collided, 100u);
+      }
+      if (k.access == BusAccess::Aloha && !k.detect) {
+        ASSERT_GT(ghosts, 10u);
+      }
+      ASSERT_LT(std::count(fired_within.begin(), fired_within.end(), 0u), std::ptrdiff_t(pixels / 10));
+      EXPECT_EQ(r.log.fired_per_pixel(), fired);
+      EXPECT_EQ(r.log.window_per_pixel(), fired_within);
+      EXPECT_EQ(r.log.output_per_pixel(), output);
+      EXPECT_EQ(r.log.window_output_per_pixel(), output_within);
+      SensorConfig copy = c;
+      copy.sim.threads = threads;
+      SimulationRequest counters_only;
+      counters_only.keep_events = false;
+      const SimulationResult counted = simulate(copy.resolved(), p, counters_only);
+      EXPECT_EQ(counted.log.fired_per_pixel(), fired);
+      EXPECT_EQ(counted.log.window_per_pixel(), fired_within);
+      EXPECT_EQ(counted.log.output_per_pixel(), output);
+      EXPECT_EQ(counted.log.window_output_per_pixel(), output_within);
+    }
+  }
+}
+
 // The CSV writer's integer path against formatting each timestamp as a double (the reference's
 // definition: t_us with as many decimals as the tick resolves), over ticks that are and are not
 // whole decimal units.

@@ -300,8 +300,27 @@ void FiringSchedule::fire_periodic(double to, FiringWindow::Writer& writer) {
     const auto emit = [&writer, key](double t, bool kept) { writer.add(t, key, kept); };
     using Periodic = IntegrateFire::Periodic;
     while (!__builtin_expect(Periodic::count_through<speculate>(first[i], period[i], cycles[i], to, emit), 1)) {
+      ended_.push_back({static_cast<std::uint32_t>(i), cycles[i], first[i], period[i]});
       Periodic::restart(first[i], period[i], cycles[i], periodic_.integration[i], sensor_, emit);
     }
+  }
+}
+
+void FiringSchedule::pixel_firings(double window, std::vector<PixelFirings>& out) const {
+  out.clear();
+  const std::size_t n = periodic_.cycles.size();
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t cycles = periodic_.cycles[i];
+    out.push_back({static_cast<std::uint32_t>(std::size_t(y_of(keys_[i])) * cols_ + x_of(keys_[i])), cycles,
+                   IntegrateFire::Periodic::count_at_or_before(periodic_.first[i], periodic_.period[i], cycles,
+                                                               window)});
+  }
+  for (const EndedCycles& e : ended_) {
+    const IntegrateFire::Periodic::Firings ended =
+        IntegrateFire::Periodic::ended_by_restart(e.first, e.period, e.cycles, window);
+    out[e.pixel].all += ended.all;
+    out[e.pixel].within += ended.within;
   }
 }
 

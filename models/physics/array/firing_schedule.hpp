@@ -8,6 +8,7 @@
 #include "aesim/array/firing_window.hpp"
 #include "aesim/array/wake_calendar.hpp"
 #include "aesim/events/address_event.hpp"
+#include "aesim/events/pixel_firings.hpp"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/pixel/integrate_fire.hpp"
 #include "aesim/scene/photocurrents.hpp"
@@ -46,6 +47,13 @@ class FiringSchedule {
   }
   // Whether the tile's firings come from windows rather than the calendar.
   bool windowed() const { return windowed_; }
+  // Whether pixel_firings() can work out the tile's firings: a still tile without shot noise,
+  // whose pixels fire periodically.
+  bool periodic() const { return !periodic_.empty(); }
+  // For a periodic() tile, each of its pixels' firings so far, in all and at or before `window`,
+  // from its first firing, period and cycle count (the times count_through gives them, so the
+  // same count as the firings themselves), into `out`; for another tile, `out` is left empty.
+  void pixel_firings(double window, std::vector<PixelFirings>& out) const;
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
   // 68 bytes per lit pixel; a still tile's 28 (PeriodicPixels; 56 with shot noise) and its 4-byte
@@ -118,6 +126,14 @@ class FiringSchedule {
     }
   };
   PeriodicPixels periodic_;
+  // A periodic pixel re-anchored after 2^30 cycles (restart): the cycles it had run then, a firing
+  // more at the restart, and their times; rare enough to keep apart.
+  struct EndedCycles {
+    std::uint32_t pixel;  // its place in periodic_
+    std::uint32_t cycles;
+    double first, period;
+  };
+  std::vector<EndedCycles> ended_;
   std::vector<IntegrateFire::ShotNoise> shot_noise_;  // per pixel, only with pixel.shot_noise
   IntegrateFire::ShotNoise no_noise_;                 // untouched: without shot noise nothing is random
   WakeCalendar calendar_;

@@ -22,6 +22,7 @@ class AlohaBus final : public EventBus {
   void request_all(const AddressEvent* firings, std::size_t n) override;
   void finish() override { close_cluster(); }
   double held_since() const override { return cluster_.empty() ? EventBus::held_since() : earliest_; }
+  bool delivers_when_fired() const override { return true; }
 
  private:
   // The open cluster: the firings that may still collide with the next one. A batch's clusters

@@ -20,6 +20,10 @@ class alignas(64) EventBus {
   virtual void request_all(const AddressEvent* firings, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) request(firings[i]);
   }
+  // Whether it delivers every firing at its firing time, through EventLog::fired_and_delivered, or
+  // loses it, through EventLog::fired_all, and makes no other output but ghosts: the log may then
+  // count a tile's firings per pixel after the run (EventLog::add_firings_later).
+  virtual bool delivers_when_fired() const { return false; }
   // After the run: settles what the bus still holds (an undecided collision cluster, a queue).
   virtual void finish() {}
   // The earliest firing it still holds undecided (its outcome, and any output, come later), or

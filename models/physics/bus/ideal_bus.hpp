@@ -12,6 +12,7 @@ class IdealBus final : public EventBus {
   void request_all(const AddressEvent* firings, std::size_t n) override {
     log_.fired_and_delivered(firings, n);
   }
+  bool delivers_when_fired() const override { return true; }
 
  private:
   EventLog& log_;

@@ -32,7 +32,7 @@ EventLog::EventLog(int tiles, LogOutputs outputs)
   const std::size_t n = static_cast<std::size_t>(tiles);
   tiles_.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    tiles_.push_back(Tile{{}, LatencyRecorder(std::max<std::size_t>(4096, kExactLatencies / n)), 0});
+    tiles_.push_back(Tile{{}, LatencyRecorder(std::max<std::size_t>(4096, kExactLatencies / n)), 0, false});
   }
   EventStream& out = outputs_.stream ? *outputs_.stream : static_cast<EventStream&>(*collector_);
   merger_ = std::make_unique<EventMerger>(n, out);
@@ -58,7 +58,7 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
   tile.counters.delivered += n;
   if (pixels_.empty()) {
     tile.address_ones += address_ones_of(firings, n);
-  } else {
+  } else if (!tile.firings_added_later) {
     for (std::size_t i = 0; i < n; ++i) {
       PixelCounts& p = pixel_of(firings[i]);
       count_fired(p, firings[i]);

@@ -9,6 +9,7 @@
 #include "aesim/events/event_merger.hpp"
 #include "aesim/events/event_stream.hpp"
 #include "aesim/events/latency_recorder.hpp"
+#include "aesim/events/pixel_firings.hpp"
 #include "aesim/events/truth_record.hpp"
 
 namespace aesim {
@@ -72,8 +73,34 @@ class EventLog {
     tile.counters.fired += n;
     if (pixels_.empty()) {
       tile.address_ones += address_ones_of(firings, n);
+    } else if (tile.firings_added_later) {
+      // Counted as delivered by add_pixel_firings(): each of these was not.
+      for (std::size_t i = 0; i < n; ++i) uncount_output(pixel_of(firings[i]), firings[i]);
     } else {
       for (std::size_t i = 0; i < n; ++i) count_fired(pixel_of(firings[i]), firings[i]);
+    }
+  }
+  // For a tile whose schedule works out each pixel's firings (FiringSchedule::pixel_firings) and
+  // whose bus delivers every firing the moment it fires (fired_and_delivered) or loses it
+  // (fired_all): its firings are not counted per pixel as they come, and add_pixel_firings() adds
+  // them after the run, each as fired and output; a lost firing takes its output back. On a large
+  // array a counter reached a firing missed the caches. False, and nothing changed, when the log
+  // counts no pixels (count_pixels was not called).
+  bool add_firings_later(std::uint32_t tile) {
+    if (pixels_.empty()) return false;
+    tiles_[tile].firings_added_later = true;
+    return true;
+  }
+  // The time up to which firings are counted apart (count_pixels' window).
+  double counting_window() const { return window_; }
+  // A tile's pixels' firings, for a tile marked by add_firings_later().
+  void add_pixel_firings(const std::vector<PixelFirings>& firings) {
+    for (const PixelFirings& f : firings) {
+      PixelCounts& p = pixels_[f.index];
+      p.fired += f.all;
+      p.fired_in_window += f.within;
+      p.output += f.all;
+      p.output_in_window += f.within;
     }
   }
   // fired_all() then, for each firing, resolve(firing, Fate::Delivered, firing.t) and
@@ -141,6 +168,7 @@ class EventLog {
     TileCounters counters;
     LatencyRecorder latencies;
     std::uint64_t address_ones = 0;
+    bool firings_added_later = false;  // see add_firings_later()
   };
   std::vector<Tile> tiles_;
   LogOutputs outputs_;
@@ -164,6 +192,10 @@ class EventLog {
   void count_output(PixelCounts& p, const AddressEvent& e, bool ghost) const {
     ++p.output;
     p.output_in_window += !ghost && e.t <= window_ ? 1 : 0;
+  }
+  void uncount_output(PixelCounts& p, const AddressEvent& firing) const {
+    --p.output;
+    p.output_in_window -= firing.t <= window_ ? 1 : 0;
   }
   static std::uint64_t address_ones_of(const AddressEvent* firings, std::size_t n) {
     std::uint64_t sum = 0;

@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -137,6 +138,42 @@ class IntegrateFire {
       }
       cycles = c;
       return !(t <= to);
+    }
+    // Of the firings count_through times at first + k period, k = 0 .. cycles - 1, how many fall
+    // at or before `t`: from the quotient, then by bisection where rounding put the quotient off
+    // by more than one (their times never decrease with k, rounding being monotonic).
+    static std::uint32_t count_at_or_before(double first, double period, std::uint32_t cycles, double t) {
+      const auto time = [first, period](std::uint32_t k) {
+        return k == 0 ? first : first + static_cast<double>(k) * period;
+      };
+      if (cycles == 0 || !(first <= t)) return 0;
+      if (time(cycles - 1) <= t) return cycles;
+      // The last firing at or before t is in [lo, hi): time(lo) <= t < time(hi).
+      std::uint32_t lo = 0, hi = cycles - 1;
+      const double guess = std::floor((t - first) / period);
+      if (guess > 0 && guess < static_cast<double>(hi)) {
+        const auto k = static_cast<std::uint32_t>(guess);
+        if (time(k) <= t) {
+          lo = k;
+          if (t < time(k + 1)) hi = k + 1;
+        } else {
+          hi = k;
+        }
+      }
+      while (hi - lo > 1) {
+        const std::uint32_t mid = lo + (hi - lo) / 2;
+        (time(mid) <= t ? lo : hi) = mid;
+      }
+      return lo + 1;
+    }
+    // Of a run of firings that ended in restart(), after count_through stopped at `cycles`: the
+    // firings in all (restart's own one more), and those at or before `t`.
+    struct Firings {
+      std::uint32_t all, within;
+    };
+    static Firings ended_by_restart(double first, double period, std::uint32_t cycles, double t) {
+      const double restart = first + static_cast<double>(cycles) * period;
+      return {cycles + 1, count_at_or_before(first, period, cycles, t) + (restart <= t ? 1u : 0u)};
     }
     // The firing at 2^30 cycles, then the state fire() leaves: anchored at its reset's end with no
     // charge.

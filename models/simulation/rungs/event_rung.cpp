@@ -32,6 +32,19 @@ constexpr double kWindowEventsPerPixel = 0.5;
 // Firings pass from a tile's schedule to its bus a batch at a time (8 KiB, in L1).
 using FiringBatch = std::array<AddressEvent, 256>;
 
+// A still tile without shot noise on a bus that delivers or loses each firing as it fires: the log
+// takes its pixels' firings from the schedule after the run instead of counting each as it comes
+// (a counter a firing, out of the caches on a large array, was a seventh of a 2048x2048 run).
+bool firings_added_later(const RungRun& run, const FiringSchedule& schedule, EventBus& bus, std::size_t tile) {
+  return schedule.periodic() && bus.delivers_when_fired() && run.log.add_firings_later(static_cast<std::uint32_t>(tile));
+}
+
+void add_firings(const RungRun& run, const FiringSchedule& schedule) {
+  thread_local std::vector<PixelFirings> firings;
+  schedule.pixel_firings(run.log.counting_window(), firings);
+  run.log.add_pixel_firings(firings);
+}
+
 int thread_count(const RungRun& run) {
   int threads = run.config.sim.threads;
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -66,16 +79,22 @@ class EventRung : public Rung {
     if (!run.log.keeps_records()) {
       pool.for_each(tiles, [&](std::size_t t) {
         const auto schedule = schedule_of(t);
+        const bool later = firings_added_later(run, *schedule, buses[t], t);
         FiringBatch batch;
         while (const std::size_t n = schedule->fill(batch.data(), batch.size(), t_end)) {
           buses[t].request_all(batch.data(), n);
         }
+        if (later) add_firings(run, *schedule);
       });
       buses.finish(run.config.bus, facts);
       return;
     }
     std::vector<std::unique_ptr<FiringSchedule>> schedules(tiles);
-    pool.for_each(tiles, [&](std::size_t t) { schedules[t] = schedule_of(t); });
+    std::vector<char> later(tiles);
+    pool.for_each(tiles, [&](std::size_t t) {
+      schedules[t] = schedule_of(t);
+      later[t] = firings_added_later(run, *schedules[t], buses[t], t);
+    });
     const double window_events = run.request.window_events > 0 ? run.request.window_events
                                                                : std::max(kMinWindowEvents, kWindowEventsPerPixel * static_cast<double>(run.map.rows()) * run.map.cols());
     // Starts small and grows at most 4x a window, so the first windows cost little whatever the
@@ -118,6 +137,9 @@ class EventRung : public Rung {
       fired = now;
       width *= std::clamp(std::max(window_events, 1.0) / std::max(in_window, 1.0), 0.25, 4.0);
     }
+    pool.for_each(tiles, [&](std::size_t t) {
+      if (later[t]) add_firings(run, *schedules[t]);
+    });
     buses.finish(run.config.bus, facts);
   }
 };
