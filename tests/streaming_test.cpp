@@ -258,6 +258,54 @@ TEST(Streaming, TheMergeOrdersTiesByTileThenAddress) {
   }
 }
 
+// A tile's events may reach the log out of order (simultaneous SystemC processes run in any order):
+// the merge sorts them whatever way they came, one by one or a batch at a time; in order, the log's
+// own check as they come spares the merge its pass over them. Enough records for the merge to cut
+// its window into slices, so that a run taken as sorted when it is not would come out of order.
+TEST(Streaming, TheLogsEventsComeOutInOrderWhateverOrderTheyCameIn) {
+  constexpr int kPerTile = 20000;
+  std::vector<std::vector<AddressEvent>> tiles(2);
+  for (std::uint32_t tile = 0; tile < 2; ++tile) {
+    for (int k = 0; k < kPerTile; ++k) {
+      AddressEvent e;
+      e.t = 1e-7 * k + 5e-8 * tile;
+      e.tile = tile;
+      e.bus_address = static_cast<std::uint32_t>(k % 1000);
+      e.x = e.bus_address;
+      tiles[tile].push_back(e);
+    }
+  }
+  // Out of order within a window (never before the time the last hand-over named): tile 0 in its
+  // first, tile 1 in its second; an early record comes near the window's end, a late one early.
+  std::swap(tiles[0][100], tiles[0][kPerTile / 2 - 1000]);
+  std::swap(tiles[1][kPerTile / 2 + 100], tiles[1][kPerTile - 1000]);
+  std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> expected;
+  for (const auto& mine : tiles) {
+    for (const AddressEvent& e : mine) expected.emplace_back(e.t, e.tile, e.bus_address);
+  }
+  std::sort(expected.begin(), expected.end());
+  for (const bool batch : {false, true}) {
+    SCOPED_TRACE(batch ? "a batch at a time" : "one at a time");
+    EventLog log(2, false);
+    // Two windows a tile, the second from the middle on.
+    for (const int half : {0, 1}) {
+      for (const auto& mine : tiles) {
+        const AddressEvent* first = mine.data() + half * kPerTile / 2;
+        if (batch) {
+          log.fired_and_delivered(first, kPerTile / 2);
+        } else {
+          for (int k = 0; k < kPerTile / 2; ++k) log.output(first[k]);
+        }
+      }
+      log.hand_over(1e-7 * kPerTile / 4);
+    }
+    log.finish();
+    std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> got;
+    for (const AddressEvent& e : log.events()) got.emplace_back(e.t, e.tile, e.bus_address);
+    EXPECT_EQ(got, expected);
+  }
+}
+
 // A stream that fails part-way, as a full disk would.
 class FailingStream : public EventStream {
  public:

@@ -36,6 +36,7 @@ EventLog::EventLog(int tiles, LogOutputs outputs)
   }
   EventStream& out = outputs_.stream ? *outputs_.stream : static_cast<EventStream&>(*collector_);
   merger_ = std::make_unique<EventMerger>(n, out);
+  start_filling();
 }
 
 EventLog::EventLog(EventLog&&) noexcept = default;
@@ -76,6 +77,10 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
     events.resize(at + n);
     TileEvent* out = events.data() + at;
     for (std::size_t i = 0; i < n; ++i) out[i] = TileEvent::of(firings[i]);
+    // Checked while they are in the cache, so that the merge need not read them all to know.
+    bool disordered = false;
+    for (std::size_t i = at > 0 ? at : 1; i < at + n; ++i) disordered |= events[i].before(events[i - 1]);
+    if (disordered) filling_.events_in_order[t] = 0;
   }
 }
 
@@ -84,12 +89,14 @@ void EventLog::hand_over(double before) {
   if (!pipeline_) pipeline_ = std::make_unique<MergePipeline>(*merger_, tiles_.size());
   // The tiles get back the buffers of the batch before, emptied by its merge.
   pipeline_->submit(filling_, before);
+  start_filling();
 }
 
 void EventLog::set_aside(double before) {
   if (!keeps_records()) return;
   merge_set_aside();
   std::swap(filling_, set_aside_);
+  start_filling();
   set_aside_before_ = before;
   set_aside_pending_ = true;
 }

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <memory>
@@ -134,7 +135,12 @@ class EventLog {
     const bool ghost = (e.flags & kGhostEvent) != 0;
     if (ghost) ++tile.counters.ghost;
     if (!pixels_.empty() && map_->names_pixel(e)) count_output(pixel_of(e), e, ghost);
-    if (outputs_.events) filling_.events[e.tile].push_back(TileEvent::of(e));
+    if (outputs_.events) {
+      UninitializedGrowthVector<TileEvent>& events = filling_.events[e.tile];
+      const TileEvent record = TileEvent::of(e);
+      if (!events.empty() && record.before(events.back())) filling_.events_in_order[e.tile] = 0;
+      events.push_back(record);
+    }
   }
 
   // Called by a rung while none of its tiles runs: no tile will output an event, or resolve a
@@ -175,6 +181,8 @@ class EventLog {
   std::unique_ptr<EventCollector> collector_;
   std::unique_ptr<EventMerger> merger_;
   std::unique_ptr<MergePipeline> pipeline_;
+  // Fresh buffers for the tiles: every tile's events in order so far (none yet).
+  void start_filling() { std::fill(filling_.events_in_order.begin(), filling_.events_in_order.end(), 1); }
   TileRecords filling_;  // the tiles' records since the last hand-over
   TileRecords set_aside_;  // set aside and not yet merged when set_aside_pending_
   double set_aside_before_ = 0;

@@ -31,9 +31,7 @@ void put(AddressEvent& out, const TileEvent& e, std::uint32_t tile) { e.expand(t
 void put(TruthRecord& out, const TruthRecord& r, std::uint32_t) { out = r; }
 // Within one tile's records: the time first, the whole key only for equal times (this runs over
 // every record of every window).
-bool before_in_tile(const TileEvent& a, const TileEvent& b) {
-  return a.t < b.t || (a.t == b.t && (a.address_ghost & ~TileEvent::kGhostBit) < (b.address_ghost & ~TileEvent::kGhostBit));
-}
+bool before_in_tile(const TileEvent& a, const TileEvent& b) { return a.before(b); }
 bool before_in_tile(const TruthRecord& a, const TruthRecord& b) { return key_of(a, 0) < key_of(b, 0); }
 
 constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
@@ -80,9 +78,13 @@ const T* slice_end(const T* next, const T* end, double hi) {
 // order: with thousands of tiles, each a few records of a slice on a page of its own, reading them
 // where they lay for the placing and again for the output missed the TLB on each (the output's
 // read was a seventh of the merge at 2048x2048).
+//
+// `known_in_order`: per tile, nonzero when its incoming records are known to be in order (see
+// TileRecords::events_in_order); empty when none is known.
 template <typename Buffer, typename Out, typename Emit>
-void merge_window(std::vector<Buffer>& incoming, std::vector<Buffer>& held, double before,
-                  std::vector<Out>& chunk, MergeScratch& scratch, Emit emit) {
+void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>& known_in_order,
+                  std::vector<Buffer>& held, double before, std::vector<Out>& chunk, MergeScratch& scratch,
+                  Emit emit) {
   using T = typename Buffer::value_type;
   // Within one tile's records (the tile part of the key is the same).
   auto less = [](const T& a, const T& b) { return before_in_tile(a, b); };
@@ -97,7 +99,7 @@ void merge_window(std::vector<Buffer>& incoming, std::vector<Buffer>& held, doub
   for (std::size_t i = 0; i < tiles; ++i) {
     Buffer& h = held[i];
     Buffer& in = incoming[i];
-    const bool in_order = std::is_sorted(in.begin(), in.end(), less) &&
+    const bool in_order = ((i < known_in_order.size() && known_in_order[i]) || std::is_sorted(in.begin(), in.end(), less)) &&
                           (h.empty() || in.empty() || !less(in.front(), h.back()));
     if (!in_order) {
       h.insert(h.end(), in.begin(), in.end());
@@ -214,9 +216,9 @@ EventMerger::EventMerger(std::size_t tiles, EventStream& out) : events_(tiles), 
 }
 
 void EventMerger::merge(TileRecords& batch, double before) {
-  merge_window(batch.events, events_, before, event_chunk_, scratch_,
+  merge_window(batch.events, batch.events_in_order, events_, before, event_chunk_, scratch_,
                [this](const AddressEvent* c, std::size_t n) { out_.events(c, n); });
-  merge_window(batch.truth, truth_, before, truth_chunk_, scratch_,
+  merge_window(batch.truth, {}, truth_, before, truth_chunk_, scratch_,
                [this](const TruthRecord* c, std::size_t n) { out_.truth(c, n); });
 }
 
