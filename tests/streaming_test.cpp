@@ -380,22 +380,27 @@ TEST(Streaming, ARunWithoutRecordsCountsTheSame) {
 // The log's per-pixel counters (firings and outputs, in all and within the counting window: the
 // histogram image and the sizing metrics) are those of the run's records, counted pixel by pixel
 // from the truth and the output events: whether the log counts each firing as it comes or takes a
-// still tile's firings from its schedule after the run (a bus that delivers or loses each firing
-// as it fires), on one thread or two, with records or counters only.
+// tile's firings from its schedule after the run (on a bus that delivers or loses each firing as
+// it fires: windows count them as they make them or, still and without shot noise, work them out
+// from the pixels' periods), on one thread or two, with records or counters only.
 TEST(Streaming, PerPixelCountsAreThoseOfTheRecords) {
   struct Case {
     const char* name;
     BusAccess access;
     bool detect;
     bool moving;
+    bool shot_noise = false;
   };
   const Scene still = testing::make_scene({disc_scene().frames[1]});
   for (const Case& k : {Case{"ALOHA, ghosts", BusAccess::Aloha, false, false},
                         Case{"ALOHA, detected", BusAccess::Aloha, true, false},
                         Case{"ideal", BusAccess::Ideal, true, false},
                         Case{"arbitrated", BusAccess::Arbitrated, true, false},
-                        Case{"ALOHA, moving", BusAccess::Aloha, false, true}}) {
+                        Case{"ALOHA, moving", BusAccess::Aloha, false, true},
+                        Case{"ALOHA, shot noise", BusAccess::Aloha, false, false, true},
+                        Case{"ALOHA, moving, shot noise", BusAccess::Aloha, true, true, true}}) {
     SensorConfig c = busy_sensor();
+    c.pixel.shot_noise = k.shot_noise;
     c.bus.access = k.access;
     c.bus.contention_detect = k.detect;
     c.analysis.window = 0.6 * c.sim.duration;

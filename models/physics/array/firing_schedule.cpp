@@ -257,10 +257,16 @@ void FiringSchedule::make_window(double last) {
       fire_periodic<false>(to, writer);
     }
   }
+  const double counting_window = counting_window_;
   for (std::size_t i = 0; i < pixels_.size(); ++i) {
     const std::uint32_t key = keys[i];
     Slot& p = pixels[i];
-    const auto emit = [&writer, key](double t, bool kept = true) { writer.add(t, key, kept); };
+    std::uint32_t all = 0, within = 0;
+    const auto emit = [&writer, key, &all, &within, counting_window](double t, bool kept = true) {
+      writer.add(t, key, kept);
+      all += kept ? 1 : 0;
+      within += kept && t <= counting_window ? 1 : 0;
+    };
     for (;;) {
       const double boundary =
           p.next_boundary == kNoBoundary ? kNever : photocurrents_.boundary_time(p.next_boundary);
@@ -276,6 +282,10 @@ void FiringSchedule::make_window(double last) {
       const std::size_t index = std::size_t(y_of(key)) * cols_ + x_of(key);
       p.set_current(sensor_, boundary, photocurrents_.current(p.next_boundary, index));
       p.next_boundary = boundary_after(p.next_boundary, index);
+    }
+    if (counting_) {
+      fired_[i] += all;
+      fired_within_[i] += within;
     }
   }
   window->finish(writer);
@@ -306,13 +316,28 @@ void FiringSchedule::fire_periodic(double to, FiringWindow::Writer& writer) {
   }
 }
 
-void FiringSchedule::pixel_firings(double window, std::vector<PixelFirings>& out) const {
+void FiringSchedule::count_pixel_firings(double window) {
+  counting_ = true;
+  counting_window_ = window;
+  fired_.assign(pixels_.size(), 0);
+  fired_within_.assign(pixels_.size(), 0);
+}
+
+void FiringSchedule::pixel_firings(std::vector<PixelFirings>& out) const {
   out.clear();
-  const std::size_t n = periodic_.cycles.size();
+  const std::size_t n = keys_.size();
   out.reserve(n);
+  const auto index = [this](std::size_t i) {
+    return static_cast<std::uint32_t>(std::size_t(y_of(keys_[i])) * cols_ + x_of(keys_[i]));
+  };
+  if (periodic_.empty()) {
+    for (std::size_t i = 0; i < n; ++i) out.push_back({index(i), fired_[i], fired_within_[i]});
+    return;
+  }
+  const double window = counting_window_;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t cycles = periodic_.cycles[i];
-    out.push_back({static_cast<std::uint32_t>(std::size_t(y_of(keys_[i])) * cols_ + x_of(keys_[i])), cycles,
+    out.push_back({index(i), cycles,
                    IntegrateFire::Periodic::count_at_or_before(periodic_.first[i], periodic_.period[i], cycles,
                                                                window)});
   }

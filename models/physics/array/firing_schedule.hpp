@@ -47,13 +47,17 @@ class FiringSchedule {
   }
   // Whether the tile's firings come from windows rather than the calendar.
   bool windowed() const { return windowed_; }
-  // Whether pixel_firings() can work out the tile's firings: a still tile without shot noise,
-  // whose pixels fire periodically.
-  bool periodic() const { return !periodic_.empty(); }
-  // For a periodic() tile, each of its pixels' firings so far, in all and at or before `window`,
-  // from its first firing, period and cycle count (the times count_through gives them, so the
-  // same count as the firings themselves), into `out`; for another tile, `out` is left empty.
-  void pixel_firings(double window, std::vector<PixelFirings>& out) const;
+  // Whether the schedule can count its own pixels' firings (count_pixel_firings): a tile whose
+  // firings come from windows, which visit its pixels one after the other.
+  bool counts_pixel_firings() const { return windowed_; }
+  // From now on (before any firing is taken), keeps each pixel's firings, in all and at or before
+  // `window`, for pixel_firings(). A still tile without shot noise works them out from each
+  // pixel's first firing, period and cycle count when asked (the times count_through gives its
+  // firings, so the same count); another windowed tile counts them as its windows make them, in
+  // registers while it is at the pixel.
+  void count_pixel_firings(double window);
+  // Each pixel's firings so far (as count_pixel_firings set out), into `out`.
+  void pixel_firings(std::vector<PixelFirings>& out) const;
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):
   // 68 bytes per lit pixel; a still tile's 28 (PeriodicPixels; 56 with shot noise) and its 4-byte
@@ -134,6 +138,11 @@ class FiringSchedule {
     double first, period;
   };
   std::vector<EndedCycles> ended_;
+  // With count_pixel_firings, a windowed tile's firings per slot of pixels_ (empty for a
+  // periodic_ tile), and the counting window.
+  std::vector<std::uint32_t> fired_, fired_within_;
+  double counting_window_ = 0;
+  bool counting_ = false;
   std::vector<IntegrateFire::ShotNoise> shot_noise_;  // per pixel, only with pixel.shot_noise
   IntegrateFire::ShotNoise no_noise_;                 // untouched: without shot noise nothing is random
   WakeCalendar calendar_;

@@ -32,16 +32,22 @@ constexpr double kWindowEventsPerPixel = 0.5;
 // Firings pass from a tile's schedule to its bus a batch at a time (8 KiB, in L1).
 using FiringBatch = std::array<AddressEvent, 256>;
 
-// A still tile without shot noise on a bus that delivers or loses each firing as it fires: the log
-// takes its pixels' firings from the schedule after the run instead of counting each as it comes
-// (a counter a firing, out of the caches on a large array, was a seventh of a 2048x2048 run).
-bool firings_added_later(const RungRun& run, const FiringSchedule& schedule, EventBus& bus, std::size_t tile) {
-  return schedule.periodic() && bus.delivers_when_fired() && run.log.add_firings_later(static_cast<std::uint32_t>(tile));
+// A tile whose schedule makes windows, on a bus that delivers or loses each firing as it fires: the
+// log takes its pixels' firings from the schedule after the run instead of counting each as it
+// comes (a counter reached a firing, out of the caches on a large array, was a seventh of a
+// 2048x2048 run; a still tile's firings are not counted at all, but worked out from its periods).
+bool firings_added_later(const RungRun& run, FiringSchedule& schedule, EventBus& bus, std::size_t tile) {
+  if (!schedule.counts_pixel_firings() || !bus.delivers_when_fired() ||
+      !run.log.add_firings_later(static_cast<std::uint32_t>(tile))) {
+    return false;
+  }
+  schedule.count_pixel_firings(run.log.counting_window());
+  return true;
 }
 
 void add_firings(const RungRun& run, const FiringSchedule& schedule) {
   thread_local std::vector<PixelFirings> firings;
-  schedule.pixel_firings(run.log.counting_window(), firings);
+  schedule.pixel_firings(firings);
   run.log.add_pixel_firings(firings);
 }
 
