@@ -198,7 +198,7 @@ std::size_t FiringSchedule::fill_windows(AddressEvent* out, std::size_t capacity
   while (filled < capacity) {
     if (!made_) {
       if (!(made_to_ < last)) break;
-      make_window(last);
+      make_window(ahead_ ? t_end_ : last);
       continue;
     }
     // Through locals: the events' stores would make the compiler reload members every time.

@@ -47,6 +47,12 @@ class FiringSchedule {
   }
   // Whether the tile's firings come from windows rather than the calendar.
   bool windowed() const { return windowed_; }
+  // Whether a window may run on past the time fill() was asked up to, its later firings kept for
+  // the next calls: a caller that asks a little at a time (a streaming run's windows) then does not
+  // cut a tile's window short at each ask, each cut one more visit of every pixel, for the memory
+  // of the window the tile keeps between calls (up to about kWindowFirings firings a pixel). Off
+  // unless set.
+  void run_windows_ahead(bool on) { ahead_ = on; }
   // Whether the schedule can count its own pixels' firings (count_pixel_firings): a tile whose
   // firings come from windows, which visit its pixels one after the other.
   bool counts_pixel_firings() const { return windowed_; }
@@ -148,6 +154,7 @@ class FiringSchedule {
   WakeCalendar calendar_;
 
   bool windowed_ = false;
+  bool ahead_ = false;                    // see run_windows_ahead()
   std::vector<std::uint32_t> keys_;       // windows: each pixel's bus address
   double rate_ = 0;                       // windows, still: the tile's firings per second
   std::vector<double> frame_rates_;       // windows, moving: the tile's firings per second in each frame

@@ -28,6 +28,8 @@ namespace {
 // kept as arrays).
 constexpr double kMinWindowEvents = 131072;
 constexpr double kWindowEventsPerPixel = 0.5;
+// Run windows of at least this many firings a pixel let the tiles' windows run on past them.
+constexpr double kAheadEventsPerPixel = 2;
 
 // Firings pass from a tile's schedule to its bus a batch at a time (8 KiB, in L1).
 using FiringBatch = std::array<AddressEvent, 256>;
@@ -95,14 +97,21 @@ class EventRung : public Rung {
       buses.finish(run.config.bus, facts);
       return;
     }
+    const double pixels = static_cast<double>(run.map.rows()) * run.map.cols();
+    const double window_events = run.request.window_events > 0 ? run.request.window_events
+                                                               : std::max(kMinWindowEvents, kWindowEventsPerPixel * pixels);
+    // Where a run window holds a few firings a pixel (small arrays), a tile's window of firings
+    // runs on past it, kept for the next (a few firings a pixel of each tile held between run
+    // windows: a few megabytes at most); on large arrays it ends with the run window, as the
+    // memory of every tile's window held would be far more than the run window's.
+    const bool ahead = window_events >= kAheadEventsPerPixel * pixels;
     std::vector<std::unique_ptr<FiringSchedule>> schedules(tiles);
     std::vector<char> later(tiles);
     pool.for_each(tiles, [&](std::size_t t) {
       schedules[t] = schedule_of(t);
+      schedules[t]->run_windows_ahead(ahead);
       later[t] = firings_added_later(run, *schedules[t], buses[t], t);
     });
-    const double window_events = run.request.window_events > 0 ? run.request.window_events
-                                                               : std::max(kMinWindowEvents, kWindowEventsPerPixel * static_cast<double>(run.map.rows()) * run.map.cols());
     // Starts small and grows at most 4x a window, so the first windows cost little whatever the
     // light; the windows do not change the output (the merge is exact), only its pace.
     double width = t_end * 1e-6;
