@@ -44,7 +44,7 @@ TEST(GammaDraw, DrawsFollowTheExactLawFromBelowOneToAPixelsSwing) {
   }
 }
 
-// The squeeze gamma_draw.cpp adds accepts u below 1 - k x^4 / (1 - |c x|), k = c^2 / 12: it is
+// The squeeze GammaDraw adds accepts u below 1 - k x^4 / (1 - |c x|), k = c^2 / 12: it is
 // only right if that never exceeds the acceptance probability exp(h(x)), h = x^2/2 + d(1 - v +
 // log v), v = (1 + c x)^3. Checked on a fine grid over all |c x| < 1 (in long double) for shapes
 // from the boosted branch to a pixel's swing, where a draw test could not see a bias this small.

@@ -11,11 +11,12 @@ namespace aesim {
 // gamma variables", ACM TOMS 26(3), 2000): exact (a rejection method on a normal and a uniform
 // draw), accepting 98 % of first tries at shape 1 and nearly all at the thousands of electrons of
 // a pixel's swing. Squeeze tests spare the logarithms: theirs (a tenth of draws get past it) and
-// one that tightens as the shape grows (gamma_draw.cpp), past which almost no draw of a pixel gets. Below shape 1 it draws at shape+1
-// and scales by U^(1/shape) (their section 6). The constants are worked out once per shape, so a
-// pixel keeps its law beside its random stream; tests/gamma_draw_test.cpp checks draws against
-// the exact distribution function. The normal draws are Boost.Random's ziggurat (128 layers,
-// exact, one 64-bit draw nearly always), inlined in the one out-of-line call a draw costs.
+// one that tightens as the shape grows (operator() below), past which almost no draw of a pixel
+// gets. Below shape 1 it draws at shape+1 and scales by U^(1/shape) (their section 6). The
+// constants are worked out once per shape, so a pixel keeps its law beside its random stream;
+// tests/gamma_draw_test.cpp checks draws against the exact distribution function. The normal
+// draws are Boost.Random's ziggurat (128 layers, exact, one 64-bit draw nearly always), inline
+// with the rest in the pixel's firing loop.
 class GammaDraw {
  public:
   GammaDraw() = default;
