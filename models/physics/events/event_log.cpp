@@ -77,15 +77,10 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
     events.resize(at + n);
     TileEvent* out = events.data() + at;
     for (std::size_t i = 0; i < n; ++i) out[i] = TileEvent::of(firings[i]);
-    // Checked while they are in the cache, so that the merge need not read them all to know; without
-    // a branch an event (TileEvent::before's, written with bitwise operators).
+    // Checked while they are in the cache, so that the merge need not read them all to know.
     bool disordered = false;
     const TileEvent* const all = events.data();
-    for (std::size_t i = at > 0 ? at : 1; i < at + n; ++i) {
-      const TileEvent &a = all[i], &b = all[i - 1];
-      disordered |= (a.t < b.t) | ((a.t == b.t) & ((a.address_ghost & ~TileEvent::kGhostBit) <
-                                                  (b.address_ghost & ~TileEvent::kGhostBit)));
-    }
+    for (std::size_t i = at > 0 ? at : 1; i < at + n; ++i) disordered |= all[i].before(all[i - 1]);
     if (disordered) filling_.events_in_order[t] = 0;
   }
 }

@@ -24,9 +24,10 @@ struct TileEvent {
     return {e.t, static_cast<std::uint16_t>(e.x), static_cast<std::uint16_t>(e.y),
             e.bus_address | ((e.flags & kGhostEvent) ? kGhostBit : 0u)};
   }
-  // Order within a tile's records: time, then bus address.
+  // Order within a tile's records: time, then bus address. Bitwise, not short-circuit: a loop
+  // over a tile's records (the log's check that they come in order) compiles without a branch.
   bool before(const TileEvent& other) const {
-    return t < other.t || (t == other.t && (address_ghost & ~kGhostBit) < (other.address_ghost & ~kGhostBit));
+    return (t < other.t) | ((t == other.t) & ((address_ghost & ~kGhostBit) < (other.address_ghost & ~kGhostBit)));
   }
   AddressEvent in_tile(std::uint32_t tile) const {
     AddressEvent e;
