@@ -325,6 +325,7 @@ void FiringSchedule::count_pixel_firings(double window) {
 
 void FiringSchedule::pixel_firings(std::vector<PixelFirings>& out) const {
   out.clear();
+  if (!counting_) return;
   const std::size_t n = keys_.size();
   out.reserve(n);
   const auto index = [this](std::size_t i) {

@@ -62,7 +62,8 @@ class FiringSchedule {
   // firings, so the same count); another windowed tile counts them as its windows make them, in
   // registers while it is at the pixel.
   void count_pixel_firings(double window);
-  // Each pixel's firings so far (as count_pixel_firings set out), into `out`.
+  // Each pixel's firings so far (as count_pixel_firings set out), into `out`; none without
+  // count_pixel_firings.
   void pixel_firings(std::vector<PixelFirings>& out) const;
 
   // A lit pixel's state: 56 bytes, plus 8 in the calendar and 4 per bucket (about one a pixel):

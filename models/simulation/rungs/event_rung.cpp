@@ -38,15 +38,14 @@ using FiringBatch = std::array<AddressEvent, 256>;
 // log takes its pixels' firings from the schedule after the run instead of counting each as it
 // comes (a counter reached a firing, out of the caches on a large array, was a seventh of a
 // 2048x2048 run; a still tile's firings are not counted at all, but worked out from its periods).
-bool firings_added_later(const RungRun& run, FiringSchedule& schedule, EventBus& bus, std::size_t tile) {
-  if (!schedule.counts_pixel_firings() || !bus.delivers_when_fired() ||
-      !run.log.add_firings_later(static_cast<std::uint32_t>(tile))) {
-    return false;
+void count_firings_in_schedule(const RungRun& run, FiringSchedule& schedule, EventBus& bus, std::size_t tile) {
+  if (schedule.counts_pixel_firings() && bus.delivers_when_fired() &&
+      run.log.add_firings_later(static_cast<std::uint32_t>(tile))) {
+    schedule.count_pixel_firings(run.log.counting_window());
   }
-  schedule.count_pixel_firings(run.log.counting_window());
-  return true;
 }
 
+// After the run: the firings a schedule counted (none unless count_firings_in_schedule set it to).
 void add_firings(const RungRun& run, const FiringSchedule& schedule) {
   thread_local std::vector<PixelFirings> firings;
   schedule.pixel_firings(firings);
@@ -87,12 +86,12 @@ class EventRung : public Rung {
     if (!run.log.keeps_records()) {
       pool.for_each(tiles, [&](std::size_t t) {
         const auto schedule = schedule_of(t);
-        const bool later = firings_added_later(run, *schedule, buses[t], t);
+        count_firings_in_schedule(run, *schedule, buses[t], t);
         FiringBatch batch;
         while (const std::size_t n = schedule->fill(batch.data(), batch.size(), t_end)) {
           buses[t].request_all(batch.data(), n);
         }
-        if (later) add_firings(run, *schedule);
+        add_firings(run, *schedule);
       });
       buses.finish(run.config.bus, facts);
       return;
@@ -106,11 +105,10 @@ class EventRung : public Rung {
     // memory of every tile's window held would be far more than the run window's.
     const bool ahead = window_events >= kAheadEventsPerPixel * pixels;
     std::vector<std::unique_ptr<FiringSchedule>> schedules(tiles);
-    std::vector<char> later(tiles);
     pool.for_each(tiles, [&](std::size_t t) {
       schedules[t] = schedule_of(t);
       schedules[t]->run_windows_ahead(ahead);
-      later[t] = firings_added_later(run, *schedules[t], buses[t], t);
+      count_firings_in_schedule(run, *schedules[t], buses[t], t);
     });
     // Starts small and grows at most 4x a window, so the first windows cost little whatever the
     // light; the windows do not change the output (the merge is exact), only its pace.
@@ -152,9 +150,7 @@ class EventRung : public Rung {
       fired = now;
       width *= std::clamp(std::max(window_events, 1.0) / std::max(in_window, 1.0), 0.25, 4.0);
     }
-    pool.for_each(tiles, [&](std::size_t t) {
-      if (later[t]) add_firings(run, *schedules[t]);
-    });
+    pool.for_each(tiles, [&](std::size_t t) { add_firings(run, *schedules[t]); });
     buses.finish(run.config.bus, facts);
   }
 };
