@@ -20,24 +20,20 @@ OrderKey order_key(double t, std::uint64_t rest) {
   return (OrderKey(bits) << 64) | rest;
 }
 OrderKey key_of(const AddressEvent& e) { return order_key(e.t, (std::uint64_t(e.tile) << 32) | e.bus_address); }
-// A buffered record of tile `tile` (TruthRecords name their tile themselves).
-OrderKey key_of(const TileEvent& e, std::uint32_t tile) {
-  return order_key(e.t, (std::uint64_t(tile) << 32) | (e.address_ghost & ~TileEvent::kGhostBit));
-}
-OrderKey key_of(const TruthRecord& r, std::uint32_t) { return key_of(r.firing); }
+OrderKey key_of(const TruthRecord& r) { return key_of(r.firing); }
 double time_of(const TileEvent& e) { return e.t; }
+double time_of(const AddressEvent& e) { return e.t; }
 double time_of(const TruthRecord& r) { return r.firing.t; }
 void put(AddressEvent& out, const TileEvent& e, std::uint32_t tile) { e.expand(tile, out); }
 void put(TruthRecord& out, const TruthRecord& r, std::uint32_t) { out = r; }
 // Within one tile's records: the time first, the whole key only for equal times (this runs over
 // every record of every window).
 bool before_in_tile(const TileEvent& a, const TileEvent& b) { return a.before(b); }
-bool before_in_tile(const TruthRecord& a, const TruthRecord& b) { return key_of(a, 0) < key_of(b, 0); }
+bool before_in_tile(const TruthRecord& a, const TruthRecord& b) { return key_of(a) < key_of(b); }
 
-constexpr std::size_t kChunk = 4096;  // records per call of the stream: a few pages, cache-resident
 // Records sorted at a time: a slice of the window's time holding about this many, from every tile,
-// sorted by a counting sort on time and passed on. Their entries (24 bytes an event) and counts stay
-// in the core's own cache.
+// sorted by a counting sort on time and passed on. Their entries (24 bytes an event staged, 32
+// placed) and counts stay in the core's own cache.
 constexpr std::size_t kSlice = 4096;
 constexpr std::size_t kSliceRecordsPerRun = 4;
 // A bucket of the slice's counting sort holding more records than this (many firings at one
@@ -60,7 +56,7 @@ const T* slice_end(const T* next, const T* end, double hi) {
   return std::partition_point(inside, inside + std::min(step, static_cast<std::size_t>(end - inside)), early);
 }
 
-// Merges every tile's records earlier than `before` into `chunk`, passing full chunks to `emit`.
+// Merges every tile's records earlier than `before`, passing each slice's (below) to `emit` in order.
 // A tile's records are those it held back last time followed by its new ones; in the event rung
 // both are in order and the new ones come later, so they are read where they lie, and only what
 // stays for the next window is copied (the tail past `before`), which keeps the buffers to the two
@@ -70,10 +66,11 @@ const T* slice_end(const T* next, const T* end, double hi) {
 //
 // The window's span of time is cut into slices of about kSlice records (more with many tiles). A
 // slice's records are copied out of the tiles' buffers with their tile, tile after tile, and
-// counted into buckets of time (one to two buckets a record); then each copy is placed at its
-// bucket's next free place, so equal keys keep production order. The few buckets that got more
-// than one record are put in key order by one insertion pass over the slice (a merge sort for a
-// bucket of many records at one instant). A record costs the same whatever the number of tiles,
+// counted into buckets of time (one to two buckets a record); then each copy is placed, as the
+// record passed on, at its bucket's next free place, so equal keys keep production order. The few
+// buckets that got more than one record are put in key order by one insertion pass over the slice
+// (a merge sort for a bucket of many records at one instant), and the slice goes on from where it
+// was sorted (copying it once more into chunks of a fixed size was a seventh of the merge). A record costs the same whatever the number of tiles,
 // where a k-way merge pays log2(tiles) comparisons for it; the tiles' buffers are read once, in
 // order: with thousands of tiles, each a few records of a slice on a page of its own, reading them
 // where they lay for the placing and again for the output missed the TLB on each (the output's
@@ -81,11 +78,11 @@ const T* slice_end(const T* next, const T* end, double hi) {
 //
 // `known_in_order`: per tile, nonzero when its incoming records are known to be in order (see
 // TileRecords::events_in_order); empty when none is known.
-template <typename Buffer, typename Out, typename Emit>
+template <typename Buffer, typename Emit>
 void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>& known_in_order,
-                  std::vector<Buffer>& held, double before, std::vector<Out>& chunk, MergeScratch& scratch,
-                  Emit emit) {
+                  std::vector<Buffer>& held, double before, MergeScratch& scratch, Emit emit) {
   using T = typename Buffer::value_type;
+  using Out = typename Merged<T>::type;
   // Within one tile's records (the tile part of the key is the same).
   auto less = [](const T& a, const T& b) { return before_in_tile(a, b); };
   auto early = [before](const T& r) { return time_of(r) < before; };
@@ -123,15 +120,14 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
   const std::size_t slices = std::max<std::size_t>(1, live / std::max(kSlice, kSliceRecordsPerRun * runs.size()));
   const double span = t_last - t_first;
   std::vector<SliceEntry<T>>& staged = scratch.of<T>().staged;
-  std::vector<SliceEntry<T>>& sorted = scratch.of<T>().sorted;
+  std::vector<Out>& sorted = scratch.of<T>().sorted;
   std::vector<std::uint32_t>& count = scratch.count;
-  // Order of two entries by the whole key (time, tile, address): the time nearly always decides.
-  const auto entry_less = [](const SliceEntry<T>& a, const SliceEntry<T>& b) {
-    const double ta = time_of(a.record), tb = time_of(b.record);
+  // Order of two records by the whole key (time, tile, address): the time nearly always decides.
+  const auto merged_less = [](const Out& a, const Out& b) {
+    const double ta = time_of(a), tb = time_of(b);
     if (ta != tb) return ta < tb;
-    return key_of(a.record, a.tile) < key_of(b.record, b.tile);
+    return key_of(a) < key_of(b);
   };
-  std::size_t used = 0;
   for (std::size_t s = 0; s < slices && live > 0; ++s) {
     // The slice [lo, hi): the last one takes whatever is left.
     const double lo = t_first + span * static_cast<double>(s) / static_cast<double>(slices);
@@ -153,7 +149,7 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
     const double top = static_cast<double>(buckets - 1);
     const auto bucket_of = [lo, scale, top](double t) {
       const double b = (t - lo) * scale;
-      return static_cast<std::size_t>(static_cast<std::int64_t>(b < top ? b : top));
+      return static_cast<std::uint32_t>(static_cast<std::int64_t>(b < top ? b : top));
     };
     count.assign(buckets + 1, 0);
     std::uint32_t crowded = 0;  // records in buckets of more than kInsertionMost
@@ -161,40 +157,34 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
     SliceEntry<T>* stage = staged.data();
     for (MergeRun<T>& r : runs) {
       for (const T* x = r.next; x != r.slice_end; ++x) {
-        crowded += ++count[bucket_of(time_of(*x)) + 1] > kInsertionMost;
-        *stage++ = {*x, r.tile};
+        const std::uint32_t b = bucket_of(time_of(*x));
+        crowded += ++count[b + 1] > kInsertionMost;
+        *stage++ = {*x, r.tile, b};
       }
       r.next = r.slice_end;
     }
     for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
     sorted.resize(n);
-    for (const SliceEntry<T>& e : staged) sorted[count[bucket_of(time_of(e.record))]++] = e;
+    for (const SliceEntry<T>& e : staged) put(sorted[count[e.bucket]++], e.record, e.tile);
     // count[b] is now where bucket b ends.
     if (crowded > 0) {
       for (std::size_t b = 0, begin = 0; b < buckets; begin = count[b++]) {
         if (count[b] - begin > kInsertionMost) {
           std::stable_sort(sorted.begin() + static_cast<std::ptrdiff_t>(begin),
-                           sorted.begin() + static_cast<std::ptrdiff_t>(count[b]), entry_less);
+                           sorted.begin() + static_cast<std::ptrdiff_t>(count[b]), merged_less);
         }
       }
     }
-    // Every entry is at most a few places past where it belongs, all within its own bucket.
+    // Every record is at most a few places past where it belongs, all within its own bucket.
     for (std::size_t k = 1; k < n; ++k) {
-      if (time_of(sorted[k].record) > time_of(sorted[k - 1].record) || !entry_less(sorted[k], sorted[k - 1])) continue;
-      const SliceEntry<T> moving = sorted[k];
+      if (time_of(sorted[k]) > time_of(sorted[k - 1]) || !merged_less(sorted[k], sorted[k - 1])) continue;
+      const Out moving = sorted[k];
       std::size_t j = k;
-      for (; j > 0 && entry_less(moving, sorted[j - 1]); --j) sorted[j] = sorted[j - 1];
+      for (; j > 0 && merged_less(moving, sorted[j - 1]); --j) sorted[j] = sorted[j - 1];
       sorted[j] = moving;
     }
-    for (const SliceEntry<T>& e : sorted) {
-      put(chunk[used], e.record, e.tile);
-      if (++used == kChunk) {
-        emit(chunk.data(), used);
-        used = 0;
-      }
-    }
+    emit(sorted.data(), n);
   }
-  if (used > 0) emit(chunk.data(), used);
   // What stays: the held records from the cut on, then the new ones from theirs.
   for (std::size_t i = 0; i < tiles; ++i) {
     Buffer& h = held[i];
@@ -207,18 +197,18 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
 
 }  // namespace
 
-// The chunks are sized here, on the run's thread, even for a run that never merges: sized at the
-// first merge, on the merge thread, they made LeakSanitizer's exit-time tracer crash (a read of an
-// unmapped page) in four of the six cycle-bus tests, every time.
+// The sorted slices' room is made here, on the run's thread, even for a run that never merges:
+// made at the first merge, on the merge thread, it made LeakSanitizer's exit-time tracer crash (a
+// read of an unmapped page) in four of the six cycle-bus tests, every time.
 EventMerger::EventMerger(std::size_t tiles, EventStream& out) : events_(tiles), truth_(tiles), out_(out) {
-  event_chunk_.resize(kChunk);
-  truth_chunk_.resize(kChunk);
+  scratch_.events.sorted.reserve(kSlice);
+  scratch_.truth.sorted.reserve(kSlice);
 }
 
 void EventMerger::merge(TileRecords& batch, double before) {
-  merge_window(batch.events, batch.events_in_order, events_, before, event_chunk_, scratch_,
+  merge_window(batch.events, batch.events_in_order, events_, before, scratch_,
                [this](const AddressEvent* c, std::size_t n) { out_.events(c, n); });
-  merge_window(batch.truth, {}, truth_, before, truth_chunk_, scratch_,
+  merge_window(batch.truth, {}, truth_, before, scratch_,
                [this](const TruthRecord* c, std::size_t n) { out_.truth(c, n); });
 }
 

@@ -68,18 +68,32 @@ struct MergeRun {
   std::uint32_t tile;
   const T* slice_end = nullptr;
 };
-// A record copied out of its tile's buffer for a merge's counting sort, with its tile.
+// A record copied out of its tile's buffer for a merge's counting sort, with its tile and the
+// bucket of time it was counted in (placing it reads the bucket instead of working it out again;
+// beside a 16-byte TileEvent and its tile it fills what was padding).
 template <typename T>
 struct SliceEntry {
   T record;
   std::uint32_t tile;
+  std::uint32_t bucket;
+};
+static_assert(sizeof(SliceEntry<TileEvent>) == 24, "a staged event grew");
+// What a merge passes on for a tile's record: an AddressEvent for a TileEvent, a TruthRecord as it is.
+template <typename T>
+struct Merged {
+  using type = T;
+};
+template <>
+struct Merged<TileEvent> {
+  using type = AddressEvent;
 };
 // Where a merge sorts a slice of one kind of record, kept between windows: the runs, the slice's
-// records in run order, and the same in time order.
+// records in run order, and the same in time order as they are passed on.
 template <typename T>
 struct SliceScratch {
   std::vector<MergeRun<T>> runs;
-  std::vector<SliceEntry<T>> staged, sorted;
+  std::vector<SliceEntry<T>> staged;
+  std::vector<typename Merged<T>::type> sorted;
 };
 struct MergeScratch {
   SliceScratch<TileEvent> events;
@@ -111,8 +125,6 @@ class EventMerger {
  private:
   std::vector<UninitializedGrowthVector<TileEvent>> events_;  // held: not yet earlier than a `before`
   std::vector<std::vector<TruthRecord>> truth_;
-  std::vector<AddressEvent> event_chunk_;  // kChunk records, filled from the front
-  std::vector<TruthRecord> truth_chunk_;
   MergeScratch scratch_;
   EventStream& out_;
 };
