@@ -70,11 +70,12 @@ const T* slice_end(const T* next, const T* end, double hi) {
 // record passed on, at its bucket's next free place, so equal keys keep production order. The few
 // buckets that got more than one record are put in key order by one insertion pass over the slice
 // (a merge sort for a bucket of many records at one instant), and the slice goes on from where it
-// was sorted (copying it once more into chunks of a fixed size was a seventh of the merge). A record costs the same whatever the number of tiles,
-// where a k-way merge pays log2(tiles) comparisons for it; the tiles' buffers are read once, in
-// order: with thousands of tiles, each a few records of a slice on a page of its own, reading them
-// where they lay for the placing and again for the output missed the TLB on each (the output's
-// read was a seventh of the merge at 2048x2048).
+// was sorted (copying it once more into chunks of a fixed size was a seventh of the merge). A
+// record costs the same whatever the number of tiles, where a k-way merge pays log2(tiles)
+// comparisons for it; the tiles' buffers are read once, in order: with thousands of tiles, each a
+// few records of a slice on a page of its own, reading them where they lay for the placing and
+// again for the output missed the TLB on each (the output's read was a seventh of the merge at
+// 2048x2048).
 //
 // `known_in_order`: per tile, nonzero when its incoming records are known to be in order (see
 // TileRecords::events_in_order); empty when none is known.

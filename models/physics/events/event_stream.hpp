@@ -8,8 +8,9 @@
 namespace aesim {
 
 // Where a run's records go while it runs, already merged across tiles: the event file writers, or
-// a collector that keeps them. Records arrive in chunks, each chunk continuing the last, so a
-// writer needs no more memory than its own buffer.
+// a collector that keeps them. Records arrive in chunks of any size (a merge passes each slice of a
+// window on as it is sorted), each chunk continuing the last, so a writer needs no more memory
+// than its own buffer.
 class EventStream {
  public:
   virtual ~EventStream() = default;
