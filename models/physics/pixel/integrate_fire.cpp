@@ -29,7 +29,7 @@ void IntegrateFire::start_new_integration(const Sensor& sensor, ShotNoise& noise
   anchor_q_ = 0;
   cycles_ = 0;
   // Without shot noise every target is the threshold, the one the pixel was made with.
-  if (sensor.shot_noise) target_ = kElectronCharge * noise.electrons(noise.rng);
+  if (sensor.shot_noise) target_ = noise.next_target();
 }
 
 double IntegrateFire::charge_at(const Sensor& sensor, double t) const {

@@ -46,9 +46,22 @@ class IntegrateFire {
     ShotNoise() = default;
     ShotNoise(SplitMix64 stream, double threshold_charge)
         : rng(stream), threshold(threshold_charge), electrons(threshold_charge / kElectronCharge) {}
+    // The next integration's target: the one drawn ahead if there is one, else a fresh draw.
+    // Either way the pixel's k-th integration gets its stream's k-th draw.
+    double next_target() {
+      if (ahead == ahead) {
+        const double target = ahead;
+        ahead = std::numeric_limits<double>::quiet_NaN();
+        return target;
+      }
+      return kElectronCharge * electrons(rng);
+    }
     SplitMix64 rng{0};
     double threshold = 0;  // C
     GammaDraw electrons;   // Gamma(threshold / q, 1)
+    // fire_through_noisy() draws each target one integration before it is needed, and keeps the
+    // one drawn ahead here between calls (NaN: none).
+    double ahead = std::numeric_limits<double>::quiet_NaN();
   };
 
   IntegrateFire() = default;
@@ -82,14 +95,35 @@ class IntegrateFire {
     double t = first_;
     if (!(t <= to)) return;
     double target = target_, anchor = anchor_t_;
+    // Each integration's target is drawn one firing early, so that whether the next firing falls
+    // in the window waits only on a division that could start a whole draw before: the draw's
+    // chain is off the path to the loop's exit, whose mispredicted branch ends each pixel's
+    // visit. The same draws, in the same order.
+    // A draw the first try does not settle leaves the loop for redraw(): a call in the loop, even
+    // one rarely taken, would have the compiler keep the loop's doubles in memory.
+    double next = noise.next_target();
     SplitMix64 rng = noise.rng;  // in registers: emit's stores would make the compiler reload it
-    while (t <= to) {
-      emit(t);
-      anchor = t + t_reset;
-      target = kElectronCharge * noise.electrons(rng);
-      t = anchor + target / current;
+    for (;;) {
+      bool drawn = true;
+      while (t <= to) {
+        emit(t);
+        anchor = t + t_reset;
+        target = next;
+        t = anchor + target / current;
+        double electrons;
+        if (__builtin_expect(!noise.electrons.first_try(rng, electrons), 0)) {
+          drawn = false;
+          break;
+        }
+        next = kElectronCharge * electrons;
+      }
+      if (drawn) break;
+      const GammaDraw::Drawn again = noise.electrons.redraw(rng);
+      rng = again.rng;
+      next = kElectronCharge * again.value;
     }
     noise.rng = rng;
+    noise.ahead = next;
     first_ = t;
     anchor_t_ = anchor;
     target_ = target;
