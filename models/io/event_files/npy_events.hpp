@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "aesim/containers/uninitialized_growth.hpp"
 #include "aesim/event_files/aedat4.hpp"
 #include "aesim/event_files/event_stamps.hpp"
 #include "aesim/event_files/event_writer.hpp"
@@ -25,7 +26,8 @@ class NpyWriter : public EventFileWriter {
   std::string path_;
   MicrosecondStamps stamps_;
   std::uint64_t count_ = 0;
-  std::vector<char> buffer_;
+  // Grown by each batch's records and written over at once: no zeros written first.
+  UninitializedGrowthVector<char> buffer_;
 };
 
 // Reads a .npy structured array with fields x, y, t (integers) and p (bool or integer), in any

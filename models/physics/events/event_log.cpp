@@ -76,11 +76,16 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
     const std::size_t at = events.size();
     events.resize(at + n);
     TileEvent* out = events.data() + at;
-    for (std::size_t i = 0; i < n; ++i) out[i] = TileEvent::of(firings[i]);
-    // Checked while they are in the cache, so that the merge need not read them all to know.
+    // Checked as they are copied, each against the one before (the tile's last so far for the
+    // first), so that the merge need not read them all to know.
+    TileEvent last = at > 0 ? out[-1] : TileEvent::of(firings[0]);
     bool disordered = false;
-    const TileEvent* const all = events.data();
-    for (std::size_t i = at > 0 ? at : 1; i < at + n; ++i) disordered |= all[i].before(all[i - 1]);
+    for (std::size_t i = 0; i < n; ++i) {
+      const TileEvent e = TileEvent::of(firings[i]);
+      out[i] = e;
+      disordered |= e.before(last);
+      last = e;
+    }
     if (disordered) filling_.events_in_order[t] = 0;
   }
 }
