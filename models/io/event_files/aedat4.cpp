@@ -195,7 +195,10 @@ struct Aedat4Writer::Packets {
     std::vector<char> packed;
   };
 
-  std::vector<dv::Event> filling;
+  // The packet being filled: its first `filled` events. Sized once, and written in place through
+  // a pointer (a vector's emplace_back an event stored its end back to memory each time).
+  std::vector<dv::Event> filling = std::vector<dv::Event>(kAedat4PacketEvents);
+  std::size_t filled = 0;
   std::mutex spare_mutex;
   std::vector<std::shared_ptr<Buffers>> spare;
   std::unique_ptr<SerialWorker> worker;
@@ -250,7 +253,6 @@ Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
   }
   out_.write(header_bytes.data(), static_cast<std::streamsize>(header_bytes.size()));
   packets_ = std::make_unique<Packets>();
-  packets_->filling.reserve(kAedat4PacketEvents);
   if (compression_ != Aedat4Compression::None) packets_->worker = std::make_unique<SerialWorker>(kPacketsWaiting);
 }
 
@@ -258,12 +260,18 @@ Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
 Aedat4Writer::~Aedat4Writer() { packets_->worker.reset(); }
 
 void Aedat4Writer::events(const AddressEvent* first, std::size_t count) {
-  std::vector<dv::Event>& filling = packets_->filling;
-  for (std::size_t i = 0; i < count; ++i) {
-    const AddressEvent& e = first[i];
-    filling.emplace_back(static_cast<std::int64_t>(stamps_(e.t)), static_cast<std::int16_t>(e.x),
-                         static_cast<std::int16_t>(e.y), e.flags != kGhostEvent);
-    if (filling.size() == kAedat4PacketEvents) write_packet();
+  dv::Event* const packet = packets_->filling.data();
+  for (std::size_t i = 0; i < count;) {
+    // As many as the packet has room for, counted in a local.
+    std::size_t filled = packets_->filled;
+    const std::size_t n = std::min(count - i, kAedat4PacketEvents - filled);
+    for (const AddressEvent* e = first + i; e != first + i + n; ++e) {
+      packet[filled++] = dv::Event(static_cast<std::int64_t>(stamps_(e->t)), static_cast<std::int16_t>(e->x),
+                                   static_cast<std::int16_t>(e->y), e->flags != kGhostEvent);
+    }
+    packets_->filled = filled;
+    i += n;
+    if (filled == kAedat4PacketEvents) write_packet();
   }
 }
 
@@ -278,18 +286,19 @@ std::size_t Aedat4Writer::compress(const char* body, std::size_t size, std::vect
 }
 
 void Aedat4Writer::write_packet() {
-  std::vector<dv::Event>& filling = packets_->filling;
+  const dv::Event* const filling = packets_->filling.data();
+  const std::size_t filled = packets_->filled;
   // An empty run still gets one (empty) packet: readers that gather the event packets (tonic's)
   // fail on a file with none.
-  if (filling.empty() && any_packet_) return;
+  if (filled == 0 && any_packet_) return;
   any_packet_ = true;
   std::shared_ptr<Packets::Buffers> buffers = packets_->take();
   flatbuffers::FlatBufferBuilder& fbb = buffers->fbb;
-  const auto packet = dv::CreateEventPacket(fbb, fbb.CreateVectorOfStructs(filling));
+  const auto packet = dv::CreateEventPacket(fbb, fbb.CreateVectorOfStructs(filling, filled));
   dv::FinishSizePrefixedEventPacketBuffer(fbb, packet);
-  const Written entry{-1, 0, static_cast<std::int64_t>(filling.size()), filling.empty() ? 0 : filling.front().timestamp(),
-                      filling.empty() ? 0 : filling.back().timestamp()};
-  filling.clear();
+  const Written entry{-1, 0, static_cast<std::int64_t>(filled), filled == 0 ? 0 : filling[0].timestamp(),
+                      filled == 0 ? 0 : filling[filled - 1].timestamp()};
+  packets_->filled = 0;
   const char* plain = reinterpret_cast<const char*>(fbb.GetBufferPointer());
   if (!packets_->worker) {  // uncompressed
     write_body(plain, fbb.GetSize(), entry);
