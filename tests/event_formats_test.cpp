@@ -218,6 +218,31 @@ TEST_F(EventFormats, NpyIsFormatOneWithTonicsPackedDtype) {
   EXPECT_EQ(data[256 + 3 * 13 + 12], 1);  // event 3 is normal
 }
 
+// NpyWriter is given OutputFiles' empty temporary and opens it as it is (no truncation, which
+// would have ext4 write the whole file out when it is closed); a file that holds anything is
+// truncated first: either way the file is the .npy's bytes and nothing after them.
+TEST_F(EventFormats, NpyWriterLeavesNothingOfWhatTheFileHeld) {
+  const AddressMap map{ArrayParams{}};
+  const std::string expected = slurp(write("e.npy", sample(map)));
+  for (const std::size_t held : {std::size_t(0), std::size_t(3), expected.size() + 4096}) {
+    const std::string path = (dir_ / ("held_" + std::to_string(held) + ".npy")).string();
+    { std::ofstream(path, std::ios::binary) << std::string(held, 'z'); }
+    ASSERT_EQ(fs::file_size(path), held);
+    NpyWriter writer(path, 1e-6);
+    const std::vector<AddressEvent> events = sample(map);
+    writer.events(events.data(), events.size());
+    writer.finish();
+    EXPECT_EQ(slurp(path), expected) << held << " bytes held before";
+  }
+  // A path with no file: made.
+  const std::string fresh = (dir_ / "fresh.npy").string();
+  NpyWriter writer(fresh, 1e-6);
+  const std::vector<AddressEvent> events = sample(map);
+  writer.events(events.data(), events.size());
+  writer.finish();
+  EXPECT_EQ(slurp(fresh), expected);
+}
+
 TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
   const AddressMap map{ArrayParams{}};
   for (const Aedat4Compression c : {Aedat4Compression::None, Aedat4Compression::Lz4, Aedat4Compression::Zstd}) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <stdexcept>
 
@@ -48,7 +49,21 @@ struct Field {
 
 }  // namespace
 
-NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, std::ios::binary | std::ios::trunc), path_(path), stamps_(tick) {
+namespace {
+
+// An empty file (OutputFiles' temporary, made when the writer was given it) is opened as it is:
+// opened with O_TRUNC, even empty, ext4 marks it as one being replaced and on close writes all of
+// it out to the disk, in the closing thread (auto_da_alloc), where without it the system writes
+// it back later on its own. Any other file is truncated as usual.
+std::ios::openmode npy_open_mode(const std::string& path) {
+  std::error_code ec;
+  const bool empty = std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 && !ec;
+  return std::ios::binary | std::ios::out | (empty ? std::ios::in : std::ios::trunc);
+}
+
+}  // namespace
+
+NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, npy_open_mode(path)), path_(path), stamps_(tick) {
   if (!out_) throw OutputError(write_failure(path));
   const std::string text = header_text(0);
   out_.write(kNpyMagic, 6);
