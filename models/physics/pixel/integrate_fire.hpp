@@ -49,7 +49,7 @@ class IntegrateFire {
     // The next integration's target: the one drawn ahead if there is one, else a fresh draw.
     // Either way the pixel's k-th integration gets its stream's k-th draw.
     double next_target() {
-      if (ahead == ahead) {
+      if (!std::isnan(ahead)) {
         const double target = ahead;
         ahead = std::numeric_limits<double>::quiet_NaN();
         return target;
@@ -95,12 +95,10 @@ class IntegrateFire {
     double t = first_;
     if (!(t <= to)) return;
     double target = target_, anchor = anchor_t_;
-    // Each integration's target is drawn one firing early, so that whether the next firing falls
-    // in the window waits only on a division that could start a whole draw before: the draw's
-    // chain is off the path to the loop's exit, whose mispredicted branch ends each pixel's
-    // visit. The same draws, in the same order.
-    // A draw the first try does not settle leaves the loop for redraw(): a call in the loop, even
-    // one rarely taken, would have the compiler keep the loop's doubles in memory.
+    // Each integration's target is drawn one firing early, after the firing that needs it is
+    // timed, so that a draw the first try does not settle can leave the loop for redraw() and come
+    // back to the same place: a call in the loop, even one rarely taken, would have the compiler
+    // keep the loop's doubles in memory. The same draws, in the same order.
     double next = noise.next_target();
     SplitMix64 rng = noise.rng;  // in registers: emit's stores would make the compiler reload it
     for (;;) {
