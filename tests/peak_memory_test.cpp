@@ -38,12 +38,14 @@ struct Peak {
   std::uint64_t events;
 };
 
+Scene full_light() { return testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}); }
+
 // A counting run keeps one tile's schedule per thread while it runs: on one thread, so which
 // tiles overlap in time does not change the peak.
-Peak peak_of(double duration, bool keep_events) {
+Peak peak_of(double duration, bool keep_events, const Scene& scene = full_light()) {
   SensorConfig c = bright_sensor(duration);
   c.sim.threads = keep_events ? 2 : 1;
-  const Photocurrents p(testing::make_scene({testing::make_image(64, 64, [](int, int) { return 1.0; })}), c.pixel);
+  const Photocurrents p(scene, c.pixel);
   CheckingStream stream;
   SimulationRequest request;
   request.keep_events = keep_events;
@@ -67,6 +69,20 @@ TEST(PeakMemory, AStreamingRunDoesNotGrowWithItsLength) {
   const Peak short_run = peak_of(0.5, true), long_run = peak_of(50.0, true);
   ASSERT_GT(long_run.events, 90 * short_run.events);
   // Held as records, the long run's events alone would take 32 bytes each (65 MB).
+  EXPECT_LT(long_run.bytes, short_run.bytes + (256u << 10))
+      << short_run.bytes << " bytes for " << short_run.events << " events, " << long_run.bytes << " for "
+      << long_run.events;
+}
+
+// The first window is sized on the light the pixels start in, up to its first change: a thousandth
+// of full light for a quarter second, then full light held. Sized on the dim light alone, the first
+// window would hold the whole run (about 100 s at its 41 events/s).
+TEST(PeakMemory, AStreamingRunStartingDimDoesNotGrowWithItsLength) {
+  const Scene dim_then_bright = testing::make_scene(
+      {testing::make_image(64, 64, [](int, int) { return 1e-3; }), testing::make_image(64, 64, [](int, int) { return 1.0; })},
+      0.25);
+  const Peak short_run = peak_of(5.0, true, dim_then_bright), long_run = peak_of(50.0, true, dim_then_bright);
+  ASSERT_GT(long_run.events, 9 * short_run.events);
   EXPECT_LT(long_run.bytes, short_run.bytes + (256u << 10))
       << short_run.bytes << " bytes for " << short_run.events << " events, " << long_run.bytes << " for "
       << long_run.events;

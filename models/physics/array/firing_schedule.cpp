@@ -69,6 +69,7 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
       if (sensor_.shot_noise) shot_noise_.push_back({noise, threshold});
     }
   }
+  for (const double period : periods) starting_rate_ += 1 / period;
   // A mostly dark tile gives back what it does not use.
   if (pixels_.size() < pixels_.capacity() / 2) pixels_.shrink_to_fit();
   // Shot noise keeps windows while every pixel's swing is at least kWindowElectrons: a window's
@@ -83,7 +84,7 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
     for (const WakeCalendar::Entry& e : entries) keys_.push_back(e.key);
     if (still) {
       // Every pixel is lit (a pixel dark all run has no slot), so the rate is the sum of its rates.
-      for (const double period : periods) rate_ += 1 / period;
+      rate_ = starting_rate_;
       windowed_ = true;
       if (shot_noise_.empty()) {
         periodic_.reserve(pixels_.size());

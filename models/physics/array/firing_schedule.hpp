@@ -53,6 +53,9 @@ class FiringSchedule {
   // of the window the tile keeps between calls (up to about kWindowFirings firings a pixel). Off
   // unless set.
   void run_windows_ahead(bool on) { ahead_ = on; }
+  // The tile's mean firings per second in the light it starts in (shot noise spreads them about
+  // it): what a caller sizing its first window of time on it can expect, until the light changes.
+  double starting_rate() const { return starting_rate_; }
   // Whether the schedule can count its own pixels' firings (count_pixel_firings): a tile whose
   // firings come from windows, which visit its pixels one after the other.
   bool counts_pixel_firings() const { return windowed_; }
@@ -157,6 +160,7 @@ class FiringSchedule {
   bool windowed_ = false;
   bool ahead_ = false;                    // see run_windows_ahead()
   std::vector<std::uint32_t> keys_;       // windows: each pixel's bus address
+  double starting_rate_ = 0;              // see starting_rate()
   double rate_ = 0;                       // windows, still: the tile's firings per second
   std::vector<double> frame_rates_;       // windows, moving: the tile's firings per second in each frame
   std::vector<std::uint32_t> frame_changes_;  // windows, moving: pixels whose light changes into each frame

@@ -110,9 +110,18 @@ class EventRung : public Rung {
       schedules[t]->run_windows_ahead(ahead);
       count_firings_in_schedule(run, *schedules[t], buses[t], t);
     });
-    // Starts small and grows at most 4x a window, so the first windows cost little whatever the
-    // light; the windows do not change the output (the merge is exact), only its pace.
+    // The first window holds about window_events at the rate the tiles start at, up to the first
+    // change of light (past it the rate may be anything); after that each window is sized on the
+    // one before, growing at most 4x. The windows do not change the output (the merge is exact),
+    // only its pace. Ramping up from a microsecond instead cost a large array a dozen short windows,
+    // each visiting every pixel (a tenth of a 1 s run at 2048x2048).
+    double starting_rate = 0;
+    for (const auto& schedule : schedules) starting_rate += schedule->starting_rate();
     double width = t_end * 1e-6;
+    if (starting_rate > 0 && std::isfinite(starting_rate)) {
+      const double first_change = run.photocurrents.frames() > 1 ? run.photocurrents.frame_period() : t_end;
+      width = std::clamp(window_events / starting_rate, width, std::max(width, first_change));
+    }
     std::uint64_t fired = 0;
     // On one thread the merge runs beside it, on a thread of the log's own. On more, it is one more
     // item of each window's loop, first, merging the window before while the tiles fill this one:
