@@ -50,6 +50,7 @@ void FiringWindow::sort() {
   // Buckets follow time, so what is left is within a bucket (a few firings): an insertion sort,
   // which moves nothing past an equal time, so equal times keep the bus-address order they came in.
   for (std::size_t i = 1; i < added_count_; ++i) {
+    if (!(sorted[i].t < sorted[i - 1].t)) continue;
     const Firing f = sorted[i];
     std::size_t j = i;
     for (; j > 0 && f.t < sorted[j - 1].t; --j) sorted[j] = sorted[j - 1];
