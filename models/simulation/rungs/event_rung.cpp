@@ -110,11 +110,11 @@ class EventRung : public Rung {
       schedules[t]->run_windows_ahead(ahead);
       count_firings_in_schedule(run, *schedules[t], buses[t], t);
     });
-    // The first window holds about window_events at the rate the tiles start at, up to the first
-    // change of light (past it the rate may be anything); after that each window is sized on the
-    // one before, growing at most 4x. The windows do not change the output (the merge is exact),
-    // only its pace. Ramping up from a microsecond instead cost a large array a dozen short windows,
-    // each visiting every pixel (a tenth of a 1 s run at 2048x2048).
+    // `width` is a window of about window_events: first at the rate the tiles start at, up to the
+    // first change of light (past it the rate may be anything), then at the rate of the window
+    // before, growing at most 4x a window. The windows do not change the output (the merge is
+    // exact), only its pace. Ramping up from a microsecond instead cost a large array a dozen short
+    // windows, each visiting every pixel (a tenth of a 1 s run at 2048x2048).
     double starting_rate = 0;
     for (const auto& schedule : schedules) starting_rate += schedule->starting_rate();
     double width = t_end * 1e-6;
@@ -122,6 +122,11 @@ class EventRung : public Rung {
       const double first_change = run.photocurrents.frames() > 1 ? run.photocurrents.frame_period() : t_end;
       width = std::clamp(window_events / starting_rate, width, std::max(width, first_change));
     }
+    // Where the tiles' windows run ahead, a short run window costs them next to nothing, so the
+    // first windows ramp up from a 64th of `width` and the last ones taper off to a 16th: the merge
+    // starts while the tiles are on their first window, and after their last it has only a short
+    // one left to merge alone, where a whole window at each end left one thread alone with it.
+    double taken = ahead ? width / 64 : width;
     std::uint64_t fired = 0;
     // On one thread the merge runs beside it, on a thread of the log's own. On more, it is one more
     // item of each window's loop, first, merging the window before while the tiles fill this one:
@@ -131,7 +136,8 @@ class EventRung : public Rung {
     const std::size_t first_tile = merge_in_pool ? 1 : 0;
     for (double from = 0; from < t_end;) {
       // A window never shrinks below one representable step, so the run always advances.
-      const double until = std::min(t_end, std::max(from + width, std::nextafter(from, t_end)));
+      if (ahead) taken = std::min(taken, std::max((t_end - from) / 2, width / 16));
+      const double until = std::min(t_end, std::max(from + taken, std::nextafter(from, t_end)));
       pool.for_each(first_tile + tiles, [&](std::size_t i) {
         if (i < first_tile) {
           run.log.merge_set_aside();
@@ -157,7 +163,9 @@ class EventRung : public Rung {
       const std::uint64_t now = run.log.totals().fired;
       const double in_window = static_cast<double>(now - fired);
       fired = now;
-      width *= std::clamp(std::max(window_events, 1.0) / std::max(in_window, 1.0), 0.25, 4.0);
+      const double measured = taken * std::max(window_events, 1.0) / std::max(in_window, 1.0);
+      width = std::clamp(measured, width / 4, width * 4);
+      taken = ahead ? std::min(width, taken * 4) : width;
     }
     pool.for_each(tiles, [&](std::size_t t) { add_firings(run, *schedules[t]); });
     buses.finish(run.config.bus, facts);
