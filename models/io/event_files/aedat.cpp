@@ -131,12 +131,21 @@ AedatWriter::AedatWriter(std::ostream& out, const std::vector<std::string>& head
       stamps_(tick),
       layout_(layout),
       chip_(jaer_chip(layout, map)),
-      rows_(map.rows()) {
+      rows_(map.rows()),
+      writes_([this](const std::vector<char>& full, std::size_t size) {
+        out_.write(full.data(), static_cast<std::streamsize>(size));
+      }) {
   for (const std::string& line : header) out_ << line << "\r\n";
   buffer_.resize(kBufferBytes);
 }
 
-AedatWriter::~AedatWriter() { flush(); }
+// A write's failure shows in the stream's state too, where whoever owns the stream finds it.
+AedatWriter::~AedatWriter() {
+  try {
+    finish();
+  } catch (...) {
+  }
+}
 
 void AedatWriter::events(const AddressEvent* first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
@@ -179,8 +188,15 @@ std::string AedatWriter::reader_warning() const {
 }
 
 void AedatWriter::flush() {
-  out_.write(buffer_.data(), static_cast<std::streamsize>(used_));
+  if (used_ == 0) return;
+  writes_.post(buffer_, used_);
+  buffer_.resize(kBufferBytes);
   used_ = 0;
+}
+
+void AedatWriter::finish() {
+  flush();
+  writes_.drain();
 }
 
 AedatFile read_aedat(const std::string& path) {

@@ -10,6 +10,7 @@
 #include "aesim/event_files/aedat_layout.hpp"
 #include "aesim/event_files/event_stamps.hpp"
 #include "aesim/event_files/event_writer.hpp"
+#include "aesim/output/write_behind.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -51,9 +52,11 @@ class AedatWriter : public EventFileWriter {
               AedatLayout layout = AedatLayout::Aesim);
   ~AedatWriter() override;
   void events(const AddressEvent* first, std::size_t count) override;
-  // Writes what the buffer holds; the destructor does it too.
+  // Hands what the buffer holds over to be written (on a thread of the writer's own).
   void flush();
-  void finish() override { flush(); }
+  // Writes everything: what the buffer holds and every buffer handed over. The destructor does it
+  // too, but cannot report an error.
+  void finish() override;
   // The first address beginning with '#' (tonic's header rule misreads the file); in jAER's
   // layouts, the events stamped 0 us that jAER's reader will lose.
   std::string reader_warning() const override;
@@ -70,6 +73,7 @@ class AedatWriter : public EventFileWriter {
   std::uint64_t jaer_lost_ = 0;
   std::vector<char> buffer_;  // kBufferBytes, a multiple of the 8-byte record
   std::size_t used_ = 0;
+  WriteBehind<std::vector<char>> writes_;  // last: its writes use out_
 };
 
 [[noreturn]] void throw_aedat_stamp_overflow(double t);

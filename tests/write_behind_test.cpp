@@ -1,0 +1,130 @@
+// WriteBehind writes a writer's full buffers on a thread of its own (AEDAT 2.0's): every buffer
+// once, in order, with the bytes it was handed; three buffers going round; a write's error back
+// to the writer, with nothing after it written. And the AEDAT 2.0 writer through it: the same bytes
+// as the records written at once, over many buffers, and a failing stream left failed.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <streambuf>
+#include <vector>
+
+#include "aesim/event_files/aedat.hpp"
+#include "aesim/output/write_behind.hpp"
+
+namespace aesim {
+namespace {
+
+TEST(WriteBehind, WritesEveryBufferOnceInOrderWithThreeGoingRound) {
+  std::vector<std::vector<char>> written;
+  std::set<const char*> storage;
+  WriteBehind<std::vector<char>> writes([&](const std::vector<char>& full, std::size_t size) {
+    written.emplace_back(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(size));
+    storage.insert(full.data());
+  });
+  std::vector<char> buffer;
+  for (int i = 0; i < 2000; ++i) {
+    buffer.assign(4096, static_cast<char>(i));
+    // A size short of the buffer: only that much is written.
+    writes.post(buffer, static_cast<std::size_t>(1 + i % 4096));
+  }
+  writes.drain();
+  ASSERT_EQ(written.size(), 2000u);
+  for (int i = 0; i < 2000; ++i) {
+    const std::vector<char>& w = written[static_cast<std::size_t>(i)];
+    ASSERT_EQ(w.size(), static_cast<std::size_t>(1 + i % 4096)) << i;
+    ASSERT_EQ(w.front(), static_cast<char>(i)) << i;
+    ASSERT_EQ(w.back(), static_cast<char>(i)) << i;
+  }
+  // One written, one waiting, one being filled: assign() into a buffer given back reuses its
+  // storage, so no more than three are ever made.
+  EXPECT_LE(storage.size(), 3u);
+}
+
+TEST(WriteBehind, AWritesErrorComesBackAndNothingAfterItIsWritten) {
+  int wrote = 0;
+  WriteBehind<std::vector<char>> writes([&](const std::vector<char>&, std::size_t) {
+    if (wrote == 5) throw std::runtime_error("No space left on device");
+    ++wrote;
+  });
+  bool thrown = false;
+  try {
+    std::vector<char> buffer(16);
+    for (int i = 0; i < 100; ++i) writes.post(buffer, buffer.size());
+    writes.drain();
+  } catch (const std::runtime_error& e) {
+    thrown = true;
+    EXPECT_STREQ(e.what(), "No space left on device");
+  }
+  EXPECT_TRUE(thrown);
+  EXPECT_EQ(wrote, 5);
+}
+
+// Events over a 64x64 array, a few at each instant, enough for several of the writer's 1 MiB buffers.
+std::vector<AddressEvent> many_events(const AddressMap& map, std::size_t n) {
+  std::vector<AddressEvent> events(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    AddressEvent& e = events[i];
+    e.t = static_cast<double>(i / 3) * 1e-6;
+    e.x = static_cast<int>(i * 7 % 64);
+    e.y = static_cast<int>(i * 13 % 64);
+    e.tile = static_cast<std::uint32_t>(map.tile_of({e.x, e.y}));
+    e.bus_address = map.bus_address({e.x, e.y});
+  }
+  return events;
+}
+
+ArrayParams array_64() {
+  ArrayParams a;
+  a.rows = a.cols = 64;
+  return a;
+}
+
+TEST(WriteBehind, AnAedatWriterWritesTheRecordsBytesOverManyBuffers) {
+  const AddressMap map(array_64());
+  const std::vector<AddressEvent> events = many_events(map, 600'000);  // 4.8 MB of records
+  const std::vector<std::string> header = aedat_header(map, {});
+  std::ostringstream at_once;
+  write_aedat(at_once, header, aedat_records(events, map, 1e-6));
+  std::ostringstream streamed;
+  AedatWriter writer(streamed, header, map, 1e-6);
+  for (std::size_t at = 0; at < events.size(); at += 4999) {
+    writer.events(events.data() + at, std::min<std::size_t>(4999, events.size() - at));
+  }
+  writer.finish();
+  // finish() returns with every byte in the stream, before the writer is gone.
+  const std::string got = streamed.str(), expected = at_once.str();
+  EXPECT_TRUE(got == expected) << got.size() << " bytes written, " << expected.size() << " expected";
+}
+
+// Takes `room` bytes, then fails every write.
+class FillingBuffer : public std::streambuf {
+ public:
+  explicit FillingBuffer(std::size_t room) : room_(room) {}
+
+ protected:
+  std::streamsize xsputn(const char*, std::streamsize n) override {
+    const auto took = std::min<std::streamsize>(n, static_cast<std::streamsize>(room_));
+    room_ -= static_cast<std::size_t>(took);
+    return took;
+  }
+  int_type overflow(int_type c) override { return room_ == 0 ? traits_type::eof() : (--room_, traits_type::not_eof(c)); }
+
+ private:
+  std::size_t room_;
+};
+
+TEST(WriteBehind, AnAedatWriterOnAFullDeviceLeavesItsStreamFailed) {
+  const AddressMap map(array_64());
+  const std::vector<AddressEvent> events = many_events(map, 600'000);
+  FillingBuffer full(3 << 20);
+  std::ostream out(&full);
+  AedatWriter writer(out, aedat_header(map, {}), map, 1e-6);
+  writer.events(events.data(), events.size());
+  writer.finish();
+  EXPECT_TRUE(out.bad());
+}
+
+}  // namespace
+}  // namespace aesim
