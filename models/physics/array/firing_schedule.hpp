@@ -47,6 +47,9 @@ class FiringSchedule {
   }
   // Whether the tile's firings come from windows rather than the calendar.
   bool windowed() const { return windowed_; }
+  // The pixels each of its windows visits: every lit one where the tile's firings come from
+  // windows, none on the calendar.
+  std::size_t window_pixels() const { return windowed_ ? keys_.size() : 0; }
   // Whether a window may run on past the time fill() was asked up to, its later firings kept for
   // the next calls: a caller that asks a little at a time (a streaming run's windows) then does not
   // cut a tile's window short at each ask, each cut one more visit of every pixel, for the memory
