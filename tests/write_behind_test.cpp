@@ -59,6 +59,10 @@ TEST(WriteBehind, AWritesErrorComesBackAndNothingAfterItIsWritten) {
   }
   EXPECT_TRUE(thrown);
   EXPECT_EQ(wrote, 5);
+  // Refused after the error, a buffer stays with the caller, bytes and all.
+  std::vector<char> kept(32, 'k');
+  EXPECT_THROW(writes.post(kept, kept.size()), std::runtime_error);
+  EXPECT_EQ(kept, std::vector<char>(32, 'k'));
 }
 
 // Events over a 64x64 array, a few at each instant, enough for several of the writer's 1 MiB buffers.

@@ -29,11 +29,17 @@ class WriteBehind {
   void post(Buffer& filled, std::size_t size) {
     if (!worker_) worker_ = std::make_unique<SerialWorker>(1);
     auto full = std::make_shared<Buffer>(std::move(filled));
-    worker_->post([this, full, size] {
-      write_(*full, size);
-      std::lock_guard<std::mutex> lock(spare_mutex_);
-      spare_.push_back(std::move(*full));
-    });
+    try {
+      worker_->post([this, full, size] {
+        write_(*full, size);
+        std::lock_guard<std::mutex> lock(spare_mutex_);
+        spare_.push_back(std::move(*full));
+      });
+    } catch (...) {
+      // An earlier write failed: the caller keeps its buffer as it was.
+      filled = std::move(*full);
+      throw;
+    }
     std::lock_guard<std::mutex> lock(spare_mutex_);
     if (spare_.empty()) {
       filled = Buffer();
