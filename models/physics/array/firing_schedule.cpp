@@ -83,8 +83,6 @@ FiringSchedule::FiringSchedule(const PixelParams& pixel, const SimParams& sim, c
     keys_.reserve(entries.size());
     for (const WakeCalendar::Entry& e : entries) keys_.push_back(e.key);
     if (still) {
-      // Every pixel is lit (a pixel dark all run has no slot), so the rate is the sum of its rates.
-      rate_ = starting_rate_;
       windowed_ = true;
       if (shot_noise_.empty()) {
         periodic_.reserve(pixels_.size());
@@ -231,7 +229,9 @@ void FiringSchedule::make_window(double last) {
   // kWindowFirings firings a pixel at the rate of the light it starts in, whichever comes first;
   // and at least one representable step on, so that every window moves on.
   const std::size_t n = keys_.size();
-  double rate = rate_, to = last;
+  // A still tile's rate is the one it starts at (every pixel of it is lit: one dark all run has no
+  // slot); a moving tile's, its light's in the frame the window starts in.
+  double rate = starting_rate_, to = last;
   if (!frame_rates_.empty()) {
     const std::uint64_t k = interval_at(made_to_);
     rate = frame_rates_[photocurrents_.frame_at(k)];

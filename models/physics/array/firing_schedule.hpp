@@ -164,7 +164,6 @@ class FiringSchedule {
   bool ahead_ = false;                    // see run_windows_ahead()
   std::vector<std::uint32_t> keys_;       // windows: each pixel's bus address
   double starting_rate_ = 0;              // see starting_rate()
-  double rate_ = 0;                       // windows, still: the tile's firings per second
   std::vector<double> frame_rates_;       // windows, moving: the tile's firings per second in each frame
   std::vector<std::uint32_t> frame_changes_;  // windows, moving: pixels whose light changes into each frame
   double made_to_ = 0;                    // windows: firings up to this time are made
