@@ -25,6 +25,9 @@ RecordedWindows record_windows(const ResolvedConfig& config, const Photocurrents
     const std::size_t end = std::min(events.size(), at + per_window);
     TileRecords batch(tiles);
     for (std::size_t i = at; i < end; ++i) batch.events[events[i].tile].push_back(TileEvent::of(events[i]));
+    // Each tile's records come out of the merged stream in order, and a run's tiles say so as they
+    // record (EventLog::fired_and_delivered): the merge takes them as sorted runs, as in a run.
+    std::fill(batch.events_in_order.begin(), batch.events_in_order.end(), 1);
     r.windows.push_back(std::move(batch));
     r.before.push_back(end < events.size() ? events[end].t : events.back().t + 1);
   }
