@@ -76,6 +76,10 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
     const std::size_t at = events.size();
     events.resize(at + n);
     TileEvent* out = events.data() + at;
+    if (firings_in_order_) {
+      for (std::size_t i = 0; i < n; ++i) out[i] = TileEvent::of(firings[i]);
+      return;
+    }
     // Checked as they are copied, each against the one before (the tile's last so far for the
     // first), so that the merge need not read them all to know.
     TileEvent last = at > 0 ? out[-1] : TileEvent::of(firings[0]);

@@ -96,6 +96,7 @@ class EventRung : public Rung {
       buses.finish(run.config.bus, facts);
       return;
     }
+    run.log.firings_come_in_order();
     const double pixels = static_cast<double>(run.map.rows()) * run.map.cols();
     const double window_events = run.request.window_events > 0 ? run.request.window_events
                                                                : std::max(kMinWindowEvents, kWindowEventsPerPixel * pixels);
