@@ -159,7 +159,7 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
   // Through locals: the stores into the buffer would make the compiler reload every member a
   // record (a quarter of the writer's time).
   char* out = buffer_.data() + used_;
-  char* const full = buffer_.data() + buffer_.size();
+  char* full = buffer_.data() + buffer_.size();
   const bool jaer = layout_ != AedatLayout::Aesim;
   bool takes_next = jaer_takes_next_;
   std::uint64_t lost = jaer_lost_;
@@ -179,7 +179,9 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
     if (out == full) {
       used_ = buffer_.size();
       flush();
+      // Another buffer now: one given back, or a new one.
       out = buffer_.data();
+      full = buffer_.data() + buffer_.size();
     }
   }
   used_ = static_cast<std::size_t>(out - buffer_.data());
