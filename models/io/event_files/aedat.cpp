@@ -132,10 +132,7 @@ AedatWriter::AedatWriter(std::ostream& out, const std::vector<std::string>& head
       stamps_(tick),
       layout_(layout),
       chip_(jaer_chip(layout, map)),
-      rows_(map.rows()),
-      writes_([this](const std::vector<char>& full, std::size_t size) {
-        out_.write(full.data(), static_cast<std::streamsize>(size));
-      }) {
+      rows_(map.rows()) {
   for (const std::string& line : header) out_ << line << "\r\n";
   buffer_.resize(kBufferBytes);
 }
@@ -206,7 +203,9 @@ std::string AedatWriter::reader_warning() const {
 
 void AedatWriter::flush() {
   if (used_ == 0) return;
-  writes_.post(buffer_, used_);
+  writes_.post(buffer_, [this, size = used_](const std::vector<char>& full) {
+    out_.write(full.data(), static_cast<std::streamsize>(size));
+  });
   buffer_.resize(kBufferBytes);
   used_ = 0;
 }

@@ -10,7 +10,7 @@
 #include "aesim/event_files/aedat_layout.hpp"
 #include "aesim/event_files/event_stamps.hpp"
 #include "aesim/event_files/event_writer.hpp"
-#include "aesim/output/write_behind.hpp"
+#include "aesim/threads/buffer_hand_off.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -73,7 +73,7 @@ class AedatWriter : public EventFileWriter {
   std::uint64_t jaer_lost_ = 0;
   std::vector<char> buffer_;  // kBufferBytes, a multiple of the 8-byte record
   std::size_t used_ = 0;
-  WriteBehind<std::vector<char>> writes_;  // last: its writes use out_
+  BufferHandOff<std::vector<char>> writes_;  // last: its writes use out_
 };
 
 [[noreturn]] void throw_aedat_stamp_overflow(double t);

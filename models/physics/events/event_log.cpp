@@ -4,7 +4,8 @@
 #include <limits>
 #include <utility>
 
-#include "aesim/events/merge_pipeline.hpp"
+#include "aesim/threads/buffer_hand_off.hpp"
+
 
 namespace aesim {
 namespace {
@@ -96,9 +97,13 @@ void EventLog::fired_and_delivered(const AddressEvent* firings, std::size_t n) {
 
 void EventLog::hand_over(double before) {
   if (!outputs_.events && !outputs_.truth) return;
-  if (!pipeline_) pipeline_ = std::make_unique<MergePipeline>(*merger_, tiles_.size());
-  // The tiles get back the buffers of the batch before, emptied by its merge.
-  pipeline_->submit(filling_, before);
+  if (!pipeline_) {
+    const std::size_t tiles = tiles_.size();
+    pipeline_ = std::make_unique<BufferHandOff<TileRecords>>([tiles] { return TileRecords(tiles); });
+  }
+  // The tiles get back the buffers of a batch before, emptied by its merge.
+  EventMerger& merger = *merger_;
+  pipeline_->post(filling_, [&merger, before](TileRecords& batch) { merger.merge(batch, before); });
   start_filling();
 }
 

@@ -1,7 +1,8 @@
-// WriteBehind writes a writer's full buffers on a thread of its own (AEDAT 2.0's): every buffer
-// once, in order, with the bytes it was handed; three buffers going round; a write's error back
-// to the writer, with nothing after it written. And the AEDAT 2.0 writer through it: the same bytes
-// as the records written at once, over many buffers, and a failing stream left failed.
+// BufferHandOff runs a job on each full buffer on a thread of its own (AEDAT 2.0's writes, the
+// event log's merges): every buffer once, in order, with the bytes it was handed; three buffers
+// going round; a job's error back to the caller, with no job after it run. And the AEDAT 2.0 writer
+// through it: the same bytes as the records written at once, over many buffers, and a failing
+// stream left failed.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -11,23 +12,24 @@
 #include <vector>
 
 #include "aesim/event_files/aedat.hpp"
-#include "aesim/output/write_behind.hpp"
+#include "aesim/threads/buffer_hand_off.hpp"
 
 namespace aesim {
 namespace {
 
-TEST(WriteBehind, WritesEveryBufferOnceInOrderWithThreeGoingRound) {
+TEST(BufferHandOff, RunsEachBuffersJobOnceInOrderWithThreeGoingRound) {
   std::vector<std::vector<char>> written;
   std::set<const char*> storage;
-  WriteBehind<std::vector<char>> writes([&](const std::vector<char>& full, std::size_t size) {
-    written.emplace_back(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(size));
-    storage.insert(full.data());
-  });
+  BufferHandOff<std::vector<char>> writes;
   std::vector<char> buffer;
   for (int i = 0; i < 2000; ++i) {
     buffer.assign(4096, static_cast<char>(i));
     // A size short of the buffer: only that much is written.
-    writes.post(buffer, static_cast<std::size_t>(1 + i % 4096));
+    const auto size = static_cast<std::ptrdiff_t>(1 + i % 4096);
+    writes.post(buffer, [&, size](const std::vector<char>& full) {
+      written.emplace_back(full.begin(), full.begin() + size);
+      storage.insert(full.data());
+    });
   }
   writes.drain();
   ASSERT_EQ(written.size(), 2000u);
@@ -42,16 +44,17 @@ TEST(WriteBehind, WritesEveryBufferOnceInOrderWithThreeGoingRound) {
   EXPECT_LE(storage.size(), 3u);
 }
 
-TEST(WriteBehind, AWritesErrorComesBackAndNothingAfterItIsWritten) {
+TEST(BufferHandOff, AJobsErrorComesBackAndNoJobAfterItRuns) {
   int wrote = 0;
-  WriteBehind<std::vector<char>> writes([&](const std::vector<char>&, std::size_t) {
+  BufferHandOff<std::vector<char>> writes;
+  const auto write = [&](const std::vector<char>&) {
     if (wrote == 5) throw std::runtime_error("No space left on device");
     ++wrote;
-  });
+  };
   bool thrown = false;
   try {
     std::vector<char> buffer(16);
-    for (int i = 0; i < 100; ++i) writes.post(buffer, buffer.size());
+    for (int i = 0; i < 100; ++i) writes.post(buffer, write);
     writes.drain();
   } catch (const std::runtime_error& e) {
     thrown = true;
@@ -61,8 +64,25 @@ TEST(WriteBehind, AWritesErrorComesBackAndNothingAfterItIsWritten) {
   EXPECT_EQ(wrote, 5);
   // Refused after the error, a buffer stays with the caller, bytes and all.
   std::vector<char> kept(32, 'k');
-  EXPECT_THROW(writes.post(kept, kept.size()), std::runtime_error);
+  EXPECT_THROW(writes.post(kept, write), std::runtime_error);
   EXPECT_EQ(kept, std::vector<char>(32, 'k'));
+}
+
+TEST(BufferHandOff, TheCallerGetsABufferAJobLeftOrAFreshOne) {
+  // The event log's batches: a fresh one has a vector a tile, a merged one comes back emptied.
+  BufferHandOff<std::vector<int>> merges([] { return std::vector<int>(3, -1); });
+  std::vector<int> batch;
+  int fresh = 0;
+  for (int i = 0; i < 500; ++i) {
+    batch.assign(10, i);
+    merges.post(batch, [](std::vector<int>& b) { b.assign(1, 42); });
+    ASSERT_TRUE(batch == std::vector<int>(3, -1) || batch == std::vector<int>(1, 42)) << i;
+    fresh += batch.size() == 3;
+  }
+  merges.drain();
+  // One at its job, one waiting, one with the caller: no more than three were ever made.
+  EXPECT_GE(fresh, 1);
+  EXPECT_LE(fresh, 3);
 }
 
 // Events over a 64x64 array, a few at each instant, enough for several of the writer's 1 MiB buffers.
@@ -85,7 +105,7 @@ ArrayParams array_64() {
   return a;
 }
 
-TEST(WriteBehind, AnAedatWriterWritesTheRecordsBytesOverManyBuffers) {
+TEST(BufferHandOff, AnAedatWriterWritesTheRecordsBytesOverManyBuffers) {
   const AddressMap map(array_64());
   const std::vector<AddressEvent> events = many_events(map, 600'000);  // 4.8 MB of records
   const std::vector<std::string> header = aedat_header(map, {});
@@ -119,7 +139,7 @@ class FillingBuffer : public std::streambuf {
   std::size_t room_;
 };
 
-TEST(WriteBehind, AnAedatWriterOnAFullDeviceLeavesItsStreamFailed) {
+TEST(BufferHandOff, AnAedatWriterOnAFullDeviceLeavesItsStreamFailed) {
   const AddressMap map(array_64());
   const std::vector<AddressEvent> events = many_events(map, 600'000);
   FillingBuffer full(3 << 20);
