@@ -113,7 +113,9 @@ TEST(BufferHandOff, AnAedatWriterWritesTheRecordsBytesOverManyBuffers) {
   write_aedat(at_once, header, aedat_records(events, map, 1e-6));
   std::ostringstream streamed;
   AedatWriter writer(streamed, header, map, 1e-6);
-  for (std::size_t at = 0; at < events.size(); at += 4999) {
+  // One call of more than two buffers' records (131,072 a buffer), then calls of a few thousand.
+  writer.events(events.data(), 300'000);
+  for (std::size_t at = 300'000; at < events.size(); at += 4999) {
     writer.events(events.data() + at, std::min<std::size_t>(4999, events.size() - at));
   }
   writer.finish();
