@@ -6,7 +6,6 @@
 
 #include "aesim/threads/buffer_hand_off.hpp"
 
-
 namespace aesim {
 namespace {
 
