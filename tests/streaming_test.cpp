@@ -260,6 +260,45 @@ TEST(Streaming, TheMergeOrdersTiesByTileThenAddress) {
   }
 }
 
+// The merge cuts a window's span of time into slices of equal length and sizes each slice's
+// buckets for its share of the records: a burst (nine records in ten within a hundredth of the span,
+// at distinct times) puts many times that share in one slice, and many records in each of its
+// buckets. Expected: the whole set sorted by (time, tile, address), as without the burst.
+TEST(Streaming, TheMergeOrdersABurstThatCrowdsOneSlice) {
+  constexpr std::uint32_t kTiles = 3;
+  constexpr int kPerTile = 30000;
+  std::mt19937_64 rng(5);
+  std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> expected;
+  TileRecords batch(kTiles);
+  for (std::uint32_t tile = 0; tile < kTiles; ++tile) {
+    std::vector<AddressEvent> mine;
+    for (int i = 0; i < kPerTile; ++i) {
+      AddressEvent e;
+      const double u = static_cast<double>(rng() % 1000000) / 1000000;
+      e.t = rng() % 10 == 0 ? u : 0.5 + 0.01 * u;
+      e.tile = tile;
+      e.bus_address = static_cast<std::uint32_t>(rng() % 1024);
+      e.x = e.bus_address % 32;
+      e.y = e.bus_address / 32;
+      mine.push_back(e);
+    }
+    std::sort(mine.begin(), mine.end(), [](const AddressEvent& a, const AddressEvent& b) {
+      return std::make_pair(a.t, a.bus_address) < std::make_pair(b.t, b.bus_address);
+    });
+    for (const AddressEvent& e : mine) {
+      batch.events[tile].push_back(TileEvent::of(e));
+      expected.emplace_back(e.t, e.tile, e.bus_address);
+    }
+  }
+  std::sort(expected.begin(), expected.end());
+  EventCollector out;
+  EventMerger merger(kTiles, out);
+  merger.merge(batch, std::numeric_limits<double>::infinity());
+  std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> got;
+  for (const AddressEvent& e : out.events()) got.emplace_back(e.t, e.tile, e.bus_address);
+  EXPECT_EQ(got, expected);
+}
+
 // A tile's events may reach the log out of order (simultaneous SystemC processes run in any order):
 // the merge sorts them whatever way they came, one by one or a batch at a time; in order, the log's
 // own check as they come spares the merge its pass over them. Enough records for the merge to cut

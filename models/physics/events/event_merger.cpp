@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace aesim {
 namespace {
@@ -39,22 +40,7 @@ constexpr std::size_t kSliceRecordsPerRun = 4;
 // A bucket of the slice's counting sort holding more records than this (many firings at one
 // instant) is sorted by a merge sort before the insertion pass.
 constexpr std::size_t kInsertionMost = 16;
-
-// The first of the records [next, end) (in time order) at or after `hi`, searched outward from
-// `next`: a slice takes a few records of each of thousands of tiles' runs, and a binary search over
-// a whole run touched a cache line a step for them (a quarter of the merge at 2048x2048), where
-// this reads on from where the slice before stopped.
-template <typename T>
-const T* slice_end(const T* next, const T* end, double hi) {
-  const auto early = [hi](const T& x) { return time_of(x) < hi; };
-  std::size_t step = 1;
-  const T* inside = next;  // every record before it is earlier than hi
-  while (step <= static_cast<std::size_t>(end - inside) && early(inside[step - 1])) {
-    inside += step;
-    step *= 2;
-  }
-  return std::partition_point(inside, inside + std::min(step, static_cast<std::size_t>(end - inside)), early);
-}
+constexpr std::size_t kPrefetchAhead = 48;
 
 // Merges every tile's records earlier than `before`, passing each slice's (below) to `emit` in order.
 // A tile's records are those it held back last time followed by its new ones; in the event rung
@@ -134,17 +120,14 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
     const double lo = t_first + span * static_cast<double>(s) / static_cast<double>(slices);
     const bool last_slice = s + 1 == slices;
     const double hi = last_slice ? t_last : t_first + span * static_cast<double>(s + 1) / static_cast<double>(slices);
-    std::size_t n = 0;
-    for (MergeRun<T>& r : runs) {
-      r.slice_end = last_slice ? r.end : slice_end(r.next, r.end, hi);
-      n += static_cast<std::size_t>(r.slice_end - r.next);
-    }
-    live -= n;
-    if (n == 0) continue;
-    // Buckets of time over [lo, hi], one to two a record; (t - lo) * scale never decreases as t
-    // grows, so records in a lower bucket come first.
+    const double taken_before = last_slice ? std::numeric_limits<double>::infinity() : hi;
+    // Buckets of time over [lo, hi], one to two a record of the slice's share of what is left
+    // (its count is known only once it is copied; a slice holding more than its share has more
+    // records a bucket, and the passes below sort them all the same). (t - lo) * scale never
+    // decreases as t grows, so records in a lower bucket come first.
+    const std::size_t expected = std::max<std::size_t>(1, live / (slices - s));
     std::size_t buckets = 2;
-    while (buckets < n) buckets *= 2;
+    while (buckets < expected) buckets *= 2;
     const double width = hi - lo;
     const double scale = width > 0 ? static_cast<double>(buckets) / width : 0;
     const double top = static_cast<double>(buckets - 1);
@@ -154,19 +137,31 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
     };
     count.assign(buckets + 1, 0);
     std::uint32_t crowded = 0;  // records in buckets of more than kInsertionMost
-    staged.resize(n);
-    SliceEntry<T>* stage = staged.data();
+    // Each run's records of the slice are copied out, up to its first at or past `hi`: read on
+    // from where the slice before stopped, each record's time checked as it is copied (a search
+    // for the slice's end in each run first was a sixth of the merge, its steps mispredicted).
+    std::size_t n = 0;
     for (MergeRun<T>& r : runs) {
-      for (const T* x = r.next; x != r.slice_end; ++x) {
+      const T* x = r.next;
+      // Room for the rest of the run, made only when it might not fit.
+      if (staged.size() - n < static_cast<std::size_t>(r.end - x)) {
+        staged.resize(std::max(staged.size() * 2, n + static_cast<std::size_t>(r.end - x)));
+      }
+      SliceEntry<T>* stage = staged.data() + n;
+      for (; x != r.end && time_of(*x) < taken_before; ++x) {
+        __builtin_prefetch(x + kPrefetchAhead);
         const std::uint32_t b = bucket_of(time_of(*x));
         crowded += ++count[b + 1] > kInsertionMost;
         *stage++ = {*x, r.tile, b};
       }
-      r.next = r.slice_end;
+      n = static_cast<std::size_t>(stage - staged.data());
+      r.next = x;
     }
+    live -= n;
+    if (n == 0) continue;
     for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
     sorted.resize(n);
-    for (const SliceEntry<T>& e : staged) put(sorted[count[e.bucket]++], e.record, e.tile);
+    for (const SliceEntry<T>* e = staged.data(); e != staged.data() + n; ++e) put(sorted[count[e->bucket]++], e->record, e->tile);
     // count[b] is now where bucket b ends.
     if (crowded > 0) {
       for (std::size_t b = 0, begin = 0; b < buckets; begin = count[b++]) {

@@ -61,12 +61,11 @@ struct TileRecords {
 };
 
 // A run of one tile's records, in order, on its way through a merge (event_merger.cpp): where it
-// starts, the next record to merge, the end of the slice being merged, its end, its tile.
+// starts, the next record to merge, its end, its tile.
 template <typename T>
 struct MergeRun {
   const T *first, *next, *end;
   std::uint32_t tile;
-  const T* slice_end = nullptr;
 };
 // A record copied out of its tile's buffer for a merge's counting sort, with its tile and the
 // bucket of time it was counted in (placing it reads the bucket instead of working it out again;
