@@ -106,11 +106,20 @@ class EventRung : public Rung {
     // memory of every tile's window held would be far more than the run window's.
     const bool ahead = window_events >= kAheadEventsPerPixel * pixels;
     std::vector<std::unique_ptr<FiringSchedule>> schedules(tiles);
-    pool.for_each(tiles, [&](std::size_t t) {
+    const auto make_schedule = [&](std::size_t t) {
       schedules[t] = schedule_of(t);
       schedules[t]->run_windows_ahead(ahead);
       count_firings_in_schedule(run, *schedules[t], buses[t], t);
-    });
+    };
+    // With one tile thread the merge runs on a thread of the log's own, idle until the first
+    // window comes: the schedules are made on two threads, as many as the run keeps busy after (at
+    // 2048x2048 their making is a sixth of a 1 s run, most of it the pixels' mismatch draws, each
+    // from its own pixel's stream, so the same whichever thread makes them).
+    if (pool.threads() == 1 && tiles > 1) {
+      WorkerPool(2).for_each(tiles, make_schedule);
+    } else {
+      pool.for_each(tiles, make_schedule);
+    }
     // `width` is a window of about window_events: first at the rate the tiles start at, up to the
     // first change of light (past it the rate may be anything), then at the rate of the window
     // before, growing at most 4x a window. The windows do not change the output (the merge is
