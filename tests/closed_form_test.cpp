@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "aesim/event_files/event_stamps.hpp"
 #include "aesim/events/timestamps.hpp"
 #include "aesim/random/splitmix64.hpp"
 #include "aesim/scene/photocurrents.hpp"
@@ -230,6 +231,40 @@ TEST(Timestamps, TicksEqualTheLibrarysRoundingEverywhere) {
     cases.push_back({u * std::pow(10.0, static_cast<double>(rng() % 13)), 1e-6});
   }
   for (const auto& [t, tick] : cases) EXPECT_EQ(timestamp_ticks(t, tick), reference(t, tick)) << t << " s at " << tick;
+}
+
+// The writers' stamps take a product by the tick's reciprocal where it gives the division's count:
+// against timestamp_ticks itself on times within a few units in the last place of each count's
+// step (a count just past k - 1e-6 ticks), of whole counts, on random times over the range, past
+// 2^51 ticks, and on times it refuses.
+TEST(Timestamps, TheWritersStampsCountAsTheDivisionDoes) {
+  SplitMix64 rng(3);
+  for (const double tick : {1e-6, 2e-6, 1e-5, 1e-7, 2.5e-7, 20e-9, 1e-6 / 3, 1.0}) {
+    const MicrosecondStamps stamps(tick);
+    std::vector<double> times = {0.0, -0.0, tick, 1e-6 * tick, 0x1p52 * tick, 0x1p51 * tick, 9e18 * tick};
+    for (int i = 0; i < 20000; ++i) {
+      const double k = std::floor(std::pow(10.0, static_cast<double>(rng() % 15)) * static_cast<double>(rng() >> 11) * 0x1.0p-53) + 1;
+      for (const double q : {k - 1e-6, k, k + 1e-6}) {
+        double t = q * tick;
+        for (int j = 0; j < 6; ++j) t = std::nextafter(t, 0.0);
+        for (int j = 0; j < 12; ++j, t = std::nextafter(t, 1e300)) times.push_back(t);
+      }
+      times.push_back(static_cast<double>(rng() >> 11) * 0x1.0p-53 * std::pow(10.0, static_cast<double>(rng() % 13)));
+    }
+    for (const double t : times) {
+      std::uint64_t want = 0;
+      try {
+        want = timestamp_ticks(t, tick);
+      } catch (const std::overflow_error&) {
+        EXPECT_THROW(stamps.ticks_of(t), std::overflow_error) << t << " s at " << tick;
+        continue;
+      }
+      ASSERT_EQ(stamps.ticks_of(t), want) << t << " s at " << tick;
+    }
+    for (const double t : {-1e-9, std::nan(""), 1e19 * tick}) {
+      EXPECT_THROW(stamps.ticks_of(t), std::overflow_error) << t;
+    }
+  }
 }
 
 }  // namespace

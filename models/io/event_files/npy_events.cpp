@@ -74,6 +74,8 @@ NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, npy_open
 }
 
 void NpyWriter::events(const AddressEvent* first, std::size_t count) {
+  // A local copy: the records' stores would otherwise make the loop reload the tick's constants.
+  const MicrosecondStamps stamps = stamps_;
   for (std::size_t i = 0; i < count;) {
     // As many records as fit before the buffer is due to be written, made room for at once.
     const std::size_t fit = (kNpyBufferBytes - buffer_.size() + kNpyRecordBytes - 1) / kNpyRecordBytes;
@@ -85,7 +87,7 @@ void NpyWriter::events(const AddressEvent* first, std::size_t count) {
     // each, not a byte at a time.
     for (const AddressEvent* e = first + i; e != first + i + n; ++e, p += kNpyRecordBytes) {
       const auto x = static_cast<std::uint16_t>(e->x), y = static_cast<std::uint16_t>(e->y);
-      const std::uint64_t t = stamps_(e->t);
+      const std::uint64_t t = stamps(e->t);
       std::memcpy(p, &x, 2);
       std::memcpy(p + 2, &y, 2);
       std::memcpy(p + 4, &t, 8);
