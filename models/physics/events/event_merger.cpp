@@ -144,6 +144,8 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
       return static_cast<std::uint32_t>(static_cast<std::int64_t>(b < top ? b : top));
     };
     count.assign(buckets + 1, 0);
+    // Through a local: the staged records' stores would make the loop reload the vector's data.
+    std::uint32_t* const counts = count.data();
     std::uint32_t crowded = 0;  // records in buckets of more than kInsertionMost
     // Each run's records of the slice are copied out, up to its first at or past `hi`: read on
     // from where the slice before stopped, each record's time checked as it is copied (a search
@@ -162,20 +164,23 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
         staged.resize(std::max(staged.size() * 2, n + static_cast<std::size_t>(r.end - x)));
       }
       SliceEntry<T>* stage = staged.data() + n;
-      for (; x != r.end && time_of(*x) < taken_before; ++x) {
+      const T* const end = r.end;
+      const std::uint32_t tile = r.tile;
+      for (; x != end && time_of(*x) < taken_before; ++x) {
         __builtin_prefetch(x + kPrefetchAhead);
         const std::uint32_t b = bucket_of(time_of(*x));
-        crowded += ++count[b + 1] > kInsertionMost;
-        *stage++ = {*x, r.tile, b};
+        crowded += ++counts[b + 1] > kInsertionMost;
+        *stage++ = {*x, tile, b};
       }
       n = static_cast<std::size_t>(stage - staged.data());
       r.next = x;
     }
     live -= n;
     if (n == 0) continue;
-    for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
+    for (std::size_t b = 0; b < buckets; ++b) counts[b + 1] += counts[b];
     sorted.resize(n);
-    for (const SliceEntry<T>* e = staged.data(); e != staged.data() + n; ++e) put(sorted[count[e->bucket]++], e->record, e->tile);
+    Out* const placed = sorted.data();
+    for (const SliceEntry<T>* e = staged.data(); e != staged.data() + n; ++e) put(placed[counts[e->bucket]++], e->record, e->tile);
     // count[b] is now where bucket b ends.
     if (crowded > 0) {
       for (std::size_t b = 0, begin = 0; b < buckets; begin = count[b++]) {
