@@ -2,6 +2,9 @@
 // same, within the slack of buffer growth, whether the run streams its events or counts them.
 #include <gtest/gtest.h>
 
+#include <limits>
+
+#include "aesim/events/event_merger.hpp"
 #include "aesim/scene/photocurrents.hpp"
 #include "support/counting_allocator.hpp"
 #include "support/scenes.hpp"
@@ -99,6 +102,34 @@ TEST(PeakMemory, ACountingRunDoesNotGrowWithItsLength) {
   std::printf("peak %zu bytes for %llu events, %zu for %llu\n", short_run.bytes,
               static_cast<unsigned long long>(short_run.events), long_run.bytes,
               static_cast<unsigned long long>(long_run.events));
+}
+
+// A rung that keeps its records until the end merges them all at once: the merge's own room is a
+// slice's (about 4096 records, staged at 24 bytes and passed on at 32), not the run's. Two tiles
+// of 500,000 records each, merged in one call: staging a whole tile's run would take 12 MB.
+TEST(PeakMemory, TheMergeOfAWholeRunTakesTheRoomOfASlice) {
+  constexpr std::size_t kPerTile = 500000;
+  TileRecords batch(2);
+  for (std::uint32_t tile = 0; tile < 2; ++tile) {
+    for (std::size_t i = 0; i < kPerTile; ++i) {
+      AddressEvent e;
+      e.t = 1e-6 * static_cast<double>(2 * i + tile);
+      e.tile = tile;
+      e.bus_address = static_cast<std::uint32_t>(i % 1024);
+      e.x = e.bus_address % 32;
+      e.y = e.bus_address / 32;
+      batch.events[tile].push_back(TileEvent::of(e));
+    }
+  }
+  CheckingStream stream;
+  EventMerger merger(2, stream);
+  const std::size_t before = testing::allocated_bytes();
+  testing::reset_peak();
+  merger.merge(batch, std::numeric_limits<double>::infinity());
+  const std::size_t peak = testing::peak_allocated_bytes() - before;
+  EXPECT_EQ(stream.seen_, 2 * kPerTile);
+  EXPECT_EQ(stream.out_of_order_, 0u);
+  EXPECT_LT(peak, std::size_t(2) << 20) << peak << " bytes";
 }
 
 }  // namespace

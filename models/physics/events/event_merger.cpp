@@ -159,20 +159,24 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
         __builtin_prefetch(ahead + kRecordsPerLine<T>);
       }
       const T* x = r.next;
-      // Room for the rest of the run, made only when it might not fit.
-      if (staged.size() - n < static_cast<std::size_t>(r.end - x)) {
-        staged.resize(std::max(staged.size() * 2, n + static_cast<std::size_t>(r.end - x)));
-      }
-      SliceEntry<T>* stage = staged.data() + n;
       const T* const end = r.end;
       const std::uint32_t tile = r.tile;
-      for (; x != end && time_of(*x) < taken_before; ++x) {
-        __builtin_prefetch(x + kPrefetchAhead);
-        const std::uint32_t b = bucket_of(time_of(*x));
-        crowded += ++counts[b + 1] > kInsertionMost;
-        *stage++ = {*x, tile, b};
+      for (;;) {
+        // Up to the room made so far: a slice is about kSlice records, while one run may hold a
+        // whole run's (a rung that merges once at the end).
+        const std::size_t room = staged.size() - n;
+        const T* const stop = static_cast<std::size_t>(end - x) > room ? x + room : end;
+        SliceEntry<T>* stage = staged.data() + n;
+        for (; x != stop && time_of(*x) < taken_before; ++x) {
+          __builtin_prefetch(x + kPrefetchAhead);
+          const std::uint32_t b = bucket_of(time_of(*x));
+          crowded += ++counts[b + 1] > kInsertionMost;
+          *stage++ = {*x, tile, b};
+        }
+        n = static_cast<std::size_t>(stage - staged.data());
+        if (x != stop || stop == end || !(time_of(*x) < taken_before)) break;
+        staged.resize(std::max(2 * staged.size(), kSlice));
       }
-      n = static_cast<std::size_t>(stage - staged.data());
       r.next = x;
     }
     live -= n;
