@@ -30,6 +30,10 @@ constexpr double kMinWindowEvents = 131072;
 constexpr double kWindowEventsPerPixel = 0.5;
 // Run windows of at least this many firings a pixel let the tiles' windows run on past them.
 constexpr double kAheadEventsPerPixel = 2;
+// Arrays of at least this many pixels make their schedules on a second thread (see run()): at
+// 64x64 one thread and two were even (0.56 and 0.59 ms, medians of seven 1 ms runs writing AEDAT,
+// `wall_time_s`), at 96x96 two took 0.76 ms against 0.90, at 128x128 1.0-1.1 against 1.3-1.6.
+constexpr double kSetUpThreadPixels = 8192;
 
 // Firings pass from a tile's schedule to its bus a batch at a time (8 KiB, in L1).
 using FiringBatch = std::array<AddressEvent, 256>;
@@ -112,10 +116,12 @@ class EventRung : public Rung {
       count_firings_in_schedule(run, *schedules[t], buses[t], t);
     };
     // With one tile thread the merge runs on a thread of the log's own, idle until the first
-    // window comes: the schedules are made on two threads, as many as the run keeps busy after (at
-    // 2048x2048 their making is a sixth of a 1 s run, most of it the pixels' mismatch draws, each
-    // from its own pixel's stream, so the same whichever thread makes them).
-    if (pool.threads() == 1 && tiles > 1) {
+    // window comes: on all but the smallest arrays the schedules are made on two threads, as many
+    // as the run keeps busy after (at 2048x2048 their making is a sixth of a 1 s run, most of it
+    // the pixels' mismatch draws, each from its own pixel's stream, so the same whichever thread
+    // makes them). On a small one starting the thread (8-57 us to start and join) costs what it
+    // saves.
+    if (pool.threads() == 1 && tiles > 1 && pixels >= kSetUpThreadPixels) {
       WorkerPool(2).for_each(tiles, make_schedule);
     } else {
       pool.for_each(tiles, make_schedule);
