@@ -204,6 +204,25 @@ TEST(Streaming, GhostsPastTheEdgeLeaveTheTruthIntact) {
   }
 }
 
+// A record of `tile` at time t, from a random pixel of its 32x32 tile.
+AddressEvent record_at(double t, std::uint32_t tile, std::mt19937_64& rng) {
+  AddressEvent e;
+  e.t = t;
+  e.tile = tile;
+  e.bus_address = static_cast<std::uint32_t>(rng() % 1024);
+  e.x = e.bus_address % 32;
+  e.y = e.bus_address / 32;
+  return e;
+}
+
+// A tile's records into a merge's batch, in the (time, address) order a tile produces them.
+void add_in_tile_order(TileRecords& batch, std::uint32_t tile, std::vector<AddressEvent>& mine) {
+  std::sort(mine.begin(), mine.end(), [](const AddressEvent& a, const AddressEvent& b) {
+    return std::make_pair(a.t, a.bus_address) < std::make_pair(b.t, b.bus_address);
+  });
+  for (const AddressEvent& e : mine) batch.events[tile].push_back(TileEvent::of(e));
+}
+
 // The merge orders by (time, tile, bus address) whatever the windows: many records share a time
 // (a coarse grid of times, zero among them, written both as +0.0 and -0.0, which are the same
 // time), across tiles and within one. Expected: the whole set sorted by the triple.
@@ -219,25 +238,16 @@ TEST(Streaming, TheMergeOrdersTiesByTileThenAddress) {
     for (std::uint32_t tile = 0; tile < kTiles; ++tile) {
       std::vector<AddressEvent> mine;
       for (int i = 0; i < per_tile; ++i) {
-        AddressEvent e;
         // One record in eight at one of a few instants every tile shares; with many instants, the
         // others anywhere between them.
         const bool shared = rng() % 8 == 0;
         const auto instant = shared ? rng() % 8 * (instants / 8) : rng() % instants;
         const double within = shared || instants < 1000 ? 0.0 : static_cast<double>(rng() % 1000) / 1000;
-        e.t = 1e-6 * (static_cast<double>(instant) + within);
-        if (e.t == 0 && rng() % 2) e.t = -0.0;
-        e.tile = tile;
-        e.bus_address = static_cast<std::uint32_t>(rng() % 1024);
-        e.x = e.bus_address % 32;
-        e.y = e.bus_address / 32;
-        mine.push_back(e);
+        double t = 1e-6 * (static_cast<double>(instant) + within);
+        if (t == 0 && rng() % 2) t = -0.0;
+        mine.push_back(record_at(t, tile, rng));
       }
-      // A tile produces its records in its own (time, address) order.
-      std::sort(mine.begin(), mine.end(), [](const AddressEvent& a, const AddressEvent& b) {
-        return std::make_pair(a.t, a.bus_address) < std::make_pair(b.t, b.bus_address);
-      });
-      for (const AddressEvent& e : mine) batch.events[tile].push_back(TileEvent::of(e));
+      add_in_tile_order(batch, tile, mine);
       all.insert(all.end(), mine.begin(), mine.end());
     }
     std::stable_sort(all.begin(), all.end(), [](const AddressEvent& a, const AddressEvent& b) {
@@ -273,22 +283,11 @@ TEST(Streaming, TheMergeOrdersABurstThatCrowdsOneSlice) {
   for (std::uint32_t tile = 0; tile < kTiles; ++tile) {
     std::vector<AddressEvent> mine;
     for (int i = 0; i < kPerTile; ++i) {
-      AddressEvent e;
       const double u = static_cast<double>(rng() % 1000000) / 1000000;
-      e.t = rng() % 10 == 0 ? u : 0.5 + 0.01 * u;
-      e.tile = tile;
-      e.bus_address = static_cast<std::uint32_t>(rng() % 1024);
-      e.x = e.bus_address % 32;
-      e.y = e.bus_address / 32;
-      mine.push_back(e);
+      mine.push_back(record_at(rng() % 10 == 0 ? u : 0.5 + 0.01 * u, tile, rng));
     }
-    std::sort(mine.begin(), mine.end(), [](const AddressEvent& a, const AddressEvent& b) {
-      return std::make_pair(a.t, a.bus_address) < std::make_pair(b.t, b.bus_address);
-    });
-    for (const AddressEvent& e : mine) {
-      batch.events[tile].push_back(TileEvent::of(e));
-      expected.emplace_back(e.t, e.tile, e.bus_address);
-    }
+    add_in_tile_order(batch, tile, mine);
+    for (const AddressEvent& e : mine) expected.emplace_back(e.t, e.tile, e.bus_address);
   }
   std::sort(expected.begin(), expected.end());
   EventCollector out;
