@@ -180,7 +180,8 @@ const std::map<std::string, KeySpec>& registry() {
                "the rung that simulates the run; auto chooses the fastest exact one");
     integer("sim.threads", [](auto& c) -> auto& { return c.sim.threads; },
             "event fidelity: tiles simulated in parallel on this many threads (0: all cores); a run that writes "
-            "events merges them on one more thread with 1, and among these threads with more");
+            "events merges them on one more thread with 1 (which also makes half the tiles' schedules before the "
+            "first window, on arrays of 8192 pixels or more), and among these threads with more");
     real("sim.step", "s", [](auto& c) -> auto& { return c.sim.step; }, "time step of the fixed_step baseline");
     real("sim.max_events", "", [](auto& c) -> auto& { return c.sim.max_events; },
          "the most work a run may ask for, in events, estimated before it starts");
