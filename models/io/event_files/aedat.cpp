@@ -149,27 +149,23 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
   if (count == 0) return;
   if (!first_written_) {
     first_written_ = true;
-    const std::uint32_t address = layout_ == AedatLayout::Aesim ? aedat_record(first[0], bus_bits_, stamps_).address
-                                                                : jaer_address(layout_, chip_, rows_, first[0]);
-    first_is_hash_ = (address >> 24) == '#';
+    first_is_hash_ = (address_of(first[0]) >> 24) == '#';
   }
   // Through locals: the stores into the buffer would make the compiler reload every member a
   // record (a quarter of the writer's time).
   char* out = buffer_.data() + used_;
   char* full = buffer_.data() + buffer_.size();
-  const bool jaer = layout_ != AedatLayout::Aesim;
   bool takes_next = jaer_takes_next_;
   std::uint64_t lost = jaer_lost_;
   for (std::size_t i = 0; i < count; ++i) {
-    AedatRecord r = aedat_record(first[i], bus_bits_, stamps_);
-    if (jaer) r.address = jaer_address(layout_, chip_, rows_, first[i]);
-    put_be32(out, r.address);
+    const std::int64_t stamp = aedat_stamp(first[i], stamps_);
+    put_be32(out, address_of(first[i]));
     // jAER reads the record after one stamped 0 in its place without looking at its stamp: of a run
     // of such records it loses every other one.
-    const bool zero = r.timestamp_us == 0 && !takes_next;
+    const bool zero = stamp == 0 && !takes_next;
     lost += zero;
     takes_next = zero;
-    put_be32(out + 4, static_cast<std::uint32_t>(r.timestamp_us));
+    put_be32(out + 4, static_cast<std::uint32_t>(stamp));
     // Packed into a buffer of fixed size (growing a vector by 8 bytes an event cost a fifth of
     // the writing).
     out += 8;

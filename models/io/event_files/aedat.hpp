@@ -44,6 +44,16 @@ void write_aedat(std::ostream& out, const std::vector<std::string>& header,
 AedatFile read_aedat(const std::string& path);
 AedatFile decode_aedat(const std::string& data, const std::string& path);
 
+[[noreturn]] void throw_aedat_stamp_overflow(double t);
+// aesim's own address word of an event: its tile above its bus address.
+inline std::uint32_t aedat_address(const AddressEvent& e, unsigned bus_bits) { return (e.tile << bus_bits) | e.bus_address; }
+// An event's AEDAT stamp, whole microseconds of receiver ticks, refused past the int32 range.
+inline std::int64_t aedat_stamp(const AddressEvent& e, const MicrosecondStamps& stamps) {
+  const std::uint64_t stamp = stamps(e.t);
+  if (stamp > 0x7FFFFFFFu) throw_aedat_stamp_overflow(e.t);
+  return static_cast<std::int64_t>(stamp);
+}
+
 // Writes an AEDAT 2.0 file as a run streams its events: the header at once, then the records
 // packed big-endian through a buffer, addresses in `layout`.
 class AedatWriter : public EventFileWriter {
@@ -68,6 +78,11 @@ class AedatWriter : public EventFileWriter {
   AedatLayout layout_;
   JaerChip chip_;
   int rows_;
+  // An event's address word in the file's layout.
+  std::uint32_t address_of(const AddressEvent& e) const {
+    return layout_ == AedatLayout::Aesim ? aedat_address(e, bus_bits_) : jaer_address(layout_, chip_, rows_, e);
+  }
+
   bool first_written_ = false, first_is_hash_ = false;
   bool jaer_takes_next_ = false;
   std::uint64_t jaer_lost_ = 0;
@@ -76,14 +91,11 @@ class AedatWriter : public EventFileWriter {
   BufferHandOff<std::vector<char>> writes_;  // last: its writes use out_
 };
 
-[[noreturn]] void throw_aedat_stamp_overflow(double t);
 // The AEDAT record of a delivered event (timestamp in whole microseconds of receiver ticks).
 inline AedatRecord aedat_record(const AddressEvent& e, unsigned bus_bits, const MicrosecondStamps& stamps) {
-  const std::uint64_t stamp = stamps(e.t);
-  if (stamp > 0x7FFFFFFFu) throw_aedat_stamp_overflow(e.t);
   AedatRecord r;
-  r.address = (e.tile << bus_bits) | e.bus_address;
-  r.timestamp_us = static_cast<std::int64_t>(stamp);
+  r.address = aedat_address(e, bus_bits);
+  r.timestamp_us = aedat_stamp(e, stamps);
   return r;
 }
 // The AEDAT records of delivered events (timestamps in whole microseconds of receiver ticks).

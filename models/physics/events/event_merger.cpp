@@ -107,7 +107,7 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
       t_first = live == 0 ? time_of(first[0]) : std::min(t_first, time_of(first[0]));
       t_last = live == 0 ? time_of(first[n - 1]) : std::max(t_last, time_of(first[n - 1]));
       live += n;
-      runs.push_back({first, first, first + n, static_cast<std::uint32_t>(i)});
+      runs.push_back({first, first + n, static_cast<std::uint32_t>(i)});
     }
   }
   // Every slice looks at every run once: with thousands of tiles, slices hold a few records a run,
@@ -185,12 +185,12 @@ void merge_window(std::vector<Buffer>& incoming, const std::vector<std::uint8_t>
     sorted.resize(n);
     Out* const placed = sorted.data();
     for (const SliceEntry<T>* e = staged.data(); e != staged.data() + n; ++e) put(placed[counts[e->bucket]++], e->record, e->tile);
-    // count[b] is now where bucket b ends.
+    // counts[b] is now where bucket b ends.
     if (crowded > 0) {
-      for (std::size_t b = 0, begin = 0; b < buckets; begin = count[b++]) {
-        if (count[b] - begin > kInsertionMost) {
+      for (std::size_t b = 0, begin = 0; b < buckets; begin = counts[b++]) {
+        if (counts[b] - begin > kInsertionMost) {
           std::stable_sort(sorted.begin() + static_cast<std::ptrdiff_t>(begin),
-                           sorted.begin() + static_cast<std::ptrdiff_t>(count[b]), merged_less);
+                           sorted.begin() + static_cast<std::ptrdiff_t>(counts[b]), merged_less);
         }
       }
     }

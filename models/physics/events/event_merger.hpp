@@ -60,11 +60,11 @@ struct TileRecords {
   std::vector<std::uint8_t> events_in_order;
 };
 
-// A run of one tile's records, in order, on its way through a merge (event_merger.cpp): where it
-// starts, the next record to merge, its end, its tile.
+// A run of one tile's records, in order, on its way through a merge (event_merger.cpp): the next
+// record to merge, its end, its tile.
 template <typename T>
 struct MergeRun {
-  const T *first, *next, *end;
+  const T *next, *end;
   std::uint32_t tile;
 };
 // A record copied out of its tile's buffer for a merge's counting sort, with its tile and the
