@@ -104,6 +104,38 @@ TEST(PeakMemory, ACountingRunDoesNotGrowWithItsLength) {
               static_cast<unsigned long long>(long_run.events));
 }
 
+// A streaming run's record buffers are made the size of a window's records, not doubled past it:
+// 256x256 pixels in 64 tiles, windows of 550 and then 1,100 records a tile (a little past 512
+// and 1,024, where buffers grown by doubling would take 1,024 and 2,048 places). On two threads
+// the tiles fill one set of buffers while the other is merged: the peak grows with the window by
+// two sets' worth of records, 16 bytes each (by 1.86 times that with buffers grown by doubling).
+TEST(PeakMemory, AStreamingRunsBuffersHoldItsWindowsRecords) {
+  SensorConfig c = bright_sensor(1.0);
+  c.array.rows = c.array.cols = 256;
+  c.bus.access = BusAccess::Ideal;
+  c.sim.threads = 2;
+  const Photocurrents p(testing::make_scene({testing::make_image(256, 256, [](int, int) { return 1.0; })}), c.pixel);
+  const auto peak_with = [&](double window_events) {
+    CheckingStream stream;
+    SimulationRequest request;
+    request.keep_events = true;
+    request.stream = &stream;
+    request.window_events = window_events;
+    const std::size_t before = testing::allocated_bytes();
+    testing::reset_peak();
+    { const SimulationResult r = simulate(c.resolved(), p, request); }
+    EXPECT_EQ(stream.out_of_order_, 0u);
+    EXPECT_GT(stream.seen_, 600000u);
+    return testing::peak_allocated_bytes() - before;
+  };
+  constexpr double kSmall = 550.0 * 64, kLarge = 1100.0 * 64;
+  const std::size_t small = peak_with(kSmall), large = peak_with(kLarge);
+  const double records = 2 * (kLarge - kSmall) * sizeof(TileEvent);
+  ASSERT_GT(large, small);
+  EXPECT_LT(static_cast<double>(large - small), 1.35 * records)
+      << small << " bytes with windows of " << kSmall << " records, " << large << " with " << kLarge;
+}
+
 // A rung that keeps its records until the end merges them all at once: the merge's own room is a
 // slice's (about 4096 records, staged at 24 bytes and passed on at 32), not the run's. Two tiles
 // of 500,000 records each, merged in one call: staging a whole tile's run would take 12 MB.

@@ -114,6 +114,15 @@ class EventLog {
   // before as it records it (a third of its work a firing). Events output otherwise (a ghost) are
   // checked still.
   void firings_come_in_order() { firings_in_order_ = true; }
+  // Said by a caller that can foresee about how many records a tile will add before the next
+  // hand-over: its buffer is made that large at once. Grown as records come, a buffer doubles,
+  // and one a little past a power of two holds twice what it needs in each of the sets the tiles
+  // and the merge pass round (a 2048x2048 array's ~512 records a tile a window took 1,024 places).
+  void expect_records(std::uint32_t tile, std::size_t n) {
+    if (!outputs_.events) return;
+    UninitializedGrowthVector<TileEvent>& events = filling_.events[tile];
+    if (events.capacity() < events.size() + n) events.reserve(events.size() + n);
+  }
   std::vector<std::uint32_t> fired_per_pixel() const { return per_pixel(&PixelCounts::fired); }
   std::vector<std::uint32_t> window_per_pixel() const { return per_pixel(&PixelCounts::fired_in_window); }
   // Output events per pixel, ghosts included; and real (non-ghost) ones within the window.
