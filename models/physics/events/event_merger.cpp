@@ -60,9 +60,10 @@ constexpr std::size_t kRecordsPerLine = std::max<std::size_t>(1, 64 / sizeof(T))
 //
 // The window's span of time is cut into slices of about kSlice records (more with many tiles). A
 // slice's records are copied out of the tiles' buffers with their tile, tile after tile, and
-// counted into buckets of time (one to two buckets a record); then each copy is placed, as the
-// record passed on, at its bucket's next free place, so equal keys keep production order. The few
-// buckets that got more than one record are put in key order by one insertion pass over the slice
+// counted into buckets of time (one to two a record of the slice's share of what is left; a slice a
+// burst crowds has more records a bucket); then each copy is placed, as the record passed on, at
+// its bucket's next free place, so equal keys keep production order. The few buckets that got
+// more than one record are put in key order by one insertion pass over the slice
 // (a merge sort for a bucket of many records at one instant), and the slice goes on from where it
 // was sorted (copying it once more into chunks of a fixed size was a seventh of the merge). A
 // record costs the same whatever the number of tiles, where a k-way merge pays log2(tiles)
