@@ -108,7 +108,8 @@ TEST(PeakMemory, ACountingRunDoesNotGrowWithItsLength) {
 // 256x256 pixels in 64 tiles, windows of 550 and then 1,100 records a tile (a little past 512
 // and 1,024, where buffers grown by doubling would take 1,024 and 2,048 places). On two threads
 // the tiles fill one set of buffers while the other is merged: the peak grows with the window by
-// two sets' worth of records, 16 bytes each (by 1.86 times that with buffers grown by doubling).
+// two sets' worth of records, 16 bytes each (by 1.69 times that, measured, with buffers grown by
+// doubling).
 TEST(PeakMemory, AStreamingRunsBuffersHoldItsWindowsRecords) {
   SensorConfig c = bright_sensor(1.0);
   c.array.rows = c.array.cols = 256;

@@ -117,7 +117,7 @@ class EventLog {
   // Said by a caller that can foresee about how many records a tile will add before the next
   // hand-over: its buffer is made that large at once. Grown as records come, a buffer doubles,
   // and one a little past a power of two holds twice what it needs in each of the sets the tiles
-  // and the merge pass round (a 2048x2048 array's ~512 records a tile a window took 1,024 places).
+  // and the merge pass round (a 2048x2048 array's ~512 records a tile a window would take 1,024).
   void expect_records(std::uint32_t tile, std::size_t n) {
     if (!outputs_.events) return;
     UninitializedGrowthVector<TileEvent>& events = filling_.events[tile];
