@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <thread>
 
 #include "aesim/array/firing_schedule.hpp"
@@ -126,13 +127,19 @@ class EventRung : public Rung {
     } else {
       pool.for_each(tiles, make_schedule);
     }
+    // Each tile's firings a second in its last window (at first, in the light it starts in): the
+    // records it will add in the next are foreseen from it, with an eighth and 64 to spare (a
+    // still tile's count strays a few dozen from its mean), so that its buffer is made once to
+    // that size instead of doubling past it (see EventLog::expect_records). A tile whose light
+    // changes may still outgrow it; its buffer then doubles as before.
+    std::vector<double> tile_rates(tiles);
+    for (std::size_t t = 0; t < tiles; ++t) tile_rates[t] = schedules[t]->starting_rate();
     // `width` is a window of about window_events: first at the rate the tiles start at, up to the
     // first change of light (past it the rate may be anything), then at the rate of the window
     // before, growing at most 4x a window. The windows do not change the output (the merge is
     // exact), only its pace. Ramping up from a microsecond instead cost a large array a dozen short
     // windows, each visiting every pixel (a tenth of a 1 s run at 2048x2048).
-    double starting_rate = 0;
-    for (const auto& schedule : schedules) starting_rate += schedule->starting_rate();
+    const double starting_rate = std::accumulate(tile_rates.begin(), tile_rates.end(), 0.0);
     double width = t_end * 1e-6;
     if (starting_rate > 0 && std::isfinite(starting_rate)) {
       const double first_change = run.photocurrents.frames() > 1 ? run.photocurrents.frame_period() : t_end;
@@ -158,13 +165,6 @@ class EventRung : public Rung {
     // two tile threads then waited at each window's end for the one the merge had descheduled.
     const bool merge_in_pool = pool.threads() > 1;
     const std::size_t first_tile = merge_in_pool ? 1 : 0;
-    // Each tile's firings a second in its last window (at first, in the light it starts in): the
-    // records it will add in the next are foreseen from it, with an eighth and 64 to spare (a
-    // still tile's count strays a few dozen from its mean), so that its buffer is made once to
-    // that size instead of doubling past it (see EventLog::expect_records). A tile whose light
-    // changes may still outgrow it; its buffer then doubles as before.
-    std::vector<double> tile_rates(tiles);
-    for (std::size_t t = 0; t < tiles; ++t) tile_rates[t] = schedules[t]->starting_rate();
     for (double from = 0; from < t_end;) {
       if (ramp) taken = std::min(taken, std::max((t_end - from) / 2, width / 16));
       // A window never shrinks below one representable step, so the run always advances.
