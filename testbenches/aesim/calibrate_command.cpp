@@ -65,10 +65,15 @@ int calibrate_command(const CalibrateOptions& opt) {
   // Beside the preset: the testbench and ngspice's whole log when ngspice rejects the deck.
   options.failure_log = std::filesystem::path(opt.output).replace_extension(".ngspice.log").string();
 
-  std::fprintf(stderr, "aesim calibrate: %s (%s), %d photocurrents from %s to %s%s, %d ngspice at once\n",
+  std::fprintf(stderr, "aesim calibrate: %s (%s), %d photocurrents from %s to %s%s, vdd %s, %d ngspice at once\n",
                deck.subckt.c_str(), opt.deck.c_str(), options.points, format_si(options.i_low, "A").c_str(),
                format_si(options.i_high, "A").c_str(),
-               options.mc > 0 ? fmt::format(", {} Monte Carlo runs", options.mc).c_str() : "", options.jobs);
+               options.mc > 0 ? fmt::format(", {} Monte Carlo runs", options.mc).c_str() : "",
+               format_si(options.vdd, "V").c_str(), options.jobs);
+  // Before the runs, which can take minutes: the user may stop them and rerun with --vdd.
+  if (const std::string note = supply_rating_note(deck, options.vdd); !note.empty()) {
+    std::fprintf(stderr, "aesim calibrate: warning: %s\n", note.c_str());
+  }
   const Calibration c = calibrate_pixel(deck, options);
   const SensorConfig calibrated = calibrated_config(base, c, options.vdd);
   const std::string text = calibrated_preset_text(calibrated, c, deck, opt.base, options);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -174,7 +175,48 @@ void find_statistics(const std::vector<std::string>& lines, const std::string& f
   }
 }
 
+// The supply a MOS model's name gives, 0 where it gives none: digits, 'v' or 'p', a digit (SKY130's
+// and open_pdks' GF180's `_01v8`, `_03v3`, GF180's own `_3p3`) after '_' or a gate's 'g'
+// (`_g5v0d10v5`), ending the name or followed by a letter or '_'. Only names of MOS devices ("fet",
+// "mos"): a capacitor's `mim_2p0fF` is its density, not a supply.
+double rating_in_name(const std::string& word) {
+  const std::string w = ascii_lower(word);
+  const std::size_t kind = std::min(w.find("fet"), w.find("mos"));
+  if (kind == std::string::npos || w.find('=') != std::string::npos) return 0;
+  static const std::regex rated("[_g]([0-9]{1,2})[vp]([0-9])(?=$|[_a-z])");
+  std::smatch m;
+  const std::string tail = w.substr(kind);
+  if (!std::regex_search(tail, m, rated)) return 0;
+  return std::stoi(m[1].str()) + std::stoi(m[2].str()) / 10.0;
+}
+
+// Notes in `deck` the lowest-rated MOS device the element lines (M, or X for a PDK's subcircuit
+// devices) of `lines` use.
+void find_ratings(const std::vector<std::string>& lines, PixelDeck& deck) {
+  for (const std::string& line : lines) {
+    const std::vector<std::string> t = tokens(line);
+    if (t.empty()) continue;
+    const char kind = static_cast<char>(std::tolower(static_cast<unsigned char>(t[0][0])));
+    if (kind != 'm' && kind != 'x') continue;
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const double r = rating_in_name(t[k]);
+      if (r > 0 && (deck.device_rating == 0 || r < deck.device_rating)) {
+        deck.device_rating = r;
+        deck.rated_device = t[k];
+      }
+    }
+  }
+}
+
 }  // namespace
+
+std::string supply_rating_note(const PixelDeck& deck, double vdd) {
+  if (!(deck.device_rating > 0) || vdd <= 1.1 * deck.device_rating) return {};
+  return fmt::format("the deck's {} is a {:g} V device (so its name says) and the runs' supply is {:g} V (--vdd, "
+                     "3.3 V unless given): its periods, reset and energy are measured at that supply; "
+                     "--vdd {:g}V calibrates it at its own",
+                     deck.rated_device, deck.device_rating, vdd, deck.device_rating);
+}
 
 StatisticsNote statistics_note(const PixelDeck& deck) {
   if (!deck.statistical_switches.empty()) {
@@ -216,6 +258,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   const std::vector<std::string> lines = logical_lines(text);
   std::optional<Subcircuit> found = find_subckt(lines, subckt);
   find_statistics(lines, path, deck);
+  find_ratings(lines, deck);
   // Every file the deck includes, and those they include (a PDK's .lib files nest), once each.
   std::vector<std::string> pending = includes(lines, fs::path(deck.path).parent_path());
   std::vector<std::string> seen;
@@ -234,7 +277,10 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
     refuse_commands(included, inc);
     h = fnv1a(included, h);
     const std::vector<std::string> included_lines = logical_lines(included);
-    if (!found) found = find_subckt(included_lines, subckt);
+    if (!found) {
+      found = find_subckt(included_lines, subckt);
+      if (found) find_ratings(included_lines, deck);
+    }
     find_statistics(included_lines, inc, deck);
     for (const std::string& next : includes(included_lines, fs::path(inc).parent_path())) pending.push_back(next);
   }

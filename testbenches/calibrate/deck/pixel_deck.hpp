@@ -1,7 +1,6 @@
 #pragma once
 #include <string>
 #include <vector>
-#include <vector>
 
 namespace aesim {
 
@@ -23,6 +22,14 @@ struct PixelDeck {
   // (empty if none does).
   std::vector<std::string> statistical_switches;
   std::string statistical_file;
+  // The lowest supply a MOS device of the deck's own file (and of the file holding the
+  // subcircuit) is made for, as open PDKs spell it in the model's name: SKY130's
+  // `sky130_fd_pr__nfet_01v8` 1.8 V (`..._g5v0d10v5` 5 V, its gate's), GF180's `nmos_3p3` and
+  // `nfet_03v3` 3.3 V; that device's name. 0 and empty where no name says (IHP's `sg13_lv_nmos`,
+  // a level-1 `nmos`). Read from element lines only, never from the PDK's own files, which define
+  // every device of the process.
+  double device_rating = 0;
+  std::string rated_device;
 };
 
 // Reads the deck and finds the subcircuit (in the deck or the files it .include's, one level),
@@ -39,5 +46,10 @@ struct StatisticsNote {
   bool warning = false;
 };
 StatisticsNote statistics_note(const PixelDeck& deck);
+
+// Empty, or a warning that the runs' supply `vdd` is above what the deck's devices are made for
+// (device_rating, with a tenth to spare): a 1.8 V pixel calibrated at the default 3.3 V fires with
+// periods of a circuit nobody will fabricate.
+std::string supply_rating_note(const PixelDeck& deck, double vdd);
 
 }  // namespace aesim

@@ -90,6 +90,9 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
       c.supply.static_current, 100 * c.supply.rms_residual, 100 * c.supply.max_residual);
   if (const std::string note = per_firing_energy_note(c, o.vdd); !note.empty()) text += "# " + note + ".\n";
+  if (const std::string note = supply_rating_note(deck, o.vdd); !note.empty()) {
+    text += "# " + std::string(1, static_cast<char>(std::toupper(note[0]))) + note.substr(1) + ".\n";
+  }
   if (const StatisticsNote note = statistics_note(deck); !note.text.empty()) {
     text += "# " + std::string(1, static_cast<char>(std::toupper(note.text[0]))) + note.text.substr(1) + ".\n";
   }
