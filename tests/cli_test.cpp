@@ -115,6 +115,20 @@ TEST_F(CliTest, SameSeedSameBytesOtherSeedOtherBytes) {
   EXPECT_NE(slurp(dir_ / "a.aedat"), slurp(dir_ / "c.aedat"));
 }
 
+// A file's format is told by its extension in either case: a camera's IMG_0001.JPG is a JPEG,
+// RUN.AEDAT4 an AEDAT 4.0 file, A.PNG a PNG image; the same bytes as the lower-case names give.
+TEST_F(CliTest, ExtensionsInUpperCaseNameTheSameFormats) {
+  write("A.PGM", slurp(kScenes + "/letters/A.pgm"));
+  const Outcome upper = aesim("run --scene A.PGM --duration 200ms --out RUN.AEDAT4 --recon R.PNG");
+  ASSERT_EQ(upper.status, 0) << upper.err;
+  const Outcome lower = aesim("run --scene " + kScenes + "/letters/A.pgm --duration 200ms --out run.aedat4 --recon r.png");
+  ASSERT_EQ(lower.status, 0) << lower.err;
+  EXPECT_EQ(slurp(dir_ / "RUN.AEDAT4"), slurp(dir_ / "run.aedat4"));
+  EXPECT_EQ(slurp(dir_ / "R.PNG"), slurp(dir_ / "r.png"));
+  const Outcome info = aesim("info RUN.AEDAT4");
+  EXPECT_EQ(info.status, 0) << info.err;
+}
+
 TEST_F(CliTest, BadInputIsOneLineExitTwoAndNoOutput) {
   const std::string truncated = write("truncated.pgm", std::string("P5\n8 8\n255\n") + std::string(20, '\x80'));
   const std::string malformed = write("malformed.pgm", "P7\nhello\n");

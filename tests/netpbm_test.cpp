@@ -1,4 +1,4 @@
-// Scene files: PGM/PFM decoding, malformed files, resampling, frame folders.
+// Scene files: PGM/PPM/PFM decoding, malformed files, resampling, frame folders.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -35,6 +35,38 @@ TEST_F(SceneFilesTest, AsciiAndBinaryPgmIn8And16Bit) {
   const Image c = read_pgm(write("c.pgm", std::string("P5\n2 1\n65535\n") + char(1) + char(0) + char(255) + char(255)));
   EXPECT_DOUBLE_EQ(c.at(0, 0), 256 / 65535.0);
   EXPECT_DOUBLE_EQ(c.at(1, 0), 1.0);
+}
+
+// PPM: three samples a pixel, taken as the Rec. 709 luminance of linear values, as PGM's grey.
+TEST_F(SceneFilesTest, PpmIsRec709LuminanceInAsciiAndBinaryAnd16Bit) {
+  const Image a = read_ppm(write("a.ppm", "P3\n# comment\n2 1\n255\n255 0 0  0 51 255\n"));
+  ASSERT_EQ(a.width, 2);
+  ASSERT_EQ(a.height, 1);
+  EXPECT_DOUBLE_EQ(a.at(0, 0), 0.2126);
+  EXPECT_DOUBLE_EQ(a.at(1, 0), 0.7152 * 51 / 255.0 + 0.0722);
+  const Image b = read_ppm(write("b.ppm", std::string("P6\n1 2\n255\n") + char(0) + char(255) + char(0) + char(255) +
+                                              char(255) + char(255)));
+  EXPECT_DOUBLE_EQ(b.at(0, 0), 0.7152);
+  EXPECT_NEAR(b.at(0, 1), 1.0, 1e-15);
+  // 16-bit samples are big-endian, as PGM's.
+  const Image c = read_ppm(write("c.ppm", std::string("P6\n1 1\n65535\n") + char(1) + char(0) + char(0) + char(0) +
+                                              char(0) + char(0)));
+  EXPECT_DOUBLE_EQ(c.at(0, 0), 0.2126 * 256 / 65535.0);
+  // A grey PPM reads as the same PGM, through read_image by its extension in either case.
+  const Image grey = read_image(write("GREY.PPM", "P3\n2 1\n255\n10 10 10 200 200 200\n"));
+  const Image same = read_image(write("grey.PGM", "P2\n2 1\n255\n10 200\n"));
+  ASSERT_EQ(grey.pixels.size(), same.pixels.size());
+  for (std::size_t i = 0; i < grey.pixels.size(); ++i) EXPECT_NEAR(grey.pixels[i], same.pixels[i], 1e-15) << i;
+  for (const auto& [needle, bytes] : {std::pair<std::string, std::string>{"truncated pixel data", "P6\n2 1\n255\nabc"},
+                                      {"not a PPM", "P5\n1 1\n255\nx"},
+                                      {"pixel value 300", "P3\n1 1\n255\n1 2 300\n"}}) {
+    try {
+      read_ppm(write("bad.ppm", bytes));
+      FAIL() << "accepted a file that should fail with '" << needle << "'";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
 }
 
 std::string pfm_bytes(const char* magic, int w, int h, float scale, const std::vector<float>& rows_bottom_up) {

@@ -12,6 +12,7 @@
 #include "aesim/config/sensor_config.hpp"
 #include "deck/pixel_deck.hpp"
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
 #include "aesim/output/atomic_file.hpp"
 #include "preset/calibrated_preset.hpp"
 #include "session/pixel_calibration.hpp"
@@ -52,10 +53,10 @@ int calibrate_command(const CalibrateOptions& opt) {
   const SensorConfig base = load_sensor(opt.base);
   base.validate();
   options.charge_guess = base.pixel.threshold_charge();
-  if (std::filesystem::path(opt.output).extension() != ".toml") {
+  if (file_extension(opt.output) != ".toml") {
     throw InputError(fmt::format("-o '{}': a preset is a .toml file", opt.output));
   }
-  if (!opt.chart.empty() && std::filesystem::path(opt.chart).extension() != ".png") {
+  if (!opt.chart.empty() && file_extension(opt.chart) != ".png") {
     throw InputError(fmt::format("--chart '{}': use a .png file name", opt.chart));
   }
   const std::string chart_data =

@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "aesim/array/address_map.hpp"
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
 #include "aesim/limits/limits.hpp"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/emulator/emulator.hpp"
@@ -71,7 +72,7 @@ EmulatedRun emulate_frames(const EmulateOptions& opt, std::vector<Image> given) 
   double rate = 25;
   if (!given.empty()) {
     frames = std::move(given);
-  } else if (std::filesystem::path(opt.input).extension() == ".y4m") {
+  } else if (file_extension(opt.input) == ".y4m") {
     Y4mVideo video = read_y4m(opt.input);
     frames = std::move(video.frames);
     rate = video.frame_rate;
@@ -94,7 +95,7 @@ EmulatedRun emulate_frames(const EmulateOptions& opt, std::vector<Image> given) 
 int emulate_command(EmulateOptions opt) {
   // Outputs are checked before the work, against every input file (a folder's frames too).
   std::vector<std::string> inputs = {opt.input};
-  if (std::filesystem::path(opt.input).extension() != ".y4m") {
+  if (file_extension(opt.input) != ".y4m") {
     const SceneFiles files = find_scene(opt.input);
     inputs.insert(inputs.end(), files.frames.begin(), files.frames.end());
   }

@@ -335,7 +335,7 @@ int sweep_command(SweepOptions opt) {
   } finalize{share.size > 1 || launched_by_mpirun()};
   const SweepSpec spec = load_sweep_spec(opt.spec);
   if (opt.output.empty()) opt.output = "out/" + fs::path(opt.spec).stem().string() + ".csv";
-  if (fs::path(opt.output).extension() != ".csv") throw InputError(fmt::format("-o '{}': use a .csv file name", opt.output));
+  if (file_extension(opt.output) != ".csv") throw InputError(fmt::format("-o '{}': use a .csv file name", opt.output));
   int jobs = opt.jobs >= 0 ? opt.jobs : spec.jobs;
   if (jobs == 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const fs::path folder = fs::path(opt.output).parent_path();

@@ -19,7 +19,7 @@ std::vector<Template> load_templates(const std::string& folder) {
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
     std::error_code kind;
-    if (it->is_regular_file(kind) && it->path().extension() == ".pgm") files.push_back(it->path());
+    if (it->is_regular_file(kind) && file_extension(it->path().string()) == ".pgm") files.push_back(it->path());
   }
   if (ec) throw InputError(fmt::format("template folder '{}': {}", folder, ec.message()));
   std::sort(files.begin(), files.end());

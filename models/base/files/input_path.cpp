@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/text/ascii_case.hpp"
 
 namespace aesim {
 namespace fs = std::filesystem;
@@ -57,5 +58,7 @@ void require_input_file(const std::string& path, const std::string& what) {
     throw InputError(fmt::format("{} '{}': a Git LFS pointer, not the file itself (fetch it with 'git lfs pull')", what, path));
   }
 }
+
+std::string file_extension(const std::string& path) { return ascii_lower(fs::path(path).extension().string()); }
 
 }  // namespace aesim

@@ -16,4 +16,8 @@ std::string not_a_file(const std::string& path);
 // InputError "WHAT 'PATH': is a FIFO, not a file" (or not found, ...) unless it is a regular file.
 void require_input_file(const std::string& path, const std::string& what);
 
+// The extension a file's format is told by, in lower case ("" for none): a camera's IMG_0001.JPG is
+// a JPEG, a recording's RUN.AEDAT4 an AEDAT 4.0 file.
+std::string file_extension(const std::string& path);
+
 }  // namespace aesim

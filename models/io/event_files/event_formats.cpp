@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
 #include "aesim/event_files/aedat.hpp"
 #include "aesim/event_files/aedat4.hpp"
 #include "aesim/event_files/dsec_h5.hpp"
@@ -114,7 +115,7 @@ const EventFormatRow& event_format(EventFileFormat format) {
 }
 
 const EventFormatRow& event_format_of(const std::string& path, const std::string& option) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = file_extension(path);
   // No extension keeps the AEDAT 2.0 that --out always wrote.
   if (ext.empty()) return event_format(EventFileFormat::Aedat2);
   for (const EventFormatRow& row : event_formats()) {

@@ -10,6 +10,7 @@
 #include <png.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_path.hpp"
 
 namespace aesim {
 namespace {
@@ -50,7 +51,7 @@ void write_png(std::ostream& out, const Image& image) {
 }  // namespace
 
 void check_image_path(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = file_extension(path);
   if (ext == ".pgm") return;
   if (ext == ".png") return;
   throw InputError(fmt::format("image '{}': unsupported format (use .pgm or .png)", path));
@@ -58,7 +59,7 @@ void check_image_path(const std::string& path) {
 
 void write_image(std::ostream& out, const std::string& path_for_format, const Image& image) {
   check_image_path(path_for_format);
-  if (std::filesystem::path(path_for_format).extension() == ".png") {
+  if (file_extension(path_for_format) == ".png") {
     write_png(out, image);
     return;
   }

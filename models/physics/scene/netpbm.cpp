@@ -1,11 +1,13 @@
 #include "aesim/scene/netpbm.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -95,39 +97,60 @@ std::string read_preamble(HeaderReader& header, const std::string& data, const c
 
 Image read_pgm(const std::string& path) { return decode_pgm(read_scene_file(path), path); }
 Image read_pfm(const std::string& path) { return decode_pfm(read_scene_file(path), path); }
+Image read_ppm(const std::string& path) { return decode_ppm(read_scene_file(path), path); }
 
-Image decode_pgm(const std::string& data, const std::string& path) {
-  HeaderReader header(data, path);
-  Image img;
-  const std::string magic = read_preamble(header, data, "P2", "P5", "PGM", img);
+namespace {
+
+// The samples of a PGM or PPM after its magic, width and height: `per_pixel` a pixel (1 grey, 3
+// red, green, blue), each value / maxval; ASCII for P2 and P3, binary (8 or 16 bit, big-endian)
+// for P5 and P6.
+std::vector<double> read_samples(HeaderReader& header, const std::string& data, bool binary, std::size_t count) {
   const long long maxval = header.integer("maxval", 1, 65535);
-  const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
   const double scale = 1.0 / static_cast<double>(maxval);
-  // Every ASCII sample takes a digit and a separator: a header cannot promise more than the file holds.
-  if (magic == "P2" && header.remaining() + 1 < 2 * count) {
-    header.fail(fmt::format("truncated pixel data (room for at most {} of {} values)", (header.remaining() + 1) / 2,
-                            count));
-  }
-
-  if (magic == "P5") {
+  std::vector<double> samples(count);
+  if (binary) {
     const std::size_t start = header.data_start();
     const std::size_t bytes_per = maxval > 255 ? 2 : 1;
     if (data.size() < start + count * bytes_per) {
       header.fail(fmt::format("truncated pixel data ({} of {} bytes)", data.size() - std::min(data.size(), start),
                               count * bytes_per));
     }
-    img.pixels.resize(count);
     const auto* p = reinterpret_cast<const unsigned char*>(data.data() + start);
     for (std::size_t i = 0; i < count; ++i) {
       const unsigned v = bytes_per == 2 ? (unsigned(p[2 * i]) << 8) | p[2 * i + 1] : p[i];
-      if (v > maxval) header.fail(fmt::format("pixel {} value {} exceeds maxval {}", i, v, maxval));
-      img.pixels[i] = static_cast<double>(v) * scale;
+      if (v > maxval) header.fail(fmt::format("sample {} value {} exceeds maxval {}", i, v, maxval));
+      samples[i] = static_cast<double>(v) * scale;
     }
-  } else {
-    img.pixels.resize(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      img.pixels[i] = static_cast<double>(header.integer("pixel value", 0, maxval)) * scale;
-    }
+    return samples;
+  }
+  // Every ASCII sample takes a digit and a separator: a header cannot promise more than the file holds.
+  if (header.remaining() + 1 < 2 * count) {
+    header.fail(fmt::format("truncated pixel data (room for at most {} of {} values)", (header.remaining() + 1) / 2,
+                            count));
+  }
+  for (std::size_t i = 0; i < count; ++i) samples[i] = static_cast<double>(header.integer("pixel value", 0, maxval)) * scale;
+  return samples;
+}
+
+}  // namespace
+
+Image decode_pgm(const std::string& data, const std::string& path) {
+  HeaderReader header(data, path);
+  Image img;
+  const std::string magic = read_preamble(header, data, "P2", "P5", "PGM", img);
+  img.pixels = read_samples(header, data, magic == "P5", static_cast<std::size_t>(img.width) * img.height);
+  return img;
+}
+
+Image decode_ppm(const std::string& data, const std::string& path) {
+  HeaderReader header(data, path);
+  Image img;
+  const std::string magic = read_preamble(header, data, "P3", "P6", "PPM", img);
+  const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
+  const std::vector<double> rgb = read_samples(header, data, magic == "P6", 3 * count);
+  img.pixels.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    img.pixels[i] = 0.2126 * rgb[3 * i] + 0.7152 * rgb[3 * i + 1] + 0.0722 * rgb[3 * i + 2];
   }
   return img;
 }
@@ -184,14 +207,15 @@ Image decode_pfm(const std::string& data, const std::string& path) {
 }
 
 Image read_image(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = file_extension(path);
   if (ext == ".pgm") return read_pgm(path);
   if (ext == ".pfm") return read_pfm(path);
+  if (ext == ".ppm") return read_ppm(path);
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
   if (ext == ".exr") return decode_exr(read_scene_file(path), path);
   throw InputError(
-      fmt::format("scene file '{}': unsupported format (use .pgm, .pfm, .png, .jpg, .jpeg or .exr)", path));
+      fmt::format("scene file '{}': unsupported format (use .pgm, .ppm, .pfm, .png, .jpg, .jpeg or .exr)", path));
 }
 
 }  // namespace aesim

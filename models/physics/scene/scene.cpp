@@ -32,8 +32,8 @@ long long frame_number(const std::string& stem) {
 
 // The image files a scene folder's frames may be (read_image's formats).
 bool is_scene_image(const fs::path& p) {
-  const std::string ext = p.extension().string();
-  return ext == ".pgm" || ext == ".pfm" || ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".exr";
+  const std::string ext = file_extension(p.string());
+  return ext == ".pgm" || ext == ".ppm" || ext == ".pfm" || ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".exr";
 }
 
 }  // namespace
@@ -79,7 +79,7 @@ SceneFiles find_scene(const std::string& file_or_dir) {
     numbered.emplace_back(n, p.string());
   }
   if (numbered.empty()) {
-    throw InputError(fmt::format("scene folder '{}' has no numbered .pgm, .pfm, .png, .jpg, .jpeg or .exr frames", file_or_dir));
+    throw InputError(fmt::format("scene folder '{}' has no numbered .pgm, .ppm, .pfm, .png, .jpg, .jpeg or .exr frames", file_or_dir));
   }
   std::sort(numbered.begin(), numbered.end());
   for (std::size_t i = 1; i < numbered.size(); ++i) {
