@@ -173,6 +173,36 @@ TEST_F(VerifyTest, AReceiverWithoutReadyOrStampIsVerifiedWithoutThem) {
   }
 }
 
+// A design without a reset (`reset = "none"`): its registers' initial values are its reset
+// state. Every case starts from them, the case that resets mid-run is left out and said so, and
+// Ack must be low before the first edge, in simulation and in the proof; a copy that starts with
+// Ack high fails both there.
+TEST_F(VerifyTest, AReceiverWithoutAResetStartsFromItsInitialValues) {
+  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/no_reset_receiver";
+  const Outcome o = verify("'" + dir + "/noreset_rx.toml' --formal");
+  expect_pass(o, report(), 13);
+  EXPECT_NE(o.err.find("the receiver has no reset: every case starts from the design's initial values, and the "
+                       "cases reset_mid_handshake are left out"),
+            std::string::npos)
+      << o.err;
+  for (const auto& v : report()["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
+
+  std::string rtl = slurp(dir + "/noreset_rx.v");
+  const std::string low = "output reg        ack = 1'b0,";
+  ASSERT_NE(rtl.find(low), std::string::npos);
+  rtl.replace(rtl.find(low), low.size(), "output reg        ack = 1'b1,");
+  write("noreset_rx.v", rtl);
+  write("noreset_rx.toml", slurp(dir + "/noreset_rx.toml"));
+  const Outcome bad = verify("noreset_rx.toml --formal --out high");
+  EXPECT_EQ(bad.status, 1) << bad.err;
+  const nlohmann::json r = report("high");
+  EXPECT_EQ(r["first_failure"]["check"], "reset");
+  EXPECT_EQ(r["first_failure"]["cycle"], 0);
+  EXPECT_NE((bad.out + bad.err).find("formal failure: ack_low_after_reset (Ack is low at power-up (the design has no reset)): fails at step 0"),
+            std::string::npos)
+      << bad.out;
+}
+
 // The design's own verdicts: a $fatal fails the run with the RTL's message, file and line; a
 // $finish ends the case and is reported; $system and DPI imports are refused before anything runs.
 TEST_F(VerifyTest, TheRtlsOwnVerdictsCountAndItRunsNoCommand) {

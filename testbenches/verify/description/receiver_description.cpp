@@ -196,12 +196,18 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   d.clock_hz = parse_si(clock.is_string() ? clock.as_string() : r.string_of(clock, "clock"), "Hz", "clock");
   if (!(d.clock_hz >= 1e3 && d.clock_hz <= 10e9)) r.fail("clock", "must be 1 kHz to 10 GHz");
 
+  // A design without a reset (an FPGA's registers with initial values) says "none": its initial
+  // state stands for the reset.
   const TomlValue& reset = r.need(root, "reset", "reset");
-  if (!reset.is_table()) r.fail("reset", "expected { port = \"...\", active = \"low\" or \"high\" }");
-  d.reset_port = r.identifier(r.string_of(r.need(reset, "port", "reset.port"), "reset.port"), "reset.port");
-  const std::string active = r.string_of(r.need(reset, "active", "reset.active"), "reset.active");
-  if (active != "low" && active != "high") r.fail("reset.active", "must be \"low\" or \"high\"");
-  d.reset_active_high = active == "high";
+  if (!(reset.is_string() && reset.as_string() == "none")) {
+    if (!reset.is_table()) {
+      r.fail("reset", "expected { port = \"...\", active = \"low\" or \"high\" }, or \"none\" for a design without one");
+    }
+    d.reset_port = r.identifier(r.string_of(r.need(reset, "port", "reset.port"), "reset.port"), "reset.port");
+    const std::string active = r.string_of(r.need(reset, "active", "reset.active"), "reset.active");
+    if (active != "low" && active != "high") r.fail("reset.active", "must be \"low\" or \"high\"");
+    d.reset_active_high = active == "high";
+  }
 
   const TomlValue& ports = r.need(root, "ports", "ports");
   if (!ports.is_table()) r.fail("ports", "expected a table of role = \"port name\"");
@@ -238,7 +244,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   }
   // A port plays one role, except that slices of it may play several when their bits do not meet.
   std::map<std::string, std::string> used;  // port -> what uses it
-  used[d.reset_port] = "reset.port";
+  if (d.has_reset()) used[d.reset_port] = "reset.port";
   for (const auto& [role, ref] : d.ports) {
     for (const auto& [other_role, other] : d.ports) {
       if (other_role >= role || other.port != ref.port) continue;

@@ -28,8 +28,9 @@ struct ReceiverDescription {
   std::map<std::string, std::string> defines;     // NAME -> value ("" for a bare define)
   std::map<std::string, std::string> parameters;  // NAME -> Verilog literal (strings quoted)
   double clock_hz = 0;
-  std::string reset_port;
+  std::string reset_port;  // empty for a design without a reset (`reset = "none"`)
   bool reset_active_high = false;
+  bool has_reset() const { return !reset_port.empty(); }
   bool req_active_high = true, ack_active_high = true;
   std::map<std::string, PortRef> ports;            // role -> where it is
   std::map<std::string, std::uint64_t> inputs;     // RTL port -> constant value

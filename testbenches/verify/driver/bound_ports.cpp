@@ -61,8 +61,10 @@ void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports
       port_error(d, key, fmt::format("{} is {} bits; behaviour.timestamp_bits is {}", what, width, d.timestamp_bits));
     }
   }
-  const RtlPort& reset = need(d, ports, "reset.port", PortRef{d.reset_port}, true);
-  if (reset.width != 1) port_error(d, "reset.port", fmt::format("port {} is {} bits; a reset is one bit", reset.name, reset.width));
+  if (d.has_reset()) {
+    const RtlPort& reset = need(d, ports, "reset.port", PortRef{d.reset_port}, true);
+    if (reset.width != 1) port_error(d, "reset.port", fmt::format("port {} is {} bits; a reset is one bit", reset.name, reset.width));
+  }
   for (const auto& [name, value] : d.inputs) {
     const RtlPort& p = need(d, ports, "inputs." + name, PortRef{name}, true);
     if (p.width < 64 && (value >> p.width) != 0) {
@@ -87,7 +89,7 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   b.timestamp = role("timestamp");
   b.flags = role("flags");
   b.overflow = role("overflow_count");
-  b.reset = bind(dut, *find_port(ports, d.reset_port), PortRef{d.reset_port});
+  if (d.has_reset()) b.reset = bind(dut, *find_port(ports, d.reset_port), PortRef{d.reset_port});
   b.reset_active_high = d.reset_active_high;
   b.req_active_high = d.req_active_high;
   b.ack_active_high = d.ack_active_high;

@@ -135,7 +135,9 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   // Ready with probability p: the top 53 bits of a draw below p * 2^53 (uniform01 < p, in integers).
   const bool always_ready = c.ready_probability >= 1;
   const auto ready_below = static_cast<std::uint64_t>(std::max(0.0, c.ready_probability) * 0x1.0p53);
-  bool ready = true, reset = true, ack = false, draining = false;
+  // A design without a reset starts from its initial values, never in reset.
+  const std::uint64_t reset_edges = d.has_reset() ? kResetEdges : 0;
+  bool ready = true, reset = d.has_reset(), ack = false, draining = false;
   std::uint64_t acks = 0, reset_from = kNever, quiet = 0;
   std::uint64_t stalls_end = 0;
   for (const auto& s : c.stalls) stalls_end = std::max(stalls_end, s.second);
@@ -170,7 +172,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
                                        [k](const auto& s) { return k >= s.first && k < s.second; });
       ready_k = !stalled && (always_ready || (ready_rng() >> 11) < ready_below);
     }
-    const bool reset_k = k <= kResetEdges || (k >= reset_from && k < reset_from + static_cast<std::uint64_t>(c.reset_edges));
+    const bool reset_k = k <= reset_edges || (k >= reset_from && k < reset_from + static_cast<std::uint64_t>(c.reset_edges));
     if (ready_k == ready && reset_k == reset) return;
     ready = ready_k;
     reset = reset_k;
@@ -184,16 +186,17 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   ports.addr.write(0);
   ports.contention.write(0);
   ports.ready.write(1);
-  ports.set_reset(true);
-  bus.record_controls(0, true, true);
+  ports.set_reset(reset);
+  bus.record_controls(0, true, reset);
   if (!c.replay.empty()) {
     ready = c.replay[0].ready;
     ports.ready.write(ready);
-    bus.record_controls(half / 2, ready, true);
+    bus.record_controls(half / 2, ready, reset);
     bus.force(c.replay[0].req, c.replay[0].addr, c.replay[0].contention, half / 2, 0);
   }
   apply_until(half, 0);
   dut.eval();
+  if (sb && !d.has_reset()) sb->power_up(ports.ack_raised());
 
   // After every evaluation: has the RTL ended the case itself?
   auto rtl_ended = [&](std::uint64_t at) {

@@ -45,7 +45,9 @@ void write_testbench(const std::string& dir, const ReceiverDescription& d, const
   const auto inverse = [](bool active_high) { return active_high ? "1'b0" : "1'b1"; };
   PortWiring wiring(d, ports);
   wiring.drive("clk", "clk");
-  wiring.drive(PortRef{d.reset_port}, fmt::format("(rst ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
+  if (d.has_reset()) {
+    wiring.drive(PortRef{d.reset_port}, fmt::format("(rst ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
+  }
   wiring.drive("req", fmt::format("(req ? {} : {})", level(d.req_active_high), inverse(d.req_active_high)));
   wiring.drive("addr", "addr");
   if (d.has("contention")) wiring.drive("contention", "contention");

@@ -51,7 +51,11 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
     c.properties.push_back({static_cast<int>(c.properties.size()) + 1, name, text});
     return c.properties.back().id;
   };
-  const int p_reset = add("ack_low_after_reset", "Ack is low after the reset");
+  // A design without a reset starts from its registers' initial values: no reset steps, and Ack
+  // low in that first state.
+  const int reset_steps = d.has_reset() ? kFormalResetSteps : 0;
+  const int p_reset = add("ack_low_after_reset", d.has_reset() ? "Ack is low after the reset"
+                                                                : "Ack is low at power-up (the design has no reset)");
   const int p_rise = add("ack_rises_with_req", "Ack rises only while a Req waits for it");
   const int p_rise_min = add("ack_rise_min", fmt::format("Ack rises no sooner than {} edges after Req rose", lmin));
   const int p_rise_max =
@@ -72,8 +76,8 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   // Deep enough for the FIFO to fill and drain, a tick to pass, and the handshakes around them.
   const int handshake = 2 * lmax + 2;
   const int tick = d.has("timestamp") ? static_cast<int>(std::min<std::uint64_t>(d.timestamp_cycles, 4000)) : 0;
-  c.depth = kFormalResetSteps + 2 + (d.formal.fifo_words + 2) * handshake + tick;
-  c.depth_reason = fmt::format("{} reset steps + 2 + ({} FIFO words + 2) x {} edges a handshake{}", kFormalResetSteps,
+  c.depth = reset_steps + 2 + (d.formal.fifo_words + 2) * handshake + tick;
+  c.depth_reason = fmt::format("{} reset steps + 2 + ({} FIFO words + 2) x {} edges a handshake{}", reset_steps,
                                d.formal.fifo_words, handshake, tick ? fmt::format(" + a tick of {} edges", tick) : "");
   if (d.formal.depth) {
     c.depth = *d.formal.depth;
@@ -82,7 +86,9 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
 
   PortWiring wiring(d, ports);
   wiring.drive("clk", "clk");
-  wiring.drive(PortRef{d.reset_port}, fmt::format("(in_reset ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
+  if (d.has_reset()) {
+    wiring.drive(PortRef{d.reset_port}, fmt::format("(in_reset ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
+  }
   wiring.drive("req", fmt::format("(req_i ? {} : {})", level(d.req_active_high), inverse(d.req_active_high)));
   wiring.drive("addr", "addr_i");
   if (d.has("contention")) wiring.drive("contention", "contention_i");
@@ -227,7 +233,7 @@ module aesim_formal_top #(
   end
 
   always @* begin
-    if ({p_reset}) if (past_valid && !in_reset && !free_q) assert (!ack);
+    if ({p_reset}) if ({reset_done}) assert (!ack);
     if ({p_rise}) if (free_q && ack && !ack_q) assert (open);
     if ({p_rise_min}) if (free_q && ack && !ack_q && open) assert (lat >= {cw}'d{lmin});
     if ({p_rise_max}) if (!in_reset && open && !ack) assert (exc < {cw}'d{lmax});
@@ -294,7 +300,8 @@ module aesim_formal_top #(
 {stamp_logic}endmodule
 )",
                          fmt::arg("description", d.file), fmt::arg("top", d.top), fmt::arg("aw_msb", aw - 1),
-                         fmt::arg("reset_steps", kFormalResetSteps), fmt::arg("declarations", wiring.declarations()),
+                         fmt::arg("reset_steps", reset_steps),
+                         fmt::arg("reset_done", d.has_reset() ? "past_valid && !in_reset && !free_q" : "!past_valid"), fmt::arg("declarations", wiring.declarations()),
                          fmt::arg("parameter_list", parameter_list.empty() ? "" : "#(" + parameter_list + ") "),
                          fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
                          fmt::arg("ack_on", level(d.ack_active_high)), fmt::arg("valid_expr", valid),

@@ -371,7 +371,7 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   const fs::path& work = scratch.path();
 
   // Everything the verdicts follow from: the description, the sources, the tools, the rule.
-  std::string key = fmt::format("aesim-formal-v3\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
+  std::string key = fmt::format("aesim-formal-v4\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
   if (stamp) key += fmt::format("stamp {} {}\n", stamp->from_ack, stamp->offset);
   key += read_scratch_text(d.file);
   for (const std::string& s : d.sources) key += s + "\n" + read_scratch_text(s);

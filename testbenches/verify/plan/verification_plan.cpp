@@ -134,7 +134,7 @@ std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverD
                                    std::vector<std::string>* notes) {
   const bool ready = d.has("ready");
   std::vector<VerifyCase> cases;
-  std::vector<std::string> left_out;
+  std::vector<std::string> left_out, left_out_reset;
   if (plan.directed) {
     for (VerifyCase& c : directed_cases(d)) {
       const auto& only = plan.directed_cases;
@@ -143,8 +143,17 @@ std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverD
         left_out.push_back(c.name);
         continue;
       }
+      if (!d.has_reset() && c.reset_after_ack > 0) {
+        left_out_reset.push_back(c.name);
+        continue;
+      }
       cases.push_back(std::move(c));
     }
+  }
+  if (notes && !d.has_reset()) {
+    std::string note = "the receiver has no reset: every case starts from the design's initial values";
+    if (!left_out_reset.empty()) note += fmt::format(", and the cases {} are left out", fmt::join(left_out_reset, ", "));
+    notes->push_back(note);
   }
   bool always_ready = false;
   for (SceneLoad l : plan.scenes) {

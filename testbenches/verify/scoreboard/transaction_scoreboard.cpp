@@ -140,6 +140,10 @@ void TransactionScoreboard::wires(std::uint64_t t_ps, std::uint64_t edges_done, 
   }
 }
 
+void TransactionScoreboard::power_up(bool ack) {
+  if (ack) fail("reset", 0, 0, true, [] { return Texts{"Ack low at power-up (the design has no reset)", "Ack high"}; });
+}
+
 void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s) {
   // Most edges of a run: no beat offered or held, no Ack awaited, no reset. Nothing to check.
   const bool awaiting_ack = !late_reported_ && (open_id_ || ack_fall_due_);

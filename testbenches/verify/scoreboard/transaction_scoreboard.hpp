@@ -58,6 +58,8 @@ class TransactionScoreboard {
   void wires(std::uint64_t t_ps, std::uint64_t edges_done, bool req, std::uint64_t addr, bool contention);
   // Rising edge `cycle` at t_ps, with what stood before it.
   void edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s);
+  // A design without a reset: Ack as its initial values left it, before the first edge.
+  void power_up(bool ack);
   // Ack changed right after rising edge `cycle`.
   void ack_changed(std::uint64_t cycle, std::uint64_t t_ps, bool ack);
   // The RTL ended the case itself ($finish) or judged itself; a verdict is a failure.
