@@ -115,7 +115,10 @@ std::string as_path(const py::handle& h) { return py::str(py::module_::import("o
 Image image_from_array(const py::handle& object, const char* what) {
   py::array a = py::array::ensure(object);
   if (!a) throw InputError(fmt::format("{}: expected a path or a 2-D NumPy array", what));
-  if (a.ndim() != 2) throw InputError(fmt::format("{}: expected a 2-D array (rows, columns), got {} dimensions", what, a.ndim()));
+  if (a.ndim() != 2) {
+    throw InputError(fmt::format("{}: expected a 2-D array (rows, columns), got {} dimension{}", what, a.ndim(),
+                                 a.ndim() == 1 ? "" : "s"));
+  }
   const long rows = static_cast<long>(a.shape(0)), cols = static_cast<long>(a.shape(1));
   if (rows < 1 || cols < 1 || static_cast<long long>(rows) * cols > (1LL << 24)) {
     throw InputError(fmt::format("{}: a {}x{} array; aesim takes 1 to 4096x4096 pixels", what, cols, rows));
