@@ -309,8 +309,7 @@ void SensorConfig::validate() const {
   pixel.transfer.validate("pixel.transfer", pixel.t_reset);
   require(receiver.fifo_depth >= 1, "receiver.fifo_depth", "must be at least 1");
   // SystemC time is a 64-bit count of 1 ps steps; keep well inside it.
-  require(sim.duration > 0 && sim.duration <= 1e6, "sim.duration",
-          "must be positive and at most 1e6 s (SystemC's 1 ps time base)");
+  require(sim.duration >= 1e-12 && sim.duration <= 1e6, "sim.duration", "must be from 1 ps to 1e6 s (SystemC's 1 ps time base)");
   require(sim.max_events >= 1 && sim.max_events <= 1e15, "sim.max_events", "must be from 1 to 1e15");
   require(sim.threads >= 0 && sim.threads <= 1024, "sim.threads", "must be from 0 (all cores) to 1024");
   require(power.vdd > 0, "power.vdd", "must be positive");
