@@ -318,13 +318,19 @@ class NgspiceTest : public testing::TempDirTest {
   }
 };
 
+// Options for `points` photocurrents from `low` to `high`, two ngspice at once.
+CalibrationOptions over(double low, double high, int points) {
+  CalibrationOptions o;
+  o.i_low = low;
+  o.i_high = high;
+  o.points = points;
+  o.jobs = 2;
+  return o;
+}
+
 TEST_F(NgspiceTest, KnownDeckGivesItsThresholdChargeAndResetWithinOnePercent) {
   const PixelDeck deck = read_pixel_deck(kIdealDeck, "ideal_pixel", "int");
-  CalibrationOptions o;
-  o.i_low = 100e-15;
-  o.i_high = 100e-9;
-  o.points = 10;
-  o.jobs = 2;
+  const CalibrationOptions o = over(100e-15, 100e-9, 10);
   const Calibration c = calibrate_pixel(deck, o);
   ASSERT_GE(c.current.size(), 10u);  // and the points added where interpolation would miss
   // By construction (tests/circuits/ideal_pixel.cir): Q = 100 fF x 0.999 V, t_reset =
@@ -339,25 +345,19 @@ TEST_F(NgspiceTest, KnownDeckGivesItsThresholdChargeAndResetWithinOnePercent) {
 
 // A pixel whose integration current grows faster than its light, iph (1 + iph / 10 pA), so that
 // its period bends in log-log where eq. 2 (or its fit) cannot: the table must hold points enough
-// that the model's log-log interpolation follows the closed form between them.
+// that the model's log-log interpolation follows the circuit between them.
 TEST_F(NgspiceTest, ATableFarFromEq2IsMeasuredWhereItBendsSoThatInterpolationHoldsBetweenItsPoints) {
   std::string text = slurp(kIdealDeck);
   const std::string source = "I = v(out) < v(vdd) / 2 ? iph : 0";
   text.replace(text.find(source), source.size(), "I = v(out) < v(vdd) / 2 ? iph * (1 + iph / 1e-11) : 0");
   const PixelDeck deck = read_pixel_deck(write("bent.cir", text), "ideal_pixel", "int");
-  CalibrationOptions o;
-  o.i_low = 1e-12;
-  o.i_high = 1e-10;
-  o.points = 5;
-  o.jobs = 2;
+  const CalibrationOptions o = over(1e-12, 1e-10, 5);
   const Calibration c = calibrate_pixel(deck, o);
   // Against the same circuit measured densely (41 points, a twentieth of a decade apart, where
   // log-log interpolation cannot miss by more than a few hundredths of a percent), the refined
   // table's interpolation misses by no more than the 0.2 % it is refined to, with the scatter of
   // ngspice's measurements (counting eq. 2's bend alone left 5 points and a 3.7 % miss).
-  CalibrationOptions dense_options = o;
-  dense_options.points = 41;
-  const Calibration dense = calibrate_pixel(deck, dense_options);
+  const Calibration dense = calibrate_pixel(deck, over(o.i_low, o.i_high, 41));
   ASSERT_GE(dense.current.size(), 41u);
   const TransferCurve table{c.current, c.period};
   double worst = 0;
@@ -493,12 +493,8 @@ TEST_F(NgspiceTest, MonteCarloMeasuresTheSpreadOfAStatisticalCapacitorAndTheTabl
   deck.replace(deck.find(params), params.size(), "params: iph=1p mc=0");
   const PixelDeck pixel = read_pixel_deck(write("mc.cir", deck), "ideal_pixel", "int");
   EXPECT_TRUE(pixel.mc_parameter);
-  CalibrationOptions o;
-  o.i_low = 1e-12;
-  o.i_high = 1e-10;
-  o.points = 3;
+  CalibrationOptions o = over(1e-12, 1e-10, 3);
   o.mc = 40;
-  o.jobs = 2;
   const Calibration c = calibrate_pixel(pixel, o);
   EXPECT_NEAR(c.fit.charge / (100e-15 * 0.999), 1, 0.005);
   ASSERT_TRUE(c.mismatch.has_value());
@@ -522,11 +518,7 @@ TEST_F(NgspiceTest, APdksStatisticalSwitchIsOffForTheTableAndOnForMonteCarlo) {
   PixelDeck pixel = read_pixel_deck((dir_ / "pdk.cir").string(), "ideal_pixel", "int");
   EXPECT_EQ(pixel.statistical_switches, (std::vector<std::string>{"sw_stat_global", "sw_stat_mismatch"}));
   EXPECT_EQ(pixel.statistical_file, (dir_ / "pdk.cir").string());
-  CalibrationOptions o;
-  o.i_low = 1e-12;
-  o.i_high = 1e-10;
-  o.points = 3;
-  o.jobs = 2;
+  CalibrationOptions o = over(1e-12, 1e-10, 3);
   const Calibration nominal = calibrate_pixel(pixel, o);
   EXPECT_NEAR(nominal.fit.charge / (100e-15 * 0.999), 1, 0.005);
   // Left on, each point is a draw of seed 1: not the nominal capacitor.
