@@ -373,7 +373,7 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
   // within kMaxTablePoints. The miss is the fit's bend, known in closed form, or that with the bend
   // of the table's departure from the fit, from the points around the interval: a circuit far
   // from eq. 2 bends where the fit does not (on a SKY130 axon hillock 5 to 15 % off eq. 2, the
-  // fit's bend alone leaves a 0.8 % miss half-way between 1 and 3.16 pA).
+  // fit's bend alone leaves a 0.8 % miss at 2 pA, between the points at 1 and 3.16 pA).
   for (;;) {
     const std::vector<const PointRun*> f = fired();
     std::vector<double> current, period;
