@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -373,7 +374,13 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
   // within kMaxTablePoints. The miss is the fit's bend, known in closed form, or that with the bend
   // of the table's departure from the fit, from the points around the interval: a circuit far
   // from eq. 2 bends where the fit does not (on a SKY130 axon hillock 5 to 15 % off eq. 2, the
-  // fit's bend alone leaves a 0.8 % miss at 2 pA, between the points at 1 and 3.16 pA).
+  // fit's bend alone leaves a 0.8 % miss at 2 pA, between the points at 1 and 3.16 pA). A bend
+  // read from three measured points holds their scatter too, which halving does not shrink (a
+  // scatter e reads as a miss of about e / 2 at every spacing: a deck whose periods scatter by
+  // half a percent grew its table to the 400-point limit), so the halves of an interval whose
+  // added midpoint missed by M are refined for the departure's bend only while M / 4, what
+  // halving leaves of a true bend, is still over the tolerance.
+  std::map<double, double> midpoint_miss;  // added current -> |log| of its interval's miss, measured
   for (;;) {
     const std::vector<const PointRun*> f = fired();
     std::vector<double> current, period;
@@ -393,6 +400,15 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
              (x2 - x0);
     };
     std::vector<double> midpoints;
+    std::vector<std::pair<double, double>> halved;  // each midpoint's interval
+    // The miss measured at an end of this interval, where it was added: its halves leave a quarter.
+    const auto parent_miss = [&midpoint_miss](double a, double b) {
+      double miss = std::numeric_limits<double>::infinity();
+      for (double end : {a, b}) {
+        if (const auto it = midpoint_miss.find(end); it != midpoint_miss.end()) miss = std::min(miss, it->second);
+      }
+      return miss;
+    };
     for (std::size_t k = 0; k + 1 < f.size(); ++k) {
       const double a = current[k], b = current[k + 1], m = std::sqrt(a * b);
       // A current already measured between them (one that never fired) is not asked again.
@@ -408,13 +424,28 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
       const double h = std::log(b / a);
       const double bent = h * h / 8 * (std::fabs(left) > std::fabs(right) ? left : right);
       const double miss = interpolated / (fit.period(m) * ends);
-      if (std::fabs(miss - 1) > kInterpolationTolerance || std::fabs(std::log(miss) + bent) > kInterpolationTolerance) {
+      const bool bends = std::fabs(std::log(miss) + bent) > kInterpolationTolerance &&
+                         parent_miss(a, b) / 4 > kInterpolationTolerance;
+      if (std::fabs(miss - 1) > kInterpolationTolerance || bends) {
         midpoints.push_back(m);
+        halved.emplace_back(a, b);
       }
     }
     if (midpoints.empty() || runs.size() + midpoints.size() > kMaxTablePoints) break;
     c.refined += static_cast<int>(midpoints.size());
     measure_all(midpoints, "photocurrents added between points");
+    const auto period_at = [&runs](double i) {
+      for (const PointRun& r : runs) {
+        if (r.point.current == i) return r.point.period;
+      }
+      return kUnmeasured;
+    };
+    for (std::size_t j = 0; j < midpoints.size(); ++j) {
+      const double pm = period_at(midpoints[j]), pa = period_at(halved[j].first), pb = period_at(halved[j].second);
+      if (std::isfinite(pm) && std::isfinite(pa) && std::isfinite(pb)) {
+        midpoint_miss[midpoints[j]] = std::fabs(std::log(pm / std::sqrt(pa * pb)));
+      }
+    }
   }
 
   // The comparator trips where the probe node stands when out starts to rise under the weakest
