@@ -66,7 +66,7 @@ Image decode_exr(const std::string& data, const std::string& path) {
     for (long long y = 0; y < height; ++y) {
       for (long long x = 0; x < width; ++x) {
         const Imf::Rgba& p = pixels[y][x];
-        const double v = 0.2126 * static_cast<float>(p.r) + 0.7152 * static_cast<float>(p.g) + 0.0722 * static_cast<float>(p.b);
+        const double v = rec709_luminance(static_cast<float>(p.r), static_cast<float>(p.g), static_cast<float>(p.b));
         if (!std::isfinite(v) || v < 0) {
           throw InputError(fmt::format("scene file '{}': pixel ({}, {}) has luminance {}: light is finite and not "
                                        "negative", path, x, y, v));

@@ -14,4 +14,7 @@ struct Image {
   double at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
 
+// Rec. 709 / sRGB luminance of linear red, green and blue: what every colour scene is reduced to.
+inline double rec709_luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
+
 }  // namespace aesim

@@ -101,9 +101,9 @@ Image read_ppm(const std::string& path) { return decode_ppm(read_scene_file(path
 
 namespace {
 
-// The samples of a PGM or PPM after its magic, width and height: `per_pixel` a pixel (1 grey, 3
-// red, green, blue), each value / maxval; ASCII for P2 and P3, binary (8 or 16 bit, big-endian)
-// for P5 and P6.
+// The `count` samples of a PGM or PPM after its magic, width and height (one a pixel for grey,
+// red, green and blue for colour), each value / maxval; ASCII for P2 and P3, binary (8 or 16 bit,
+// big-endian) for P5 and P6.
 std::vector<double> read_samples(HeaderReader& header, const std::string& data, bool binary, std::size_t count) {
   const long long maxval = header.integer("maxval", 1, 65535);
   const double scale = 1.0 / static_cast<double>(maxval);
@@ -150,7 +150,7 @@ Image decode_ppm(const std::string& data, const std::string& path) {
   const std::vector<double> rgb = read_samples(header, data, magic == "P6", 3 * count);
   img.pixels.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
-    img.pixels[i] = 0.2126 * rgb[3 * i] + 0.7152 * rgb[3 * i + 1] + 0.0722 * rgb[3 * i + 2];
+    img.pixels[i] = rec709_luminance(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
   }
   return img;
 }
@@ -197,13 +197,25 @@ Image decode_pfm(const std::string& data, const std::string& path) {
                                   channels == 1 ? "" : fmt::format(" channel {}", c), v));
         }
       }
-      const double v = channels == 1 ? double(sample(base))
-                                     : 0.2126 * sample(base) + 0.7152 * sample(base + 1) +
-                                           0.0722 * sample(base + 2);
+      const double v = channels == 1 ? double(sample(base)) : rec709_luminance(sample(base), sample(base + 1), sample(base + 2));
       img.pixels[static_cast<std::size_t>(y) * img.width + x] = v;
     }
   }
   return img;
+}
+
+bool is_scene_image(const std::string& path) {
+  const std::string ext = file_extension(path);
+  return std::any_of(kSceneImageExtensions.begin(), kSceneImageExtensions.end(),
+                     [&ext](const char* e) { return ext == e; });
+}
+
+std::string scene_image_formats() {
+  std::string text;
+  for (std::size_t i = 0; i < kSceneImageExtensions.size(); ++i) {
+    text += (i == 0 ? "" : i + 1 == kSceneImageExtensions.size() ? " or " : ", ") + std::string(kSceneImageExtensions[i]);
+  }
+  return text;
 }
 
 Image read_image(const std::string& path) {
@@ -214,8 +226,7 @@ Image read_image(const std::string& path) {
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
   if (ext == ".exr") return decode_exr(read_scene_file(path), path);
-  throw InputError(
-      fmt::format("scene file '{}': unsupported format (use .pgm, .ppm, .pfm, .png, .jpg, .jpeg or .exr)", path));
+  throw InputError(fmt::format("scene file '{}': unsupported format (use {})", path, scene_image_formats()));
 }
 
 }  // namespace aesim

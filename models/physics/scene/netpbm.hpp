@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <string>
 
 #include "aesim/scene/image.hpp"
@@ -19,5 +20,10 @@ Image decode_pfm(const std::string& data, const std::string& path);
 // Chooses by extension, in any case: .pgm, .ppm, .pfm, .png, .jpg or .jpeg (scene/photo_image),
 // .exr (scene/exr_image).
 Image read_image(const std::string& path);
+// The extensions read_image reads, in the order messages list them; whether a path has one (in
+// any case); and the list in words (".pgm, .ppm, ... or .exr").
+inline constexpr std::array<const char*, 7> kSceneImageExtensions = {".pgm", ".ppm", ".pfm", ".png", ".jpg", ".jpeg", ".exr"};
+bool is_scene_image(const std::string& path);
+std::string scene_image_formats();
 
 }  // namespace aesim

@@ -17,9 +17,6 @@
 namespace aesim {
 namespace {
 
-// Rec. 709 luminance weights, for linear-light R, G, B.
-constexpr double kWr = 0.2126, kWg = 0.7152, kWb = 0.0722;
-
 // A decoding curve from code values (0..max) to linear light, as a table: at most 65,536 entries.
 std::vector<double> decoding_table(unsigned max_code, double exponent /* 0: sRGB */) {
   std::vector<double> table(max_code + 1);
@@ -40,7 +37,7 @@ void to_luminance(const std::vector<T>& codes, int channels, const std::vector<d
       img.pixels[i] = table[codes[i]];
     } else {
       const T* p = &codes[3 * i];
-      img.pixels[i] = kWr * table[p[0]] + kWg * table[p[1]] + kWb * table[p[2]];
+      img.pixels[i] = rec709_luminance(table[p[0]], table[p[1]], table[p[2]]);
     }
   }
 }

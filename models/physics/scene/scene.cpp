@@ -30,11 +30,6 @@ long long frame_number(const std::string& stem) {
   return std::stoll(stem.substr(begin, end - begin + 1));
 }
 
-// The image files a scene folder's frames may be (read_image's formats).
-bool is_scene_image(const fs::path& p) {
-  const std::string ext = file_extension(p.string());
-  return ext == ".pgm" || ext == ".ppm" || ext == ".pfm" || ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".exr";
-}
 
 }  // namespace
 
@@ -61,13 +56,13 @@ SceneFiles find_scene(const std::string& file_or_dir) {
     std::error_code kind;
     if (!entry.is_regular_file(kind)) {
       // A frame that is a broken link, a FIFO or a device is named, not skipped.
-      if (is_scene_image(p) || p.filename() == "scene.toml") {
+      if (is_scene_image(p.string()) || p.filename() == "scene.toml") {
         throw InputError(fmt::format("scene folder '{}': '{}' {}", file_or_dir, p.filename().string(), not_a_file(p.string())));
       }
       continue;
     }
     if (p.filename() == "scene.toml") files.settings = p.string();
-    if (!is_scene_image(p)) continue;
+    if (!is_scene_image(p.string())) continue;
     if (numbered.size() == kMaxSceneFrames) {
       throw InputError(fmt::format("scene folder '{}': more than {} frames, the most aesim reads", file_or_dir, kMaxSceneFrames));
     }
@@ -79,7 +74,7 @@ SceneFiles find_scene(const std::string& file_or_dir) {
     numbered.emplace_back(n, p.string());
   }
   if (numbered.empty()) {
-    throw InputError(fmt::format("scene folder '{}' has no numbered .pgm, .ppm, .pfm, .png, .jpg, .jpeg or .exr frames", file_or_dir));
+    throw InputError(fmt::format("scene folder '{}' has no numbered {} frames", file_or_dir, scene_image_formats()));
   }
   std::sort(numbered.begin(), numbered.end());
   for (std::size_t i = 1; i < numbered.size(); ++i) {

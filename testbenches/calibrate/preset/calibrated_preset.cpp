@@ -89,13 +89,13 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       deck.given, deck.subckt, deck.hash, c.ngspice, o.vdd, c.points.size(), o.i_low, o.i_high, o.firings, c.refined, base, c.fit.charge,
       c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
       c.supply.static_current, 100 * c.supply.rms_residual, 100 * c.supply.max_residual);
+  // A warning's words as a sentence of the preset's comments.
+  const auto sentence = [](const std::string& note) {
+    return "# " + std::string(1, static_cast<char>(std::toupper(note[0]))) + note.substr(1) + ".\n";
+  };
   if (const std::string note = per_firing_energy_note(c, o.vdd); !note.empty()) text += "# " + note + ".\n";
-  if (const std::string note = supply_rating_note(deck, o.vdd); !note.empty()) {
-    text += "# " + std::string(1, static_cast<char>(std::toupper(note[0]))) + note.substr(1) + ".\n";
-  }
-  if (const StatisticsNote note = statistics_note(deck); !note.text.empty()) {
-    text += "# " + std::string(1, static_cast<char>(std::toupper(note.text[0]))) + note.text.substr(1) + ".\n";
-  }
+  if (const std::string note = supply_rating_note(deck, o.vdd); !note.empty()) text += sentence(note);
+  if (const StatisticsNote note = statistics_note(deck); !note.text.empty()) text += sentence(note.text);
   if (c.circuit) {
     const CircuitFit& f = *c.circuit;
     text += fmt::format(
