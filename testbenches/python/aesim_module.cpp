@@ -121,7 +121,8 @@ Image image_from_array(const py::handle& object, const char* what) {
   }
   const long rows = static_cast<long>(a.shape(0)), cols = static_cast<long>(a.shape(1));
   if (rows < 1 || cols < 1 || static_cast<long long>(rows) * cols > (1LL << 24)) {
-    throw InputError(fmt::format("{}: a {}x{} array; aesim takes 1 to 4096x4096 pixels", what, cols, rows));
+    throw InputError(fmt::format("{}: an array of {} rows and {} columns; aesim takes 1 to 16,777,216 (4096x4096) pixels",
+                                 what, rows, cols));
   }
   double scale = 1.0;
   const char kind = a.dtype().kind();

@@ -99,7 +99,7 @@ def test_bad_input_raises_value_error_with_the_programs_message(kwargs, option, 
 
 def test_bad_arrays_are_value_errors():
     for bad, words in [(np.zeros((2, 2, 2, 2)), "2-D"), (np.array([[1.0, -1.0]]), "not negative"),
-                       (np.array([[np.nan]]), "finite"), (np.zeros((0, 3)), "pixels"),
+                       (np.array([[np.nan]]), "finite"), (np.zeros((0, 3)), "of 0 rows and 3 columns"),
                        (np.zeros((4, 4), np.int64), "8 or 16 bit")]:
         with pytest.raises(ValueError, match=words):
             aesim.run(scene=bad, duration="10ms")
