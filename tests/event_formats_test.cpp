@@ -424,6 +424,8 @@ TEST_F(EventFormats, EveryCommandThatReadsEventsReadsEveryFormatItWrites) {
     const testing::Outcome info = aesim("info " + out);
     ASSERT_EQ(info.status, 0) << out << ": " << info.err;
     EXPECT_NE(info.out.find(out + ": "), std::string::npos) << info.out;
+    // The aesim layouts carry the tiles (the letter's 64x64 in four 32x32); a .npy has none: one.
+    EXPECT_NE(info.out.find(out == "e.npy" ? ", 1 tile\n" : ", 4 tiles\n"), std::string::npos) << info.out;
     const testing::Outcome c = aesim("classify " + out + " --json" + size);
     ASSERT_EQ(c.status, 0) << out << ": " << c.err;
     EXPECT_NE(c.out.find("\"winner\": \"A\""), std::string::npos) << out << ": " << c.out;

@@ -21,8 +21,9 @@ int info_command(const std::string& path, const std::string& layout) {
     ghosts += (e.flags & kGhostEvent) ? 1 : 0;
     off += (e.flags & kOffEvent) ? 1 : 0;
   }
-  fmt::print(report_stream(), "{}: {} events, array {}x{}{}, {} tiles\n", path, n, rec.width, rec.height,
-             rec.size_recorded ? "" : " (not recorded in the file: the span of its events)", rec.tiles);
+  fmt::print(report_stream(), "{}: {} events, array {}x{}{}, {} tile{}\n", path, n, rec.width, rec.height,
+             rec.size_recorded ? "" : " (not recorded in the file: the span of its events)", rec.tiles,
+             rec.tiles == 1 ? "" : "s");
   if (n > 0) {
     fmt::print(report_stream(), "  first {:.6f} s, last {:.6f} s, span {}\n", rec.events.front().t, rec.events.back().t,
                format_si(span, "s"));
