@@ -2,6 +2,7 @@
 // gAMA says), colour reduced to Rec. 709 luminance, against values computed by hand from the
 // sRGB standard; OpenEXR taken as linear light; malformed and oversized files refused in one line;
 // PNG and EXR frame folders; and `aesim run` on a PNG and an EXR.
+#include <cmath>
 #include <csetjmp>
 #include <cstdio>
 #include <string>
@@ -14,6 +15,7 @@
 #include <zlib.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/scene/exif_orientation.hpp"
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/photo_image.hpp"
 #include "aesim/scene/scene.hpp"
@@ -32,6 +34,7 @@ struct PngSpec {
   std::vector<unsigned char> bytes;  // rows packed, 16-bit big-endian as PNG stores them
   std::vector<png_color> palette;
   double gamma = 0;  // a gAMA chunk when > 0
+  std::string exif;  // an eXIf chunk when not empty
 };
 
 void append(png_structp png, png_bytep data, png_size_t n) {
@@ -47,6 +50,10 @@ std::string encode_png(const PngSpec& s) {
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   if (!s.palette.empty()) png_set_PLTE(png, info, s.palette.data(), static_cast<int>(s.palette.size()));
   if (s.gamma > 0) png_set_gAMA(png, info, s.gamma);
+  if (!s.exif.empty()) {
+    png_set_eXIf_1(png, info, static_cast<png_uint_32>(s.exif.size()),
+                   reinterpret_cast<png_bytep>(const_cast<char*>(s.exif.data())));
+  }
   png_write_info(png, info);
   const std::size_t row = s.bytes.size() / static_cast<std::size_t>(s.height);
   for (int y = 0; y < s.height; ++y) png_write_row(png, s.bytes.data() + static_cast<std::size_t>(y) * row);
@@ -55,9 +62,10 @@ std::string encode_png(const PngSpec& s) {
   return out;
 }
 
-// With `scans`, a progressive file written with that scan script (libjpeg's own rules apply).
+// With `scans`, a progressive file written with that scan script (libjpeg's own rules apply);
+// with `app1`, an APP1 segment of those bytes.
 std::string encode_jpeg(int width, int height, int components, J_COLOR_SPACE space, const std::vector<unsigned char>& bytes,
-                        const std::vector<jpeg_scan_info>* scans = nullptr) {
+                        const std::vector<jpeg_scan_info>* scans = nullptr, const std::string& app1 = "") {
   jpeg_compress_struct c;
   jpeg_error_mgr err;
   c.err = jpeg_std_error(&err);
@@ -76,6 +84,9 @@ std::string encode_jpeg(int width, int height, int components, J_COLOR_SPACE spa
     c.num_scans = static_cast<int>(scans->size());
   }
   jpeg_start_compress(&c, TRUE);
+  if (!app1.empty()) {
+    jpeg_write_marker(&c, JPEG_APP0 + 1, reinterpret_cast<const JOCTET*>(app1.data()), static_cast<unsigned>(app1.size()));
+  }
   while (c.next_scanline < c.image_height) {
     JSAMPROW row = const_cast<unsigned char*>(bytes.data()) + c.next_scanline * static_cast<std::size_t>(width) * components;
     jpeg_write_scanlines(&c, &row, 1);
@@ -157,6 +168,112 @@ TEST(PhotoScene, JpegDecodesWithinItsQuantisation) {
   for (int i = 0; i < 256; ++i) red.insert(red.end(), {255, 0, 0});
   const Image r = decode_jpeg(encode_jpeg(16, 16, 3, JCS_RGB, red), "red.jpg");
   for (double v : r.pixels) EXPECT_NEAR(v, 0.2126, 0.01);  // YCbCr rounding of a saturated colour
+}
+
+// A TIFF structure as EXIF holds it, IFD0 of one entry: Orientation (0x0112), SHORT, count 1,
+// `value`; in Motorola (big-endian) or Intel byte order. Written byte by byte from TIFF 6.0.
+std::string exif_tiff(int value, bool big_endian) {
+  const auto v = static_cast<char>(value);
+  if (big_endian) {
+    return std::string("MM\0\x2A\0\0\0\x08" "\0\x01" "\x01\x12\0\x03\0\0\0\x01\0", 19) + v +
+           std::string("\0\0" "\0\0\0\0", 6);
+  }
+  return std::string("II\x2A\0\x08\0\0\0" "\x01\0" "\x12\x01\x03\0\x01\0\0\0", 18) + v +
+         std::string("\0\0\0" "\0\0\0\0", 7);
+}
+
+// Six 8x8 blocks, 3 across and 2 down, each of one grey code: A B C over D E F.
+constexpr unsigned char kBlockCodes[6] = {20, 60, 100, 140, 180, 220};
+std::vector<unsigned char> six_blocks() {
+  std::vector<unsigned char> bytes(24 * 16);
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 24; ++x) bytes[static_cast<std::size_t>(y) * 24 + x] = kBlockCodes[(y / 8) * 3 + x / 8];
+  }
+  return bytes;
+}
+
+// The blocks (indices into kBlockCodes) as a viewer shows them, row by row, for each EXIF
+// orientation, from the tag's definition (EXIF 2.3, 4.6.4 A: where the stored 0th row and 0th
+// column are shown): 1 as stored, 2 mirrored, 3 turned half round, 4 flipped, 5 transposed,
+// 6 turned a quarter clockwise, 7 transversed, 8 a quarter anticlockwise.
+const std::vector<std::vector<int>> kShownBlocks[9] = {
+    {},
+    {{0, 1, 2}, {3, 4, 5}},
+    {{2, 1, 0}, {5, 4, 3}},
+    {{5, 4, 3}, {2, 1, 0}},
+    {{3, 4, 5}, {0, 1, 2}},
+    {{0, 3}, {1, 4}, {2, 5}},
+    {{3, 0}, {4, 1}, {5, 2}},
+    {{5, 2}, {4, 1}, {3, 0}},
+    {{2, 5}, {1, 4}, {0, 3}},
+};
+
+void expect_shown_as(const Image& img, int orientation, double tolerance) {
+  const std::vector<std::vector<int>>& rows = kShownBlocks[orientation];
+  ASSERT_EQ(img.height, 8 * static_cast<int>(rows.size())) << orientation;
+  ASSERT_EQ(img.width, 8 * static_cast<int>(rows[0].size())) << orientation;
+  for (std::size_t by = 0; by < rows.size(); ++by) {
+    for (std::size_t bx = 0; bx < rows[by].size(); ++bx) {
+      const double code = kBlockCodes[rows[by][bx]] / 255.0;
+      const double linear = std::pow((code + 0.055) / 1.055, 2.4);
+      for (int y = 0; y < 8; ++y) {
+        for (int x = 0; x < 8; ++x) {
+          ASSERT_NEAR(img.at(static_cast<int>(bx) * 8 + x, static_cast<int>(by) * 8 + y), linear, tolerance)
+              << "orientation " << orientation << " block " << bx << "," << by;
+        }
+      }
+    }
+  }
+}
+
+TEST(PhotoScene, ExifOrientationTurnsTheSceneAsAViewerShowsIt) {
+  for (int orientation = 1; orientation <= 8; ++orientation) {
+    for (const bool big : {true, false}) {
+      const std::string tiff = exif_tiff(orientation, big);
+      EXPECT_EQ(exif_orientation(reinterpret_cast<const unsigned char*>(tiff.data()), tiff.size()), orientation);
+      PngSpec png;
+      png.width = 24;
+      png.height = 16;
+      png.bytes = six_blocks();
+      png.exif = tiff;
+      expect_shown_as(decode_png(encode_png(png), "turned.png"), orientation, 1e-12);
+      // Flat 8x8 blocks at quality 100: within a code of what was written.
+      const std::string jpeg = encode_jpeg(24, 16, 1, JCS_GRAYSCALE, six_blocks(), nullptr, "Exif" + std::string(2, '\0') + tiff);
+      expect_shown_as(decode_jpeg(jpeg, "turned.jpg"), orientation, 0.005);
+    }
+  }
+}
+
+TEST(PhotoScene, ABrokenExifLeavesTheImageAsStored) {
+  const std::string good = exif_tiff(6, true);
+  std::vector<std::string> broken;
+  // Cut anywhere before the entry's end (header 8 bytes, count 2, entry 12; the next IFD's
+  // offset after it is not needed to read the tag).
+  for (std::size_t n = 0; n < 22; ++n) broken.push_back(good.substr(0, n));
+  std::string s = good;
+  s[0] = 'X';  // no byte order
+  broken.push_back(s);
+  s = good;
+  s[3] = 43;  // not 42
+  broken.push_back(s);
+  s = good;
+  s[7] = 0x7F;  // IFD0 past the end
+  broken.push_back(s);
+  s = good;
+  s[8] = s[9] = '\xFF';  // 65535 entries in 26 bytes, the one there another tag
+  s[11] = 0x13;
+  broken.push_back(s);
+  s = good;
+  s[13] = 4;  // LONG, not SHORT
+  broken.push_back(s);
+  s = good;
+  s[19] = 9;  // no such orientation
+  broken.push_back(s);
+  for (const std::string& tiff : broken) {
+    EXPECT_EQ(exif_orientation(reinterpret_cast<const unsigned char*>(tiff.data()), tiff.size()), 1) << tiff.size();
+    const std::string jpeg = encode_jpeg(24, 16, 1, JCS_GRAYSCALE, six_blocks(), nullptr, "Exif" + std::string(2, '\0') + tiff);
+    expect_shown_as(decode_jpeg(jpeg, "broken.jpg"), 1, 0.005);
+  }
 }
 
 void expect_refused(const std::function<void()>& decode, const std::string& words) {

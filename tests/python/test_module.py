@@ -182,3 +182,26 @@ def test_ctrl_c_interrupts_a_long_run():
     # Python's own handler is back, and the next call runs.
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
     assert len(aesim.run(duration="50ms").events) > 0
+
+
+def test_a_camera_files_exif_orientation_turns_the_scene_as_pillow_shows_it(tmp_path):
+    # Six 16x16 blocks of distinct greys, 3 across and 2 down, stored with each EXIF orientation by
+    # Pillow; Pillow's exif_transpose is the picture a viewer shows. aesim's events, block by block,
+    # must rank as that picture's blocks do (a pixel fires at a rate proportional to its light).
+    from PIL import Image, ImageOps
+    codes = np.array([[30, 70, 110], [150, 190, 230]], np.uint8)
+    stored = np.kron(codes, np.ones((16, 16), np.uint8))
+    for orientation in range(1, 9):
+        path = tmp_path / f"turned{orientation}.png"
+        exif = Image.Exif()
+        exif[0x0112] = orientation
+        Image.fromarray(stored, "L").save(path, exif=exif.tobytes())
+        shown = np.asarray(ImageOps.exif_transpose(Image.open(path)))
+        rows, cols = shown.shape
+        r = aesim.run(scene=str(path), duration="200ms",
+                      set={"array.rows": str(rows), "array.cols": str(cols), "pixel.mismatch": "0"})
+        counts = np.zeros((rows, cols))
+        np.add.at(counts, (r.events["y"], r.events["x"]), 1)
+        block_counts = counts.reshape(rows // 16, 16, cols // 16, 16).sum(axis=(1, 3))
+        block_codes = shown.reshape(rows // 16, 16, cols // 16, 16)[:, 0, :, 0]
+        assert np.array_equal(np.argsort(block_counts, axis=None), np.argsort(block_codes, axis=None)), orientation

@@ -12,6 +12,7 @@
 #include <png.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/scene/exif_orientation.hpp"
 #include "aesim/scene/scene_file.hpp"
 
 namespace aesim {
@@ -116,7 +117,7 @@ Image decode_png(const std::string& data, const std::string& path) {
     throw std::bad_alloc();
   }
   // Set between setjmp and a possible longjmp: volatile, so they hold what was stored.
-  volatile int channels = 0, depth = 0;
+  volatile int channels = 0, depth = 0, orientation = 1;
   volatile double exponent = 0;  // 0: sRGB
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, nullptr);
@@ -143,7 +144,11 @@ Image decode_png(const std::string& data, const std::string& path) {
     rows.resize(height);
     for (png_uint_32 y = 0; y < height; ++y) rows[y] = bytes.data() + y * row_bytes;
     png_read_image(png, rows.data());
-    png_read_end(png, nullptr);
+    // With the info: an eXIf chunk may come after the image data.
+    png_read_end(png, info);
+    png_uint_32 exif_size = 0;
+    png_bytep exif = nullptr;
+    if (png_get_eXIf_1(png, info, &exif_size, &exif) != 0) orientation = exif_orientation(exif, exif_size);
   }
   png_destroy_read_struct(&png, &info, nullptr);
   check_scene_size(width, height, path);
@@ -159,6 +164,7 @@ Image decode_png(const std::string& data, const std::string& path) {
   } else {
     to_luminance(bytes, channels, decoding_table(255, exponent), img);
   }
+  apply_exif_orientation(img, orientation);
   return img;
 }
 
@@ -171,7 +177,7 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   errors.mgr.trace_level = 1;
   std::vector<unsigned char> bytes;
   Image img;
-  int channels = 0;
+  int channels = 0, orientation = 1;
   bool too_large = false;
   unsigned long width = 0, height = 0;
   if (setjmp(errors.jump)) {
@@ -180,7 +186,15 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   }
   jpeg_create_decompress(&cinfo);
   jpeg_mem_src(&cinfo, reinterpret_cast<const unsigned char*>(data.data()), static_cast<unsigned long>(data.size()));
+  jpeg_save_markers(&cinfo, JPEG_APP0 + 1, 0xFFFF);
   jpeg_read_header(&cinfo, TRUE);
+  // A camera's EXIF (APP1, "Exif\0\0" then the TIFF structure) says how its pixels are turned.
+  for (jpeg_saved_marker_ptr m = cinfo.marker_list; m != nullptr; m = m->next) {
+    if (m->marker == JPEG_APP0 + 1 && m->data_length > 6 && std::memcmp(m->data, "Exif\0\0", 6) == 0) {
+      orientation = exif_orientation(m->data + 6, m->data_length - 6);
+      break;
+    }
+  }
   width = cinfo.image_width;
   height = cinfo.image_height;
   too_large = !scene_size_allowed(width, height);
@@ -203,6 +217,7 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   img.width = static_cast<int>(width);
   img.height = static_cast<int>(height);
   to_luminance(bytes, channels, decoding_table(255, 0), img);
+  apply_exif_orientation(img, orientation);
   return img;
 }
 

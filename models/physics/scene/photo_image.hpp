@@ -14,6 +14,9 @@ namespace aesim {
 //    any other exponent g decodes as code^(1/g).
 //  - JPEG: grey or colour (YCbCr, as libjpeg returns it in RGB), 8 bit, decoded with the sRGB
 //    curve; CMYK is refused.
+// Both are turned as their EXIF Orientation says (a JPEG's APP1 Exif segment, a PNG's eXIf chunk;
+// exif_orientation.hpp), so that the scene is the picture a viewer shows: a camera held upright
+// stores its pixels on their side and says so there.
 // Throws InputError naming the file and the decoder's reason.
 Image decode_png(const std::string& data, const std::string& path);
 Image decode_jpeg(const std::string& data, const std::string& path);
