@@ -1,4 +1,4 @@
-// The paper's emulator and recogniser: behaviours on synthetic inputs, chaos statistics, Y4M,
+// The paper's emulator and recogniser: behaviours on synthetic inputs, chaos statistics,
 // and the rank-weighted templates.
 #include <algorithm>
 #include <cmath>
@@ -12,9 +12,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/emulator/behaviours.hpp"
 #include "aesim/emulator/emulator.hpp"
-#include "aesim/emulator/y4m.hpp"
 #include "support/scenes.hpp"
-#include "support/temp_dir_test.hpp"
 
 namespace aesim {
 namespace {
@@ -145,42 +143,6 @@ TEST(Emulator, ChaosProbabilitiesHoldStatistically) {
   EXPECT_NEAR(grown / n, 0.2, 4 * std::sqrt(0.2 * 0.8 / n));
   s.seed = 2;
   EXPECT_NE(emulate({bright}, s).size(), n + grown);  // another seed, other draws
-}
-
-class Y4mTest : public testing::TempDirTest {};
-
-TEST_F(Y4mTest, LumaOfEveryFrameAndTheFrameRate) {
-  std::string v = "YUV4MPEG2 W4 H2 F30000:1001 Ip A1:1 C420jpeg\n";
-  for (int f = 0; f < 3; ++f) {
-    v += "FRAME\n";
-    for (int i = 0; i < 8; ++i) v += static_cast<char>(f * 100 + i);
-    v += std::string(2 * 2 * 1, '\x80');  // U and V, 2x1 each
-  }
-  const Y4mVideo video = read_y4m(write("v.y4m", v));
-  ASSERT_EQ(video.frames.size(), 3u);
-  EXPECT_NEAR(video.frame_rate, 29.97, 0.01);
-  EXPECT_EQ(video.frames[2].width, 4);
-  EXPECT_DOUBLE_EQ(video.frames[2].at(3, 1), 207 / 255.0);
-}
-
-TEST_F(Y4mTest, MalformedVideosAreInputErrors) {
-  const std::pair<std::string, std::string> cases[] = {
-      {"not a YUV4MPEG2", "P5\n1 1\n255\n\x01"},
-      {"bad frame size", "YUV4MPEG2 W0 H2\nFRAME\n"},
-      {"truncated", "YUV4MPEG2 W4 H2 Cmono\nFRAME\nabc"},
-      {"missing FRAME", "YUV4MPEG2 W1 H1 Cmono\nFRAMX\nz"},
-      {"unsupported colour space", "YUV4MPEG2 W1 H1 C420p10\nFRAME\n"},
-      {"malformed header", "YUV4MPEG2 Wx H1\n"},
-      {"no frames", "YUV4MPEG2 W1 H1 Cmono\n"},
-  };
-  for (const auto& [needle, bytes] : cases) {
-    try {
-      read_y4m(write("bad.y4m", bytes));
-      FAIL() << needle;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-  }
 }
 
 Template make_template(const char* name, std::vector<std::uint8_t> white, double rank) {

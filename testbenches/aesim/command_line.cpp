@@ -21,7 +21,7 @@ void add_run(CLI::App& app, int& status) {
              "with all outputs under out/");
   cmd->add_option("--sensor", opt->sensor, "Sensor preset name (models/sensors/NAME.toml) or a .toml file")
       ->capture_default_str();
-  cmd->add_option("--scene", opt->scene, "Scene: a " + scene_image_formats() + " image, or a folder of numbered frames");
+  cmd->add_option("--scene", opt->scene, "Scene: a " + scene_image_formats() + " image, a .y4m video, or a folder of numbered frames");
   cmd->add_option("--duration", opt->duration, "Simulated time, e.g. 2s or 500ms (same as --set sim.duration=)");
   cmd->add_option("--set", opt->sets, "Override a parameter: section.key=value with SI units, e.g. pixel.c_int=50fF")
       ->allow_extra_args(false);

@@ -13,7 +13,7 @@
 #include "aesim/limits/limits.hpp"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/emulator/emulator.hpp"
-#include "aesim/emulator/y4m.hpp"
+#include "aesim/scene/y4m_video.hpp"
 #include "aesim/event_files/aedat.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_writer.hpp"

@@ -14,7 +14,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/scene/scene.hpp"
-#include "aesim/emulator/y4m.hpp"
+#include "aesim/scene/y4m_video.hpp"
 #include "aesim/event_files/dsec_h5.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/scene/netpbm.hpp"
@@ -59,7 +59,13 @@ int exr(const std::uint8_t* data, std::size_t size) {
 }
 
 int y4m(const std::uint8_t* data, std::size_t size) {
-  return expect_result_or_input_error([&] { decode_y4m(bytes(data, size), "fuzz.y4m"); });
+  // As the emulator reads it (codes), and as a scene (light).
+  expect_result_or_input_error([&] { decode_y4m(bytes(data, size), "fuzz.y4m"); });
+  return expect_result_or_input_error([&] {
+    const std::string video = bytes(data, size);
+    const Y4mLayout layout = parse_y4m(video, "fuzz.y4m");
+    for (std::size_t k = 0; k < layout.luma.size(); ++k) y4m_light(video, layout, k);
+  });
 }
 
 int aedat(const std::uint8_t* data, std::size_t size) {

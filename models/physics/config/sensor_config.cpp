@@ -208,7 +208,7 @@ const std::map<std::string, KeySpec>& registry() {
     integer("analysis.min_events", [](auto& c) -> auto& { return c.analysis.min_events; },
             "a pixel counts as covered when it fires at least this often within the window");
     real("scene.frame_rate", "Hz", [](auto& c) -> auto& { return c.scene.frame_rate; },
-         "frames per second of a frame folder or video");
+         "frames per second of a frame folder (its scene.toml may set it) or a Y4M video (its header sets it); --set wins");
     boolean("scene.loop", [](auto& c) -> auto& { return c.scene.loop; },
             "after the last frame, repeat the sequence (or hold the last frame)");
     return t;

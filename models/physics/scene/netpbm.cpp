@@ -226,7 +226,7 @@ Image read_image(const std::string& path) {
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
   if (ext == ".exr") return decode_exr(read_scene_file(path), path);
-  throw InputError(fmt::format("scene file '{}': unsupported format (use {})", path, scene_image_formats()));
+  throw InputError(fmt::format("scene file '{}': unsupported format (use {}, or a .y4m video)", path, scene_image_formats()));
 }
 
 }  // namespace aesim

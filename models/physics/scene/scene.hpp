@@ -10,12 +10,15 @@
 
 namespace aesim {
 
-// Where a scene comes from: one image file, or a folder of numbered frames with an optional
-// scene.toml (frame_rate, loop) that sets the scene.* keys before the command line does.
+// Where a scene comes from: one image file, a folder of numbered frames with an optional
+// scene.toml (frame_rate, loop) that sets the scene.* keys before the command line does, or a Y4M
+// video (a .y4m file: its frames, at the frame rate its header gives scene.frame_rate).
 struct SceneFiles {
   std::string source;
-  std::vector<std::string> frames;  // in frame order
+  std::vector<std::string> frames;  // in frame order; a video's one file
   std::string settings;             // scene.toml, or empty
+  bool video = false;
+  double video_frame_rate = 0;  // Hz, from a video's header
 };
 
 SceneFiles find_scene(const std::string& file_or_dir);
