@@ -440,6 +440,7 @@ TEST_F(EventFormats, BadOutputsAreRefusedBeforeTheRunAndLeaveNothing) {
                {"--out e.npy --aedat-layout dvs128", "AEDAT 2.0"},
                {"--out e.aedat4 --aedat4-compression zip", "--aedat4-compression"},
                {"--out e.csv", "--csv"},
+               {"--out e.raw", "Prophesee RAW is read, not written"},
                {"--out e.h5 --set sim.duration=5000s", "4294 s"}};
   for (const auto& c : cases) {
     const testing::Outcome o = aesim("run --scene " + std::string(AESIM_SOURCE_DIR) + "/scenes/uniform.pgm " + c.args);

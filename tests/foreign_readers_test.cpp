@@ -364,6 +364,127 @@ TEST(ForeignReaders, PropheseeDatGivesItsCdEventsWithWrappedStampsAndItsSize) {
   refused("% no end", "header does not end");
 }
 
+// Prophesee RAW: '%' header lines naming the encoding, then the camera's words, little-endian,
+// laid out here bit by bit from Prophesee's format pages (EVT 2.0, 2.1, 3.0) and OpenEB's decoders.
+struct RawWords {
+  std::string bytes;
+  template <typename T>
+  void put(T v) {
+    for (std::size_t b = 0; b < sizeof(T); ++b) bytes += static_cast<char>((static_cast<std::uint64_t>(v) >> (8 * b)) & 0xFF);
+  }
+};
+
+struct Cd {
+  std::int64_t t_us;
+  std::uint32_t x, y;
+  bool on;
+};
+
+void expect_events(const EventRecording& rec, const std::vector<Cd>& expected) {
+  ASSERT_EQ(rec.events.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_DOUBLE_EQ(rec.events[i].t, static_cast<double>(expected[i].t_us) * 1e-6);
+    EXPECT_EQ(rec.events[i].x, expected[i].x);
+    EXPECT_EQ(rec.events[i].y, expected[i].y);
+    EXPECT_EQ(rec.events[i].flags, expected[i].on ? kNormalEvent : kOffEvent);
+  }
+}
+
+bool noted(const EventRecording& rec, const std::string& words) {
+  return std::any_of(rec.skipped.begin(), rec.skipped.end(), [&](const std::string& s) { return s.find(words) != std::string::npos; });
+}
+
+TEST(ForeignReaders, PropheseeRawEvt3DecodesRowsVectorsAndTheWrappingTime) {
+  RawWords w;
+  const auto word = [&](unsigned type, unsigned v) { w.put<std::uint16_t>(static_cast<std::uint16_t>((type << 12) | v)); };
+  word(0x2, 5);                  // EVT_ADDR_X before any time: no time, left out
+  word(0x8, 0x005);              // EVT_TIME_HIGH
+  word(0x6, 0x010);              // EVT_TIME_LOW: t = 5 * 4096 + 16
+  word(0x0, 3);                  // EVT_ADDR_Y: row 3
+  word(0x2, (1u << 11) | 7);     // EVT_ADDR_X: (7, 3) ON
+  word(0x3, 16);                 // VECT_BASE_X: column 16, OFF
+  word(0x4, 0b100000000101);     // VECT_12: columns 16, 18, 27; the base moves to 28
+  word(0x5, 0x81);               // VECT_8: columns 28, 35; the base moves to 36
+  word(0xA, 0x001);              // EXT_TRIGGER: counted, left out
+  word(0xE, 0x014);              // OTHERS (an ERC count) and its CONTINUED words
+  word(0xF, 0x123);
+  word(0x8, 0xFFF);              // the high part at the top of its range ...
+  word(0x8, 0x001);              // ... falls: the 24-bit time wrapped
+  word(0x6, 0x002);              // t = 2^24 + 4096 + 2
+  word(0x2, 39);                 // (39, 3) OFF
+  word(0x0, 9);                  // row 9, past the header's 8 rows
+  word(0x2, 1);                  // left out
+  const std::string header = "% camera_integrator_name Prophesee\n% evt 3.0\n% format EVT3;height=8;width=40\n"
+                             "% geometry 40x8\n% end\n";
+  const EventRecording rec = decode_events(header + w.bytes + "\x01", "evt3.raw", EventFileFormat::PropheseeRaw);
+  const std::int64_t t0 = 5 * 4096 + 16, t1 = (std::int64_t(1) << 24) + 4096 + 2;
+  expect_events(rec, {{t0, 7, 3, true}, {t0, 16, 3, false}, {t0, 18, 3, false}, {t0, 27, 3, false},
+                      {t0, 28, 3, false}, {t0, 35, 3, false}, {t1, 39, 3, false}});
+  EXPECT_EQ(rec.width, 40);
+  EXPECT_EQ(rec.height, 8);
+  EXPECT_TRUE(rec.size_recorded);
+  EXPECT_TRUE(noted(rec, "1 event before the first time-high word")) << rec.skipped.size();
+  EXPECT_TRUE(noted(rec, "1 event outside the header's 40x8 array"));
+  EXPECT_TRUE(noted(rec, "1 external trigger event"));
+  EXPECT_TRUE(noted(rec, "2 other words"));
+  EXPECT_TRUE(noted(rec, "1 byte at the end, a word cut short"));
+}
+
+TEST(ForeignReaders, PropheseeRawEvt2AndEvt21DecodeTheirWordsAndTimeHigh) {
+  // EVT 2.0 (a file of before Metavision 4: "% evt 2.0", no "% end", no size).
+  RawWords e2;
+  const auto cd2 = [&](unsigned type, unsigned ts, unsigned x, unsigned y) {
+    e2.put<std::uint32_t>((type << 28) | (ts << 22) | (x << 11) | y);
+  };
+  cd2(1, 0, 1, 1);                                        // before any time: left out
+  e2.put<std::uint32_t>((0x8u << 28) | 3);                // EVT_TIME_HIGH: 3 * 64 us
+  cd2(1, 5, 10, 2);                                       // CD_ON at 192 + 5
+  cd2(0, 63, 0, 7);                                       // CD_OFF at 192 + 63
+  e2.put<std::uint32_t>(0xAu << 28);                      // EXT_TRIGGER
+  e2.put<std::uint32_t>((0x8u << 28) | 0x0FFFFFFFu);      // the top of the high part's range
+  e2.put<std::uint32_t>((0x8u << 28) | 1);                // falls: wrapped, 2^34 us on
+  cd2(1, 0, 2047, 2047);                                  // at 2^34 + 64
+  const EventRecording r2 = decode_events("% Date 2020-09-14\n% evt 2.0\n" + e2.bytes, "evt2.raw", EventFileFormat::PropheseeRaw);
+  const std::int64_t wrapped = (std::int64_t(1) << 34) + 64;
+  expect_events(r2, {{197, 10, 2, true}, {255, 0, 7, false}, {wrapped, 2047, 2047, true}});
+  EXPECT_FALSE(r2.size_recorded);  // no size in the header: the events' span
+  EXPECT_TRUE(noted(r2, "1 external trigger event"));
+
+  // EVT 2.1: a row, a base column and a mask of 32 pixels; the IMX636's legacy layout swaps the
+  // two 32-bit halves of each word.
+  for (const bool legacy : {false, true}) {
+    RawWords e21;
+    const auto put64 = [&](std::uint64_t v) { e21.put<std::uint64_t>(legacy ? (v << 32) | (v >> 32) : v); };
+    put64((std::uint64_t(0x8) << 60) | (std::uint64_t(2) << 32));  // EVT_TIME_HIGH: 2 * 64 us
+    put64((std::uint64_t(0x1) << 60) | (std::uint64_t(1) << 54) | (std::uint64_t(32) << 43) | (std::uint64_t(5) << 32) |
+          0x80000001u);                                                // EVT_POS at 129: columns 32 and 63 of row 5
+    put64((std::uint64_t(0x0) << 60) | (std::uint64_t(9) << 54) | (std::uint64_t(0) << 43) | (std::uint64_t(6) << 32) |
+          0x4u);                                                       // EVT_NEG at 137: column 2 of row 6
+    const std::string header = std::string("% format EVT21;height=8;width=64") + (legacy ? ";endianness=legacy" : "") + "\n% end\n";
+    const EventRecording r21 = decode_events(header + e21.bytes, "evt21.raw", EventFileFormat::PropheseeRaw);
+    SCOPED_TRACE(legacy);
+    expect_events(r21, {{129, 32, 5, true}, {129, 63, 5, true}, {137, 2, 6, false}});
+    EXPECT_EQ(r21.width, 64);
+  }
+}
+
+TEST(ForeignReaders, PropheseeRawHeadersThatNameNoReadableEncodingAreOneLineErrors) {
+  const auto refused = [](const std::string& data, const std::string& words) {
+    try {
+      decode_events(data, "bad.raw", EventFileFormat::PropheseeRaw);
+      ADD_FAILURE() << "accepted: " << words;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+  };
+  refused("% format HISTO3D;height=320;width=320\n% end\n", "HISTO3D");
+  refused("% evt 4.0\n% end\n", "evt 4.0");
+  refused("% Date 2024-01-01\n% end\n\x01\x02", "names no encoding");
+  refused("% evt 3.0", "header does not end");
+}
+
 class EmptyRuns : public testing::TempDirTest {};
 
 // A run that delivers no event still writes a file each reader opens: DV's AEDAT 4.0 readers

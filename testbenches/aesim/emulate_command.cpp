@@ -106,7 +106,10 @@ int emulate_command(EmulateOptions opt) {
     opt.out = "out/emulated.aedat";
   }
   if (!opt.out.empty()) {
-    if (!event_format_of(opt.out, "--out").open) throw InputError(fmt::format("--out '{}': emulate writes no CSV; use --queue", opt.out));
+    if (event_format_of(opt.out, "--out").format == EventFileFormat::Csv) {
+      throw InputError(fmt::format("--out '{}': emulate writes no CSV; use --queue", opt.out));
+    }
+    writable_event_format(opt.out, "--out");
   }
   parse_aedat4_compression(opt.aedat4_compression);
   check_output_paths({{"--queue", opt.queue}, {"--out", opt.out}, {"--recon", opt.recon}}, inputs);

@@ -68,6 +68,10 @@ int y4m(const std::uint8_t* data, std::size_t size) {
   });
 }
 
+int prophesee_raw(const std::uint8_t* data, std::size_t size) {
+  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.raw", EventFileFormat::PropheseeRaw); });
+}
+
 int aedat(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat", EventFileFormat::Aedat2); });
 }

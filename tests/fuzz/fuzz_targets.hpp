@@ -11,11 +11,12 @@ namespace aesim::fuzz {
 int netpbm(const std::uint8_t* data, std::size_t size);        // PGM and PFM scenes
 int photo(const std::uint8_t* data, std::size_t size);         // PNG and JPEG scenes
 int exr(const std::uint8_t* data, std::size_t size);           // OpenEXR scenes
-int y4m(const std::uint8_t* data, std::size_t size);           // Y4M video for aesim emulate
+int y4m(const std::uint8_t* data, std::size_t size);           // Y4M video (aesim emulate, and scenes)
 int aedat(const std::uint8_t* data, std::size_t size);         // AEDAT 2.0 event files
 int events_csv(const std::uint8_t* data, std::size_t size);    // event CSV files
 int aedat4(const std::uint8_t* data, std::size_t size);        // AEDAT 4.0 event files (FlatBuffers, LZ4)
 int npy(const std::uint8_t* data, std::size_t size);           // NumPy .npy event files
+int prophesee_raw(const std::uint8_t* data, std::size_t size); // Prophesee RAW recordings (EVT 2.0, 2.1, 3.0)
 int h5(const std::uint8_t* data, std::size_t size);            // DSEC HDF5 event files (through libhdf5)
 int set_values(const std::uint8_t* data, std::size_t size);    // --set key=value lines with units
 int sensor_toml(const std::uint8_t* data, std::size_t size);   // sensor presets and scene.toml
@@ -33,6 +34,7 @@ inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
                                       {"sweep_spec", sweep_spec}, {"receiver_toml", receiver_toml},
                                       {"pixel_deck", pixel_deck}, {"photo", photo},
                                       {"aedat4", aedat4},         {"npy", npy},
-                                      {"exr", exr},               {"h5", h5}};
+                                      {"exr", exr},               {"h5", h5},
+                                      {"prophesee_raw", prophesee_raw}};
 
 }  // namespace aesim::fuzz

@@ -72,6 +72,7 @@ struct PolarityRecording {
   std::map<std::string, std::string> sensor;
   std::vector<SkippedPackets> skipped;  // other streams' packets, by stream
   std::uint64_t invalid = 0;            // events their producer marked invalid (AEDAT 3.1), left out
+  std::vector<std::string> notes;       // anything else left out, in words ("3 external trigger events")
 };
 
 // Reads the events stream (the first of type EVTS) of an AEDAT 4.0 file, up to its data table

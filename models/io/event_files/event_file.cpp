@@ -21,6 +21,7 @@
 #include "aesim/event_files/events_csv.hpp"
 #include "aesim/event_files/npy_events.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
+#include "aesim/event_files/prophesee_raw.hpp"
 #include "aesim/files/input_file.hpp"
 
 namespace aesim {
@@ -211,6 +212,7 @@ EventRecording from_polarity(const PolarityRecording& in, const std::string& pat
     rec.skipped.push_back(fmt::format("{} packets of {} ({} bytes)", s.packets, s.type, s.bytes));
   }
   if (in.invalid > 0) rec.skipped.push_back(fmt::format("{} events their recorder marked invalid", in.invalid));
+  rec.skipped.insert(rec.skipped.end(), in.notes.begin(), in.notes.end());
   if (in.width > 0 && in.height > 0) {
     if (rec.width > in.width || rec.height > in.height) {
       throw InputError(fmt::format("event file '{}': events reach ({}, {}), outside its {}x{} array", path,
@@ -260,6 +262,10 @@ EventRecording decode_aedat_recording(const std::string& data, const std::string
 
 EventRecording decode_aedat4_recording(const std::string& data, const std::string& label) {
   return from_polarity(decode_aedat4(data, label), label);
+}
+
+EventRecording decode_prophesee_raw_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_prophesee_raw(data, label), label);
 }
 
 EventRecording decode_npy_recording(const std::string& data, const std::string& label) {

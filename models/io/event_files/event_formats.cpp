@@ -80,6 +80,17 @@ std::vector<EventFormatRow> make_rows() {
     rows.push_back(std::move(r));
   }
   {
+    // Read only: a camera's recording.
+    EventFormatRow r{EventFileFormat::PropheseeRaw, "Prophesee RAW", {".raw"}, "Metavision's EVT 2.0, 2.1 and 3.0"};
+    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
+      return decode_prophesee_raw_recording(data, label);
+    };
+    r.read = [](const std::string& path, const std::string&) {
+      return decode_prophesee_raw_recording(read_event_file_bytes(path), path);
+    };
+    rows.push_back(std::move(r));
+  }
+  {
     EventFormatRow r{EventFileFormat::Csv, "CSV", {".csv"}, "t_us,x,y,tile,flags"};
     r.decode = [](const std::string& data, const std::string& label, const std::string&) {
       return decode_csv_recording(data, label);
@@ -124,6 +135,13 @@ const EventFormatRow& event_format_of(const std::string& path, const std::string
   std::vector<std::string> all;
   for (const EventFormatRow& row : event_formats()) all.insert(all.end(), row.extensions.begin(), row.extensions.end());
   throw InputError(fmt::format("{} '{}': unknown event file type (use {})", option, path, listed(all)));
+}
+
+const EventFormatRow& writable_event_format(const std::string& path, const std::string& option) {
+  const EventFormatRow& row = event_format_of(path, option);
+  if (row.open) return row;
+  if (row.format == EventFileFormat::Csv) throw InputError(fmt::format("{} '{}': write events CSV with --csv", option, path));
+  throw InputError(fmt::format("{} '{}': {} is read, not written (write {})", option, path, row.name, event_extensions(true)));
 }
 
 std::string event_extensions(bool writable) {

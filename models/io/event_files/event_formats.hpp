@@ -11,7 +11,7 @@ struct EventFileSpec;
 struct EventRecording;
 
 // The event file formats aesim writes and reads.
-enum class EventFileFormat { Aedat2, Aedat4, Npy, Hdf5, Csv };
+enum class EventFileFormat { Aedat2, Aedat4, Npy, Hdf5, PropheseeRaw, Csv };
 
 // One format, one row: what names it, what writes and reads it, what it cannot hold. Every command,
 // the CLI's help texts and docs/reference.md's format table follow from the rows; adding a format
@@ -41,6 +41,9 @@ const EventFormatRow& event_format(EventFileFormat format);
 // The row of `path`'s extension (no extension: AEDAT 2.0, as --out always wrote); throws InputError
 // naming `option` and listing the extensions.
 const EventFormatRow& event_format_of(const std::string& path, const std::string& option);
+// The row of `path` when --out can write it; InputError otherwise (CSV: use --csv; a format aesim
+// only reads: which ones it writes).
+const EventFormatRow& writable_event_format(const std::string& path, const std::string& option);
 // The extensions as a help text lists them: ".aedat, .aedat4, .npy, .h5 or .csv" (`writable`: only
 // --out's).
 std::string event_extensions(bool writable = false);

@@ -10,8 +10,7 @@ namespace aesim {
 
 std::unique_ptr<EventFileWriter> open_event_writer(OutputFiles& files, const std::string& path,
                                                    const EventFileSpec& spec) {
-  const EventFormatRow& row = event_format_of(path, "--out");
-  if (!row.open) throw InputError(fmt::format("--out '{}': write events CSV with --csv", path));
+  const EventFormatRow& row = writable_event_format(path, "--out");
   return std::make_unique<OnArrayEvents>(row.open(files, path, spec), AddressMap(spec.array));
 }
 

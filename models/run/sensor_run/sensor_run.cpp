@@ -35,8 +35,7 @@ void set_vcd_window(const RunSpec& spec, double duration, SimulationRequest& req
 
 // An event file's format, checked against the run before it starts.
 void check_event_file(const RunSpec& spec, const ResolvedConfig& config, AedatLayout layout) {
-  const EventFormatRow& row = event_format_of(spec.out, "--out");
-  if (!row.open) throw InputError(fmt::format("--out '{}': write events CSV with --csv", spec.out));
+  const EventFormatRow& row = writable_event_format(spec.out, "--out");
   if (row.longest_run > 0 && config.sim.duration > row.longest_run) {
     throw InputError(fmt::format("sim.duration: {}, so an {} --out allows at most {} s", row.stamps, row.name,
                                  row.longest_run));

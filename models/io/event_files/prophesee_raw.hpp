@@ -1,0 +1,30 @@
+#pragma once
+#include <string>
+
+#include "aesim/event_files/aedat4.hpp"
+
+namespace aesim {
+
+// The CD events of a Prophesee RAW file (.raw, what Metavision records from Prophesee cameras and
+// their integrators' boards): ASCII header lines beginning with '%' (to "% end" where the recorder
+// wrote one), then the camera's own event stream, little-endian words of the encoding the header
+// names ("% format EVT3;height=720;width=1280", or "% evt 3.0" in files before Metavision 4):
+//  - EVT 3.0, 16-bit words, Prophesee's docs and OpenEB's decoder: a 24-bit microsecond time
+//    (EVT_TIME_HIGH, EVT_TIME_LOW; a fall of the high part by half its range or more is a wrap,
+//    2^24 us more), a row (EVT_ADDR_Y), then single events (EVT_ADDR_X) or vectors of 12 and 8
+//    pixels from a base column (VECT_BASE_X, VECT_12, VECT_8);
+//  - EVT 2.0, 32-bit words: CD_OFF/CD_ON carrying x, y and the stamp's low 6 bits after
+//    EVT_TIME_HIGH's upper 28 (wraps past 2^34 us unwrapped);
+//  - EVT 2.1, 64-bit words: EVT_NEG/EVT_POS with a row, a base column aligned to 32 and a mask
+//    of 32 pixels, after EVT_TIME_HIGH; in the IMX636's layout when the format says
+//    "endianness=legacy" (the two 32-bit halves swapped).
+// Stamps are the camera's own microseconds, as the file holds them (Metavision's RAW-to-CSV
+// samples read them so; its Camera shifts them by default to start near 0). Events before the
+// first time-high word have no time and are left out, as Metavision does; so are external
+// triggers, ERC counts, IMU samples and other words, counted in `notes`; events past the header's
+// height or width, and a last word cut short, likewise. The size is the header's (format or
+// geometry line) when given. Throws InputError naming `label` for a header that does not end, does
+// not name its encoding, or names another (HISTO3D, DIFF3D, EVT 4.0, ...).
+PolarityRecording decode_prophesee_raw(const std::string& data, const std::string& label);
+
+}  // namespace aesim
