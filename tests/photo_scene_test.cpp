@@ -4,6 +4,8 @@
 // PNG and EXR frame folders; and `aesim run` on a PNG and an EXR.
 #include <cmath>
 #include <csetjmp>
+#include <cstring>
+#include <filesystem>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -12,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <jpeglib.h>
 #include <png.h>
+#include <tiffio.h>
 #include <zlib.h>
 
 #include "aesim/errors/input_error.hpp"
@@ -19,6 +22,7 @@
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/photo_image.hpp"
 #include "aesim/scene/scene.hpp"
+#include "aesim/scene/tiff_image.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {
@@ -286,6 +290,193 @@ void expect_refused(const std::function<void()>& decode, const std::string& word
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
 }
+
+// A TIFF written by libtiff itself: `samples` are the image's bytes in its layout (per pixel, or
+// plane after plane with PLANARCONFIG_SEPARATE), in rows or in tiles of 16x16.
+struct TiffSpec {
+  std::uint32_t width = 2, height = 1;
+  std::uint16_t spp = 1, bps = 8, format = SAMPLEFORMAT_UINT, photometric = PHOTOMETRIC_MINISBLACK;
+  std::uint16_t planar = PLANARCONFIG_CONTIG, orientation = ORIENTATION_TOPLEFT, compression = COMPRESSION_NONE;
+  bool tiled = false;
+  std::vector<unsigned char> samples;
+  std::vector<std::uint16_t> colormap;  // 3 x 256 for a palette
+};
+
+std::string encode_tiff(const TiffSpec& s, const std::filesystem::path& dir) {
+  const std::string path = (dir / "w.tif").string();
+  TIFF* t = TIFFOpen(path.c_str(), "w");
+  TIFFSetField(t, TIFFTAG_IMAGEWIDTH, s.width);
+  TIFFSetField(t, TIFFTAG_IMAGELENGTH, s.height);
+  TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, s.spp);
+  TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, s.bps);
+  TIFFSetField(t, TIFFTAG_SAMPLEFORMAT, s.format);
+  TIFFSetField(t, TIFFTAG_PHOTOMETRIC, s.photometric);
+  TIFFSetField(t, TIFFTAG_PLANARCONFIG, s.planar);
+  TIFFSetField(t, TIFFTAG_ORIENTATION, s.orientation);
+  TIFFSetField(t, TIFFTAG_COMPRESSION, s.compression);
+  if (s.spp == 4) {
+    const std::uint16_t extra = EXTRASAMPLE_UNASSALPHA;
+    TIFFSetField(t, TIFFTAG_EXTRASAMPLES, 1, &extra);
+  }
+  if (!s.colormap.empty()) {
+    TIFFSetField(t, TIFFTAG_COLORMAP, s.colormap.data(), s.colormap.data() + 256, s.colormap.data() + 512);
+  }
+  const std::size_t bytes = s.bps / 8u, planes = s.planar == PLANARCONFIG_SEPARATE ? s.spp : 1;
+  const std::size_t per_pixel = planes > 1 ? 1 : s.spp, pixels = std::size_t(s.width) * s.height;
+  std::vector<unsigned char> buffer = s.samples;
+  if (s.tiled) {
+    TIFFSetField(t, TIFFTAG_TILEWIDTH, 16u);
+    TIFFSetField(t, TIFFTAG_TILELENGTH, 16u);
+    std::vector<unsigned char> tile(16 * 16 * per_pixel * bytes);
+    for (std::size_t p = 0; p < planes; ++p) {
+      for (std::uint32_t y0 = 0; y0 < s.height; y0 += 16) {
+        for (std::uint32_t x0 = 0; x0 < s.width; x0 += 16) {
+          std::fill(tile.begin(), tile.end(), 0);
+          for (std::uint32_t y = y0; y < std::min(y0 + 16, s.height); ++y) {
+            const std::size_t n = std::size_t(std::min(x0 + 16, s.width) - x0) * per_pixel * bytes;
+            const std::size_t from = planes > 1 ? (p * pixels + std::size_t(y) * s.width + x0) * bytes
+                                                : (std::size_t(y) * s.width + x0) * per_pixel * bytes;
+            std::memcpy(&tile[std::size_t(y - y0) * 16 * per_pixel * bytes], &buffer[from], n);
+          }
+          TIFFWriteTile(t, tile.data(), x0, y0, 0, static_cast<std::uint16_t>(p));
+        }
+      }
+    }
+  } else {
+    TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, 3u);
+    for (std::size_t p = 0; p < planes; ++p) {
+      for (std::uint32_t y = 0; y < s.height; ++y) {
+        const std::size_t from = planes > 1 ? (p * pixels + std::size_t(y) * s.width) * bytes : std::size_t(y) * s.width * per_pixel * bytes;
+        TIFFWriteScanline(t, &buffer[from], y, static_cast<std::uint16_t>(p));
+      }
+    }
+  }
+  TIFFClose(t);
+  return testing::slurp(path);
+}
+
+template <typename T>
+std::vector<unsigned char> bytes_of(const std::vector<T>& values) {
+  std::vector<unsigned char> out(values.size() * sizeof(T));
+  std::memcpy(out.data(), values.data(), out.size());
+  return out;
+}
+
+class TiffScenes : public testing::TempDirTest {};
+
+TEST_F(TiffScenes, IntegersAreLinearOverFullScaleFloatsAsTheyAreColourIsRec709Luminance) {
+  TiffSpec grey;
+  grey.samples = {0, 51};
+  Image img = decode_tiff(encode_tiff(grey, dir_), "g.tif");
+  ASSERT_EQ(img.width, 2);
+  EXPECT_DOUBLE_EQ(img.pixels[1], 0.2);  // 51 / 255: linear, as PGM (not the sRGB curve)
+
+  TiffSpec white_is_zero = grey;
+  white_is_zero.photometric = PHOTOMETRIC_MINISWHITE;
+  EXPECT_DOUBLE_EQ(decode_tiff(encode_tiff(white_is_zero, dir_), "w.tif").pixels[1], 0.8);
+
+  TiffSpec deep = grey;
+  deep.bps = 16;
+  deep.samples = bytes_of(std::vector<std::uint16_t>{65535, 13107});
+  EXPECT_DOUBLE_EQ(decode_tiff(encode_tiff(deep, dir_), "d.tif").pixels[1], 0.2);
+
+  TiffSpec wide = grey;
+  wide.bps = 32;
+  wide.samples = bytes_of(std::vector<std::uint32_t>{0, 4294967295u});
+  EXPECT_DOUBLE_EQ(decode_tiff(encode_tiff(wide, dir_), "u32.tif").pixels[1], 1.0);
+
+  TiffSpec hdr = grey;
+  hdr.bps = 32;
+  hdr.format = SAMPLEFORMAT_IEEEFP;
+  hdr.samples = bytes_of(std::vector<float>{0.25f, 20.0f});
+  img = decode_tiff(encode_tiff(hdr, dir_), "f.tif");
+  EXPECT_DOUBLE_EQ(img.pixels[0], 0.25);
+  EXPECT_DOUBLE_EQ(img.pixels[1], 20.0);  // brighter than full scale, as in a PFM
+
+  TiffSpec rgba;
+  rgba.width = 3;
+  rgba.spp = 4;  // alpha carries no light
+  rgba.photometric = PHOTOMETRIC_RGB;
+  rgba.samples = {255, 0, 0, 7, 0, 255, 0, 7, 0, 0, 255, 7};
+  img = decode_tiff(encode_tiff(rgba, dir_), "rgb.tif");
+  EXPECT_NEAR(img.pixels[0], 0.2126, 1e-12);
+  EXPECT_NEAR(img.pixels[1], 0.7152, 1e-12);
+  EXPECT_NEAR(img.pixels[2], 0.0722, 1e-12);
+  TiffSpec planes = rgba;  // the same, each colour a plane of its own
+  planes.planar = PLANARCONFIG_SEPARATE;
+  planes.samples = {255, 0, 0, 0, 255, 0, 0, 0, 255, 7, 7, 7};
+  EXPECT_EQ(decode_tiff(encode_tiff(planes, dir_), "planes.tif").pixels, img.pixels);
+
+  TiffSpec indexed;
+  indexed.photometric = PHOTOMETRIC_PALETTE;
+  indexed.samples = {1, 0};
+  indexed.colormap.assign(768, 0);
+  indexed.colormap[1] = 65535;        // red of entry 1
+  indexed.colormap[512 + 0] = 65535;  // blue of entry 0
+  img = decode_tiff(encode_tiff(indexed, dir_), "palette.tif");
+  EXPECT_NEAR(img.pixels[0], 0.2126, 1e-12);
+  EXPECT_NEAR(img.pixels[1], 0.0722, 1e-12);
+}
+
+TEST_F(TiffScenes, StripsTilesCompressionAndOrientationGiveTheSameImage) {
+  // 40x20 16-bit grey, every pixel its own value, read from strips and from tiles (edge tiles
+  // part empty), plain, LZW and Deflate; then stored turned a quarter clockwise's inverse with
+  // Orientation 6 (shown turned a quarter clockwise), as EXIF's.
+  TiffSpec s;
+  s.width = 40;
+  s.height = 20;
+  s.bps = 16;
+  std::vector<std::uint16_t> values(800);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<std::uint16_t>(i * 80);
+  s.samples = bytes_of(values);
+  for (const bool tiled : {false, true}) {
+    for (const std::uint16_t compression : {COMPRESSION_NONE, COMPRESSION_LZW, COMPRESSION_ADOBE_DEFLATE}) {
+      s.tiled = tiled;
+      s.compression = compression;
+      const Image img = decode_tiff(encode_tiff(s, dir_), "s.tif");
+      ASSERT_EQ(img.width, 40);
+      ASSERT_EQ(img.height, 20);
+      for (int y = 0; y < 20; ++y) {
+        for (int x = 0; x < 40; ++x) ASSERT_DOUBLE_EQ(img.at(x, y), (y * 40 + x) * 80 / 65535.0) << tiled << compression;
+      }
+    }
+  }
+  s.tiled = false;
+  s.compression = COMPRESSION_NONE;
+  s.orientation = ORIENTATION_RIGHTTOP;  // 6
+  const Image turned = decode_tiff(encode_tiff(s, dir_), "turned.tif");
+  ASSERT_EQ(turned.width, 20);
+  ASSERT_EQ(turned.height, 40);
+  // Shown a quarter clockwise: stored (x, y) at (19 - y, x).
+  EXPECT_DOUBLE_EQ(turned.at(19, 0), 0.0);
+  EXPECT_DOUBLE_EQ(turned.at(19 - 3, 7), (3 * 40 + 7) * 80 / 65535.0);
+}
+
+TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {
+  TiffSpec cmyk;
+  cmyk.spp = 4;
+  cmyk.photometric = PHOTOMETRIC_SEPARATED;
+  cmyk.samples.assign(8, 0);
+  expect_refused([&] { decode_tiff(encode_tiff(cmyk, dir_), "cmyk.tif"); }, "CMYK");
+  TiffSpec signed_samples;
+  signed_samples.format = SAMPLEFORMAT_INT;
+  signed_samples.samples = {0, 1};
+  expect_refused([&] { decode_tiff(encode_tiff(signed_samples, dir_), "int.tif"); }, "8-bit signed samples");
+  TiffSpec negative;
+  negative.bps = 32;
+  negative.format = SAMPLEFORMAT_IEEEFP;
+  negative.samples = bytes_of(std::vector<float>{1.0f, -1.0f});
+  expect_refused([&] { decode_tiff(encode_tiff(negative, dir_), "neg.tif"); }, "pixel (1, 0)");
+  TiffSpec good;
+  good.width = 40;
+  good.height = 20;
+  good.samples.assign(800, 9);
+  const std::string file = encode_tiff(good, dir_);
+  expect_refused([&] { decode_tiff(file.substr(0, 100), "cut.tif"); }, "TIFF");
+  expect_refused([&] { decode_tiff("II*\0garbage", "junk.tif"); }, "TIFF");
+  expect_refused([&] { decode_tiff("", "empty.tif"); }, "TIFF");
+}
+
 
 TEST(PhotoScene, MalformedAndOversizedFilesAreOneLineErrors) {
   PngSpec s;

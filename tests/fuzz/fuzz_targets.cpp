@@ -20,6 +20,7 @@
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/exr_image.hpp"
 #include "aesim/scene/photo_image.hpp"
+#include "aesim/scene/tiff_image.hpp"
 #include "deck/pixel_deck.hpp"
 #include "description/receiver_description.hpp"
 #include "plan/verification_plan.hpp"
@@ -51,6 +52,7 @@ int netpbm(const std::uint8_t* data, std::size_t size) {
 int photo(const std::uint8_t* data, std::size_t size) {
   const std::string in = bytes(data, size);
   expect_result_or_input_error([&] { decode_png(in, "fuzz.png"); });
+  expect_result_or_input_error([&] { decode_tiff(in, "fuzz.tif"); });
   return expect_result_or_input_error([&] { decode_jpeg(in, "fuzz.jpg"); });
 }
 

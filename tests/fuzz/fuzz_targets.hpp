@@ -9,7 +9,7 @@
 namespace aesim::fuzz {
 
 int netpbm(const std::uint8_t* data, std::size_t size);        // PGM and PFM scenes
-int photo(const std::uint8_t* data, std::size_t size);         // PNG and JPEG scenes
+int photo(const std::uint8_t* data, std::size_t size);         // PNG, JPEG and TIFF scenes
 int exr(const std::uint8_t* data, std::size_t size);           // OpenEXR scenes
 int y4m(const std::uint8_t* data, std::size_t size);           // Y4M video (aesim emulate, and scenes)
 int aedat(const std::uint8_t* data, std::size_t size);         // AEDAT 2.0 event files

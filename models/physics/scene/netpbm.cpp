@@ -16,6 +16,7 @@
 #include "aesim/limits/limits.hpp"
 #include "aesim/scene/exr_image.hpp"
 #include "aesim/scene/photo_image.hpp"
+#include "aesim/scene/tiff_image.hpp"
 #include "aesim/scene/scene_file.hpp"
 
 namespace aesim {
@@ -225,6 +226,7 @@ Image read_image(const std::string& path) {
   if (ext == ".ppm") return read_ppm(path);
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
+  if (ext == ".tif" || ext == ".tiff") return decode_tiff(read_scene_file(path), path);
   if (ext == ".exr") return decode_exr(read_scene_file(path), path);
   throw InputError(fmt::format("scene file '{}': unsupported format (use {}, or a .y4m video)", path, scene_image_formats()));
 }

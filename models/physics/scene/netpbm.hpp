@@ -22,7 +22,8 @@ Image decode_pfm(const std::string& data, const std::string& path);
 Image read_image(const std::string& path);
 // The extensions read_image reads, in the order messages list them; whether a path has one (in
 // any case); and the list in words (".pgm, .ppm, ... or .exr").
-inline constexpr std::array<const char*, 7> kSceneImageExtensions = {".pgm", ".ppm", ".pfm", ".png", ".jpg", ".jpeg", ".exr"};
+inline constexpr std::array<const char*, 9> kSceneImageExtensions = {".pgm", ".ppm", ".pfm", ".png", ".jpg",
+                                                                     ".jpeg", ".tif", ".tiff", ".exr"};
 bool is_scene_image(const std::string& path);
 std::string scene_image_formats();
 

@@ -1,0 +1,221 @@
+#include "aesim/scene/tiff_image.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include <fmt/format.h>
+#include <tiffio.h>
+
+#include "aesim/errors/input_error.hpp"
+#include "aesim/limits/limits.hpp"
+#include "aesim/scene/exif_orientation.hpp"
+#include "aesim/scene/scene_file.hpp"
+
+namespace aesim {
+namespace {
+
+// The file's bytes as libtiff reads them, and the first error it reported.
+struct TiffSource {
+  const std::string* data;
+  toff_t pos = 0;
+  std::string error;
+};
+
+tsize_t read_proc(thandle_t h, tdata_t buffer, tsize_t size) {
+  auto* src = static_cast<TiffSource*>(h);
+  const toff_t left = src->pos < src->data->size() ? src->data->size() - src->pos : 0;
+  const auto n = static_cast<toff_t>(size) < left ? static_cast<toff_t>(size) : left;
+  std::memcpy(buffer, src->data->data() + src->pos, n);
+  src->pos += n;
+  return static_cast<tsize_t>(n);
+}
+tsize_t write_proc(thandle_t, tdata_t, tsize_t) { return 0; }
+toff_t seek_proc(thandle_t h, toff_t offset, int whence) {
+  auto* src = static_cast<TiffSource*>(h);
+  const toff_t base = whence == SEEK_CUR ? src->pos : whence == SEEK_END ? src->data->size() : 0;
+  src->pos = base + offset;
+  return src->pos;
+}
+int close_proc(thandle_t) { return 0; }
+toff_t size_proc(thandle_t h) { return static_cast<TiffSource*>(h)->data->size(); }
+int map_proc(thandle_t, tdata_t*, toff_t*) { return 0; }
+void unmap_proc(thandle_t, tdata_t, toff_t) {}
+
+int on_error(TIFF*, void* user, const char* module, const char* format, va_list args) {
+  auto* src = static_cast<TiffSource*>(user);
+  if (src->error.empty()) {
+    char text[256];
+    std::vsnprintf(text, sizeof text, format, args);
+    src->error = module ? fmt::format("{}: {}", module, text) : std::string(text);
+  }
+  return 1;
+}
+int on_warning(TIFF*, void*, const char*, const char*, va_list) { return 1; }
+
+struct TiffCloser {
+  void operator()(TIFF* t) const { TIFFClose(t); }
+};
+struct OptionsFree {
+  void operator()(TIFFOpenOptions* o) const { TIFFOpenOptionsFree(o); }
+};
+
+// The image's layout, from its tags.
+struct Layout {
+  std::uint32_t width = 0, height = 0;
+  std::uint16_t spp = 1, bps = 8, format = SAMPLEFORMAT_UINT, photometric = PHOTOMETRIC_MINISBLACK;
+  std::uint16_t planar = PLANARCONFIG_CONTIG, orientation = ORIENTATION_TOPLEFT;
+  int colours = 1;  // samples that carry light: 1 (grey or palette index) or 3 (RGB)
+};
+
+// One sample as a value of full scale.
+double sample_value(const unsigned char* p, const Layout& l) {
+  if (l.format == SAMPLEFORMAT_IEEEFP) {
+    if (l.bps == 32) {
+      float f;
+      std::memcpy(&f, p, sizeof f);
+      return f;
+    }
+    double d;
+    std::memcpy(&d, p, sizeof d);
+    return d;
+  }
+  switch (l.bps) {
+    case 8: return *p / 255.0;
+    case 16: {
+      std::uint16_t v;
+      std::memcpy(&v, p, sizeof v);
+      return v / 65535.0;
+    }
+    default: {
+      std::uint32_t v;
+      std::memcpy(&v, p, sizeof v);
+      return v / 4294967295.0;
+    }
+  }
+}
+
+}  // namespace
+
+Image decode_tiff(const std::string& data, const std::string& path) {
+  const auto fail = [&](const std::string& why) { throw InputError(fmt::format("scene file '{}': TIFF: {}", path, why)); };
+  TiffSource src{&data};
+  std::unique_ptr<TIFFOpenOptions, OptionsFree> options(TIFFOpenOptionsAlloc());
+  if (!options) throw std::bad_alloc();
+  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), on_error, &src);
+  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), on_warning, &src);
+  // No single allocation past what a scene may take: a header claiming a huge strip is refused.
+  TIFFOpenOptionsSetMaxSingleMemAlloc(options.get(), static_cast<tmsize_t>(kMaxInputFileBytes));
+  std::unique_ptr<TIFF, TiffCloser> tif(TIFFClientOpenExt(path.c_str(), "rm", &src, read_proc, write_proc, seek_proc,
+                                                          close_proc, size_proc, map_proc, unmap_proc, options.get()));
+  if (!tif) fail(src.error.empty() ? "not a TIFF file" : src.error);
+  TIFF* t = tif.get();
+  Layout l;
+  TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &l.width);
+  TIFFGetField(t, TIFFTAG_IMAGELENGTH, &l.height);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLESPERPIXEL, &l.spp);
+  TIFFGetFieldDefaulted(t, TIFFTAG_BITSPERSAMPLE, &l.bps);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &l.format);
+  TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &l.planar);
+  TIFFGetFieldDefaulted(t, TIFFTAG_ORIENTATION, &l.orientation);
+  if (!TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &l.photometric)) fail("no PhotometricInterpretation tag");
+  check_scene_size(l.width, l.height, path);
+  const bool grey = l.photometric == PHOTOMETRIC_MINISBLACK || l.photometric == PHOTOMETRIC_MINISWHITE;
+  const bool palette = l.photometric == PHOTOMETRIC_PALETTE;
+  l.colours = l.photometric == PHOTOMETRIC_RGB ? 3 : 1;
+  if (!grey && !palette && l.photometric != PHOTOMETRIC_RGB) {
+    const char* named = l.photometric == PHOTOMETRIC_SEPARATED ? "CMYK"
+                        : l.photometric == PHOTOMETRIC_YCBCR  ? "YCbCr"
+                        : l.photometric == PHOTOMETRIC_CIELAB || l.photometric == PHOTOMETRIC_ICCLAB || l.photometric == PHOTOMETRIC_ITULAB
+                            ? "Lab"
+                            : "another";
+    fail(fmt::format("{} colour (photometric interpretation {}; aesim reads grey, RGB and palette images)", named, l.photometric));
+  }
+  const bool integer = l.format == SAMPLEFORMAT_UINT && (l.bps == 8 || l.bps == 16 || l.bps == 32);
+  const bool floating = l.format == SAMPLEFORMAT_IEEEFP && (l.bps == 32 || l.bps == 64) && !palette;
+  if (!integer && !floating) {
+    fail(fmt::format("{}-bit {} samples (aesim reads unsigned 8, 16 or 32 bits, or 32- or 64-bit floats)", l.bps,
+                     l.format == SAMPLEFORMAT_INT      ? "signed"
+                     : l.format == SAMPLEFORMAT_IEEEFP ? "float"
+                     : l.format == SAMPLEFORMAT_UINT   ? "unsigned"
+                                                       : "complex or unknown"));
+  }
+  if (palette && l.bps != 8) fail(fmt::format("a {}-bit palette (aesim reads 8-bit palettes)", l.bps));
+  if (l.spp < l.colours || l.spp > 8) fail(fmt::format("{} samples a pixel (aesim reads {} to 8)", l.spp, l.colours));
+  if (floating && l.photometric == PHOTOMETRIC_MINISWHITE) fail("float samples with white at zero");
+  std::uint16_t *red = nullptr, *green = nullptr, *blue = nullptr;
+  if (palette && !TIFFGetField(t, TIFFTAG_COLORMAP, &red, &green, &blue)) fail("a palette image without its colour map");
+
+  // Every sample of the image, plane after plane where they are stored apart.
+  const std::size_t bytes = l.bps / 8u, pixels = std::size_t(l.width) * l.height;
+  const std::size_t planes = l.planar == PLANARCONFIG_SEPARATE ? l.spp : 1, per_pixel = l.planar == PLANARCONFIG_SEPARATE ? 1 : l.spp;
+  // At most 4096 x 4096 pixels of 8 samples of 8 bytes: bounded before it is taken.
+  std::vector<unsigned char> samples(pixels * l.spp * bytes);
+  const auto sample_at = [&](std::size_t pixel, std::size_t s) -> const unsigned char* {
+    return planes > 1 ? &samples[(s * pixels + pixel) * bytes] : &samples[(pixel * l.spp + s) * bytes];
+  };
+  if (TIFFIsTiled(t)) {
+    std::uint32_t tw = 0, th = 0;
+    TIFFGetField(t, TIFFTAG_TILEWIDTH, &tw);
+    TIFFGetField(t, TIFFTAG_TILELENGTH, &th);
+    const tmsize_t tile_size = TIFFTileSize(t);
+    if (tw == 0 || th == 0 || tile_size <= 0 || static_cast<std::uint64_t>(tile_size) != std::uint64_t(tw) * th * per_pixel * bytes) {
+      fail(src.error.empty() ? "malformed tiles" : src.error);
+    }
+    std::vector<unsigned char> tile(static_cast<std::size_t>(tile_size));
+    for (std::size_t p = 0; p < planes; ++p) {
+      for (std::uint32_t y0 = 0; y0 < l.height; y0 += th) {
+        for (std::uint32_t x0 = 0; x0 < l.width; x0 += tw) {
+          if (TIFFReadTile(t, tile.data(), x0, y0, 0, static_cast<std::uint16_t>(p)) < 0) fail(src.error.empty() ? "a tile does not read" : src.error);
+          for (std::uint32_t y = y0; y < std::min(y0 + th, l.height); ++y) {
+            const std::size_t n = std::size_t(std::min(x0 + tw, l.width) - x0) * per_pixel * bytes;
+            unsigned char* to = planes > 1 ? &samples[(p * pixels + std::size_t(y) * l.width + x0) * bytes]
+                                           : &samples[(std::size_t(y) * l.width + x0) * per_pixel * bytes];
+            std::memcpy(to, &tile[std::size_t(y - y0) * tw * per_pixel * bytes], n);
+          }
+        }
+      }
+    }
+  } else {
+    const tmsize_t line = TIFFScanlineSize(t);
+    if (line <= 0 || static_cast<std::uint64_t>(line) != std::uint64_t(l.width) * per_pixel * bytes) {
+      fail(src.error.empty() ? "malformed rows" : src.error);
+    }
+    for (std::size_t p = 0; p < planes; ++p) {
+      for (std::uint32_t y = 0; y < l.height; ++y) {
+        unsigned char* to = planes > 1 ? &samples[(p * pixels + std::size_t(y) * l.width) * bytes]
+                                       : &samples[std::size_t(y) * l.width * per_pixel * bytes];
+        if (TIFFReadScanline(t, to, y, static_cast<std::uint16_t>(p)) < 0) fail(src.error.empty() ? "a row does not read" : src.error);
+      }
+    }
+  }
+
+  Image img;
+  img.width = static_cast<int>(l.width);
+  img.height = static_cast<int>(l.height);
+  img.pixels.resize(pixels);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    double v;
+    if (palette) {
+      const unsigned index = *sample_at(i, 0);
+      v = rec709_luminance(red[index] / 65535.0, green[index] / 65535.0, blue[index] / 65535.0);
+    } else if (l.colours == 3) {
+      v = rec709_luminance(sample_value(sample_at(i, 0), l), sample_value(sample_at(i, 1), l), sample_value(sample_at(i, 2), l));
+    } else {
+      v = sample_value(sample_at(i, 0), l);
+      if (l.photometric == PHOTOMETRIC_MINISWHITE && integer) v = 1.0 - v;
+    }
+    if (!(v >= 0) || !std::isfinite(v)) fail(fmt::format("pixel ({}, {}) is {} (values must be finite and not negative)",
+                                                        i % l.width, i / l.width, v));
+    img.pixels[i] = v;
+  }
+  apply_exif_orientation(img, l.orientation);
+  return img;
+}
+
+}  // namespace aesim

@@ -1,0 +1,22 @@
+#pragma once
+#include <string>
+
+#include "aesim/scene/image.hpp"
+
+namespace aesim {
+
+// TIFF scenes (.tif, .tiff: scientific and machine-vision cameras, microscopes, image tools),
+// decoded by libtiff (any compression it reads, strips or tiles, planes together or apart):
+//  - grey (BlackIsZero, or WhiteIsZero inverted) or RGB, alpha and other extra samples ignored,
+//    or a palette (its 16-bit colours);
+//  - unsigned integers of 8, 16 or 32 bits, taken as linear light over their full scale (as PGM
+//    and PPM: a camera's raw values; a TIFF a photo tool wrote is usually gamma-encoded: convert
+//    it to PNG, which is decoded with the sRGB curve), or 32- and 64-bit floats as they are (as
+//    PFM and OpenEXR: 1.0 is full scale, brighter may exceed it; negative or non-finite refused);
+//  - colour reduced to Rec. 709 luminance; the first image of a multi-page file; turned as its
+//    Orientation tag says (as EXIF's).
+// Other layouts (CMYK, YCbCr, Lab, signed or 1-bit samples, ...) are refused; so is anything
+// libtiff reports as broken. Throws InputError naming the file and the reason.
+Image decode_tiff(const std::string& data, const std::string& path);
+
+}  // namespace aesim
