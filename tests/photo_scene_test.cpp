@@ -474,6 +474,24 @@ TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {
   const std::string file = encode_tiff(good, dir_);
   expect_refused([&] { decode_tiff(file.substr(0, 100), "cut.tif"); }, "TIFF");
   expect_refused([&] { decode_tiff("II*\0garbage", "junk.tif"); }, "TIFF");
+  // A few bytes claiming 65520x65520-pixel tiles (4 GB each): refused before any is taken. The
+  // header written byte by byte from TIFF 6.0: little-endian, one IFD of ten entries.
+  std::string huge = std::string("II*\0\x08\0\0\0", 8);
+  const auto put = [&](std::uint64_t v, int n) {
+    for (int b = 0; b < n; ++b) huge += static_cast<char>((v >> (8 * b)) & 0xFF);
+  };
+  put(10, 2);
+  const std::uint32_t entries[][3] = {{256, 4, 4096}, {257, 4, 4096}, {258, 3, 8},     {259, 3, 1},     {262, 3, 1},
+                                      {277, 3, 1},    {322, 4, 65520}, {323, 4, 65520}, {324, 4, 200}, {325, 4, 10}};
+  for (const auto& e : entries) {
+    put(e[0], 2);
+    put(e[1], 2);
+    put(1, 4);
+    put(e[2], 4);
+  }
+  put(0, 4);
+  huge += std::string(64, '\0');
+  expect_refused([&] { decode_tiff(huge, "huge_tiles.tif"); }, "tiles of 65520x65520 pixels");
   expect_refused([&] { decode_tiff("", "empty.tif"); }, "TIFF");
 }
 

@@ -146,7 +146,7 @@ Image decode_tiff(const std::string& data, const std::string& path) {
                                                        : "complex or unknown"));
   }
   if (palette && l.bps != 8) fail(fmt::format("a {}-bit palette (aesim reads 8-bit palettes)", l.bps));
-  if (l.spp < l.colours || l.spp > 8) fail(fmt::format("{} samples a pixel (aesim reads {} to 8)", l.spp, l.colours));
+  if (l.spp < l.colours || l.spp > 4) fail(fmt::format("{} samples a pixel (aesim reads {} to 4)", l.spp, l.colours));
   if (floating && l.photometric == PHOTOMETRIC_MINISWHITE) fail("float samples with white at zero");
   std::uint16_t *red = nullptr, *green = nullptr, *blue = nullptr;
   if (palette && !TIFFGetField(t, TIFFTAG_COLORMAP, &red, &green, &blue)) fail("a palette image without its colour map");
@@ -154,7 +154,7 @@ Image decode_tiff(const std::string& data, const std::string& path) {
   // Every sample of the image, plane after plane where they are stored apart.
   const std::size_t bytes = l.bps / 8u, pixels = std::size_t(l.width) * l.height;
   const std::size_t planes = l.planar == PLANARCONFIG_SEPARATE ? l.spp : 1, per_pixel = l.planar == PLANARCONFIG_SEPARATE ? 1 : l.spp;
-  // At most 4096 x 4096 pixels of 8 samples of 8 bytes: bounded before it is taken.
+  // At most 4096 x 4096 pixels of 4 samples of 8 bytes (512 MiB): bounded before it is taken.
   std::vector<unsigned char> samples(pixels * l.spp * bytes);
   const auto sample_at = [&](std::size_t pixel, std::size_t s) -> const unsigned char* {
     return planes > 1 ? &samples[(s * pixels + pixel) * bytes] : &samples[(pixel * l.spp + s) * bytes];
@@ -166,6 +166,10 @@ Image decode_tiff(const std::string& data, const std::string& path) {
     const tmsize_t tile_size = TIFFTileSize(t);
     if (tw == 0 || th == 0 || tile_size <= 0 || static_cast<std::uint64_t>(tile_size) != std::uint64_t(tw) * th * per_pixel * bytes) {
       fail(src.error.empty() ? "malformed tiles" : src.error);
+    }
+    // A tile no larger than the image itself could need (a header may claim any tile size).
+    if (static_cast<std::uint64_t>(tile_size) > std::uint64_t(kMaxInputFileBytes)) {
+      fail(fmt::format("tiles of {}x{} pixels, larger than aesim reads", tw, th));
     }
     std::vector<unsigned char> tile(static_cast<std::size_t>(tile_size));
     for (std::size_t p = 0; p < planes; ++p) {

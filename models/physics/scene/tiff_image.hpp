@@ -7,8 +7,8 @@ namespace aesim {
 
 // TIFF scenes (.tif, .tiff: scientific and machine-vision cameras, microscopes, image tools),
 // decoded by libtiff (any compression it reads, strips or tiles, planes together or apart):
-//  - grey (BlackIsZero, or WhiteIsZero inverted) or RGB, alpha and other extra samples ignored,
-//    or a palette (its 16-bit colours);
+//  - grey (BlackIsZero, or WhiteIsZero inverted) or RGB, alpha and other extra samples ignored (4
+//    samples a pixel at most), or a palette (its 16-bit colours);
 //  - unsigned integers of 8, 16 or 32 bits, taken as linear light over their full scale (as PGM
 //    and PPM: a camera's raw values; a TIFF a photo tool wrote is usually gamma-encoded: convert
 //    it to PNG, which is decoded with the sRGB curve), or 32- and 64-bit floats as they are (as
