@@ -177,26 +177,34 @@ void decode_evt3(const std::string& data, std::size_t at, std::size_t words, Dec
   }
 }
 
-// EVT 2.0: 32-bit words. A high part that falls by half its range or more wrapped (2^28 steps of 64 us).
-void decode_evt2(const std::string& data, std::size_t at, std::size_t words, Decoded& d) {
+// EVT 2.x's time base: EVT_TIME_HIGH's 28 bits over the events' own low 6 (64 us steps); a high
+// part that falls by half its range or more wrapped, 2^34 us on.
+struct TimeHigh {
   std::int64_t base = 0, loops = 0;
-  std::uint32_t last_high = 0;
+  std::uint32_t last = 0;
   bool timed = false;
+  void set(std::uint32_t high) {
+    if (timed && last >= high + (1u << 27)) ++loops;
+    last = high;
+    base = (loops << 34) | (std::int64_t(high) << 6);
+    timed = true;
+  }
+};
+
+// EVT 2.0: 32-bit words.
+void decode_evt2(const std::string& data, std::size_t at, std::size_t words, Decoded& d) {
+  TimeHigh time;
   for (std::size_t i = 0; i < words; ++i) {
     const auto w = little<std::uint32_t>(data, at + 4 * i);
     const std::uint32_t type = w >> 28;
     if (type == 0x8) {
-      const std::uint32_t high = w & 0x0FFFFFFFu;
-      if (timed && last_high >= high + (1u << 27)) ++loops;
-      last_high = high;
-      base = (loops << 34) | (std::int64_t(high) << 6);
-      timed = true;
+      time.set(w & 0x0FFFFFFFu);
     } else if (type == 0x0 || type == 0x1) {
-      if (!timed) {
+      if (!time.timed) {
         ++d.untimed;
         continue;
       }
-      d.event(base + ((w >> 22) & 0x3Fu), static_cast<int>((w >> 11) & 0x7FFu), static_cast<int>(w & 0x7FFu), type == 1);
+      d.event(time.base + ((w >> 22) & 0x3Fu), static_cast<int>((w >> 11) & 0x7FFu), static_cast<int>(w & 0x7FFu), type == 1);
     } else if (type == 0xA) {
       ++d.triggers;
     } else {
@@ -207,26 +215,20 @@ void decode_evt2(const std::string& data, std::size_t at, std::size_t words, Dec
 
 // EVT 2.1: 64-bit words (standard: the type in bits 60-63; legacy: the halves swapped).
 void decode_evt21(const std::string& data, std::size_t at, std::size_t words, bool legacy, Decoded& d) {
-  std::int64_t base = 0, loops = 0;
-  std::uint32_t last_high = 0;
-  bool timed = false;
+  TimeHigh time;
   for (std::size_t i = 0; i < words; ++i) {
     std::uint64_t w = little<std::uint64_t>(data, at + 8 * i);
     if (legacy) w = (w << 32) | (w >> 32);
     const auto type = static_cast<std::uint32_t>(w >> 60);
     if (type == 0x8) {
-      const auto high = static_cast<std::uint32_t>((w >> 32) & 0x0FFFFFFFu);
-      if (timed && last_high >= high + (1u << 27)) ++loops;
-      last_high = high;
-      base = (loops << 34) | (std::int64_t(high) << 6);
-      timed = true;
+      time.set(static_cast<std::uint32_t>((w >> 32) & 0x0FFFFFFFu));
     } else if (type == 0x0 || type == 0x1) {
       const auto mask = static_cast<std::uint32_t>(w);
-      if (!timed) {
+      if (!time.timed) {
         for (std::uint32_t m = mask; m != 0; m &= m - 1) ++d.untimed;
         continue;
       }
-      const std::int64_t t = base + static_cast<std::int64_t>((w >> 54) & 0x3Fu);
+      const std::int64_t t = time.base + static_cast<std::int64_t>((w >> 54) & 0x3Fu);
       const int x = static_cast<int>((w >> 43) & 0x7FFu), y = static_cast<int>((w >> 32) & 0x7FFu);
       for (int b = 0; b < 32; ++b) {
         if ((mask >> b) & 1u) d.event(t, x + b, y, type == 1);

@@ -11,7 +11,6 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/limits/limits.hpp"
 #include "aesim/files/data_dir.hpp"
-#include "aesim/files/input_file.hpp"
 #include "aesim/files/input_path.hpp"
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/resample.hpp"
@@ -116,9 +115,8 @@ ResolvedConfig configure_run(SensorConfig sensor, const SceneFiles& scene, const
 std::vector<Image> read_frames(const SceneFiles& files) {
   std::vector<Image> frames;
   if (files.video) {
-    const std::string data = read_input_file(files.frames.front(), "video");
-    const Y4mLayout layout = parse_y4m(data, files.frames.front());
-    for (std::size_t k = 0; k < layout.luma.size(); ++k) frames.push_back(y4m_light(data, layout, k));
+    const Y4mFile video = open_y4m(files.frames.front());
+    for (std::size_t k = 0; k < video.layout.luma.size(); ++k) frames.push_back(y4m_light(video.data, video.layout, k));
     return frames;
   }
   for (const std::string& path : files.frames) {
@@ -134,14 +132,9 @@ std::vector<Image> read_frames(const SceneFiles& files) {
 
 Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown, double duration) {
   // A video's bytes, held while its frames are taken from them.
-  std::string video;
-  Y4mLayout layout;
-  if (files.video) {
-    video = read_input_file(files.frames.front(), "video");
-    layout = parse_y4m(video, files.frames.front());
-  }
+  const Y4mFile video = files.video ? open_y4m(files.frames.front()) : Y4mFile{};
   // The frames a run of `duration` shows: without a wrap of the loop, only the first ones.
-  std::size_t needed = files.video ? layout.luma.size() : files.frames.size();
+  std::size_t needed = files.video ? video.layout.luma.size() : files.frames.size();
   if (needed > 1 && std::isfinite(duration)) {
     const double started = std::ceil(duration * shown.frame_rate) + 1;
     if (started < static_cast<double>(needed)) needed = static_cast<std::size_t>(started);
@@ -157,7 +150,7 @@ Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneP
   scene.frame_period = 1.0 / shown.frame_rate;
   scene.loop = shown.loop;
   for (std::size_t f = 0; f < needed; ++f) {
-    const Image img = files.video ? y4m_light(video, layout, f) : read_image(files.frames[f]);
+    const Image img = files.video ? y4m_light(video.data, video.layout, f) : read_image(files.frames[f]);
     if (f > 0 && (img.width != scene.source_width || img.height != scene.source_height)) {
       throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", files.frames[f], img.width,
                                    img.height, scene.source_width, scene.source_height));

@@ -141,6 +141,12 @@ Image y4m_light(const std::string& data, const Y4mLayout& layout, std::size_t k)
   return img;
 }
 
+Y4mFile open_y4m(const std::string& path) {
+  Y4mFile file{read_input_file(path, "video"), {}};
+  file.layout = parse_y4m(file.data, path);
+  return file;
+}
+
 Y4mVideo read_y4m(const std::string& path) { return decode_y4m(read_input_file(path, "video"), path); }
 
 Y4mVideo decode_y4m(const std::string& data, const std::string& path) {

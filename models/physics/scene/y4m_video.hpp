@@ -27,6 +27,13 @@ Y4mLayout read_y4m_header(const std::string& path);
 // Every frame of a whole file; throws InputError naming the defect.
 Y4mLayout parse_y4m(const std::string& data, const std::string& path);
 
+// A Y4M file's bytes, bounded, and its frames' layout.
+struct Y4mFile {
+  std::string data;
+  Y4mLayout layout;
+};
+Y4mFile open_y4m(const std::string& path);
+
 // Frame k's luma codes over 255, as they are (the source paper's emulator takes grey levels).
 Image y4m_luma_codes(const std::string& data, const Y4mLayout& layout, std::size_t k);
 // Frame k as light, a fraction of full scale: the luma code's level (video or full range, codes
