@@ -318,6 +318,17 @@ TEST(ForeignReaders, JaerStampsPastTwoToTheThirtyOneAndAcrossAWrapReadInOrder) {
   for (std::size_t i = 1; i < rec.events.size(); ++i) EXPECT_LE(rec.events[i - 1].t, rec.events[i].t);
 }
 
+// A recording of `format` that is refused: an InputError holding `words`, on one line.
+void expect_decode_refused(const std::string& data, EventFileFormat format, const std::string& words) {
+  try {
+    decode_events(data, "bad", format);
+    ADD_FAILURE() << "accepted: " << words;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+}
+
 // Prophesee's DAT (ATIS cameras, N-CARS, Gen1), laid out as its documentation and expelliarmus's
 // read_dat give it: '%' header lines, a type byte (0, CD) and a size byte (8), then per event a
 // little-endian stamp (us) and a word with x in bits 0-13, y in 14-27, polarity in 28-31. A stamp
@@ -350,12 +361,7 @@ TEST(ForeignReaders, PropheseeDatGivesItsCdEventsWithWrappedStampsAndItsSize) {
   EXPECT_EQ(rec.events[3].y, 35u);
   // Other event types, a file cut inside an event, a header without its end: one-line errors.
   const auto refused = [](const std::string& data, const std::string& words) {
-    try {
-      decode_events(data, "bad.dat", EventFileFormat::Aedat2);
-      ADD_FAILURE() << "accepted: " << words;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    }
+    expect_decode_refused(data, EventFileFormat::Aedat2, words);
   };
   std::string evt3 = file;
   evt3[file.find(std::string("\x00\x08", 2))] = 0x0C;
@@ -471,13 +477,7 @@ TEST(ForeignReaders, PropheseeRawEvt2AndEvt21DecodeTheirWordsAndTimeHigh) {
 
 TEST(ForeignReaders, PropheseeRawHeadersThatNameNoReadableEncodingAreOneLineErrors) {
   const auto refused = [](const std::string& data, const std::string& words) {
-    try {
-      decode_events(data, "bad.raw", EventFileFormat::PropheseeRaw);
-      ADD_FAILURE() << "accepted: " << words;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
-    }
+    expect_decode_refused(data, EventFileFormat::PropheseeRaw, words);
   };
   refused("% format HISTO3D;height=320;width=320\n% end\n", "HISTO3D");
   refused("% evt 4.0\n% end\n", "evt 4.0");
