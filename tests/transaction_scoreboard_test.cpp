@@ -28,7 +28,7 @@ ReceiverDescription description(ReceiverDescription::Collisions collisions = Rec
 // Drives the scoreboard edge by edge: reset on edges 1..4, then what each test scripts.
 class History {
  public:
-  explicit History(const ReceiverDescription& d, bool overflow = false) : sb(d, overflow, 8, kPeriod) {
+  explicit History(const ReceiverDescription& d, bool overflow = false) : sb(d, overflow, 8) {
     sb.begin_case("hand");
     for (int i = 0; i < 4; ++i) edge(true);
   }

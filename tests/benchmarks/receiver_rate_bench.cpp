@@ -65,7 +65,7 @@ void BM_PlainEvalLoop(benchmark::State& state) {
 
 void BM_VerifyDriver(benchmark::State& state, bool scoreboard) {
   const Receiver& r = receiver();
-  TransactionScoreboard sb(r.d, true, 32, clock_period_ps(r.d));
+  TransactionScoreboard sb(r.d, true, 32);
   double cycles = 0, transactions = 0;
   for (auto _ : state) {
     DutInstance dut(*r.library, false);

@@ -104,7 +104,7 @@ double sample_value(const unsigned char* p, const Layout& l) {
 
 Image decode_tiff(const std::string& data, const std::string& path) {
   const auto fail = [&](const std::string& why) { throw InputError(fmt::format("scene file '{}': TIFF: {}", path, why)); };
-  TiffSource src{&data};
+  TiffSource src{&data, 0, {}};
   std::unique_ptr<TIFFOpenOptions, OptionsFree> options(TIFFOpenOptionsAlloc());
   if (!options) throw std::bad_alloc();
   TIFFOpenOptionsSetErrorHandlerExtR(options.get(), on_error, &src);

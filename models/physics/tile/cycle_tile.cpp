@@ -84,7 +84,7 @@ CycleTile::Stats CycleTile::stats() const {
   return s;
 }
 
-void CycleTile::trace(sc_core::sc_trace_file* file, const std::string& prefix) const {
+void CycleTile::trace_wires(sc_core::sc_trace_file* file, const std::string& prefix) const {
   sc_core::sc_trace(file, s_.req, prefix + "req");
   sc_core::sc_trace(file, s_.addr, prefix + "addr");
   sc_core::sc_trace(file, s_.contention, prefix + "contention");

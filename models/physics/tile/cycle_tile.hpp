@@ -52,7 +52,7 @@ class CycleTile : public sc_core::sc_module {
   // `prefix` + its name; with a clock wire (a factory's or an outside receiver) also the clock,
   // reset, idle and the output stream. The reference receiver's domain has no clock wire: its
   // stream lives inside the process that steps it.
-  void trace(sc_core::sc_trace_file* file, const std::string& prefix) const;
+  void trace_wires(sc_core::sc_trace_file* file, const std::string& prefix) const;
 
   // What the tile saw: handshake and stream rule breaks, receiver clock edges simulated, the
   // co-simulation scoreboard's compared beats and mismatches (RTL receivers only), and the mean

@@ -11,7 +11,7 @@ template <class V>
 std::unique_ptr<ReceiverModule> make(const std::string& name, ReceiverSignals& s,
                                      const ReceiverCycleModel::Config& config, const RtlTrace* trace) {
   auto rx = std::make_unique<RtlReceiver<V>>(name.c_str(), s, config);
-  if (trace) rx->trace(*trace);
+  if (trace) rx->trace_internals(*trace);
   return rx;
 }
 

@@ -66,14 +66,14 @@ class RtlReceiver : public ReceiverModule {
   SC_HAS_PROCESS(RtlReceiver);
 
   // Dumps every internal signal at each clock edge within the window (call before the run).
-  void trace(const RtlTrace& t) {
+  void trace_internals(const RtlTrace& t) {
     Verilated::traceEverOn(true);
     trace_ = t;
     tracing_ = true;
     SC_METHOD(after_edge);
     sensitive << s_.clk;
     dont_initialize();
-    SC_METHOD(dump);
+    SC_METHOD(dump_window);
     sensitive << settled_;
     dont_initialize();
   }
@@ -120,7 +120,7 @@ class RtlReceiver : public ReceiverModule {
   }
   // The RTL evaluates in the delta where the clock changes; dump one delta later.
   void after_edge() { settled_.notify(sc_core::SC_ZERO_TIME); }
-  void dump() {
+  void dump_window() {
     const sc_core::sc_time now = sc_core::sc_time_stamp();
     if (now >= trace_.from && now <= trace_.to) vcd_->dump(static_cast<std::uint64_t>(now.value()));
   }

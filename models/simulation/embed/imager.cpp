@@ -72,7 +72,7 @@ ReceiverCycleModel::Config Imager::receiver_config() const {
 
 void Imager::trace(sc_core::sc_trace_file* file) const {
   for (std::size_t t = 0; t < array_->tiles().size(); ++t) {
-    array_->tiles()[t]->trace(file, fmt::format("{}.tile{}.", name(), t));
+    array_->tiles()[t]->trace_wires(file, fmt::format("{}.tile{}.", name(), t));
   }
 }
 

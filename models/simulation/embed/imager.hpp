@@ -78,7 +78,7 @@ class Imager : public sc_core::sc_module {
   // <this module>.tile<t>.<wire>: req, addr, contention and ack of every tile, and for a tile whose
   // receiver is on a clock wire (outside the Imager, or from ImagerSpec::receiver) the clock, reset,
   // idle and output stream too. Call during elaboration, as sc_trace requires.
-  void trace(sc_core::sc_trace_file* file) const;
+  void trace(sc_core::sc_trace_file* file) const override;
 
   // After sc_start() has returned with the run done (every firing of sim.duration on its bus and
   // every handshake over; an sc_start(T) that stops earlier leaves it undone, and these throw

@@ -10,14 +10,12 @@ namespace aesim {
 using Collisions = ReceiverDescription::Collisions;
 using Full = ReceiverDescription::Full;
 
-TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool has_overflow, int overflow_width,
-                                             std::uint64_t period_ps)
+TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool has_overflow, int overflow_width)
     : collisions_(d.collisions),
       full_(d.full),
       has_overflow_(has_overflow),
       has_stamp_(d.has("timestamp")),
       overflow_mask_(overflow_width >= 64 ? ~0ULL : (1ULL << overflow_width) - 1),
-      period_ps_(period_ps),
       lat_min_(d.ack_latency_min),
       lat_max_(d.ack_latency_max),
       stamps_(d) {}

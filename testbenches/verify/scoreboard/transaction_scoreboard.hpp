@@ -50,8 +50,7 @@ class TransactionScoreboard {
  public:
   // Without a flags port every beat counts as unflagged; without overflow_count drops are
   // checked against the stalls alone.
-  TransactionScoreboard(const ReceiverDescription& description, bool has_overflow, int overflow_width,
-                        std::uint64_t period_ps);
+  TransactionScoreboard(const ReceiverDescription& description, bool has_overflow, int overflow_width);
 
   void begin_case(const std::string& name);
   // The bus wires changed at t_ps, after `edges_done` rising edges of this case.
@@ -121,7 +120,6 @@ class TransactionScoreboard {
   ReceiverDescription::Full full_;
   bool has_overflow_, has_stamp_;
   std::uint64_t overflow_mask_;
-  std::uint64_t period_ps_;
   int lat_min_, lat_max_;
   StampRule stamps_;  // one rule for the whole run, across cases
 

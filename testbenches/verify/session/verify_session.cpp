@@ -26,8 +26,7 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
                              const std::vector<VerifyCase>& cases, const VerifyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   TransactionScoreboard sb(d, d.has("overflow_count"),
-                           d.has("overflow_count") ? find_port(ports, d.port("overflow_count"))->width : 0,
-                           clock_period_ps(d));
+                           d.has("overflow_count") ? find_port(ports, d.port("overflow_count"))->width : 0);
   if (options.stamp_rule) sb.hold_stamps_to(*options.stamp_rule);
   VerifyResult r;
   const VerifyCase* to_export = nullptr;
