@@ -16,11 +16,16 @@
 
 #include <fmt/format.h>
 
-#if defined(__has_feature)
+// GCC says so with a macro (ASan only), clang through __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define AESIM_SANITIZED 1
+#elif defined(__has_feature)
 #if __has_feature(address_sanitizer) || __has_feature(undefined_behavior_sanitizer)
-#include <sanitizer/common_interface_defs.h>
 #define AESIM_SANITIZED 1
 #endif
+#endif
+#ifdef AESIM_SANITIZED
+#include <sanitizer/common_interface_defs.h>
 #endif
 
 extern char** environ;
