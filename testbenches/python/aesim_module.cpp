@@ -26,6 +26,7 @@
 #include "aesim/events/timestamps.hpp"
 #include "aesim/output/temp_files.hpp"
 #include "aesim/process/interrupt.hpp"
+#include "aesim/scene/npy_scene.hpp"
 #include "aesim/scene/scene.hpp"
 #include "aesim/sensor_run/sensor_run.hpp"
 
@@ -109,9 +110,8 @@ bool is_path(const py::handle& h) {
 
 std::string as_path(const py::handle& h) { return py::str(py::module_::import("os").attr("fspath")(h)); }
 
-// A 2-D array as an image of full-scale fractions: integers of 8 and 16 bits are code values
-// over 255 and 65535 (as in PGM); floats are taken as they are (as in PFM, values above 1 are
-// brighter than full scale). Linear light in both cases.
+// A 2-D array as an image of full-scale fractions, its numbers taken as a .npy scene file's
+// (array_full_scale: 8- and 16-bit integer codes, floats as they are). Linear light.
 Image image_from_array(const py::handle& object, const char* what) {
   py::array a = py::array::ensure(object);
   if (!a) throw InputError(fmt::format("{}: expected a path or a 2-D NumPy array", what));
@@ -124,16 +124,8 @@ Image image_from_array(const py::handle& object, const char* what) {
     throw InputError(fmt::format("{}: an array of {} rows and {} columns; aesim takes 1 to 16,777,216 (4096x4096) pixels",
                                  what, rows, cols));
   }
-  double scale = 1.0;
-  const char kind = a.dtype().kind();
-  if (kind == 'u' || kind == 'i') {
-    scale = a.dtype().itemsize() == 1 ? 255.0 : a.dtype().itemsize() == 2 ? 65535.0 : 0.0;
-    if (scale == 0) throw InputError(fmt::format("{}: integer arrays must be 8 or 16 bit (or give floats)", what));
-  } else if (kind == 'b') {
-    scale = 1.0;
-  } else if (kind != 'f') {
-    throw InputError(fmt::format("{}: dtype {} is not a number", what, std::string(py::str(a.dtype()))));
-  }
+  const double scale = array_full_scale(a.dtype().kind(), static_cast<int>(a.dtype().itemsize()),
+                                        fmt::format("{}: dtype {}", what, std::string(py::str(a.dtype()))));
   py::array_t<double, py::array::c_style | py::array::forcecast> values(a);
   Image img;
   img.width = static_cast<int>(cols);

@@ -19,6 +19,7 @@
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/exr_image.hpp"
+#include "aesim/scene/npy_scene.hpp"
 #include "aesim/scene/photo_image.hpp"
 #include "aesim/scene/tiff_image.hpp"
 #include "deck/pixel_deck.hpp"
@@ -86,8 +87,14 @@ int aedat4(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat4", EventFileFormat::Aedat4); });
 }
 
+// The same header reader serves event files and scenes.
 int npy(const std::uint8_t* data, std::size_t size) {
-  return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.npy", EventFileFormat::Npy); });
+  const std::string in = bytes(data, size);
+  expect_result_or_input_error([&] { decode_events(in, "fuzz.npy", EventFileFormat::Npy); });
+  return expect_result_or_input_error([&] {
+    const NpySceneFile scene{in, parse_npy_scene(in, "fuzz.npy")};
+    for (std::size_t k = 0; k < scene.layout.frames && k < 4; ++k) npy_scene_frame(scene, k, "fuzz.npy");
+  });
 }
 
 int h5(const std::uint8_t* data, std::size_t size) {

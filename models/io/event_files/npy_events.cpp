@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/npy_header.hpp"
 #include "aesim/output/temp_files.hpp"
 #include "aesim/event_files/event_stamps.hpp"
 
@@ -120,31 +121,17 @@ void NpyWriter::finish() {
 
 PolarityRecording decode_npy(const std::string& data, const std::string& label) {
   const auto fail = [&](const std::string& why) { return InputError(fmt::format("event file '{}': {}", label, why)); };
-  if (data.size() < 10 || data.compare(0, 6, kNpyMagic, 6) != 0) throw fail("not a NumPy .npy file");
+  const NpyHeader h = parse_npy_header(data, fmt::format("event file '{}'", label));
   const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
-  const int major = bytes[6];
-  std::size_t header_len = 0, at = 0;
-  if (major == 1) {
-    header_len = get_le_bytes(bytes + 8, 2);
-    at = 10;
-  } else if (major == 2 || major == 3) {
-    if (data.size() < 12) throw fail("truncated .npy header");
-    header_len = get_le_bytes(bytes + 8, 4);
-    at = 12;
-  } else {
-    throw fail(fmt::format(".npy format version {} is not supported", major));
-  }
-  if (header_len > data.size() - at) throw fail("truncated .npy header");
-  const std::string header = data.substr(at, header_len);
-  at += header_len;
-  if (header.find("'fortran_order': False") == std::string::npos) throw fail(".npy array in Fortran order is not supported");
+  const std::size_t at = h.data_offset;
+  if (h.fortran_order) throw fail(".npy array in Fortran order is not supported");
   // The structured dtype: ('name', 'type') pairs in the order they lie in a record.
-  const std::size_t descr = header.find("'descr':");
-  const std::size_t list_end = descr == std::string::npos ? descr : header.find(']', descr);
-  if (list_end == std::string::npos) throw fail("the .npy dtype is not a structured array of x, y, t, p");
+  const std::string& header = h.descr;
+  if (header.empty() || header.front() != '[') throw fail("the .npy dtype is not a structured array of x, y, t, p");
+  const std::size_t list_end = header.size() - 1;
   std::map<std::string, Field> fields;
   std::size_t record = 0;
-  for (std::size_t pos = header.find("('", descr); pos != std::string::npos && pos < list_end;
+  for (std::size_t pos = header.find("('"); pos != std::string::npos && pos < list_end;
        pos = header.find("('", pos + 1)) {
     const std::size_t name_end = header.find('\'', pos + 2);
     const std::size_t type_begin = name_end == std::string::npos ? name_end : header.find('\'', name_end + 1);
@@ -167,16 +154,8 @@ PolarityRecording decode_npy(const std::string& data, const std::string& label) 
   for (const char* name : {"x", "y", "t", "p"}) {
     if (!fields.count(name)) throw fail(fmt::format("the .npy dtype has no field '{}' (tonic's x, y, t, p)", name));
   }
-  const std::size_t shape = header.find("'shape': (");
-  if (shape == std::string::npos) throw fail("the .npy header has no shape");
-  unsigned long long n = 0;
-  char close = 0;
-  if (std::sscanf(header.c_str() + shape + 10, " %llu %c", &n, &close) != 2 || (close != ',' && close != ')')) {
-    throw fail("the .npy array is not one-dimensional");
-  }
-  if (close == ',' && header.compare(header.find(',', shape) + 1, 1, ")") != 0) {
-    throw fail("the .npy array is not one-dimensional");
-  }
+  if (h.shape.size() != 1) throw fail("the .npy array is not one-dimensional");
+  const std::uint64_t n = h.shape.front();
   if (record == 0 || n > (data.size() - at) / record) throw fail(fmt::format("truncated: {} records announced", n));
   PolarityRecording rec;
   rec.events.resize(n);

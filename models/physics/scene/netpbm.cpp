@@ -15,6 +15,7 @@
 #include "aesim/files/input_path.hpp"
 #include "aesim/limits/limits.hpp"
 #include "aesim/scene/exr_image.hpp"
+#include "aesim/scene/npy_scene.hpp"
 #include "aesim/scene/photo_image.hpp"
 #include "aesim/scene/tiff_image.hpp"
 #include "aesim/scene/scene_file.hpp"
@@ -228,6 +229,14 @@ Image read_image(const std::string& path) {
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
   if (ext == ".tif" || ext == ".tiff") return decode_tiff(read_scene_file(path), path);
   if (ext == ".exr") return decode_exr(read_scene_file(path), path);
+  if (ext == ".npy") {
+    const NpySceneFile file = open_npy_scene(path);
+    if (file.layout.frames != 1) {
+      throw InputError(fmt::format("scene file '{}': a 3-D array of {} frames is a scene of its own, not one frame of a folder",
+                                   path, file.layout.frames));
+    }
+    return npy_scene_frame(file, 0, path);
+  }
   throw InputError(fmt::format("scene file '{}': unsupported format (use {}, or a .y4m video)", path, scene_image_formats()));
 }
 

@@ -22,8 +22,8 @@ Image decode_pfm(const std::string& data, const std::string& path);
 Image read_image(const std::string& path);
 // The extensions read_image reads, in the order messages list them; whether a path has one (in
 // any case); and the list in words (".pgm, .ppm, ... or .exr").
-inline constexpr std::array<const char*, 9> kSceneImageExtensions = {".pgm", ".ppm", ".pfm", ".png", ".jpg",
-                                                                     ".jpeg", ".tif", ".tiff", ".exr"};
+inline constexpr std::array<const char*, 10> kSceneImageExtensions = {".pgm", ".ppm", ".pfm", ".png", ".jpg",
+                                                                      ".jpeg", ".tif", ".tiff", ".exr", ".npy"};
 bool is_scene_image(const std::string& path);
 std::string scene_image_formats();
 

@@ -13,6 +13,7 @@
 #include "aesim/files/data_dir.hpp"
 #include "aesim/files/input_path.hpp"
 #include "aesim/scene/netpbm.hpp"
+#include "aesim/scene/npy_scene.hpp"
 #include "aesim/scene/resample.hpp"
 #include "aesim/scene/y4m_video.hpp"
 
@@ -32,6 +33,33 @@ long long frame_number(const std::string& stem) {
 }
 
 
+// A scene's frames however they are stored: image files, a Y4M video's frames, or a 3-D NumPy
+// array's. A file of many frames is held whole while its frames are taken from it.
+class SceneFrames {
+ public:
+  explicit SceneFrames(const SceneFiles& files) : files_(files) {
+    if (files.video) video_ = open_y4m(files.frames.front());
+    if (files.npy_stack) stack_ = open_npy_scene(files.frames.front());
+  }
+  std::size_t count() const {
+    return files_.video ? video_.layout.luma.size() : files_.npy_stack ? stack_.layout.frames : files_.frames.size();
+  }
+  Image frame(std::size_t k) const {
+    if (files_.video) return y4m_light(video_.data, video_.layout, k);
+    if (files_.npy_stack) return npy_scene_frame(stack_, k, files_.frames.front());
+    return read_image(files_.frames[k]);
+  }
+  // Frame k's name in a message.
+  std::string name(std::size_t k) const {
+    return files_.video || files_.npy_stack ? fmt::format("{} frame {}", files_.frames.front(), k) : files_.frames[k];
+  }
+
+ private:
+  const SceneFiles& files_;
+  Y4mFile video_;
+  NpySceneFile stack_;
+};
+
 }  // namespace
 
 std::string default_scene_path() { return data_dir() + "/" + kDefaultScene; }
@@ -45,6 +73,7 @@ SceneFiles find_scene(const std::string& file_or_dir) {
       files.video = true;
       files.video_frame_rate = read_y4m_header(file_or_dir).frame_rate;
     }
+    if (file_extension(file_or_dir) == ".npy") files.npy_stack = read_npy_scene_header(file_or_dir).header.shape.size() == 3;
     return files;
   }
   if (!is_input_folder(file_or_dir, "scene")) {
@@ -113,16 +142,12 @@ ResolvedConfig configure_run(SensorConfig sensor, const SceneFiles& scene, const
 }
 
 std::vector<Image> read_frames(const SceneFiles& files) {
+  const SceneFrames source(files);
   std::vector<Image> frames;
-  if (files.video) {
-    const Y4mFile video = open_y4m(files.frames.front());
-    for (std::size_t k = 0; k < video.layout.luma.size(); ++k) frames.push_back(y4m_light(video.data, video.layout, k));
-    return frames;
-  }
-  for (const std::string& path : files.frames) {
-    Image img = read_image(path);
+  for (std::size_t k = 0; k < source.count(); ++k) {
+    Image img = source.frame(k);
     if (!frames.empty() && (img.width != frames.front().width || img.height != frames.front().height)) {
-      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", path, img.width,
+      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", source.name(k), img.width,
                                    img.height, frames.front().width, frames.front().height));
     }
     frames.push_back(std::move(img));
@@ -131,10 +156,9 @@ std::vector<Image> read_frames(const SceneFiles& files) {
 }
 
 Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneParams& shown, double duration) {
-  // A video's bytes, held while its frames are taken from them.
-  const Y4mFile video = files.video ? open_y4m(files.frames.front()) : Y4mFile{};
+  const SceneFrames source(files);
   // The frames a run of `duration` shows: without a wrap of the loop, only the first ones.
-  std::size_t needed = files.video ? video.layout.luma.size() : files.frames.size();
+  std::size_t needed = source.count();
   if (needed > 1 && std::isfinite(duration)) {
     const double started = std::ceil(duration * shown.frame_rate) + 1;
     if (started < static_cast<double>(needed)) needed = static_cast<std::size_t>(started);
@@ -150,9 +174,9 @@ Scene load_scene(const SceneFiles& files, const ArrayParams& array, const SceneP
   scene.frame_period = 1.0 / shown.frame_rate;
   scene.loop = shown.loop;
   for (std::size_t f = 0; f < needed; ++f) {
-    const Image img = files.video ? y4m_light(video.data, video.layout, f) : read_image(files.frames[f]);
+    const Image img = source.frame(f);
     if (f > 0 && (img.width != scene.source_width || img.height != scene.source_height)) {
-      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", files.frames[f], img.width,
+      throw InputError(fmt::format("scene frame '{}' is {}x{}, the first frame is {}x{}", source.name(f), img.width,
                                    img.height, scene.source_width, scene.source_height));
     }
     scene.source_width = img.width;

@@ -11,14 +11,16 @@
 namespace aesim {
 
 // Where a scene comes from: one image file, a folder of numbered frames with an optional
-// scene.toml (frame_rate, loop) that sets the scene.* keys before the command line does, or a Y4M
-// video (a .y4m file: its frames, at the frame rate its header gives scene.frame_rate).
+// scene.toml (frame_rate, loop) that sets the scene.* keys before the command line does, a Y4M
+// video (a .y4m file: its frames, at the frame rate its header gives scene.frame_rate), or a 3-D
+// NumPy array (a .npy file of frames, rows, columns: its frames, at scene.frame_rate).
 struct SceneFiles {
   std::string source;
-  std::vector<std::string> frames;  // in frame order; a video's one file
+  std::vector<std::string> frames;  // in frame order; a video's or a 3-D array's one file
   std::string settings;             // scene.toml, or empty
   bool video = false;
   double video_frame_rate = 0;  // Hz, from a video's header
+  bool npy_stack = false;       // a 3-D .npy array
 };
 
 SceneFiles find_scene(const std::string& file_or_dir);
