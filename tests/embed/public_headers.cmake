@@ -60,17 +60,28 @@ project(public_headers LANGUAGES CXX)
 find_package(aesim REQUIRED)
 add_library(public_headers OBJECT ${source_list})
 target_link_libraries(public_headers PRIVATE aesim::aesim)
-target_compile_options(public_headers PRIVATE -Wall -Wextra -Werror)
+target_compile_options(public_headers PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Woverloaded-virtual -Werror)
 ")
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${project} -B ${project}/build -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Debug
-                        -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
-                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "configuring against the prefix failed:\n${out}\n${err}")
-endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build ${project}/build RESULT_VARIABLE status OUTPUT_VARIABLE out
-                ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "an installed header does not compile alone:\n${out}\n${err}")
-endif()
-message(STATUS "${n} installed headers, each compiles alone against the prefix")
+# A user's project may build with GCC or clang, whose warnings differ (clang's: a virtual overridden
+# without `override`, one hidden by an overload): warning-free under both, as errors.
+find_program(CLANGXX clang++)
+set(i 0)
+foreach(cxx default ${CLANGXX})
+  math(EXPR i "${i} + 1")
+  set(compiler_option "")
+  if(NOT cxx STREQUAL "default")
+    set(compiler_option -DCMAKE_CXX_COMPILER=${cxx})
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${project} -B ${project}/build${i} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Debug
+                          -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF ${compiler_option}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "configuring against the prefix failed (${cxx}):\n${out}\n${err}")
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${project}/build${i} RESULT_VARIABLE status OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "an installed header does not compile alone, warning-free (${cxx} compiler):\n${out}\n${err}")
+  endif()
+endforeach()
+message(STATUS "${n} installed headers, each compiles alone against the prefix, warning-free under GCC and clang")
