@@ -30,6 +30,11 @@ namespace aesim {
 namespace {
 namespace fs = std::filesystem;
 
+// A .npy and a Prophesee RAW file hold no tiles: read back, the array is one.
+bool no_tiles_in(const std::string& name) {
+  return name.size() >= 4 && (name.compare(name.size() - 4, 4, ".npy") == 0 || name.compare(name.size() - 4, 4, ".raw") == 0);
+}
+
 class EventFormats : public testing::TempDirTest {
  protected:
   // Events of a 64x64 array in 32x32 tiles: times in whole microseconds, one ghost.
@@ -84,7 +89,7 @@ class EventFormats : public testing::TempDirTest {
 TEST_F(EventFormats, EveryFormatReadsBackEventForEventWithItsArray) {
   const AddressMap map{ArrayParams{}};
   const std::vector<AddressEvent> events = sample(map);
-  for (const std::string name : {"e.aedat", "e.aedat2", "e.aedat4", "n.aedat4", "e.npy", "e.h5"}) {
+  for (const std::string name : {"e.aedat", "e.aedat2", "e.aedat4", "n.aedat4", "e.npy", "e.h5", "e.raw"}) {
     const std::string path =
         write(name, events, name[0] == 'n' ? Aedat4Compression::None : Aedat4Compression::Lz4);
     const EventRecording rec = load_events(path);
@@ -92,24 +97,26 @@ TEST_F(EventFormats, EveryFormatReadsBackEventForEventWithItsArray) {
     for (std::size_t i = 0; i < events.size(); ++i) {
       EXPECT_EQ(rec.events[i].x, events[i].x) << name << " event " << i;
       EXPECT_EQ(rec.events[i].y, events[i].y) << name << " event " << i;
-      if (name != "e.npy") {  // a .npy records no tiles
+      const bool no_tiles = name == "e.npy" || name == "e.raw";
+      if (!no_tiles) {  // a .npy or .raw records no tiles
         EXPECT_EQ(rec.events[i].tile, events[i].tile) << name << " event " << i;
         EXPECT_EQ(rec.events[i].bus_address, events[i].bus_address) << name << " event " << i;
       }
       EXPECT_DOUBLE_EQ(rec.events[i].t, events[i].t) << name << " event " << i;
       // aesim's AEDAT 2.0 layout has no polarity bit: a ghost reads back as an event.
       const bool aedat2 = name == "e.aedat" || name == "e.aedat2";
-      // A .npy cannot say who wrote it, so p = 0 reads as a DVS's OFF event, an aesim ghost too.
+      // A .npy or .raw cannot say who wrote it, so p = 0 (CD_OFF) reads as a DVS's OFF event, an
+      // aesim ghost too.
       const bool ghost = events[i].flags == kGhostEvent;
-      const std::uint8_t flags = aedat2                      ? std::uint8_t{kNormalEvent}
-                                 : name == "e.npy" && ghost ? std::uint8_t{kOffEvent}
-                                                            : events[i].flags;
+      const std::uint8_t flags = aedat2               ? std::uint8_t{kNormalEvent}
+                                 : no_tiles && ghost ? std::uint8_t{kOffEvent}
+                                                     : events[i].flags;
       EXPECT_EQ(rec.events[i].flags, flags) << name << " event " << i;
     }
     // .npy cannot carry the array (NumPy refuses extra header keys): the events' span stands in.
     EXPECT_EQ(rec.size_recorded, name != "e.npy") << name;
     EXPECT_EQ(rec.width, 64) << name;
-    EXPECT_EQ(rec.tiles, name == "e.npy" ? 1 : 4) << name;
+    EXPECT_EQ(rec.tiles, no_tiles_in(name) ? 1 : 4) << name;
   }
 }
 
@@ -143,7 +150,7 @@ TEST_F(EventFormats, EveryFormatIsOneRowOfTheTable) {
       EXPECT_EQ(decode_events(slurp(path), path, row.format).events.size(), sample(map).size());
     }
   }
-  EXPECT_EQ(writable, 4u);
+  EXPECT_EQ(writable, 5u);
   EXPECT_NE(run_help.out.find(event_formats_help()), std::string::npos) << run_help.out;
   EXPECT_THROW(event_format_of("events.mp4", "--out"), InputError);
 }
@@ -241,6 +248,31 @@ TEST_F(EventFormats, NpyWriterLeavesNothingOfWhatTheFileHeld) {
   writer.events(events.data(), events.size());
   writer.finish();
   EXPECT_EQ(slurp(fresh), expected);
+}
+
+// Prophesee's EVT 2.0, word by word as its format page defines them: a 32-bit little-endian word,
+// its type in bits 31-28 (EVT_TIME_HIGH 0x8: the stamp's bits 33-6 in bits 27-0; CD_OFF 0x0 and
+// CD_ON 0x1: the stamp's bits 5-0 in 27-22, x in 21-11, y in 10-0).
+TEST_F(EventFormats, PropheseeRawIsEvt2WordsAfterItsHeader) {
+  const AddressMap map{ArrayParams{}};
+  const std::vector<AddressEvent> events = sample(map);  // 0 us, 1 us, 2500 us (a ghost), 1 s twice
+  const std::string data = slurp(write("e.raw", events));
+  const std::string header = "% evt 2.0\n% format EVT2;height=64;width=64\n% geometry 64x64\n% integrator_name aesim\n% end\n";
+  ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
+  const std::vector<std::uint32_t> expected = {
+      0x80000000u,                                  // time high 0
+      0x10000000u | (0u << 22) | (0u << 11) | 0u,   // ON at 0 us, (0, 0)
+      0x10000000u | (1u << 22) | (37u << 11) | 2u,  // ON at 1 us, (37, 2)
+      0x80000000u | (2500u >> 6),                   // time high 39
+      0x00000000u | ((2500u & 63) << 22) | (5u << 11) | 40u,  // OFF (the ghost) at 2500 us, (5, 40)
+      0x80000000u | (1000000u >> 6),                // time high 15625
+      0x10000000u | ((1000000u & 63) << 22) | (63u << 11) | 63u,
+      0x10000000u | ((1000000u & 63) << 22) | (63u << 11) | 63u,  // the same stamp: no second time high
+  };
+  ASSERT_EQ(data.size(), header.size() + 4 * expected.size());
+  std::vector<std::uint32_t> words(expected.size());
+  std::memcpy(words.data(), data.data() + header.size(), 4 * words.size());
+  EXPECT_EQ(words, expected);
 }
 
 TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
@@ -414,7 +446,7 @@ TEST_F(EventFormats, MalformedFilesAreOneLineErrorsNamingTheFile) {
 TEST_F(EventFormats, EveryCommandThatReadsEventsReadsEveryFormatItWrites) {
   const std::string scene = std::string(AESIM_SOURCE_DIR) + "/scenes/letters/A.pgm";
   std::map<std::string, std::string> recon;
-  for (const std::string out : {"e.aedat", "e.aedat4", "e.npy", "e.h5"}) {
+  for (const std::string out : {"e.aedat", "e.aedat4", "e.npy", "e.h5", "e.raw"}) {
     const testing::Outcome run = aesim("run --scene " + scene + " --duration 300ms --out " + out);
     ASSERT_EQ(run.status, 0) << run.err;
     const std::string size = out == "e.npy" ? " --size 64x64" : "";
@@ -424,8 +456,8 @@ TEST_F(EventFormats, EveryCommandThatReadsEventsReadsEveryFormatItWrites) {
     const testing::Outcome info = aesim("info " + out);
     ASSERT_EQ(info.status, 0) << out << ": " << info.err;
     EXPECT_NE(info.out.find(out + ": "), std::string::npos) << info.out;
-    // The aesim layouts carry the tiles (the letter's 64x64 in four 32x32); a .npy has none: one.
-    EXPECT_NE(info.out.find(out == "e.npy" ? ", 1 tile\n" : ", 4 tiles\n"), std::string::npos) << info.out;
+    // The aesim layouts carry the tiles (the letter's 64x64 in four 32x32); a .npy or .raw has none: one.
+    EXPECT_NE(info.out.find(no_tiles_in(out) ? ", 1 tile\n" : ", 4 tiles\n"), std::string::npos) << info.out;
     const testing::Outcome c = aesim("classify " + out + " --json" + size);
     ASSERT_EQ(c.status, 0) << out << ": " << c.err;
     EXPECT_NE(c.out.find("\"winner\": \"A\""), std::string::npos) << out << ": " << c.out;
@@ -440,7 +472,7 @@ TEST_F(EventFormats, BadOutputsAreRefusedBeforeTheRunAndLeaveNothing) {
                {"--out e.npy --aedat-layout dvs128", "AEDAT 2.0"},
                {"--out e.aedat4 --aedat4-compression zip", "--aedat4-compression"},
                {"--out e.csv", "--csv"},
-               {"--out e.raw", "Prophesee RAW is read, not written"},
+               {"--out e.raw --set array.rows=4096 --set array.cols=32", "x and y of 11 bits"},
                {"--out e.h5 --set sim.duration=5000s", "4294 s"}};
   for (const auto& c : cases) {
     const testing::Outcome o = aesim("run --scene " + std::string(AESIM_SOURCE_DIR) + "/scenes/uniform.pgm " + c.args);

@@ -32,7 +32,7 @@ def run(tmp_path_factory):
     """One run written as CSV and in every format (the same seed gives the same events)."""
     folder = tmp_path_factory.mktemp("formats")
     outputs = {}
-    for name in ["e.npy", "e.h5", "e.aedat4", "plain.aedat4", "zstd.aedat4"]:
+    for name in ["e.npy", "e.h5", "e.aedat4", "plain.aedat4", "zstd.aedat4", "e.raw"]:
         args = [AESIM, "run", "--scene", SCENE, "--duration", f"{DURATION_MS}ms", "--set",
                 "bus.contention_detect=false", "--csv", str(folder / (name + ".csv")), "--out", str(folder / name)]
         if name == "plain.aedat4":
@@ -55,6 +55,29 @@ def expect_same(csv, x, y, t, p):
     # p is 1 for a normal event and 0 for a ghost (flags 1); the run has some ghosts.
     assert np.array_equal(np.asarray(p, dtype=np.int64), 1 - csv[:, 4])
     assert (csv[:, 4] == 1).any()
+
+
+def test_prophesee_raw_decoded_from_the_evt2_format_page(run):
+    """EVT 2.0 as Prophesee's RAW and EVT 2.0 pages define it, decoded here in NumPy: header lines
+    "% key value" up to "% end", then 32-bit little-endian words, the type in bits 31-28."""
+    outputs, csv = run
+    data = outputs["e.raw"].read_bytes()
+    end = data.index(b"% end\n") + len(b"% end\n")
+    header = dict(line[2:].split(" ", 1) for line in data[:end].decode("ascii").splitlines() if line != "% end")
+    assert header["evt"] == "2.0"
+    assert header["format"] == "EVT2;height=64;width=64"  # the aloha preset's array
+    words = np.frombuffer(data[end:], dtype="<u4").astype(np.uint64)
+    kind = words >> 28
+    assert set(np.unique(kind)) <= {0x0, 0x1, 0x8}
+    # Each CD word's stamp is the last EVT_TIME_HIGH's 28 bits above its own 6.
+    high = np.where(kind == 0x8, words & 0x0FFFFFFF, 0)
+    last_high = np.maximum.accumulate(np.where(kind == 0x8, np.arange(len(words)), -1))
+    assert last_high[0] == 0
+    cd = kind != 0x8
+    t = (high[last_high[cd]] << 6) | ((words[cd] >> 22) & 0x3F)
+    x = (words[cd] >> 11) & 0x7FF
+    y = words[cd] & 0x7FF
+    expect_same(csv, x, y, t, kind[cd])
 
 
 def test_npy_has_tonics_dtype_and_the_runs_events(run):

@@ -13,6 +13,7 @@
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/npy_events.hpp"
+#include "aesim/event_files/prophesee_raw.hpp"
 #include "aesim/output/atomic_file.hpp"
 
 namespace aesim {
@@ -80,8 +81,13 @@ std::vector<EventFormatRow> make_rows() {
     rows.push_back(std::move(r));
   }
   {
-    // Read only: a camera's recording.
-    EventFormatRow r{EventFileFormat::PropheseeRaw, "Prophesee RAW", {".raw"}, "Metavision's EVT 2.0, 2.1 and 3.0"};
+    // Read: EVT 2.0, 2.1 and 3.0 (a camera's recording); written: EVT 2.0.
+    EventFormatRow r{EventFileFormat::PropheseeRaw, "Prophesee RAW", {".raw"}, "Metavision's, EVT 2.0"};
+    r.longest_run = 17179;
+    r.stamps = "EVT 2.0 timestamps are 34-bit microseconds";
+    r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
+      return std::make_unique<PropheseeRawWriter>(files.open(path), spec.array, spec.tick);
+    };
     r.decode = [](const std::string& data, const std::string& label, const std::string&) {
       return decode_prophesee_raw_recording(data, label);
     };

@@ -1,6 +1,7 @@
 #include "aesim/event_files/prophesee_raw.hpp"
 
 #include <cstdint>
+#include <cstring>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -267,6 +268,57 @@ PolarityRecording decode_prophesee_raw(const std::string& data, const std::strin
   if (d.other > 0) rec.notes.push_back(counted(d.other, "other word") + " (ERC counts, IMU samples, ...)");
   if (bytes % word != 0) rec.notes.push_back(counted(bytes % word, "byte") + " at the end, a word cut short");
   return rec;
+}
+
+namespace {
+
+constexpr std::size_t kRawBufferBytes = std::size_t(1) << 20;
+// EVT 2.0's x and y fields are 11 bits wide.
+constexpr int kEvt2Side = 2048;
+
+}  // namespace
+
+PropheseeRawWriter::PropheseeRawWriter(std::ostream& out, const ArrayParams& array, double tick)
+    : out_(out), stamps_(tick) {
+  if (array.cols > kEvt2Side || array.rows > kEvt2Side) {
+    throw InputError(fmt::format("Prophesee RAW (EVT 2.0) holds x and y of 11 bits: a {}x{} array does not fit "
+                                 "(at most 2048x2048; write .aedat4, .npy or .h5)",
+                                 array.cols, array.rows));
+  }
+  const std::string header = fmt::format(
+      "% evt 2.0\n% format EVT2;height={1};width={0}\n% geometry {0}x{1}\n% integrator_name aesim\n% end\n", array.cols,
+      array.rows);
+  out_.write(header.data(), static_cast<std::streamsize>(header.size()));
+  buffer_.reserve(kRawBufferBytes + 8);
+}
+
+void PropheseeRawWriter::events(const AddressEvent* first, std::size_t count) {
+  // Little-endian words, this machine's order (little_endian.hpp).
+  const auto put = [this](std::uint32_t word) {
+    const std::size_t at = buffer_.size();
+    buffer_.resize(at + 4);
+    std::memcpy(buffer_.data() + at, &word, 4);
+  };
+  for (const AddressEvent* e = first; e != first + count; ++e) {
+    const std::uint64_t t = stamps_(e->t);
+    if (t >> 6 != time_high_) {
+      time_high_ = t >> 6;
+      put((std::uint32_t(0x8) << 28) | static_cast<std::uint32_t>(time_high_ & 0x0fffffff));
+    }
+    const std::uint32_t type = e->flags == kGhostEvent ? 0x0 : 0x1;  // CD_OFF, CD_ON
+    put((type << 28) | (static_cast<std::uint32_t>(t & 0x3f) << 22) | (e->x << 11) | e->y);
+    if (buffer_.size() >= kRawBufferBytes) flush();
+  }
+}
+
+void PropheseeRawWriter::flush() {
+  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+}
+
+void PropheseeRawWriter::finish() {
+  flush();
+  out_.flush();
 }
 
 }  // namespace aesim

@@ -1,7 +1,12 @@
 #pragma once
+#include <cstdint>
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "aesim/event_files/aedat4.hpp"
+#include "aesim/event_files/event_stamps.hpp"
+#include "aesim/event_files/event_writer.hpp"
 
 namespace aesim {
 
@@ -26,5 +31,26 @@ namespace aesim {
 // geometry line) when given. Throws InputError naming `label` for a header that does not end, does
 // not name its encoding, or names another (HISTO3D, DIFF3D, EVT 4.0, ...).
 PolarityRecording decode_prophesee_raw(const std::string& data, const std::string& label);
+
+// Writes a run's events as a Prophesee RAW file in EVT 2.0, the encoding every Metavision release
+// and the RAW readers of the field decode: a header naming it ("% evt 2.0", "% format
+// EVT2;height=H;width=W", "% geometry WxH", "% integrator_name aesim", "% end"; no date, so the
+// same run writes the same bytes), then one EVT_TIME_HIGH word whenever an event's microsecond
+// stamp >> 6 differs from the last one written, and a CD word an event: CD_ON for an event,
+// CD_OFF for a ghost (as .npy's p), the stamp's low 6 bits, x and y. x and y are 11 bits:
+// arrays of more than 2048 rows or columns are refused (InputError) before anything is written.
+class PropheseeRawWriter : public EventFileWriter {
+ public:
+  PropheseeRawWriter(std::ostream& out, const ArrayParams& array, double tick);
+  void events(const AddressEvent* first, std::size_t count) override;
+  void finish() override;
+
+ private:
+  void flush();
+  std::ostream& out_;
+  MicrosecondStamps stamps_;
+  std::uint64_t time_high_ = ~std::uint64_t(0);  // the last EVT_TIME_HIGH's value, none yet
+  std::vector<char> buffer_;
+};
 
 }  // namespace aesim
