@@ -24,4 +24,14 @@ std::string read_input_file(const std::string& path, const std::string& what, st
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+std::string read_input_head(const std::string& path, const std::string& what, std::size_t bytes) {
+  require_input_file(path, what);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{} '{}' cannot be opened", what, path));
+  std::string head(bytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head;
+}
+
 }  // namespace aesim

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_file.hpp"
 #include "aesim/limits/limits.hpp"
 #include "aesim/scene/scene_file.hpp"
 
@@ -79,11 +79,7 @@ double array_full_scale(char kind, int item_bytes, const std::string& what) {
 }
 
 NpySceneLayout read_npy_scene_header(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(kMaxNpyHeaderBytes, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  return layout_of(parse_npy_header(head, what_of(path)), path);
+  return layout_of(parse_npy_header(read_input_head(path, "scene file", kMaxNpyHeaderBytes), what_of(path)), path);
 }
 
 NpySceneLayout parse_npy_scene(const std::string& data, const std::string& path) {

@@ -91,11 +91,7 @@ Image frame_image(const Y4mLayout& layout, std::size_t k, const char* what) {
 Y4mLayout parse_y4m_header(const std::string& line, const std::string& path) { return header_fields(line, path).layout; }
 
 Y4mLayout read_y4m_header(const std::string& path) {
-  require_input_file(path, "video");
-  std::ifstream in(path, std::ios::binary);
-  std::string line(kMostHeaderBytes, '\0');
-  in.read(line.data(), static_cast<std::streamsize>(line.size()));
-  line.resize(static_cast<std::size_t>(in.gcount()));
+  const std::string line = read_input_head(path, "video", kMostHeaderBytes);
   const std::size_t eol = line.find('\n');
   if (line.rfind("YUV4MPEG2 ", 0) != 0 || eol == std::string::npos) fail(path, "not a YUV4MPEG2 (Y4M) file");
   return parse_y4m_header(line.substr(0, eol), path);
