@@ -91,6 +91,23 @@ TEST_F(NpySceneTest, NumbersAreReadAsTheirTypeSays) {
   EXPECT_EQ(npy_scene_frame(file, 1, "f3.npy").at(0, 0), 0.5);   // frame 1, row 0: at 1
 }
 
+// The header is a Python dict literal: its keys in any order and either quote; a structured
+// dtype's field named like a key ('shape') is not the key.
+TEST_F(NpySceneTest, TheHeaderIsReadAsADictWhateverItsOrder) {
+  std::string dict = "{\"shape\": (1, 2), \"fortran_order\": False, \"descr\": \">f8\"}";
+  while ((10 + dict.size() + 1) % 64 != 0) dict += ' ';
+  dict += '\n';
+  std::string file = std::string("\x93NUMPY\x01\x00", 8) + static_cast<char>(dict.size()) + '\0' + dict;
+  file += std::string("\x3f\xd0\x00\x00\x00\x00\x00\x00", 8) + std::string("\x40\x00\x00\x00\x00\x00\x00\x00", 8);
+  const Image img = read_image(write("dict.npy", file));
+  EXPECT_EQ(img.at(0, 0), 0.25);  // big-endian doubles 0x3fd0... and 0x4000...
+  EXPECT_EQ(img.at(1, 0), 2.0);
+  const NpyHeader h = parse_npy_header(npy("[('shape', '<i2'), ('x', '<i2')]", "(3,)", std::string(12, '\0')), "f");
+  ASSERT_EQ(h.shape.size(), 1u);
+  EXPECT_EQ(h.shape[0], 3u);
+  EXPECT_EQ(h.descr, "[('shape', '<i2'), ('x', '<i2')]");
+}
+
 TEST_F(NpySceneTest, BadArraysAreOneLineErrors) {
   const std::pair<std::string, std::string> cases[] = {
       {"not a NumPy .npy file", "P5\n1 1\n255\n\x01"},

@@ -15,16 +15,21 @@ std::size_t little_endian(const unsigned char* p, int bytes) {
   return v;
 }
 
-// The text after `'key':` (or "key":), blanks skipped; npos when the key is absent.
+std::size_t skip_blanks(const std::string& text, std::size_t at) {
+  while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+  return at;
+}
+
+// The text after `'key':` (or "key":), blanks skipped; npos when the key is absent. Only a key
+// followed by its colon counts: a structured dtype's field may carry the same name ('shape',
+// "[('shape', '<i2')]"), followed by a comma.
 std::size_t value_of(const std::string& dict, const char* key) {
   for (const char quote : {'\'', '"'}) {
-    const std::size_t at = dict.find(fmt::format("{0}{1}{0}", quote, key));
-    if (at == std::string::npos) continue;
-    std::size_t v = dict.find(':', at);
-    if (v == std::string::npos) return v;
-    for (++v; v < dict.size() && std::isspace(static_cast<unsigned char>(dict[v])); ++v) {
+    const std::string quoted = fmt::format("{0}{1}{0}", quote, key);
+    for (std::size_t at = dict.find(quoted); at != std::string::npos; at = dict.find(quoted, at + 1)) {
+      const std::size_t colon = skip_blanks(dict, at + quoted.size());
+      if (colon < dict.size() && dict[colon] == ':') return skip_blanks(dict, colon + 1);
     }
-    return v;
   }
   return std::string::npos;
 }
@@ -87,8 +92,8 @@ NpyHeader parse_npy_header(const std::string& data, const std::string& what) {
   // "(64, 48)", "(5,)", "()": numbers each followed by a comma or the closing parenthesis.
   std::size_t p = shape + 1;
   while (true) {
-    while (p < close && std::isspace(static_cast<unsigned char>(dict[p]))) ++p;
-    if (p == close) break;
+    p = skip_blanks(dict, p);
+    if (p >= close) break;
     if (!std::isdigit(static_cast<unsigned char>(dict[p]))) throw fail("malformed .npy shape");
     std::uint64_t n = 0;
     for (; p < close && std::isdigit(static_cast<unsigned char>(dict[p])); ++p) {
@@ -97,7 +102,7 @@ NpyHeader parse_npy_header(const std::string& data, const std::string& what) {
     }
     header.shape.push_back(n);
     if (p < close && dict[p] == 'L') ++p;  // Python 2's long integers
-    while (p < close && std::isspace(static_cast<unsigned char>(dict[p]))) ++p;
+    p = skip_blanks(dict, p);
     if (p < close && dict[p] == ',') {
       ++p;
     } else if (p != close) {
