@@ -38,7 +38,7 @@ std::size_t value_of(const std::string& dict, const char* key) {
 
 NpyHeader parse_npy_header(const std::string& data, const std::string& what) {
   const auto fail = [&](const std::string& why) { return InputError(fmt::format("{}: {}", what, why)); };
-  if (data.size() < 10 || data.compare(0, 6, "\x93NUMPY", 6) != 0) throw fail("not a NumPy .npy file");
+  if (data.size() < 10 || data.compare(0, 6, kNpyMagic, 6) != 0) throw fail("not a NumPy .npy file");
   const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
   const int major = bytes[6];
   std::size_t length = 0, at = 0;

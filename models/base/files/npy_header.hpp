@@ -6,6 +6,9 @@
 
 namespace aesim {
 
+// What every .npy file begins with (6 bytes), then the format version.
+inline constexpr char kNpyMagic[] = "\x93NUMPY";
+
 // The header of a NumPy .npy file (format versions 1.0 to 3.0, as numpy.lib.format writes them):
 // the dtype, the order, the shape and where the data begin. Event files (a 1-D structured array)
 // and scenes (a 2-D or 3-D array of numbers) read their data from it.

@@ -1,7 +1,6 @@
 #include "aesim/event_files/npy_events.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -18,7 +17,6 @@
 namespace aesim {
 namespace {
 
-constexpr char kNpyMagic[] = "\x93NUMPY";
 constexpr std::size_t kNpyRecordBytes = 13;
 constexpr std::size_t kNpyBufferBytes = std::size_t(1) << 20;
 // The header of format 1.0 is 10 bytes of preamble and a text padded to a multiple of 64 bytes.
@@ -126,19 +124,19 @@ PolarityRecording decode_npy(const std::string& data, const std::string& label) 
   const std::size_t at = h.data_offset;
   if (h.fortran_order) throw fail(".npy array in Fortran order is not supported");
   // The structured dtype: ('name', 'type') pairs in the order they lie in a record.
-  const std::string& header = h.descr;
-  if (header.empty() || header.front() != '[') throw fail("the .npy dtype is not a structured array of x, y, t, p");
-  const std::size_t list_end = header.size() - 1;
+  const std::string& descr = h.descr;
+  if (descr.empty() || descr.front() != '[') throw fail("the .npy dtype is not a structured array of x, y, t, p");
+  const std::size_t list_end = descr.size() - 1;
   std::map<std::string, Field> fields;
   std::size_t record = 0;
-  for (std::size_t pos = header.find("('"); pos != std::string::npos && pos < list_end;
-       pos = header.find("('", pos + 1)) {
-    const std::size_t name_end = header.find('\'', pos + 2);
-    const std::size_t type_begin = name_end == std::string::npos ? name_end : header.find('\'', name_end + 1);
-    const std::size_t type_end = type_begin == std::string::npos ? type_begin : header.find('\'', type_begin + 1);
+  for (std::size_t pos = descr.find("('"); pos != std::string::npos && pos < list_end;
+       pos = descr.find("('", pos + 1)) {
+    const std::size_t name_end = descr.find('\'', pos + 2);
+    const std::size_t type_begin = name_end == std::string::npos ? name_end : descr.find('\'', name_end + 1);
+    const std::size_t type_end = type_begin == std::string::npos ? type_begin : descr.find('\'', type_begin + 1);
     if (type_end == std::string::npos || type_end > list_end) throw fail("malformed .npy dtype");
-    const std::string name = header.substr(pos + 2, name_end - pos - 2);
-    const std::string type = header.substr(type_begin + 1, type_end - type_begin - 1);
+    const std::string name = descr.substr(pos + 2, name_end - pos - 2);
+    const std::string type = descr.substr(type_begin + 1, type_end - type_begin - 1);
     Field f;
     f.offset = record;
     if (type.size() < 3 || (type[0] != '<' && type[0] != '|') || (type[1] != 'i' && type[1] != 'u' && type[1] != 'b') ||
