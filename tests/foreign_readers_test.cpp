@@ -475,6 +475,23 @@ TEST(ForeignReaders, PropheseeRawEvt2AndEvt21DecodeTheirWordsAndTimeHigh) {
   }
 }
 
+// expelliarmus's RAW writer ends each header line with a space ("% evt 2.0 \n") and writes no
+// "% end"; other writers leave blanks around a format's fields. The words after it are the same.
+TEST(ForeignReaders, PropheseeRawHeaderLinesReadWithBlanksAroundTheirValues) {
+  RawWords words;
+  words.put<std::uint32_t>((0x8u << 28) | 2);                            // EVT_TIME_HIGH: 128 us
+  words.put<std::uint32_t>((0x1u << 28) | (3u << 22) | (4u << 11) | 5);  // CD_ON (4, 5) at 131
+  const EventRecording trailing = decode_events(
+      "% Date 1970-12-25 07:51:03 \n% evt 2.0 \n% integrator_name Prophesee \n% system_ID 21 \n" + words.bytes,
+      "expelliarmus.raw", EventFileFormat::PropheseeRaw);
+  expect_events(trailing, {{131, 4, 5, true}});
+  const EventRecording spaced = decode_events("% format EVT2 ; height = 8 ;width=6\t\n% end \n" + words.bytes,
+                                              "spaced.raw", EventFileFormat::PropheseeRaw);
+  expect_events(spaced, {{131, 4, 5, true}});
+  EXPECT_EQ(spaced.width, 6);
+  EXPECT_EQ(spaced.height, 8);
+}
+
 TEST(ForeignReaders, PropheseeRawHeadersThatNameNoReadableEncodingAreOneLineErrors) {
   const auto refused = [](const std::string& data, const std::string& words) {
     expect_decode_refused(data, EventFileFormat::PropheseeRaw, words);

@@ -29,6 +29,13 @@ int dimension(const std::string& text) {
   return v >= 1 && v <= 65535 ? static_cast<int>(v) : 0;
 }
 
+// `text` without the spaces and tabs at either end: writers leave them in header lines
+// (expelliarmus's ends each with a space, "% evt 2.0 ").
+std::string without_blanks(const std::string& text) {
+  const std::size_t first = text.find_first_not_of(" \t\r");
+  return first == std::string::npos ? std::string() : text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
 // "% format EVT3;height=720;width=1280[;endianness=legacy]"
 void read_format(const std::string& value, RawHeader& h) {
   std::istringstream fields(value);
@@ -36,12 +43,14 @@ void read_format(const std::string& value, RawHeader& h) {
   bool legacy = false;
   std::string name;
   for (bool first = true; std::getline(fields, field, ';'); first = false) {
+    field = without_blanks(field);
     if (first) {
       name = field;
       continue;
     }
     const auto eq = field.find('=');
-    const std::string key = field.substr(0, eq), v = eq == std::string::npos ? "" : field.substr(eq + 1);
+    const std::string key = without_blanks(field.substr(0, eq)),
+                      v = eq == std::string::npos ? "" : without_blanks(field.substr(eq + 1));
     if (key == "height") h.height = dimension(v);
     if (key == "width") h.width = dimension(v);
     if (key == "endianness" && v == "legacy") legacy = true;
@@ -61,10 +70,9 @@ RawHeader read_header(const std::string& data, const std::string& label) {
   while (at < data.size() && data[at] == '%') {
     const std::size_t end = data.find('\n', at);
     if (end == std::string::npos) throw InputError(fmt::format("event file '{}': the Prophesee RAW header does not end", label));
-    std::string line = data.substr(at, end - at);
+    const std::string line = without_blanks(data.substr(at + 1, end - at - 1));
     at = end + 1;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream words(line.substr(1));
+    std::istringstream words(line);
     std::string key, value;
     words >> key;
     std::getline(words >> std::ws, value);
