@@ -150,7 +150,7 @@ TEST_F(EventFormats, EveryFormatIsOneRowOfTheTable) {
       EXPECT_EQ(decode_events(slurp(path), path, row.format).events.size(), sample(map).size());
     }
   }
-  EXPECT_EQ(writable, 5u);
+  EXPECT_EQ(writable, 6u);
   EXPECT_NE(run_help.out.find(event_formats_help()), std::string::npos) << run_help.out;
   EXPECT_THROW(event_format_of("events.mp4", "--out"), InputError);
 }
@@ -268,6 +268,28 @@ TEST_F(EventFormats, PropheseeRawIsEvt2WordsAfterItsHeader) {
       0x80000000u | (1000000u >> 6),                // time high 15625
       0x10000000u | ((1000000u & 63) << 22) | (63u << 11) | 63u,
       0x10000000u | ((1000000u & 63) << 22) | (63u << 11) | 63u,  // the same stamp: no second time high
+  };
+  ASSERT_EQ(data.size(), header.size() + 4 * expected.size());
+  std::vector<std::uint32_t> words(expected.size());
+  std::memcpy(words.data(), data.data() + header.size(), 4 * words.size());
+  EXPECT_EQ(words, expected);
+}
+
+// Prophesee's DAT, as its format page lays it out: '%' header lines, the event type (12, EventCd)
+// and size (8) bytes, then two little-endian 32-bit words an event: the stamp in microseconds, and
+// x in bits 13-0, y in 27-14, polarity in 31-28.
+TEST_F(EventFormats, PropheseeDatIsTwoWordsAnEventAfterItsHeader) {
+  const AddressMap map{ArrayParams{}};
+  const std::vector<AddressEvent> events = sample(map);  // 0 us, 1 us, 2500 us (a ghost), 1 s twice
+  const std::string data = slurp(write("e.dat", events));
+  const std::string header = "% Data file containing CD events\n% Version 2\n% Width 64\n% Height 64\n\x0c\x08";
+  ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
+  const std::vector<std::uint32_t> expected = {
+      0u,       (1u << 28) | (0u << 14) | 0u,    // ON at 0 us, (0, 0)
+      1u,       (1u << 28) | (2u << 14) | 37u,   // ON at 1 us, (37, 2)
+      2500u,    (0u << 28) | (40u << 14) | 5u,   // OFF (the ghost) at 2500 us, (5, 40)
+      1000000u, (1u << 28) | (63u << 14) | 63u,  // ON at 1 s, (63, 63), twice
+      1000000u, (1u << 28) | (63u << 14) | 63u,
   };
   ASSERT_EQ(data.size(), header.size() + 4 * expected.size());
   std::vector<std::uint32_t> words(expected.size());

@@ -330,9 +330,10 @@ void expect_decode_refused(const std::string& data, EventFileFormat format, cons
 }
 
 // Prophesee's DAT (ATIS cameras, N-CARS, Gen1), laid out as its documentation and expelliarmus's
-// read_dat give it: '%' header lines, a type byte (0, CD) and a size byte (8), then per event a
-// little-endian stamp (us) and a word with x in bits 0-13, y in 14-27, polarity in 28-31. A stamp
-// below the last means the 32-bit counter wrapped. It shares .dat with jAER, whose files begin '#'.
+// read_dat give it: '%' header lines, a type byte (0 Event2d or 12 EventCd, the same layout) and a
+// size byte (8), then per event a little-endian stamp (us) and a word with x in bits 0-13, y in
+// 14-27, polarity in 28-31. A stamp below the last means the 32-bit counter wrapped. It shares .dat
+// with jAER, whose files begin '#'.
 TEST(ForeignReaders, PropheseeDatGivesItsCdEventsWithWrappedStampsAndItsSize) {
   std::string file = "% Data file containing Event2D events.\n% Version 2\n% Width 304\n% Height 240\n";
   file += std::string("\x00\x08", 2);
@@ -347,7 +348,7 @@ TEST(ForeignReaders, PropheseeDatGivesItsCdEventsWithWrappedStampsAndItsSize) {
   event(900, 0, 7, 0);
   event(0xFFFFFFF0u, 12, 34, 1);
   event(0x10, 12, 35, 0);  // the counter wrapped
-  const EventRecording rec = decode_events(file, "atis.dat", EventFileFormat::Aedat2);
+  const EventRecording rec = decode_events(file, "atis.dat", EventFileFormat::PropheseeDat);
   ASSERT_EQ(rec.events.size(), 4u);
   EXPECT_EQ(rec.width, 304);
   EXPECT_EQ(rec.height, 240);
@@ -359,13 +360,28 @@ TEST(ForeignReaders, PropheseeDatGivesItsCdEventsWithWrappedStampsAndItsSize) {
   EXPECT_DOUBLE_EQ(rec.events[1].t, 900e-6);
   EXPECT_DOUBLE_EQ(rec.events[3].t, (4294967296.0 + 16) * 1e-6);
   EXPECT_EQ(rec.events[3].y, 35u);
-  // Other event types, a file cut inside an event, a header without its end: one-line errors.
+  // Type 12 (EventCd, as Metavision writes CD events): the same events.
+  const std::size_t type_at = file.find(std::string("\x00\x08", 2));
+  std::string cd = file;
+  cd[type_at] = 0x0C;
+  const EventRecording as_cd = decode_events(cd, "cd.dat", EventFileFormat::PropheseeDat);
+  ASSERT_EQ(as_cd.events.size(), rec.events.size());
+  for (std::size_t i = 0; i < rec.events.size(); ++i) {
+    EXPECT_EQ(as_cd.events[i].t, rec.events[i].t);
+    EXPECT_EQ(as_cd.events[i].x, rec.events[i].x);
+    EXPECT_EQ(as_cd.events[i].y, rec.events[i].y);
+    EXPECT_EQ(as_cd.events[i].flags, rec.events[i].flags);
+  }
+  // Other event types and sizes, a file cut inside an event, a header without its end: one-line errors.
   const auto refused = [](const std::string& data, const std::string& words) {
-    expect_decode_refused(data, EventFileFormat::Aedat2, words);
+    expect_decode_refused(data, EventFileFormat::PropheseeDat, words);
   };
-  std::string evt3 = file;
-  evt3[file.find(std::string("\x00\x08", 2))] = 0x0C;
-  refused(evt3, "type 12 and size 8");
+  std::string triggers = file;
+  triggers[type_at] = 0x0E;
+  refused(triggers, "type 14 is external triggers");
+  std::string wide = cd;
+  wide[type_at + 1] = 16;
+  refused(wide, "type 12 and size 16");
   refused(file.substr(0, file.size() - 3), "ends inside event 3");
   refused("% no end", "header does not end");
 }
@@ -507,7 +523,7 @@ class EmptyRuns : public testing::TempDirTest {};
 // A run that delivers no event still writes a file each reader opens: DV's AEDAT 4.0 readers
 // expect a packet, so an empty one is written.
 TEST_F(EmptyRuns, EveryFormatWritesAFileThatReadsBackEmptyWithItsArray) {
-  for (const std::string name : {"e.aedat", "e.aedat4", "e.npy", "e.h5"}) {
+  for (const std::string name : {"e.aedat", "e.aedat4", "e.npy", "e.h5", "e.raw", "e.dat"}) {
     EventFileSpec spec;
     spec.sensor = {{"array.rows", "64"}, {"array.cols", "64"}, {"array.tile_rows", "32"}, {"array.tile_cols", "32"}};
     spec.duration = 0.01;

@@ -13,6 +13,7 @@
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/npy_events.hpp"
+#include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/event_files/prophesee_raw.hpp"
 #include "aesim/output/atomic_file.hpp"
 
@@ -28,8 +29,8 @@ EventRecording read_bytes(const std::string& path, const std::string& layout) {
 std::vector<EventFormatRow> make_rows() {
   std::vector<EventFormatRow> rows;
   {
-    // Read: AEDAT 2.0 or 3.1, and, from a .dat whose header lines begin with '%', Prophesee's DAT.
-    EventFormatRow r{EventFileFormat::Aedat2, "AEDAT 2.0", {".aedat", ".aedat2", ".dat"}, "jAER's"};
+    // Read: AEDAT 2.0 or 3.1 (and Prophesee's DAT from a file whose header lines begin with '%').
+    EventFormatRow r{EventFileFormat::Aedat2, "AEDAT 2.0", {".aedat", ".aedat2"}, "jAER's"};
     r.longest_run = 2147;
     r.stamps = "AEDAT 2.0 timestamps are int32 microseconds";
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
@@ -94,6 +95,22 @@ std::vector<EventFormatRow> make_rows() {
     r.read = [](const std::string& path, const std::string&) {
       return decode_prophesee_raw_recording(read_event_file_bytes(path), path);
     };
+    rows.push_back(std::move(r));
+  }
+  {
+    // Written: CD events. Read: the first line says which of the formats that end in .dat the file
+    // is, Prophesee's (header lines beginning with '%') or jAER's older AEDAT 2.0 ('#').
+    EventFormatRow r{EventFileFormat::PropheseeDat, "Prophesee DAT", {".dat"}, "Metavision's CD events"};
+    // aestream reads a DAT stamp as a signed 32-bit number.
+    r.longest_run = 2147;
+    r.stamps = "DAT timestamps are 32-bit microseconds, read as signed by some readers";
+    r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
+      return std::make_unique<PropheseeDatWriter>(files.open(path), spec.array, spec.tick);
+    };
+    r.decode = [](const std::string& data, const std::string& label, const std::string& layout) {
+      return decode_aedat_recording(data, label, layout);
+    };
+    r.read = read_bytes<decode_aedat_recording>;
     rows.push_back(std::move(r));
   }
   {

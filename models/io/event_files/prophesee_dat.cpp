@@ -1,6 +1,7 @@
 #include "aesim/event_files/prophesee_dat.hpp"
 
 #include <cstdint>
+#include <cstring>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -10,6 +11,13 @@
 
 namespace aesim {
 namespace {
+
+// The event types of a DAT file's type byte that hold CD events, in the same 8-byte layout.
+constexpr int kEvent2d = 0;
+constexpr int kEventCd = 12;
+constexpr std::size_t kDatBufferBytes = std::size_t(1) << 20;
+// x and y are 14 bits of the event's second word.
+constexpr int kDatSide = 1 << 14;
 
 // "% Width 304" -> 304 (0 when the line is another or the number is not one from 1 to 65535).
 int header_size(const std::string& line, const char* key) {
@@ -39,10 +47,10 @@ PolarityRecording decode_prophesee_dat(const std::string& data, const std::strin
   }
   if (data.size() < at + 2) throw InputError(fmt::format("event file '{}': no event type after the header", label));
   const int type = static_cast<unsigned char>(data[at]), size = static_cast<unsigned char>(data[at + 1]);
-  if (type != 0 || size != 8) {
+  if ((type != kEvent2d && type != kEventCd) || size != 8) {
     throw InputError(fmt::format("event file '{}': Prophesee DAT events of type {} and size {} (aesim reads CD "
-                                 "events: type 0, 8 bytes)",
-                                 label, type, size));
+                                 "events: type 0 or 12, 8 bytes{})",
+                                 label, type, size, type == 14 ? "; type 14 is external triggers" : ""));
   }
   at += 2;
   if ((data.size() - at) % 8 != 0) {
@@ -63,6 +71,43 @@ PolarityRecording decode_prophesee_dat(const std::string& data, const std::strin
     rec.events.push_back(e);
   }
   return rec;
+}
+
+PropheseeDatWriter::PropheseeDatWriter(std::ostream& out, const ArrayParams& array, double tick)
+    : out_(out), stamps_(tick), buffer_(kDatBufferBytes) {
+  if (array.cols > kDatSide || array.rows > kDatSide) {
+    throw InputError(fmt::format("Prophesee DAT holds x and y of 14 bits: a {}x{} array does not fit (at most "
+                                 "16384x16384; write .aedat4, .npy or .h5)",
+                                 array.cols, array.rows));
+  }
+  const std::string header = fmt::format("% Data file containing CD events\n% Version 2\n% Width {}\n% Height {}\n",
+                                         array.cols, array.rows);
+  out_.write(header.data(), static_cast<std::streamsize>(header.size()));
+  const char type_and_size[2] = {static_cast<char>(kEventCd), 8};
+  out_.write(type_and_size, 2);
+}
+
+void PropheseeDatWriter::events(const AddressEvent* first, std::size_t count) {
+  // Little-endian words, this machine's order (little_endian.hpp).
+  for (const AddressEvent* e = first; e != first + count; ++e) {
+    const auto t = static_cast<std::uint32_t>(stamps_(e->t));
+    const std::uint32_t p = e->flags == kGhostEvent ? 0 : 1;
+    const std::uint32_t word = e->x | (e->y << 14) | (p << 28);
+    std::memcpy(buffer_.data() + used_, &t, 4);
+    std::memcpy(buffer_.data() + used_ + 4, &word, 4);
+    used_ += 8;
+    if (used_ == buffer_.size()) flush();
+  }
+}
+
+void PropheseeDatWriter::flush() {
+  out_.write(buffer_.data(), static_cast<std::streamsize>(used_));
+  used_ = 0;
+}
+
+void PropheseeDatWriter::finish() {
+  flush();
+  out_.flush();
 }
 
 }  // namespace aesim

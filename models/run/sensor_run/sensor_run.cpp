@@ -37,7 +37,7 @@ void set_vcd_window(const RunSpec& spec, double duration, SimulationRequest& req
 void check_event_file(const RunSpec& spec, const ResolvedConfig& config, AedatLayout layout) {
   const EventFormatRow& row = writable_event_format(spec.out, "--out");
   if (row.longest_run > 0 && config.sim.duration > row.longest_run) {
-    throw InputError(fmt::format("sim.duration: {}, so an {} --out allows at most {} s", row.stamps, row.name,
+    throw InputError(fmt::format("sim.duration: {}, so {} written by --out holds at most {} s", row.stamps, row.name,
                                  row.longest_run));
   }
   if (layout != AedatLayout::Aesim && row.format != EventFileFormat::Aedat2) {
