@@ -446,6 +446,8 @@ BENCHMARK_CAPTURE(BM_QcifWritten, aedat4, "e.aedat4", 1)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, aedat4_plain, "plain.aedat4", 1)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, npy, "e.npy", 1)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, h5, "e.h5", 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, raw, "e.raw", 1)->Apply(qcif);
+BENCHMARK_CAPTURE(BM_QcifWritten, dat, "e.dat", 1)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, aedat_2_threads, "e2.aedat", 2)->Apply(qcif);
 BENCHMARK(BM_Lz4Probe)->Apply(qcif);
 BENCHMARK(BM_QcifMerge)->Apply(qcif);

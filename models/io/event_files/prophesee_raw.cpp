@@ -297,31 +297,44 @@ PropheseeRawWriter::PropheseeRawWriter(std::ostream& out, const ArrayParams& arr
       "% evt 2.0\n% format EVT2;height={1};width={0}\n% geometry {0}x{1}\n% integrator_name aesim\n% end\n", array.cols,
       array.rows);
   out_.write(header.data(), static_cast<std::streamsize>(header.size()));
-  buffer_.reserve(kRawBufferBytes + 8);
+  buffer_.resize(kRawBufferBytes);
 }
 
 void PropheseeRawWriter::events(const AddressEvent* first, std::size_t count) {
+  // Through locals: the words' stores would make the compiler reload the members every event (the
+  // buffer grown a word at a time and the members reloaded, the writer ran at 52 M events/s against
+  // 68 M for DAT's 8 bytes an event, bright QCIF in event_rate_bench).
+  const MicrosecondStamps stamps = stamps_;
+  std::uint64_t time_high = time_high_;
+  char* out = buffer_.data() + used_;
+  // Room for an event's two words at most.
+  char* const last = buffer_.data() + buffer_.size() - 8;
   // Little-endian words, this machine's order (little_endian.hpp).
-  const auto put = [this](std::uint32_t word) {
-    const std::size_t at = buffer_.size();
-    buffer_.resize(at + 4);
-    std::memcpy(buffer_.data() + at, &word, 4);
+  const auto put = [&out](std::uint32_t word) {
+    std::memcpy(out, &word, 4);
+    out += 4;
   };
   for (const AddressEvent* e = first; e != first + count; ++e) {
-    const std::uint64_t t = stamps_(e->t);
-    if (t >> 6 != time_high_) {
-      time_high_ = t >> 6;
-      put((std::uint32_t(0x8) << 28) | static_cast<std::uint32_t>(time_high_ & 0x0fffffff));
+    const std::uint64_t t = stamps(e->t);
+    if (t >> 6 != time_high) {
+      time_high = t >> 6;
+      put((std::uint32_t(0x8) << 28) | static_cast<std::uint32_t>(time_high & 0x0fffffff));
     }
     const std::uint32_t type = e->flags == kGhostEvent ? 0x0 : 0x1;  // CD_OFF, CD_ON
     put((type << 28) | (static_cast<std::uint32_t>(t & 0x3f) << 22) | (e->x << 11) | e->y);
-    if (buffer_.size() >= kRawBufferBytes) flush();
+    if (out > last) {
+      used_ = static_cast<std::size_t>(out - buffer_.data());
+      flush();
+      out = buffer_.data();
+    }
   }
+  used_ = static_cast<std::size_t>(out - buffer_.data());
+  time_high_ = time_high;
 }
 
 void PropheseeRawWriter::flush() {
-  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-  buffer_.clear();
+  out_.write(buffer_.data(), static_cast<std::streamsize>(used_));
+  used_ = 0;
 }
 
 void PropheseeRawWriter::finish() {

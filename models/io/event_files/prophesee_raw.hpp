@@ -50,7 +50,8 @@ class PropheseeRawWriter : public EventFileWriter {
   std::ostream& out_;
   MicrosecondStamps stamps_;
   std::uint64_t time_high_ = ~std::uint64_t(0);  // the last EVT_TIME_HIGH's value, none yet
-  std::vector<char> buffer_;
+  std::vector<char> buffer_;  // kRawBufferBytes
+  std::size_t used_ = 0;
 };
 
 }  // namespace aesim
