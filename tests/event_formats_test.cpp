@@ -173,6 +173,57 @@ TEST_F(EventFormats, AnH5FileHoldsNoWallClockTimeSoRunsGiveTheSameBytes) {
   H5Fclose(file);
 }
 
+// Metavision's HDF5 event file as Prophesee's format page and the evt3 crate's reader describe it:
+// /CD/events, a 1-D compound of x, y (uint16), p (int16), t (int64, us). Written here with HDF5's C
+// API, uncompressed (the ECF codec it is compressed with in Metavision's files is not in Debian);
+// with ECF's filter code on the dataset and no plugin, a one-line error naming the way out.
+TEST_F(EventFormats, MetavisionHdf5CdEventsAreReadAndItsEcfCodecNamedWhenMissing) {
+  struct Cd {
+    std::uint16_t x, y;
+    std::int16_t p;
+    std::int64_t t;
+  };
+  const Cd written[] = {{303, 7, 1, 16}, {0, 239, 0, 17}, {12, 34, 1, 5000016}};
+  const auto make = [&](const std::string& name, bool ecf) {
+    const std::string path = (dir_ / name).string();
+    const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t group = H5Gcreate2(file, "CD", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t type = H5Tcreate(H5T_COMPOUND, sizeof(Cd));
+    H5Tinsert(type, "x", HOFFSET(Cd, x), H5T_NATIVE_UINT16);
+    H5Tinsert(type, "y", HOFFSET(Cd, y), H5T_NATIVE_UINT16);
+    H5Tinsert(type, "p", HOFFSET(Cd, p), H5T_NATIVE_INT16);
+    H5Tinsert(type, "t", HOFFSET(Cd, t), H5T_NATIVE_INT64);
+    const hsize_t n = 3;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 1, &n);
+    // Optional: HDF5 then writes the chunk unfiltered, but the dataset names the filter, as ECF's do.
+    if (ecf) H5Pset_filter(dcpl, 0x8ECF, H5Z_FLAG_OPTIONAL, 0, nullptr);
+    const hid_t d = H5Dcreate2(group, "events", type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, written), 0);
+    for (const hid_t id : {d, dcpl, space, type, group}) H5Idec_ref(id);
+    H5Fclose(file);
+    return path;
+  };
+  const EventRecording rec = load_events(make("mv.hdf5", false));
+  ASSERT_EQ(rec.events.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(rec.events[i].x, written[i].x);
+    EXPECT_EQ(rec.events[i].y, written[i].y);
+    EXPECT_DOUBLE_EQ(rec.events[i].t, static_cast<double>(written[i].t) * 1e-6);
+    EXPECT_EQ(rec.events[i].flags, written[i].p ? kNormalEvent : kOffEvent);
+  }
+  EXPECT_FALSE(rec.size_recorded);
+  try {
+    load_events(make("ecf.hdf5", true));
+    ADD_FAILURE() << "read without the ECF codec";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Prophesee's ECF codec"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("HDF5_PLUGIN_PATH"), std::string::npos) << e.what();
+  }
+}
+
 // A ghost (the OR of colliding addresses) may name no pixel of the array: past a narrow edge tile.
 // Every event file leaves it out and counts it: no reader could place it (aesim's own AEDAT 2.0
 // reader refuses such an address).

@@ -216,10 +216,10 @@ namespace {
 
 // Refuses what would make HDF5 read beyond the file it was given: a link to another file, data
 // stored in other files, a virtual dataset.
-void require_local(hid_t file, const char* name, const std::string& path) {
+void require_local(hid_t file, const char* name, const std::string& path, const char* group = "/events") {
   // Every link on the way (/events, then /events/x).
   std::string sofar;
-  for (const std::string& part : {std::string("/events"), std::string(name)}) {
+  for (const std::string& part : {std::string(group), std::string(name)}) {
     if (part == sofar) continue;
     sofar = part;
     if (H5Lexists(file, part.c_str(), H5P_DEFAULT) <= 0) return;
@@ -244,8 +244,47 @@ std::string missing_filter(hid_t dcpl) {
   return "";
 }
 
-// A 1-D dataset of integers, opened and checked against the bytes the file holds before anything
-// is read: its length is what it claims, but the claim must fit the file.
+// Prophesee's self-assigned HDF5 filter code of its ECF codec, which Metavision's HDF5 event files use.
+constexpr H5Z_filter_t kEcfFilter = 0x8ECF;
+
+// A dataset of `n` records, checked against the bytes the file holds before anything is read: its
+// data in the file itself, its filters ones this HDF5 decodes, its claimed length one the file's
+// bytes can hold.
+void check_stored(hid_t d, hid_t stored, hsize_t n, const char* name, const std::string& path, std::uintmax_t file_bytes) {
+  Handle dcpl(H5Dget_create_plist(d));
+  if (dcpl.ok() && H5Pget_external_count(dcpl.get()) > 0) {
+    throw InputError(fmt::format("event file '{}': {} keeps its data in other files", path, name));
+  }
+  if (dcpl.ok() && H5Pget_layout(dcpl.get()) == H5D_VIRTUAL) {
+    throw InputError(fmt::format("event file '{}': {} is a virtual dataset (data in other files)", path, name));
+  }
+  if (dcpl.ok()) {
+    const std::string filter = missing_filter(dcpl.get());
+    if (filter.rfind(fmt::format("filter {} ", static_cast<int>(kEcfFilter)), 0) == 0) {
+      throw InputError(fmt::format("event file '{}': {} is compressed with Prophesee's ECF codec, which this HDF5 cannot "
+                                   "decode (put Prophesee's hdf5_ecf plugin on HDF5_PLUGIN_PATH, or convert the file "
+                                   "to .raw or .dat with Metavision)",
+                                   path, name));
+    }
+    if (!filter.empty()) {
+      throw InputError(fmt::format("event file '{}': {} is compressed with HDF5 {}, which this HDF5 cannot decode "
+                                   "(install its plugin, or write the file without it)",
+                                   path, name, filter));
+    }
+  }
+  // Stored bytes, compressed or not, within the file; decompressed, at most 1000 times more (far
+  // past what HDF5's filters reach on event streams).
+  const std::uint64_t element = H5Tget_size(stored);
+  const haddr_t storage = H5Dget_storage_size(d);
+  const double claimed = static_cast<double>(n) * static_cast<double>(element);
+  if (n > 0 && (storage == 0 || static_cast<double>(storage) * 1000.0 < claimed || storage > file_bytes)) {
+    throw InputError(fmt::format("event file '{}': {} claims {} entries ({:.3g} bytes) but the file stores {} bytes of it",
+                                 path, name, n, claimed, storage));
+  }
+  if (n > (hsize_t(1) << 32)) throw InputError(fmt::format("event file '{}': {} has more than 2^32 events", path, name));
+}
+
+// A 1-D dataset of integers, opened and checked (check_stored) before anything is read.
 struct Column {
   Handle d;
   hsize_t n = 0;
@@ -264,32 +303,62 @@ Column open_column(hid_t file, const char* name, const std::string& path, hsize_
   if (expected != static_cast<hsize_t>(-1) && c.n != expected) {
     throw InputError(fmt::format("event file '{}': {} has {} entries, /events/x {}", path, name, c.n, expected));
   }
-  Handle dcpl(H5Dget_create_plist(c.d.get()));
-  if (dcpl.ok() && H5Pget_external_count(dcpl.get()) > 0) {
-    throw InputError(fmt::format("event file '{}': {} keeps its data in other files", path, name));
+  check_stored(c.d.get(), stored.get(), c.n, name, path, file_bytes);
+  return c;
+}
+
+// Events read from a file in blocks of this many, straight into the recording.
+constexpr hsize_t kBlock = hsize_t(1) << 18;
+// Coordinates past this are refused: an image of the array would not fit memory.
+constexpr std::int64_t kMostSide = 4096;
+
+// Prophesee's HDF5 event file (Metavision): /CD/events, a 1-D compound dataset of x, y (uint16),
+// p (int16) and t (int64, us), compressed with ECF. Read where this HDF5 can decode it (ECF's
+// plugin on HDF5_PLUGIN_PATH, or a file written without it); the size is the events' span.
+PolarityRecording read_metavision_cd(hid_t file, const std::string& path, std::uintmax_t file_bytes) {
+  const char* name = "/CD/events";
+  require_local(file, name, path, "/CD");
+  Handle d(H5Dopen2(file, name, H5P_DEFAULT));
+  Handle space(d.ok() ? H5Dget_space(d.get()) : H5I_INVALID_HID);
+  Handle stored(d.ok() ? H5Dget_type(d.get()) : H5I_INVALID_HID);
+  const bool compound = stored.ok() && H5Tget_class(stored.get()) == H5T_COMPOUND;
+  const auto has = [&](const char* member) { return compound && H5Tget_member_index(stored.get(), member) >= 0; };
+  if (!space.ok() || H5Sget_simple_extent_ndims(space.get()) != 1 || !has("x") || !has("y") || !has("p") || !has("t")) {
+    throw InputError(fmt::format("event file '{}': {} is not a 1-D array of events with fields x, y, p and t "
+                                 "(Metavision's CD events)", path, name));
   }
-  if (dcpl.ok() && H5Pget_layout(dcpl.get()) == H5D_VIRTUAL) {
-    throw InputError(fmt::format("event file '{}': {} is a virtual dataset (data in other files)", path, name));
-  }
-  if (dcpl.ok()) {
-    const std::string filter = missing_filter(dcpl.get());
-    if (!filter.empty()) {
-      throw InputError(fmt::format("event file '{}': {} is compressed with HDF5 {}, which this HDF5 cannot decode "
-                                   "(install its plugin, or write the file without it)",
-                                   path, name, filter));
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+  check_stored(d.get(), stored.get(), n, name, path, file_bytes);
+  // HDF5 converts each field, found by its name, to the memory's.
+  struct Cd {
+    std::int64_t x, y, p, t;
+  };
+  Handle memory_type(H5Tcreate(H5T_COMPOUND, sizeof(Cd)));
+  H5Tinsert(memory_type.get(), "x", HOFFSET(Cd, x), H5T_NATIVE_INT64);
+  H5Tinsert(memory_type.get(), "y", HOFFSET(Cd, y), H5T_NATIVE_INT64);
+  H5Tinsert(memory_type.get(), "p", HOFFSET(Cd, p), H5T_NATIVE_INT64);
+  H5Tinsert(memory_type.get(), "t", HOFFSET(Cd, t), H5T_NATIVE_INT64);
+  PolarityRecording rec;
+  rec.events.reserve(n);
+  std::vector<Cd> block(std::min<hsize_t>(n, kBlock));
+  for (hsize_t from = 0; from < n; from += kBlock) {
+    hsize_t count = std::min(kBlock, n - from);
+    Handle file_space(H5Dget_space(d.get()));
+    Handle memory(H5Screate_simple(1, &count, nullptr));
+    if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &from, nullptr, &count, nullptr) < 0 ||
+        H5Dread(d.get(), memory_type.get(), memory.get(), file_space.get(), H5P_DEFAULT, block.data()) < 0) {
+      throw InputError(fmt::format("event file '{}': cannot read {}", path, name));
+    }
+    for (hsize_t j = 0; j < count; ++j) {
+      const Cd& e = block[j];
+      if (e.x < 0 || e.y < 0 || e.x >= kMostSide || e.y >= kMostSide) {
+        throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is outside 4096x4096", path, from + j, e.x, e.y));
+      }
+      rec.events.push_back({e.t, static_cast<std::int32_t>(e.x), static_cast<std::int32_t>(e.y), e.p != 0});
     }
   }
-  // Stored bytes, compressed or not, within the file; decompressed, at most 1000 times more (far
-  // past what HDF5's filters reach on event streams).
-  const std::uint64_t element = H5Tget_size(stored.get());
-  const haddr_t storage = H5Dget_storage_size(c.d.get());
-  const double claimed = static_cast<double>(c.n) * static_cast<double>(element);
-  if (c.n > 0 && (storage == 0 || static_cast<double>(storage) * 1000.0 < claimed || storage > file_bytes)) {
-    throw InputError(fmt::format("event file '{}': {} claims {} entries ({:.3g} bytes) but the file stores {} bytes of it",
-                                 path, name, c.n, claimed, storage));
-  }
-  if (c.n > (hsize_t(1) << 32)) throw InputError(fmt::format("event file '{}': {} has more than 2^32 events", path, name));
-  return c;
+  return rec;
 }
 
 // Entries [from, from + count) of a column, converted by HDF5 to int64.
@@ -324,6 +393,10 @@ PolarityRecording read_in_this_process(const std::string& path) {
   if (!file.ok()) throw InputError(fmt::format("event file '{}': HDF5 cannot open it", path));
   std::error_code ec;
   const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  if (H5Lexists(file.get(), "events", H5P_DEFAULT) <= 0 && H5Lexists(file.get(), "CD", H5P_DEFAULT) > 0 &&
+      H5Lexists(file.get(), "CD/events", H5P_DEFAULT) > 0) {
+    return read_metavision_cd(file.get(), path, file_bytes);
+  }
   const char* names[] = {"/events/x", "/events/y", "/events/t", "/events/p"};
   Column columns[4];
   hsize_t n = static_cast<hsize_t>(-1);
@@ -344,7 +417,6 @@ PolarityRecording read_in_this_process(const std::string& path) {
   // Read in blocks, straight into the events: memory is the events' own, not four columns more.
   PolarityRecording rec;
   rec.events.reserve(n);
-  constexpr hsize_t kBlock = hsize_t(1) << 18;
   std::vector<std::int64_t> block[4];
   for (auto& b : block) b.resize(std::min<hsize_t>(n, kBlock));
   for (hsize_t from = 0; from < n; from += kBlock) {
@@ -352,7 +424,7 @@ PolarityRecording read_in_this_process(const std::string& path) {
     for (int k = 0; k < 4; ++k) read_block(columns[k], from, count, block[k].data(), names[k], path);
     for (hsize_t j = 0; j < count; ++j) {
       const std::int64_t x = block[0][j], y = block[1][j];
-      if (x < 0 || y < 0 || x >= 4096 || y >= 4096) {
+      if (x < 0 || y < 0 || x >= kMostSide || y >= kMostSide) {
         throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is outside 4096x4096", path, from + j, x, y));
       }
       rec.events.push_back({block[2][j] + t_offset, static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), block[3][j] != 0});

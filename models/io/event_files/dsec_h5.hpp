@@ -40,7 +40,9 @@ class DsecWriter : public EventFileWriter {
   std::vector<std::uint64_t> ms_to_idx_;
 };
 
-// Reads /events/{x,y,t,p} (and /t_offset when present) of a DSEC-layout file. Throws InputError.
+// Reads /events/{x,y,t,p} (and /t_offset when present) of a DSEC-layout file, or the /CD/events
+// compound (x, y, p, t) of a Metavision HDF5 event file where this HDF5 decodes its compression.
+// Throws InputError.
 PolarityRecording read_dsec_h5(const std::string& path);
 
 }  // namespace aesim
