@@ -22,6 +22,7 @@
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/npy_events.hpp"
+#include "aesim/event_files/prophesee_dat.hpp"
 #include "events_generated.h"
 #include "aesim/output/atomic_file.hpp"
 #include "support/temp_dir_test.hpp"
@@ -346,6 +347,14 @@ TEST_F(EventFormats, PropheseeDatIsTwoWordsAnEventAfterItsHeader) {
   std::vector<std::uint32_t> words(expected.size());
   std::memcpy(words.data(), data.data() + header.size(), 4 * words.size());
   EXPECT_EQ(words, expected);
+  // A stamp past 32 bits (2^32 us is 4295 s) is refused, not wrapped.
+  std::ostringstream out;
+  PropheseeDatWriter writer(out, ArrayParams{}, 1e-6);
+  std::vector<AddressEvent> late = {events[0]};
+  late[0].t = 4295.0;
+  EXPECT_THROW(writer.events(late.data(), late.size()), InputError);
+  late[0].t = 4294.0;
+  EXPECT_NO_THROW(writer.events(late.data(), late.size()));
 }
 
 TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {

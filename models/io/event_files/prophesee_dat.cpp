@@ -90,7 +90,13 @@ PropheseeDatWriter::PropheseeDatWriter(std::ostream& out, const ArrayParams& arr
 void PropheseeDatWriter::events(const AddressEvent* first, std::size_t count) {
   // Little-endian words, this machine's order (little_endian.hpp).
   for (const AddressEvent* e = first; e != first + count; ++e) {
-    const auto t = static_cast<std::uint32_t>(stamps_(e->t));
+    const std::uint64_t stamp = stamps_(e->t);
+    // A run's --out refuses runs this long before they start (EventFormatRow::longest_run); a caller
+    // of the writer itself is told here rather than given a wrapped stamp.
+    if (stamp > 0xFFFFFFFFu) {
+      throw InputError(fmt::format("Prophesee DAT stamps are 32-bit microseconds: an event at {:.6g} s does not fit", e->t));
+    }
+    const auto t = static_cast<std::uint32_t>(stamp);
     const std::uint32_t p = e->flags == kGhostEvent ? 0 : 1;
     const std::uint32_t word = e->x | (e->y << 14) | (p << 28);
     std::memcpy(buffer_.data() + used_, &t, 4);
