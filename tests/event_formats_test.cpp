@@ -302,15 +302,22 @@ TEST_F(EventFormats, NpyWriterLeavesNothingOfWhatTheFileHeld) {
   EXPECT_EQ(slurp(fresh), expected);
 }
 
+// A file that is `header` then exactly the little-endian 32-bit words `expected`.
+void expect_words_after(const std::string& data, const std::string& header, const std::vector<std::uint32_t>& expected) {
+  ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
+  ASSERT_EQ(data.size(), header.size() + 4 * expected.size());
+  std::vector<std::uint32_t> words(expected.size());
+  std::memcpy(words.data(), data.data() + header.size(), 4 * words.size());
+  EXPECT_EQ(words, expected);
+}
+
 // Prophesee's EVT 2.0, word by word as its format page defines them: a 32-bit little-endian word,
 // its type in bits 31-28 (EVT_TIME_HIGH 0x8: the stamp's bits 33-6 in bits 27-0; CD_OFF 0x0 and
 // CD_ON 0x1: the stamp's bits 5-0 in 27-22, x in 21-11, y in 10-0).
 TEST_F(EventFormats, PropheseeRawIsEvt2WordsAfterItsHeader) {
   const AddressMap map{ArrayParams{}};
   const std::vector<AddressEvent> events = sample(map);  // 0 us, 1 us, 2500 us (a ghost), 1 s twice
-  const std::string data = slurp(write("e.raw", events));
   const std::string header = "% evt 2.0\n% format EVT2;height=64;width=64\n% geometry 64x64\n% integrator_name aesim\n% end\n";
-  ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
   const std::vector<std::uint32_t> expected = {
       0x80000000u,                                  // time high 0
       0x10000000u | (0u << 22) | (0u << 11) | 0u,   // ON at 0 us, (0, 0)
@@ -321,10 +328,7 @@ TEST_F(EventFormats, PropheseeRawIsEvt2WordsAfterItsHeader) {
       0x10000000u | ((1000000u & 63) << 22) | (63u << 11) | 63u,
       0x10000000u | ((1000000u & 63) << 22) | (63u << 11) | 63u,  // the same stamp: no second time high
   };
-  ASSERT_EQ(data.size(), header.size() + 4 * expected.size());
-  std::vector<std::uint32_t> words(expected.size());
-  std::memcpy(words.data(), data.data() + header.size(), 4 * words.size());
-  EXPECT_EQ(words, expected);
+  expect_words_after(slurp(write("e.raw", events)), header, expected);
 }
 
 // Prophesee's DAT, as its format page lays it out: '%' header lines, the event type (12, EventCd)
@@ -333,9 +337,7 @@ TEST_F(EventFormats, PropheseeRawIsEvt2WordsAfterItsHeader) {
 TEST_F(EventFormats, PropheseeDatIsTwoWordsAnEventAfterItsHeader) {
   const AddressMap map{ArrayParams{}};
   const std::vector<AddressEvent> events = sample(map);  // 0 us, 1 us, 2500 us (a ghost), 1 s twice
-  const std::string data = slurp(write("e.dat", events));
   const std::string header = "% Data file containing CD events\n% Version 2\n% Width 64\n% Height 64\n\x0c\x08";
-  ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
   const std::vector<std::uint32_t> expected = {
       0u,       (1u << 28) | (0u << 14) | 0u,    // ON at 0 us, (0, 0)
       1u,       (1u << 28) | (2u << 14) | 37u,   // ON at 1 us, (37, 2)
@@ -343,10 +345,7 @@ TEST_F(EventFormats, PropheseeDatIsTwoWordsAnEventAfterItsHeader) {
       1000000u, (1u << 28) | (63u << 14) | 63u,  // ON at 1 s, (63, 63), twice
       1000000u, (1u << 28) | (63u << 14) | 63u,
   };
-  ASSERT_EQ(data.size(), header.size() + 4 * expected.size());
-  std::vector<std::uint32_t> words(expected.size());
-  std::memcpy(words.data(), data.data() + header.size(), 4 * words.size());
-  EXPECT_EQ(words, expected);
+  expect_words_after(slurp(write("e.dat", events)), header, expected);
   // A stamp past 32 bits (2^32 us is 4295 s) is refused, not wrapped.
   std::ostringstream out;
   PropheseeDatWriter writer(out, ArrayParams{}, 1e-6);

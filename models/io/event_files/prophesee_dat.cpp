@@ -15,7 +15,6 @@ namespace {
 // The event types of a DAT file's type byte that hold CD events, in the same 8-byte layout.
 constexpr int kEvent2d = 0;
 constexpr int kEventCd = 12;
-constexpr std::size_t kDatBufferBytes = std::size_t(1) << 20;
 // x and y are 14 bits of the event's second word.
 constexpr int kDatSide = 1 << 14;
 
@@ -74,7 +73,7 @@ PolarityRecording decode_prophesee_dat(const std::string& data, const std::strin
 }
 
 PropheseeDatWriter::PropheseeDatWriter(std::ostream& out, const ArrayParams& array, double tick)
-    : out_(out), stamps_(tick), buffer_(kDatBufferBytes) {
+    : BufferedStreamWriter(out, tick) {
   if (array.cols > kDatSide || array.rows > kDatSide) {
     throw InputError(fmt::format("Prophesee DAT holds x and y of 14 bits: a {}x{} array does not fit (at most "
                                  "16384x16384; write .aedat4, .npy or .h5)",
@@ -102,18 +101,9 @@ void PropheseeDatWriter::events(const AddressEvent* first, std::size_t count) {
     std::memcpy(buffer_.data() + used_, &t, 4);
     std::memcpy(buffer_.data() + used_ + 4, &word, 4);
     used_ += 8;
+    // kBufferBytes is a multiple of the 8-byte event.
     if (used_ == buffer_.size()) flush();
   }
-}
-
-void PropheseeDatWriter::flush() {
-  out_.write(buffer_.data(), static_cast<std::streamsize>(used_));
-  used_ = 0;
-}
-
-void PropheseeDatWriter::finish() {
-  flush();
-  out_.flush();
 }
 
 }  // namespace aesim

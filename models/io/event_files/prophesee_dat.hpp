@@ -1,12 +1,9 @@
 #pragma once
-#include <cstdint>
 #include <ostream>
 #include <string>
-#include <vector>
 
 #include "aesim/event_files/aedat4.hpp"
-#include "aesim/event_files/event_stamps.hpp"
-#include "aesim/event_files/event_writer.hpp"
+#include "aesim/event_files/buffered_stream_writer.hpp"
 
 namespace aesim {
 
@@ -31,18 +28,10 @@ PolarityRecording decode_prophesee_dat(const std::string& data, const std::strin
 // an event of two little-endian 32-bit words each: the stamp in microseconds, and x | y << 14 |
 // p << 28 with p 1 for an event and 0 for a ghost (as .npy's p). x and y are 14 bits: arrays of
 // more than 16384 rows or columns are refused (InputError) before anything is written.
-class PropheseeDatWriter : public EventFileWriter {
+class PropheseeDatWriter : public BufferedStreamWriter {
  public:
   PropheseeDatWriter(std::ostream& out, const ArrayParams& array, double tick);
   void events(const AddressEvent* first, std::size_t count) override;
-  void finish() override;
-
- private:
-  void flush();
-  std::ostream& out_;
-  MicrosecondStamps stamps_;
-  std::vector<char> buffer_;  // kDatBufferBytes, a multiple of the 8-byte event
-  std::size_t used_ = 0;
 };
 
 }  // namespace aesim

@@ -280,14 +280,13 @@ PolarityRecording decode_prophesee_raw(const std::string& data, const std::strin
 
 namespace {
 
-constexpr std::size_t kRawBufferBytes = std::size_t(1) << 20;
 // EVT 2.0's x and y fields are 11 bits wide.
 constexpr int kEvt2Side = 2048;
 
 }  // namespace
 
 PropheseeRawWriter::PropheseeRawWriter(std::ostream& out, const ArrayParams& array, double tick)
-    : out_(out), stamps_(tick) {
+    : BufferedStreamWriter(out, tick) {
   if (array.cols > kEvt2Side || array.rows > kEvt2Side) {
     throw InputError(fmt::format("Prophesee RAW (EVT 2.0) holds x and y of 11 bits: a {}x{} array does not fit "
                                  "(at most 2048x2048; write .aedat4, .npy or .h5)",
@@ -297,7 +296,6 @@ PropheseeRawWriter::PropheseeRawWriter(std::ostream& out, const ArrayParams& arr
       "% evt 2.0\n% format EVT2;height={1};width={0}\n% geometry {0}x{1}\n% integrator_name aesim\n% end\n", array.cols,
       array.rows);
   out_.write(header.data(), static_cast<std::streamsize>(header.size()));
-  buffer_.resize(kRawBufferBytes);
 }
 
 void PropheseeRawWriter::events(const AddressEvent* first, std::size_t count) {
@@ -330,16 +328,6 @@ void PropheseeRawWriter::events(const AddressEvent* first, std::size_t count) {
   }
   used_ = static_cast<std::size_t>(out - buffer_.data());
   time_high_ = time_high;
-}
-
-void PropheseeRawWriter::flush() {
-  out_.write(buffer_.data(), static_cast<std::streamsize>(used_));
-  used_ = 0;
-}
-
-void PropheseeRawWriter::finish() {
-  flush();
-  out_.flush();
 }
 
 }  // namespace aesim

@@ -2,11 +2,9 @@
 #include <cstdint>
 #include <ostream>
 #include <string>
-#include <vector>
 
 #include "aesim/event_files/aedat4.hpp"
-#include "aesim/event_files/event_stamps.hpp"
-#include "aesim/event_files/event_writer.hpp"
+#include "aesim/event_files/buffered_stream_writer.hpp"
 
 namespace aesim {
 
@@ -39,19 +37,13 @@ PolarityRecording decode_prophesee_raw(const std::string& data, const std::strin
 // stamp >> 6 differs from the last one written, and a CD word an event: CD_ON for an event,
 // CD_OFF for a ghost (as .npy's p), the stamp's low 6 bits, x and y. x and y are 11 bits:
 // arrays of more than 2048 rows or columns are refused (InputError) before anything is written.
-class PropheseeRawWriter : public EventFileWriter {
+class PropheseeRawWriter : public BufferedStreamWriter {
  public:
   PropheseeRawWriter(std::ostream& out, const ArrayParams& array, double tick);
   void events(const AddressEvent* first, std::size_t count) override;
-  void finish() override;
 
  private:
-  void flush();
-  std::ostream& out_;
-  MicrosecondStamps stamps_;
   std::uint64_t time_high_ = ~std::uint64_t(0);  // the last EVT_TIME_HIGH's value, none yet
-  std::vector<char> buffer_;  // kRawBufferBytes
-  std::size_t used_ = 0;
 };
 
 }  // namespace aesim
