@@ -2,6 +2,7 @@
 // the DSEC layout, each checked at the byte level against its published layout and read back by
 // every command that reads events. (tests/python reads them with NumPy, h5py and FlatBuffers'
 // Python code: readers that are not aesim's.)
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -329,6 +330,59 @@ TEST_F(EventFormats, PropheseeRawIsEvt2WordsAfterItsHeader) {
       0x10000000u | ((1000000u & 63) << 22) | (63u << 11) | 63u,  // the same stamp: no second time high
   };
   expect_words_after(slurp(write("e.raw", events)), header, expected);
+}
+
+// Prophesee's EVT 3.0 (--raw-encoding evt3), word by word as its format page defines them: a 16-bit
+// little-endian word, its type in bits 15-12: EVT_TIME_HIGH 0x8 (the stamp's bits 23-12),
+// EVT_TIME_LOW 0x6 (bits 11-0), EVT_ADDR_Y 0x0 (y; bit 11, the system type, 0), EVT_ADDR_X 0x2
+// (polarity in bit 11, x).
+TEST_F(EventFormats, PropheseeRawInEvt3IsItsWordsAfterItsHeader) {
+  const AddressMap map{ArrayParams{}};
+  const std::vector<AddressEvent> events = sample(map);  // 0 us, 1 us, 2500 us (a ghost), 1 s twice
+  EventFileSpec spec;
+  spec.array = ArrayParams{};
+  spec.duration = 1.002;
+  spec.raw_encoding = RawEncoding::Evt3;
+  const std::string path = (dir_ / "e3.raw").string();
+  write(spec, path, events);
+  const std::string data = slurp(path);
+  const std::string header = "% evt 3.0\n% format EVT3;height=64;width=64\n% geometry 64x64\n% integrator_name aesim\n% end\n";
+  ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
+  const auto word = [](unsigned type, unsigned value) { return static_cast<std::uint16_t>((type << 12) | value); };
+  const std::uint16_t on = 1u << 11;
+  // 1 s = 1,000,000 us = 244 * 4096 + 576.
+  const std::vector<std::uint16_t> expected = {
+      word(0x8, 0), word(0x6, 0), word(0x0, 0), word(0x2, on | 0),  // ON at 0 us, (0, 0)
+      word(0x6, 1), word(0x0, 2), word(0x2, on | 37),               // ON at 1 us, (37, 2)
+      word(0x6, 2500), word(0x0, 40), word(0x2, 5),                 // OFF (the ghost) at 2500 us, (5, 40)
+      word(0x8, 244), word(0x6, 576), word(0x0, 63), word(0x2, on | 63),
+      word(0x2, on | 63),  // the same instant and row: the event's word alone
+  };
+  ASSERT_EQ(data.size(), header.size() + 2 * expected.size());
+  std::vector<std::uint16_t> words(expected.size());
+  std::memcpy(words.data(), data.data() + header.size(), 2 * words.size());
+  EXPECT_EQ(words, expected);
+}
+
+// EVT 3.0's time is 24 bits (16.8 s): across gaps of several wraps a time-high word every 2047 of
+// its steps lets a reader count each wrap; aesim's reader gives back every stamp.
+TEST_F(EventFormats, PropheseeRawInEvt3KeepsStampsAcrossGapsOfSeveralWraps) {
+  const AddressMap map{ArrayParams{}};
+  std::vector<AddressEvent> events;
+  for (const double t : {0.0, 8.388607, 40.0, 40.000001, 100.25, 1000.0}) {
+    AddressEvent e = map.event_at({3, 4});
+    e.t = t;
+    events.push_back(e);
+  }
+  EventFileSpec spec;
+  spec.array = ArrayParams{};
+  spec.duration = 1000.001;
+  spec.raw_encoding = RawEncoding::Evt3;
+  const std::string path = (dir_ / "gaps.raw").string();
+  write(spec, path, events);
+  const EventRecording back = load_events(path);
+  ASSERT_EQ(back.events.size(), events.size());
+  for (std::size_t i = 0; i < events.size(); ++i) EXPECT_DOUBLE_EQ(back.events[i].t, std::round(events[i].t * 1e6) * 1e-6) << i;
 }
 
 // Prophesee's DAT, as its format page lays it out: '%' header lines, the event type (12, EventCd)

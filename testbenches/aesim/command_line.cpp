@@ -31,6 +31,8 @@ void add_run(CLI::App& app, int& status) {
                   "bottom, polarity ON for a normal event and OFF for a ghost)");
   cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4, zstd or none")
       ->capture_default_str();
+  cmd->add_option("--raw-encoding", opt->raw_encoding, "Words of a Prophesee .raw --out: evt2 or evt3")
+      ->capture_default_str();
   cmd->add_option("--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction image (.png or .pgm)");
   cmd->add_option("--vcd", opt->vcd, "Bus wires of every tile as a VCD file (needs sim.fidelity=cycle or auto)");
@@ -160,6 +162,8 @@ void add_emulate(CLI::App& app, int& status) {
   cmd->add_option("--out", opt->out,
                   "Events with synthetic timestamps, by extension: " + event_formats_help());
   cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4, zstd or none")
+      ->capture_default_str();
+  cmd->add_option("--raw-encoding", opt->raw_encoding, "Words of a Prophesee .raw --out: evt2 or evt3")
       ->capture_default_str();
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction (.png or .pgm)");
   cmd->add_option("--events", opt->events, "Reconstruct from the first N events (default: all)");

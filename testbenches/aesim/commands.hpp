@@ -40,6 +40,7 @@ struct CompareOptions {
 struct EmulateOptions {
   std::string input, behaviour = "intensity", size, clip = "0,255", queue, out, recon, spread = "even";
   std::string aedat4_compression = "lz4";
+  std::string raw_encoding = "evt2";
   double threshold = 0, f_max = 20, frame_rate = 0, chaos_in = 0, chaos_out = 0, max_events = 1e8;
   long long events = 0;
   std::uint64_t seed = 1;
@@ -77,6 +78,7 @@ struct RunOptions {
   std::string max_events;
   std::string aedat_layout = "aesim";
   std::string aedat4_compression = "lz4";
+  std::string raw_encoding = "evt2";
 };
 
 struct SweepOptions {

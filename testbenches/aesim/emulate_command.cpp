@@ -112,6 +112,7 @@ int emulate_command(EmulateOptions opt) {
     writable_event_format(opt.out, "--out");
   }
   parse_aedat4_compression(opt.aedat4_compression);
+  parse_raw_encoding(opt.raw_encoding);
   check_output_paths({{"--queue", opt.queue}, {"--out", opt.out}, {"--recon", opt.recon}}, inputs);
 
   const EmulatedRun run = emulate_frames(opt);
@@ -156,6 +157,7 @@ int emulate_command(EmulateOptions opt) {
     spec.tick = 1e-6;
     spec.duration = span;
     spec.compression = parse_aedat4_compression(opt.aedat4_compression);
+    spec.raw_encoding = parse_raw_encoding(opt.raw_encoding);
     std::unique_ptr<EventFileWriter> writer = open_event_writer(files, opt.out, spec);
     writer->events(stream.data(), stream.size());
     writer->finish();

@@ -76,6 +76,7 @@ int run_command(RunOptions opt) {
   spec.vcd_to = opt.vcd_to;
   spec.aedat_layout = opt.aedat_layout;
   spec.aedat4_compression = opt.aedat4_compression;
+  spec.raw_encoding = opt.raw_encoding;
   const RunReport report = run_sensor(spec);
   for (const std::string& w : report.warnings) std::fprintf(stderr, "aesim: warning: %s\n", w.c_str());
   print_report(opt, report);

@@ -22,6 +22,7 @@ set(scenarios
   "event_letter_npy|${letter} --duration 1s --out event_letter_npy.npy"
   "event_letter_h5|${letter} --duration 1s --out event_letter_h5.h5"
   "event_letter_raw|${letter} --duration 1s --out event_letter_raw.raw"
+  "event_letter_raw3|${letter} --duration 1s --out event_letter_raw3.raw --raw-encoding evt3"
   "event_letter_dat|${letter} --duration 1s --out event_letter_dat.dat"
   "queue_letter|${letter} --duration 1s --set sim.fidelity=queue --csv queue_letter.csv"
   "cycle_hdr|--scene ${SOURCE}/scenes/hdr/window.pfm --duration 300ms --set sim.fidelity=cycle --set bus.t_event=2us --set receiver.clock=5MHz --csv cycle_hdr.csv --truth cycle_hdr_truth.csv"

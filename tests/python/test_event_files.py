@@ -33,13 +33,15 @@ def run(tmp_path_factory):
     """One run written as CSV and in every format (the same seed gives the same events)."""
     folder = tmp_path_factory.mktemp("formats")
     outputs = {}
-    for name in ["e.npy", "e.h5", "e.aedat4", "plain.aedat4", "zstd.aedat4", "e.raw", "e.dat"]:
+    for name in ["e.npy", "e.h5", "e.aedat4", "plain.aedat4", "zstd.aedat4", "e.raw", "e3.raw", "e.dat"]:
         args = [AESIM, "run", "--scene", SCENE, "--duration", f"{DURATION_MS}ms", "--set",
                 "bus.contention_detect=false", "--csv", str(folder / (name + ".csv")), "--out", str(folder / name)]
         if name == "plain.aedat4":
             args += ["--aedat4-compression", "none"]
         if name == "zstd.aedat4":
             args += ["--aedat4-compression", "zstd"]
+        if name == "e3.raw":
+            args += ["--raw-encoding", "evt3"]
         subprocess.run(args, check=True, capture_output=True, env=dict(os.environ, SYSTEMC_DISABLE_COPYRIGHT_MESSAGE="1"))
         outputs[name] = folder / name
     csv = np.loadtxt(folder / "e.npy.csv", delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
@@ -79,6 +81,38 @@ def test_prophesee_raw_decoded_from_the_evt2_format_page(run):
     x = (words[cd] >> 11) & 0x7FF
     y = words[cd] & 0x7FF
     expect_same(csv, x, y, t, kind[cd])
+
+
+def test_prophesee_raw_decoded_from_the_evt3_format_page(run):
+    """EVT 3.0 as Prophesee's EVT 3.0 page defines it, decoded here word by word: 16-bit
+    little-endian words, the type in bits 15-12; EVT_TIME_HIGH (0x8) and EVT_TIME_LOW (0x6) set the
+    time's bits 23-12 and 11-0, EVT_ADDR_Y (0x0) the row, EVT_ADDR_X (0x2) an event (polarity in
+    bit 11, x). The run is shorter than the 24-bit time's 16.8 s, so no wrap."""
+    outputs, csv = run
+    data = outputs["e3.raw"].read_bytes()
+    end = data.index(b"% end\n") + len(b"% end\n")
+    header = dict(line[2:].split(" ", 1) for line in data[:end].decode("ascii").splitlines() if line != "% end")
+    assert header["evt"] == "3.0"
+    assert header["format"] == "EVT3;height=64;width=64"
+    words = np.frombuffer(data[end:], dtype="<u2")
+    high = low = row = None
+    t, x, y, p = [], [], [], []
+    for w in words.tolist():
+        kind, value = w >> 12, w & 0xFFF
+        if kind == 0x8:
+            high = value
+        elif kind == 0x6:
+            low = value
+        elif kind == 0x0:
+            row = value & 0x7FF
+        elif kind == 0x2:
+            t.append((high << 12) | low)
+            x.append(value & 0x7FF)
+            y.append(row)
+            p.append(value >> 11)
+        else:
+            raise AssertionError(f"word type {kind:#x} not written by aesim")
+    expect_same(csv, x, y, t, p)
 
 
 def test_prophesee_dat_decoded_from_the_dat_format_page(run):

@@ -82,12 +82,12 @@ std::vector<EventFormatRow> make_rows() {
     rows.push_back(std::move(r));
   }
   {
-    // Read: EVT 2.0, 2.1 and 3.0 (a camera's recording); written: EVT 2.0.
-    EventFormatRow r{EventFileFormat::PropheseeRaw, "Prophesee RAW", {".raw"}, "Metavision's, EVT 2.0"};
+    // Read: EVT 2.0, 2.1 and 3.0 (a camera's recording); written: EVT 2.0 or 3.0 (--raw-encoding).
+    EventFormatRow r{EventFileFormat::PropheseeRaw, "Prophesee RAW", {".raw"}, "Metavision's, EVT 2.0 or 3.0"};
     r.longest_run = 17179;
     r.stamps = "EVT 2.0 timestamps are 34-bit microseconds";
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
-      return std::make_unique<PropheseeRawWriter>(files.open(path), spec.array, spec.tick);
+      return std::make_unique<PropheseeRawWriter>(files.open(path), spec.array, spec.tick, spec.raw_encoding);
     };
     r.decode = [](const std::string& data, const std::string& label, const std::string&) {
       return decode_prophesee_raw_recording(data, label);

@@ -27,6 +27,9 @@ class EventFileWriter : public EventStream {
 
 enum class Aedat4Compression { None, Lz4, Zstd };
 Aedat4Compression parse_aedat4_compression(const std::string& text);  // "none" | "lz4" | "zstd"
+// The encoding a Prophesee RAW file is written in (prophesee_raw.hpp).
+enum class RawEncoding { Evt2, Evt3 };
+RawEncoding parse_raw_encoding(const std::string& text);  // "evt2" | "evt3"
 
 // What every format records beside the events: the array (and its tiles), the sensor parameters
 // (sensor_metadata, "section.key" -> text), notes for a text header, the receiver's tick.
@@ -38,6 +41,7 @@ struct EventFileSpec {
   double duration = 0;  // s, the run's (the HDF5 index covers every millisecond of it)
   AedatLayout layout = AedatLayout::Aesim;              // AEDAT 2.0 only
   Aedat4Compression compression = Aedat4Compression::Lz4;  // AEDAT 4.0 only
+  RawEncoding raw_encoding = RawEncoding::Evt2;            // Prophesee RAW only
 };
 
 // A writer for `path` (not .csv) in the format its extension names (event_formats), writing to a

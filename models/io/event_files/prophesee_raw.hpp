@@ -30,20 +30,31 @@ namespace aesim {
 // not name its encoding, or names another (HISTO3D, DIFF3D, EVT 4.0, ...).
 PolarityRecording decode_prophesee_raw(const std::string& data, const std::string& label);
 
-// Writes a run's events as a Prophesee RAW file in EVT 2.0, the encoding every Metavision release
-// and the RAW readers of the field decode: a header naming it ("% evt 2.0", "% format
-// EVT2;height=H;width=W", "% geometry WxH", "% integrator_name aesim", "% end"; no date, so the
-// same run writes the same bytes), then one EVT_TIME_HIGH word whenever an event's microsecond
-// stamp >> 6 differs from the last one written, and a CD word an event: CD_ON for an event,
-// CD_OFF for a ghost (as .npy's p), the stamp's low 6 bits, x and y. x and y are 11 bits:
-// arrays of more than 2048 rows or columns are refused (InputError) before anything is written.
+// Writes a run's events as a Prophesee RAW file, after a header naming its encoding ("% evt 2.0"
+// or "% evt 3.0", "% format EVT2;height=H;width=W" or EVT3, "% geometry WxH", "% integrator_name
+// aesim", "% end"; no date, so the same run writes the same bytes); CD ON for an event and CD OFF
+// for a ghost (as .npy's p). x and y are 11 bits in both: arrays of more than 2048 rows or columns
+// are refused (InputError) before anything is written.
+//  - EVT 2.0 (32-bit words): an EVT_TIME_HIGH word (the microsecond stamp >> 6) whenever it
+//    differs from the last one written, and a CD word an event with the stamp's low 6 bits, x, y.
+//  - EVT 3.0 (16-bit words), single events (no vectors): EVT_TIME_HIGH (stamp bits 23-12) where
+//    those bits change, EVT_TIME_LOW (bits 11-0) where they or the high part change, EVT_ADDR_Y
+//    where the row changes, then EVT_ADDR_X (polarity, x) an event. The 24-bit time wraps every
+//    16.8 s: readers count a wrap where the high part falls, so across a gap between events a
+//    time-high word is written at least every 2047 of its steps (8.4 s), each wrap then seen.
 class PropheseeRawWriter : public BufferedStreamWriter {
  public:
-  PropheseeRawWriter(std::ostream& out, const ArrayParams& array, double tick);
+  PropheseeRawWriter(std::ostream& out, const ArrayParams& array, double tick, RawEncoding encoding = RawEncoding::Evt2);
   void events(const AddressEvent* first, std::size_t count) override;
 
  private:
+  void evt2(const AddressEvent* first, std::size_t count);
+  void evt3(const AddressEvent* first, std::size_t count);
+  RawEncoding encoding_;
   std::uint64_t time_high_ = ~std::uint64_t(0);  // the last EVT_TIME_HIGH's value, none yet
+  // EVT 3.0: the last EVT_TIME_LOW and EVT_ADDR_Y written (none yet).
+  std::uint64_t time_low_ = ~std::uint64_t(0);
+  std::uint32_t row_ = ~std::uint32_t(0);
 };
 
 }  // namespace aesim

@@ -107,6 +107,7 @@ RunReport run_sensor(const RunSpec& spec) {
   const AddressMap map(config.array);
   const AedatLayout layout = parse_aedat_layout(spec.aedat_layout);
   const Aedat4Compression compression = parse_aedat4_compression(spec.aedat4_compression);
+  const RawEncoding raw_encoding = parse_raw_encoding(spec.raw_encoding);
   if (!spec.out.empty()) check_event_file(spec, config, layout);
   const std::vector<std::string> rtl_traces =
       request.waveforms && rung.fidelity() == Fidelity::Cycle && config.receiver.model == ReceiverModel::Rtl
@@ -146,6 +147,7 @@ RunReport run_sensor(const RunSpec& spec) {
     file.duration = config.sim.duration;
     file.layout = layout;
     file.compression = compression;
+    file.raw_encoding = raw_encoding;
     events = open_event_writer(files, spec.out, file);
     streams.add(*events);
   }

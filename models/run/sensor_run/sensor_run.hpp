@@ -28,6 +28,7 @@ struct RunSpec {
   std::string vcd_from = "0s", vcd_to;  // the VCD's window; vcd_to empty: the whole run
   std::string aedat_layout = "aesim";   // aesim | dvs128 | davis240c | davis346 (AEDAT 2.0 only)
   std::string aedat4_compression = "lz4";
+  std::string raw_encoding = "evt2";  // evt2 | evt3 (Prophesee RAW only)
   // Besides the files, every delivered event goes to this stream as the run makes it (in time
   // order), and with `keep_truth` every firing's fate.
   EventStream* stream = nullptr;
