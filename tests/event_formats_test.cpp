@@ -364,25 +364,31 @@ TEST_F(EventFormats, PropheseeRawInEvt3IsItsWordsAfterItsHeader) {
   EXPECT_EQ(words, expected);
 }
 
-// EVT 3.0's time is 24 bits (16.8 s): across gaps of several wraps a time-high word every 2047 of
-// its steps lets a reader count each wrap; aesim's reader gives back every stamp.
+// EVT 3.0's time is 24 bits (16.8 s): from 0 us and across gaps of several wraps a time-high word
+// every 2047 of its steps lets a reader count each wrap; aesim's reader gives back every stamp,
+// also where the first event comes after several wraps.
 TEST_F(EventFormats, PropheseeRawInEvt3KeepsStampsAcrossGapsOfSeveralWraps) {
   const AddressMap map{ArrayParams{}};
-  std::vector<AddressEvent> events;
-  for (const double t : {0.0, 8.388607, 40.0, 40.000001, 100.25, 1000.0}) {
-    AddressEvent e = map.event_at({3, 4});
-    e.t = t;
-    events.push_back(e);
+  for (const std::vector<double>& times : {std::vector<double>{0.0, 8.388607, 40.0, 40.000001, 100.25, 1000.0},
+                                           std::vector<double>{50.5, 50.6}}) {
+    std::vector<AddressEvent> events;
+    for (const double t : times) {
+      AddressEvent e = map.event_at({3, 4});
+      e.t = t;
+      events.push_back(e);
+    }
+    EventFileSpec spec;
+    spec.array = ArrayParams{};
+    spec.duration = 1000.001;
+    spec.raw_encoding = RawEncoding::Evt3;
+    const std::string path = (dir_ / "gaps.raw").string();
+    write(spec, path, events);
+    const EventRecording back = load_events(path);
+    ASSERT_EQ(back.events.size(), events.size());
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      EXPECT_DOUBLE_EQ(back.events[i].t, std::round(events[i].t * 1e6) * 1e-6) << times.front() << " " << i;
+    }
   }
-  EventFileSpec spec;
-  spec.array = ArrayParams{};
-  spec.duration = 1000.001;
-  spec.raw_encoding = RawEncoding::Evt3;
-  const std::string path = (dir_ / "gaps.raw").string();
-  write(spec, path, events);
-  const EventRecording back = load_events(path);
-  ASSERT_EQ(back.events.size(), events.size());
-  for (std::size_t i = 0; i < events.size(); ++i) EXPECT_DOUBLE_EQ(back.events[i].t, std::round(events[i].t * 1e6) * 1e-6) << i;
 }
 
 // Prophesee's DAT, as its format page lays it out: '%' header lines, the event type (12, EventCd)

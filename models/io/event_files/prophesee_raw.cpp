@@ -326,10 +326,13 @@ void PropheseeRawWriter::evt3(const AddressEvent* first, std::size_t count) {
   for (const AddressEvent* e = first; e != first + count; ++e) {
     const std::uint64_t t = stamps_(e->t);
     const std::uint64_t high = t >> 12, low = t & 0xFFF;
+    // The stream starts at 0 us, so that a first event past the first wrap keeps its stamp.
+    if (time_high_ == ~std::uint64_t(0)) {
+      put(0x8, 0);
+      time_high_ = 0;
+    }
     if (high != time_high_) {
-      if (time_high_ != ~std::uint64_t(0)) {
-        for (std::uint64_t step = time_high_ + kEvt3HighStep; step < high; step += kEvt3HighStep) put(0x8, step & 0xFFF);
-      }
+      for (std::uint64_t step = time_high_ + kEvt3HighStep; step < high; step += kEvt3HighStep) put(0x8, step & 0xFFF);
       put(0x8, high & 0xFFF);  // EVT_TIME_HIGH
       time_high_ = high;
       time_low_ = ~std::uint64_t(0);

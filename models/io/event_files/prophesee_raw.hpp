@@ -40,8 +40,9 @@ PolarityRecording decode_prophesee_raw(const std::string& data, const std::strin
 //  - EVT 3.0 (16-bit words), single events (no vectors): EVT_TIME_HIGH (stamp bits 23-12) where
 //    those bits change, EVT_TIME_LOW (bits 11-0) where they or the high part change, EVT_ADDR_Y
 //    where the row changes, then EVT_ADDR_X (polarity, x) an event. The 24-bit time wraps every
-//    16.8 s: readers count a wrap where the high part falls, so across a gap between events a
-//    time-high word is written at least every 2047 of its steps (8.4 s), each wrap then seen.
+//    16.8 s: readers count a wrap where the high part falls, so from 0 us to the first event and
+//    across a gap between events a time-high word is written at least every 2047 of its steps
+//    (8.4 s), each wrap then seen.
 class PropheseeRawWriter : public BufferedStreamWriter {
  public:
   PropheseeRawWriter(std::ostream& out, const ArrayParams& array, double tick, RawEncoding encoding = RawEncoding::Evt2);
