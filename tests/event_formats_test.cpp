@@ -68,6 +68,16 @@ class EventFormats : public testing::TempDirTest {
     write(spec, path, events);
     return path;
   }
+  // `events` as a Prophesee RAW file in EVT 3.0 from a run of `duration` s.
+  std::string write_evt3(const std::string& name, const std::vector<AddressEvent>& events, double duration) {
+    EventFileSpec spec;
+    spec.array = ArrayParams{};
+    spec.duration = duration;
+    spec.raw_encoding = RawEncoding::Evt3;
+    const std::string path = (dir_ / name).string();
+    write(spec, path, events);
+    return path;
+  }
   // Writes `events` to `path` as `spec` says; how many the writer left out as naming no pixel.
   static std::uint64_t write(const EventFileSpec& spec, const std::string& path, const std::vector<AddressEvent>& events) {
     OutputFiles files;
@@ -303,12 +313,13 @@ TEST_F(EventFormats, NpyWriterLeavesNothingOfWhatTheFileHeld) {
   EXPECT_EQ(slurp(fresh), expected);
 }
 
-// A file that is `header` then exactly the little-endian 32-bit words `expected`.
-void expect_words_after(const std::string& data, const std::string& header, const std::vector<std::uint32_t>& expected) {
+// A file that is `header` then exactly the little-endian words `expected` (16 or 32 bits).
+template <typename Word>
+void expect_words_after(const std::string& data, const std::string& header, const std::vector<Word>& expected) {
   ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
-  ASSERT_EQ(data.size(), header.size() + 4 * expected.size());
-  std::vector<std::uint32_t> words(expected.size());
-  std::memcpy(words.data(), data.data() + header.size(), 4 * words.size());
+  ASSERT_EQ(data.size(), header.size() + sizeof(Word) * expected.size());
+  std::vector<Word> words(expected.size());
+  std::memcpy(words.data(), data.data() + header.size(), sizeof(Word) * words.size());
   EXPECT_EQ(words, expected);
 }
 
@@ -339,15 +350,7 @@ TEST_F(EventFormats, PropheseeRawIsEvt2WordsAfterItsHeader) {
 TEST_F(EventFormats, PropheseeRawInEvt3IsItsWordsAfterItsHeader) {
   const AddressMap map{ArrayParams{}};
   const std::vector<AddressEvent> events = sample(map);  // 0 us, 1 us, 2500 us (a ghost), 1 s twice
-  EventFileSpec spec;
-  spec.array = ArrayParams{};
-  spec.duration = 1.002;
-  spec.raw_encoding = RawEncoding::Evt3;
-  const std::string path = (dir_ / "e3.raw").string();
-  write(spec, path, events);
-  const std::string data = slurp(path);
   const std::string header = "% evt 3.0\n% format EVT3;height=64;width=64\n% geometry 64x64\n% integrator_name aesim\n% end\n";
-  ASSERT_EQ(data.compare(0, header.size(), header), 0) << data.substr(0, 200);
   const auto word = [](unsigned type, unsigned value) { return static_cast<std::uint16_t>((type << 12) | value); };
   const std::uint16_t on = 1u << 11;
   // 1 s = 1,000,000 us = 244 * 4096 + 576.
@@ -358,10 +361,7 @@ TEST_F(EventFormats, PropheseeRawInEvt3IsItsWordsAfterItsHeader) {
       word(0x8, 244), word(0x6, 576), word(0x0, 63), word(0x2, on | 63),
       word(0x2, on | 63),  // the same instant and row: the event's word alone
   };
-  ASSERT_EQ(data.size(), header.size() + 2 * expected.size());
-  std::vector<std::uint16_t> words(expected.size());
-  std::memcpy(words.data(), data.data() + header.size(), 2 * words.size());
-  EXPECT_EQ(words, expected);
+  expect_words_after(slurp(write_evt3("e3.raw", events, 1.002)), header, expected);
 }
 
 // EVT 3.0's time is 24 bits (16.8 s): from 0 us and across gaps of several wraps a time-high word
@@ -377,13 +377,7 @@ TEST_F(EventFormats, PropheseeRawInEvt3KeepsStampsAcrossGapsOfSeveralWraps) {
       e.t = t;
       events.push_back(e);
     }
-    EventFileSpec spec;
-    spec.array = ArrayParams{};
-    spec.duration = 1000.001;
-    spec.raw_encoding = RawEncoding::Evt3;
-    const std::string path = (dir_ / "gaps.raw").string();
-    write(spec, path, events);
-    const EventRecording back = load_events(path);
+    const EventRecording back = load_events(write_evt3("gaps.raw", events, 1000.001));
     ASSERT_EQ(back.events.size(), events.size());
     for (std::size_t i = 0; i < events.size(); ++i) {
       EXPECT_DOUBLE_EQ(back.events[i].t, std::round(events[i].t * 1e6) * 1e-6) << times.front() << " " << i;

@@ -53,11 +53,7 @@ TEST_F(Y4mTest, MalformedVideosAreInputErrors) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
     }
     // The same as a scene: a one-line error, exit status 2, nothing written.
-    const testing::Outcome run = aesim("run --scene bad.y4m --duration 10ms --csv e.csv");
-    EXPECT_EQ(run.status, 2) << needle;
-    EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
-    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
-    EXPECT_FALSE(std::filesystem::exists(dir_ / "e.csv")) << needle;
+    expect_scene_refused("bad.y4m", needle);
   }
 }
 

@@ -61,6 +61,15 @@ class TempDirTest : public ::testing::Test {
     std::filesystem::remove(dir_ / "stderr.txt");
     return o;
   }
+  // `aesim run` on a scene it must refuse: exit status 2, one line of error holding `needle`, and
+  // the output it was asked for not written.
+  void expect_scene_refused(const std::string& scene, const std::string& needle) {
+    const Outcome run = aesim("run --scene '" + scene + "' --duration 10ms --csv e.csv");
+    EXPECT_EQ(run.status, 2) << needle;
+    EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "e.csv")) << needle;
+  }
 #endif
 
   std::filesystem::path dir_;
