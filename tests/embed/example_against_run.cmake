@@ -9,11 +9,8 @@
 #   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen>
 #         -DCXX=<C++ compiler> -P this
 cmake_policy(VERSION 3.22)
-foreach(v BUILD SOURCE WORK GENERATOR CXX)
-  if(NOT DEFINED ${v})
-    message(FATAL_ERROR "example_against_run: -D${v}= is required")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/required_definitions.cmake)
+require_definitions(example_against_run BUILD SOURCE WORK GENERATOR CXX)
 set(prefix ${WORK}/prefix)
 set(scene ${SOURCE}/scenes/hdr/window.pfm)
 set(duration 300ms)

@@ -6,11 +6,8 @@
 # one docs/embedding.md lists.
 #   cmake -DBUILD=<aesim build> -DWORK=<scratch> -DGENERATOR=<gen> -P this
 cmake_policy(VERSION 3.22)
-foreach(v BUILD WORK GENERATOR)
-  if(NOT DEFINED ${v})
-    message(FATAL_ERROR "public_headers: -D${v}= is required")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/required_definitions.cmake)
+require_definitions(public_headers BUILD WORK GENERATOR)
 set(prefix ${WORK}/prefix)
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix} RESULT_VARIABLE status OUTPUT_QUIET

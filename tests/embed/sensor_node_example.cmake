@@ -8,11 +8,8 @@
 # exits 2 with one line.
 #   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen> -P this
 cmake_policy(VERSION 3.22)
-foreach(v BUILD SOURCE WORK GENERATOR)
-  if(NOT DEFINED ${v})
-    message(FATAL_ERROR "sensor_node_example: -D${v}= is required")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/required_definitions.cmake)
+require_definitions(sensor_node_example BUILD SOURCE WORK GENERATOR)
 
 include(${CMAKE_CURRENT_LIST_DIR}/installed_example.cmake)
 

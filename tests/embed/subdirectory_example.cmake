@@ -4,11 +4,8 @@
 # built by embed.find_package_example's install; building it again here would double its time).
 #   cmake -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen> -DCXX=<compiler> -P this
 cmake_policy(VERSION 3.22)
-foreach(v SOURCE WORK GENERATOR CXX)
-  if(NOT DEFINED ${v})
-    message(FATAL_ERROR "subdirectory_example: -D${v}= is required")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/required_definitions.cmake)
+require_definitions(subdirectory_example SOURCE WORK GENERATOR CXX)
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE}/docs/examples/subdirectory -B ${WORK} -G ${GENERATOR}
                         -DCMAKE_CXX_COMPILER=${CXX} -DAESIM_SOURCE=${SOURCE}
