@@ -603,7 +603,9 @@ TEST_F(EventFormats, EveryCommandThatReadsEventsReadsEveryFormatItWrites) {
 TEST_F(EventFormats, BadOutputsAreRefusedBeforeTheRunAndLeaveNothing) {
   const struct {
     std::string args, words;
-  } cases[] = {{"--out e.txt", "unknown event file type"},
+  } cases[] = {{"--out e.mp4", "unknown event file type"},
+               {"--out e.txt", "events text is read, not written"},
+               {"--out e.bin", "N-MNIST binary is read, not written"},
                {"--out e.npy --aedat-layout dvs128", "AEDAT 2.0"},
                {"--out e.aedat4 --aedat4-compression zip", "--aedat4-compression"},
                {"--out e.csv", "--csv"},

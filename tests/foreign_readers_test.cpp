@@ -518,6 +518,77 @@ TEST(ForeignReaders, PropheseeRawHeadersThatNameNoReadableEncodingAreOneLineErro
   refused("% evt 3.0", "header does not end");
 }
 
+// N-MNIST and N-Caltech101 (.bin), laid out as Orchard's Read_Ndataset.m and tonic's
+// read_mnist_file read them: 5 bytes a record, x, y, then polarity in bit 7 and a 23-bit stamp
+// (us), most significant byte first. A record with y 240 marks a stamp overflow: 2^13 us more for
+// it and every record after it, and it is no event.
+TEST(ForeignReaders, NmnistBinGivesItsRecordsWithTheOverflowMarkersAddedAndCounted) {
+  std::string file;
+  const auto record = [&](unsigned x, unsigned y, bool on, std::uint32_t t) {
+    file += static_cast<char>(x);
+    file += static_cast<char>(y);
+    file += static_cast<char>((on ? 0x80 : 0) | ((t >> 16) & 0x7F));
+    file += static_cast<char>((t >> 8) & 0xFF);
+    file += static_cast<char>(t & 0xFF);
+  };
+  record(33, 0, true, 654);
+  record(0, 33, false, 0x7FFFFF);  // the largest 23-bit stamp
+  record(0, 240, false, 0);        // overflow
+  record(7, 9, true, 0x7FFFFF);
+  record(0, 240, true, 0);  // overflow
+  record(255, 239, false, 0x7FE005);
+  const EventRecording rec = decode_events(file, "n.bin", EventFileFormat::NmnistBin);
+  expect_events(rec, {{654, 33, 0, true}, {8388607, 0, 33, false}, {8388607 + 8192, 7, 9, true}, {0x7FE005 + 2 * 8192, 255, 239, false}});
+  EXPECT_FALSE(rec.size_recorded);
+  EXPECT_EQ(rec.width, 256);  // the events' span: x reaches 255
+  EXPECT_EQ(rec.height, 240);
+  EXPECT_TRUE(noted(rec, "2 stamp overflow records"));
+  expect_decode_refused(file.substr(0, 12), EventFileFormat::NmnistBin, "ends inside record 2");
+  // Stamps that go back (not a recording in time order, or not this format): refused.
+  std::string back = file.substr(0, 10);
+  back[9] = 0;
+  back[8] = 0;
+  back[7] = 0;
+  expect_decode_refused(back, EventFileFormat::NmnistBin, "timestamps decrease at event 1");
+  EXPECT_TRUE(decode_events("", "empty.bin", EventFileFormat::NmnistBin).events.empty());
+}
+
+// Text events, one `t x y p` a line: the Event Camera Dataset's events.txt (t in s with nine
+// decimals), v2e's (its '#' header, Python's float repr such as 1e-06, an optional signal/noise
+// column), rpg_e2vid's (a first line `width height`), polarity 1 or 0 (or -1 for OFF).
+TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
+  const EventRecording ecd =
+      decode_events("0.000000000 33 39 1\n0.000011001 158 145 1\r\n0.000050000 88 143 0\n", "events.txt", EventFileFormat::EventsText);
+  expect_events(ecd, {{0, 33, 39, true}, {11, 158, 145, true}, {50, 88, 143, false}});
+  EXPECT_FALSE(ecd.size_recorded);
+  const EventRecording v2e = decode_events(
+      "#!events.txt\n# This is a text DVS created by v2e\n# Format is time (float s), x, y, polarity (0=off, 1=on)\n"
+      "1e-06 3 4 0 1\n2.5e-05 5 6 1 0\n\n0.5 7 8 -1 1\n",
+      "v2e.txt", EventFileFormat::EventsText);
+  expect_events(v2e, {{1, 3, 4, false}, {25, 5, 6, true}, {500000, 7, 8, false}});
+  const EventRecording e2vid = decode_events("240 180\n1.0000004 239 179 1\n1.0000006\t0\t0\t0\n", "e2vid.txt",
+                                             EventFileFormat::EventsText);
+  expect_events(e2vid, {{1000000, 239, 179, true}, {1000001, 0, 0, false}});
+  EXPECT_TRUE(e2vid.size_recorded);
+  EXPECT_EQ(e2vid.width, 240);
+  EXPECT_EQ(e2vid.height, 180);
+  const auto refused = [](const std::string& data, const std::string& words) {
+    expect_decode_refused(data, EventFileFormat::EventsText, words);
+  };
+  refused("0.1 1 2 1\n0.05 1 2 1\n", "line 2 ('0.05 1 2 1'): its time is earlier");
+  refused("0.1 1 2 2\n", "polarity must be 1 (ON), 0 or -1 (OFF)");
+  refused("0.1 1 2\n", "expected 't x y p'");
+  refused("0.1 1 2 1 0 9\n", "expected 't x y p'");
+  refused("t x y p\n", "the time is not a number");
+  refused("nan 1 2 1\n", "the time is not a number");
+  refused("-0.5 1 2 1\n", "outside 0 to");
+  refused("0.1 -1 2 1\n", "x and y must be whole numbers");
+  refused("0.1 1.5 2 1\n", "x and y must be whole numbers");
+  refused("240 0\n", "two whole numbers from 1 to 65535");
+  refused("0.1 1 2 1\n240 180\n", "line 2");
+  refused("240 180\n0.1 300 2 1\n", "outside its 240x180 array");
+}
+
 class EmptyRuns : public testing::TempDirTest {};
 
 // A run that delivers no event still writes a file each reader opens: DV's AEDAT 4.0 readers

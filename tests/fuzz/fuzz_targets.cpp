@@ -75,6 +75,13 @@ int prophesee_raw(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.raw", EventFileFormat::PropheseeRaw); });
 }
 
+// The first byte chooses the reader: N-MNIST's .bin (odd) or `t x y p` text (even).
+int dataset_files(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const EventFileFormat format = (data[0] & 1) ? EventFileFormat::NmnistBin : EventFileFormat::EventsText;
+  return expect_result_or_input_error([&] { decode_events(bytes(data + 1, size - 1), "fuzz.dataset", format); });
+}
+
 int aedat(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.aedat", EventFileFormat::Aedat2); });
 }

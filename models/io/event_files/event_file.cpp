@@ -19,6 +19,8 @@
 #include "aesim/event_files/event_formats.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/events_csv.hpp"
+#include "aesim/event_files/events_text.hpp"
+#include "aesim/event_files/nmnist_bin.hpp"
 #include "aesim/event_files/npy_events.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/event_files/prophesee_raw.hpp"
@@ -270,6 +272,14 @@ EventRecording decode_prophesee_raw_recording(const std::string& data, const std
 
 EventRecording decode_npy_recording(const std::string& data, const std::string& label) {
   return from_polarity(decode_npy(data, label), label);
+}
+
+EventRecording decode_nmnist_bin_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_nmnist_bin(data, label), label);
+}
+
+EventRecording decode_events_text_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_events_text(data, label), label);
 }
 
 EventRecording decode_csv_recording(const std::string& data, const std::string& label) {

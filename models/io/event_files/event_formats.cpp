@@ -114,6 +114,28 @@ std::vector<EventFormatRow> make_rows() {
     rows.push_back(std::move(r));
   }
   {
+    // Read: the ATIS saccade datasets' recordings (N-MNIST, N-Caltech101).
+    EventFormatRow r{EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"}, "N-MNIST's and N-Caltech101's"};
+    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
+      return decode_nmnist_bin_recording(data, label);
+    };
+    r.read = [](const std::string& path, const std::string&) {
+      return decode_nmnist_bin_recording(read_event_file_bytes(path), path);
+    };
+    rows.push_back(std::move(r));
+  }
+  {
+    // Read: `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e, rpg_e2vid).
+    EventFormatRow r{EventFileFormat::EventsText, "events text", {".txt"}, "t x y p a line, t in s"};
+    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
+      return decode_events_text_recording(data, label);
+    };
+    r.read = [](const std::string& path, const std::string&) {
+      return decode_events_text_recording(read_event_file_bytes(path), path);
+    };
+    rows.push_back(std::move(r));
+  }
+  {
     EventFormatRow r{EventFileFormat::Csv, "CSV", {".csv"}, "t_us,x,y,tile,flags"};
     r.decode = [](const std::string& data, const std::string& label, const std::string&) {
       return decode_csv_recording(data, label);
