@@ -572,6 +572,21 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
   EXPECT_TRUE(e2vid.size_recorded);
   EXPECT_EQ(e2vid.width, 240);
   EXPECT_EQ(e2vid.height, 180);
+  // jAER's DavisTextOutputWriter: its header, Java's %f (six decimals) or, with useUsTimestamps,
+  // whole microseconds as its header says; with useCSV, commas; with useSignedPolarity, -1 for OFF.
+  const std::string jaer_header = "# jAER DAVIS/DVS camera text file output\n# created Sat Nov 28 01:00:00 UTC 2026\n"
+                                  "# source-file: (live input)\n";
+  const EventRecording jaer_s = decode_events(
+      jaer_header + "# dvs-events: One event per line:  timestamp(float s) x y polarity(off/on=0/1)\n0.000123 1 2 0\n",
+      "jaer-events.txt", EventFileFormat::EventsText);
+  expect_events(jaer_s, {{123, 1, 2, false}});
+  const EventRecording jaer_us = decode_events(
+      jaer_header + "# dvs-events: One event per line:  timestamp(int32 us) x y polarity(off/on=-1/+1)\n"
+                    "123,1,2,-1\n2147483647,3,4,1\n",
+      "jaer-us-events.txt", EventFileFormat::EventsText);
+  expect_events(jaer_us, {{123, 1, 2, false}, {2147483647, 3, 4, true}});
+  // A Windows editor's byte order mark.
+  expect_events(decode_events("\xEF\xBB\xBF" "0.5 1 2 1\n", "bom.txt", EventFileFormat::EventsText), {{500000, 1, 2, true}});
   const auto refused = [](const std::string& data, const std::string& words) {
     expect_decode_refused(data, EventFileFormat::EventsText, words);
   };
@@ -587,6 +602,7 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
   refused("240 0\n", "two whole numbers from 1 to 65535");
   refused("0.1 1 2 1\n240 180\n", "line 2");
   refused("240 180\n0.1 300 2 1\n", "outside its 240x180 array");
+  refused("# timestamp(int32 us)\n0.5 1 2 1\n", "not a whole number of microseconds");
 }
 
 class EmptyRuns : public testing::TempDirTest {};

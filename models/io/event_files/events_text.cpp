@@ -19,7 +19,8 @@ constexpr double kLatestSeconds = 1e12;
 constexpr int kMostSide = 65535;
 constexpr std::size_t kMostShown = 40;
 
-bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+// Blanks, and jAER's commas (its text writer's CSV option).
+bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == ','; }
 
 // The line's fields (at most `most` + 1, so that a line of too many is seen).
 std::size_t split(std::string_view line, std::string_view* fields, std::size_t most) {
@@ -56,8 +57,12 @@ std::string shown(std::string_view line) {
 
 PolarityRecording decode_events_text(const std::string& data, const std::string& label) {
   PolarityRecording rec;
-  std::size_t at = 0, line_number = 0;
+  // A UTF-8 byte order mark, as Windows editors begin a text file.
+  std::size_t at = data.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+  std::size_t line_number = 0;
   bool first = true;
+  // jAER's text writer says in its header when its stamps are whole microseconds.
+  bool microseconds = false;
   std::int64_t last = 0;
   std::string_view fields[6];
   const auto fail = [&](std::string_view line, const std::string& what) {
@@ -70,7 +75,11 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
     at = end + 1;
     ++line_number;
     const std::size_t n = split(line, fields, 5);
-    if (n == 0 || fields[0].front() == '#') continue;
+    if (n == 0) continue;
+    if (fields[0].front() == '#') {
+      microseconds = microseconds || line.find("timestamp(int32 us)") != std::string_view::npos;
+      continue;
+    }
     if (first && n == 2) {
       first = false;
       if (!whole(fields[0], kMostSide, rec.width) || !whole(fields[1], kMostSide, rec.height) || rec.width == 0 ||
@@ -81,14 +90,19 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
     }
     first = false;
     if (n < 4 || n > 5) fail(line, "expected 't x y p': time in s, x, y, polarity (1 ON, 0 or -1 OFF)");
-    double t = 0;
-    const auto [t_end, t_ec] = std::from_chars(fields[0].data(), fields[0].data() + fields[0].size(), t);
-    if (t_ec != std::errc() || t_end != fields[0].data() + fields[0].size() || !std::isfinite(t)) {
-      fail(line, "the time is not a number of seconds");
-    }
-    if (t < 0 || t > kLatestSeconds) fail(line, fmt::format("the time is outside 0 to {:g} s", kLatestSeconds));
     PolarityEvent e;
-    e.t_us = std::llround(t * 1e6);
+    const char* const t_last = fields[0].data() + fields[0].size();
+    if (microseconds) {
+      const auto [t_end, t_ec] = std::from_chars(fields[0].data(), t_last, e.t_us);
+      if (t_ec != std::errc() || t_end != t_last) fail(line, "the time is not a whole number of microseconds");
+      if (e.t_us < 0) fail(line, "the time is negative");
+    } else {
+      double t = 0;
+      const auto [t_end, t_ec] = std::from_chars(fields[0].data(), t_last, t);
+      if (t_ec != std::errc() || t_end != t_last || !std::isfinite(t)) fail(line, "the time is not a number of seconds");
+      if (t < 0 || t > kLatestSeconds) fail(line, fmt::format("the time is outside 0 to {:g} s", kLatestSeconds));
+      e.t_us = std::llround(t * 1e6);
+    }
     if (!whole(fields[1], kMostSide, e.x) || !whole(fields[2], kMostSide, e.y)) {
       fail(line, "x and y must be whole numbers from 0 to 65535");
     }
