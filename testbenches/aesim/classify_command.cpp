@@ -45,8 +45,9 @@ nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* giv
   // The size scales events onto the templates: guessed from the events it would change the
   // decision with the events that happened to fire (a CSV records no size).
   if (!rec.size_recorded) {
-    throw InputError(fmt::format("event file '{}' records no array size (a CSV, .npy, N-MNIST .bin or text file does not): give --size "
-                                 "WIDTHxHEIGHT", opt.events));
+    throw InputError(fmt::format("event file '{}' records no array size (a CSV, .npy, N-MNIST .bin or text file "
+                                 "does not): give --size WIDTHxHEIGHT",
+                                 opt.events));
   }
   std::vector<std::pair<double, double>> events;
   for (const AddressEvent& e : rec.events) {
