@@ -590,7 +590,12 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
   const auto refused = [](const std::string& data, const std::string& words) {
     expect_decode_refused(data, EventFileFormat::EventsText, words);
   };
-  refused("0.1 1 2 1\n0.05 1 2 1\n", "line 2 ('0.05 1 2 1'): its time is earlier");
+  // Stamps that go back (v2e warns that it writes some): read in time order, equal stamps in the
+  // file's order, and counted.
+  const EventRecording back = decode_events("0.1 1 2 1\n0.05 3 4 1\n0.1 5 6 0\n0.05 7 8 0\n0.2 9 9 1\n", "back.txt",
+                                            EventFileFormat::EventsText);
+  expect_events(back, {{50000, 3, 4, true}, {50000, 7, 8, false}, {100000, 1, 2, true}, {100000, 5, 6, false}, {200000, 9, 9, true}});
+  EXPECT_EQ(back.reordered, 2u);
   refused("0.1 1 2 2\n", "polarity must be 1 (ON), 0 or -1 (OFF)");
   refused("0.1 1 2\n", "expected 't x y p'");
   refused("0.1 1 2 1 0 9\n", "expected 't x y p'");

@@ -210,6 +210,7 @@ EventRecording from_polarity(const PolarityRecording& in, const std::string& pat
     events.push_back(e);
   }
   rec = from_csv(std::move(events), path);
+  rec.reordered = in.reordered;
   for (const SkippedPackets& s : in.skipped) {
     rec.skipped.push_back(fmt::format("{} packets of {} ({} bytes)", s.packets, s.type, s.bytes));
   }

@@ -1,5 +1,6 @@
 #include "aesim/event_files/events_text.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -113,9 +114,13 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
     } else {
       fail(line, "the polarity must be 1 (ON), 0 or -1 (OFF)");
     }
-    if (e.t_us < last) fail(line, "its time is earlier than the event before it");
+    rec.reordered += e.t_us < last ? 1 : 0;
     last = e.t_us;
     rec.events.push_back(e);
+  }
+  if (rec.reordered > 0) {
+    std::stable_sort(rec.events.begin(), rec.events.end(),
+                     [](const PolarityEvent& a, const PolarityEvent& b) { return a.t_us < b.t_us; });
   }
   return rec;
 }

@@ -13,8 +13,9 @@ namespace aesim {
 // option); a fifth field (v2e's signal/noise label) is allowed and left. Lines beginning with '#'
 // (v2e's and jAER's headers), empty lines and a leading UTF-8 byte order mark are skipped. A first
 // line of two whole numbers is rpg_e2vid's `width height`, taken as the array's size; without one
-// the file records no size. Throws InputError naming `label` and the line for anything else,
-// including a stamp earlier than the line before's.
+// the file records no size. Events stamped before the line above's (v2e warns that it writes
+// some) are put in time order, a stable sort, and counted (`reordered`). Throws InputError naming
+// `label` and the line for anything else.
 PolarityRecording decode_events_text(const std::string& data, const std::string& label);
 
 }  // namespace aesim
