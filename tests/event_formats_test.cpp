@@ -236,6 +236,76 @@ TEST_F(EventFormats, MetavisionHdf5CdEventsAreReadAndItsEcfCodecNamedWhenMissing
   }
 }
 
+// Event tables, one row an event, as their writers lay them out: v2e's emulator (`/events`, uint32
+// rows t in us, x, y, p 0/1, appended in batches; v2e warns that its stamps may go back) and
+// MVSEC's data files (`/davis/left/events` and `/davis/right/events`, float64 rows x, y, t in s of
+// ROS time, p -1/1). Written here with HDF5's C API.
+TEST_F(EventFormats, V2eAndMvsecHdf5EventTablesAreReadInTimeOrder) {
+  const auto make = [&](const std::string& name, const std::vector<std::string>& groups, const char* dataset,
+                        hid_t type, const void* rows, hsize_t n) {
+    const std::string path = (dir_ / name).string();
+    const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    for (const std::string& g : groups) H5Idec_ref(H5Gcreate2(file, g.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    const hsize_t dims[2] = {n, 4};
+    const hid_t space = H5Screate_simple(2, dims, nullptr);
+    const hid_t d = H5Dcreate2(file, dataset, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows), 0);
+    H5Idec_ref(d);
+    H5Idec_ref(space);
+    H5Fclose(file);
+    return path;
+  };
+  const std::uint32_t v2e_rows[][4] = {{10, 345, 259, 1}, {25, 0, 0, 0}, {20, 7, 8, 1}, {4000000, 9, 9, 0}};
+  const EventRecording v2e = load_events(make("v2e.h5", {}, "/events", H5T_NATIVE_UINT32, v2e_rows, 4));
+  ASSERT_EQ(v2e.events.size(), 4u);
+  const std::size_t v2e_order[] = {0, 2, 1, 3};  // 20 us before 25 us
+  for (std::size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    const std::uint32_t* row = v2e_rows[v2e_order[i]];
+    EXPECT_DOUBLE_EQ(v2e.events[i].t, row[0] * 1e-6);
+    EXPECT_EQ(v2e.events[i].x, row[1]);
+    EXPECT_EQ(v2e.events[i].y, row[2]);
+    EXPECT_EQ(v2e.events[i].flags, row[3] ? kNormalEvent : kOffEvent);
+  }
+  EXPECT_EQ(v2e.reordered, 1u);
+  EXPECT_FALSE(v2e.size_recorded);
+  EXPECT_EQ(v2e.width, 346);
+  const double mvsec_rows[][4] = {{3, 4, 1506117899.000001, -1}, {345, 259, 1506117899.5, 1}};
+  const EventRecording mvsec =
+      load_events(make("mvsec.hdf5", {"davis", "davis/left", "davis/right"}, "/davis/left/events", H5T_NATIVE_DOUBLE, mvsec_rows, 2));
+  ASSERT_EQ(mvsec.events.size(), 2u);
+  EXPECT_EQ(mvsec.events[0].x, 3u);
+  EXPECT_EQ(mvsec.events[0].y, 4u);
+  EXPECT_EQ(mvsec.events[0].flags, kOffEvent);
+  EXPECT_EQ(mvsec.events[1].flags, kNormalEvent);
+  EXPECT_EQ(std::llround(mvsec.events[0].t * 1e6), 1506117899000001LL);
+  EXPECT_EQ(std::llround((mvsec.events[1].t - mvsec.events[0].t) * 1e6), 499999);
+  // A table that is no event table: a one-line error naming it.
+  const double three[][3] = {{1, 2, 3}};
+  const std::string path = (dir_ / "three.h5").string();
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[2] = {1, 3};
+  const hid_t space = H5Screate_simple(2, dims, nullptr);
+  const hid_t d = H5Dcreate2(file, "events", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, three);
+  H5Idec_ref(d);
+  H5Idec_ref(space);
+  H5Fclose(file);
+  try {
+    load_events(path);
+    ADD_FAILURE() << "read a table of three columns";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/events is not a table of numbers with four columns"), std::string::npos) << e.what();
+  }
+  const double off_pixel[][4] = {{1.5, 2, 0.1, 1}};
+  try {
+    load_events(make("half.hdf5", {"davis", "davis/left"}, "/davis/left/events", H5T_NATIVE_DOUBLE, off_pixel, 1));
+    ADD_FAILURE() << "read x = 1.5";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a pixel"), std::string::npos) << e.what();
+  }
+}
+
 // A ghost (the OR of colliding addresses) may name no pixel of the array: past a narrow edge tile.
 // Every event file leaves it out and counts it: no reader could place it (aesim's own AEDAT 2.0
 // reader refuses such an address).

@@ -1,5 +1,6 @@
 #include "aesim/event_files/dsec_h5.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -361,6 +362,73 @@ PolarityRecording read_metavision_cd(hid_t file, const std::string& path, std::u
   return rec;
 }
 
+// An event table: a 2-D dataset of one row an event and four numeric columns, as v2e (`/events`:
+// t in us, x, y, p 0/1, uint32) and MVSEC (`/davis/left/events`: x, y, t in s, p -1/1, float64)
+// write them. `t_column` and `per_second` say where the stamp is and its unit.
+struct EventTable {
+  const char* name;
+  const char* group;
+  int x_column, y_column, t_column;
+  double per_second;  // stamps a second: 1e6 for microseconds, 1 for seconds
+};
+
+PolarityRecording read_event_table(hid_t file, const EventTable& table, const std::string& path, std::uintmax_t file_bytes) {
+  require_local(file, table.name, path, table.group);
+  Handle d(H5Dopen2(file, table.name, H5P_DEFAULT));
+  Handle space(d.ok() ? H5Dget_space(d.get()) : H5I_INVALID_HID);
+  Handle stored(d.ok() ? H5Dget_type(d.get()) : H5I_INVALID_HID);
+  hsize_t dims[2] = {0, 0};
+  const H5T_class_t kind = stored.ok() ? H5Tget_class(stored.get()) : H5T_NO_CLASS;
+  if (!space.ok() || H5Sget_simple_extent_ndims(space.get()) != 2 ||
+      H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0 || dims[1] != 4 ||
+      (kind != H5T_INTEGER && kind != H5T_FLOAT)) {
+    throw InputError(fmt::format("event file '{}': {} is not a table of numbers with four columns, one row an event",
+                                 path, table.name));
+  }
+  const hsize_t n = dims[0];
+  check_stored(d.get(), stored.get(), n * 4, table.name, path, file_bytes);
+  PolarityRecording rec;
+  rec.events.reserve(n);
+  std::vector<double> block(std::min<hsize_t>(n, kBlock) * 4);
+  std::int64_t last = 0;
+  for (hsize_t from = 0; from < n; from += kBlock) {
+    const hsize_t start[2] = {from, 0}, count[2] = {std::min(kBlock, n - from), 4};
+    Handle file_space(H5Dget_space(d.get()));
+    Handle memory(H5Screate_simple(2, count, nullptr));
+    if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
+        H5Dread(d.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space.get(), H5P_DEFAULT, block.data()) < 0) {
+      throw InputError(fmt::format("event file '{}': cannot read {}", path, table.name));
+    }
+    for (hsize_t j = 0; j < count[0]; ++j) {
+      const double* row = block.data() + 4 * j;
+      const double x = row[table.x_column], y = row[table.y_column], t = row[table.t_column] * (1e6 / table.per_second);
+      if (!(x >= 0 && y >= 0 && x < kMostSide && y < kMostSide) || x != std::floor(x) || y != std::floor(y)) {
+        throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is not a pixel of a 4096x4096 array", path,
+                                     from + j, x, y));
+      }
+      if (!(t >= 0 && t < 9e18)) {
+        throw InputError(fmt::format("event file '{}': event {} has the stamp {} s", path, from + j,
+                                     row[table.t_column] / table.per_second));
+      }
+      PolarityEvent e{std::llround(t), static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), row[3] > 0};
+      rec.reordered += e.t_us < last ? 1 : 0;
+      last = e.t_us;
+      rec.events.push_back(e);
+    }
+  }
+  if (rec.reordered > 0) {
+    std::stable_sort(rec.events.begin(), rec.events.end(),
+                     [](const PolarityEvent& a, const PolarityEvent& b) { return a.t_us < b.t_us; });
+  }
+  return rec;
+}
+
+bool is_dataset(hid_t file, const char* name) {
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0) return false;
+  H5O_info_t info{};
+  return H5Oget_info_by_name2(file, name, &info, H5O_INFO_BASIC, H5P_DEFAULT) >= 0 && info.type == H5O_TYPE_DATASET;
+}
+
 // Entries [from, from + count) of a column, converted by HDF5 to int64.
 void read_block(const Column& c, hsize_t from, hsize_t count, std::int64_t* out, const char* name, const std::string& path) {
   Handle file_space(H5Dget_space(c.d.get()));
@@ -396,6 +464,15 @@ PolarityRecording read_in_this_process(const std::string& path) {
   if (H5Lexists(file.get(), "events", H5P_DEFAULT) <= 0 && H5Lexists(file.get(), "CD", H5P_DEFAULT) > 0 &&
       H5Lexists(file.get(), "CD/events", H5P_DEFAULT) > 0) {
     return read_metavision_cd(file.get(), path, file_bytes);
+  }
+  if (is_dataset(file.get(), "events")) return read_event_table(file.get(), {"/events", "/events", 1, 2, 0, 1e6}, path, file_bytes);
+  if (H5Lexists(file.get(), "events", H5P_DEFAULT) <= 0 && H5Lexists(file.get(), "davis", H5P_DEFAULT) > 0 &&
+      H5Lexists(file.get(), "davis/left", H5P_DEFAULT) > 0 && is_dataset(file.get(), "davis/left/events")) {
+    PolarityRecording rec = read_event_table(file.get(), {"/davis/left/events", "/davis/left", 0, 1, 2, 1}, path, file_bytes);
+    if (H5Lexists(file.get(), "davis/right", H5P_DEFAULT) > 0 && is_dataset(file.get(), "davis/right/events")) {
+      rec.notes.push_back("the right camera's events (/davis/right/events): the left camera's are read");
+    }
+    return rec;
   }
   const char* names[] = {"/events/x", "/events/y", "/events/t", "/events/p"};
   Column columns[4];
@@ -479,6 +556,10 @@ void send_recording(int fd, const std::string& path) {
   write_all(fd, size, sizeof size);
   write_all(fd, &n, sizeof n);
   write_all(fd, rec.events.data(), n * sizeof(PolarityEvent));
+  write_all(fd, &rec.reordered, sizeof rec.reordered);
+  const std::uint32_t notes = static_cast<std::uint32_t>(rec.notes.size());
+  write_all(fd, &notes, sizeof notes);
+  for (const std::string& note : rec.notes) write_text(fd, note);
   const std::uint32_t keys = static_cast<std::uint32_t>(rec.sensor.size());
   write_all(fd, &keys, sizeof keys);
   for (const auto& [key, value] : rec.sensor) {
@@ -522,6 +603,12 @@ bool receive_recording(int fd, PolarityRecording& rec, std::string& error) {
     rec.events.resize(have + take);
     if (!read_all(fd, rec.events.data() + have, take * sizeof(PolarityEvent))) return false;
     have += take;
+  }
+  std::uint32_t notes = 0;
+  if (!read_all(fd, &rec.reordered, sizeof rec.reordered) || !read_all(fd, &notes, sizeof notes) || notes > 64) return false;
+  rec.notes.resize(notes);
+  for (std::string& note : rec.notes) {
+    if (!read_text(fd, note)) return false;
   }
   std::uint32_t keys = 0;
   if (!read_all(fd, &keys, sizeof keys)) return false;

@@ -40,9 +40,11 @@ class DsecWriter : public EventFileWriter {
   std::vector<std::uint64_t> ms_to_idx_;
 };
 
-// Reads /events/{x,y,t,p} (and /t_offset when present) of a DSEC-layout file, or the /CD/events
-// compound (x, y, p, t) of a Metavision HDF5 event file where this HDF5 decodes its compression.
-// Throws InputError.
+// Reads /events/{x,y,t,p} (and /t_offset when present) of a DSEC-layout file, the /CD/events
+// compound (x, y, p, t) of a Metavision HDF5 event file where this HDF5 decodes its compression,
+// v2e's /events table (one row an event: t in us, x, y, p 0/1) or MVSEC's /davis/left/events
+// table (x, y, t in s, p -1/1; the right camera's is left and noted). A table's events stamped
+// before the row above's are put in time order and counted. Throws InputError.
 PolarityRecording read_dsec_h5(const std::string& path);
 
 }  // namespace aesim
