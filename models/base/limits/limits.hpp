@@ -10,8 +10,9 @@ constexpr long long kMaxArrayPixels = 1LL << 24;   // pixels in an array or an i
 constexpr int kMaxTiles = 1 << 16;                 // tiles (each has its own bus and receiver)
 constexpr std::uintmax_t kMaxInputFileBytes = 1ULL << 28;  // 256 MiB: a scene image or frame
 constexpr std::uintmax_t kMaxEventFileBytes = 1ULL << 34;  // 16 GiB: an event file, read whole
-// Events decoded from one file whose words expand (a Prophesee EVT 3.0 word holds up to 12): 13 GB
-// as aesim holds them, where a file of the other formats holds each event in 8 bytes or more.
+// Events decoded from one file whose words expand (a Prophesee EVT 3.0 word holds up to 12) or
+// that takes under 8 bytes an event (an N-MNIST record, 5): 13 GB as aesim holds them, where a
+// file of the other formats holds each event in 8 bytes or more.
 constexpr std::uint64_t kMaxExpandedEvents = 1ULL << 28;
 constexpr double kMaxFrameRate = 1e9;              // Hz, of any scene or video
 constexpr std::size_t kMaxSceneFrames = 100000;    // frames of a scene folder or a video

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/limits/limits.hpp"
 
 namespace aesim {
 namespace {
@@ -19,6 +20,12 @@ PolarityRecording decode_nmnist_bin(const std::string& data, const std::string& 
   if (data.size() % kRecordBytes != 0) {
     throw InputError(fmt::format("event file '{}': the file ends inside record {} (N-MNIST records are {} bytes)",
                                  label, data.size() / kRecordBytes, kRecordBytes));
+  }
+  // Five bytes a record: more events a byte than the 8-byte formats, so bounded as the formats
+  // whose words expand are.
+  if (data.size() / kRecordBytes > kMaxExpandedEvents) {
+    throw InputError(fmt::format("event file '{}': {} records, more than the {} aesim reads from one file", label,
+                                 data.size() / kRecordBytes, kMaxExpandedEvents));
   }
   PolarityRecording rec;
   rec.events.reserve(data.size() / kRecordBytes);
