@@ -497,10 +497,13 @@ TEST_F(HostileInputTest, ReadersAreBoundedByTheBytesTheyAreGiven) {
         "    for n, t in [('x', 'u2'), ('y', 'u2'), ('t', 'u4'), ('p', 'u1')]:\n"
         "        g.create_dataset(n, data=np.zeros(4, dtype=t))\n"
         "with h5py.File('linked.h5', 'w') as f:\n"
-        "    f['events'] = h5py.ExternalLink('target.h5', '/events')\n");
+        "    f['events'] = h5py.ExternalLink('target.h5', '/events')\n"
+        "with h5py.File('table.h5', 'w') as f:\n"
+        "    f.create_dataset('events', shape=(300000000, 4), dtype='u4', chunks=(65536, 4))\n");
   ASSERT_EQ(std::system(("cd '" + dir_.string() + "' && /usr/bin/python3 make.py").c_str()), 0);
   expect_refused("info huge.h5", "claims 300000000 entries");
   expect_refused("info linked.h5", "/events is an external link");
+  expect_refused("info table.h5", "/events claims 1200000000 entries");
 
   fs::create_directory(dir_ / "many");
   for (int i = 0; i < 9; ++i) write(fmt::format("many/{:02d}.pgm", i), "P2\n1 1\n255\n7\n");
