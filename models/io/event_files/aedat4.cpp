@@ -545,4 +545,13 @@ PolarityRecording decode_aedat4(const std::string& data, const std::string& labe
   return rec;
 }
 
+void put_in_time_order(PolarityRecording& rec) {
+  const std::vector<PolarityEvent>& e = rec.events;
+  for (std::size_t i = 1; i < e.size(); ++i) rec.reordered += e[i].t_us < e[i - 1].t_us ? 1 : 0;
+  if (rec.reordered > 0) {
+    std::stable_sort(rec.events.begin(), rec.events.end(),
+                     [](const PolarityEvent& a, const PolarityEvent& b) { return a.t_us < b.t_us; });
+  }
+}
+
 }  // namespace aesim

@@ -78,6 +78,10 @@ struct PolarityRecording {
   std::uint64_t reordered = 0;
 };
 
+// Counts the events stamped before the one ahead of them (`reordered`) and, if there are any, puts
+// the events in time order, equal stamps in the file's order (a stable sort).
+void put_in_time_order(PolarityRecording& rec);
+
 // Reads the events stream (the first of type EVTS) of an AEDAT 4.0 file, up to its data table
 // (dataTablePosition) when it has one; other streams' packets are skipped and counted, a packet of
 // a stream the header does not declare is an error. Throws InputError naming `label` on anything

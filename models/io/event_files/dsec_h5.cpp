@@ -390,7 +390,6 @@ PolarityRecording read_event_table(hid_t file, const EventTable& table, const st
   PolarityRecording rec;
   rec.events.reserve(n);
   std::vector<double> block(std::min<hsize_t>(n, kBlock) * 4);
-  std::int64_t last = 0;
   for (hsize_t from = 0; from < n; from += kBlock) {
     const hsize_t start[2] = {from, 0}, count[2] = {std::min(kBlock, n - from), 4};
     Handle file_space(H5Dget_space(d.get()));
@@ -411,15 +410,10 @@ PolarityRecording read_event_table(hid_t file, const EventTable& table, const st
                                      row[table.t_column] / table.per_second));
       }
       PolarityEvent e{std::llround(t), static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), row[3] > 0};
-      rec.reordered += e.t_us < last ? 1 : 0;
-      last = e.t_us;
       rec.events.push_back(e);
     }
   }
-  if (rec.reordered > 0) {
-    std::stable_sort(rec.events.begin(), rec.events.end(),
-                     [](const PolarityEvent& a, const PolarityEvent& b) { return a.t_us < b.t_us; });
-  }
+  put_in_time_order(rec);
   return rec;
 }
 

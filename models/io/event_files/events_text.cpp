@@ -1,6 +1,5 @@
 #include "aesim/event_files/events_text.hpp"
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -64,7 +63,6 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
   bool first = true;
   // jAER's text writer says in its header when its stamps are whole microseconds.
   bool microseconds = false;
-  std::int64_t last = 0;
   std::string_view fields[6];
   const auto fail = [&](std::string_view line, const std::string& what) {
     throw InputError(fmt::format("event file '{}': line {} ('{}'): {}", label, line_number, shown(line), what));
@@ -114,14 +112,9 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
     } else {
       fail(line, "the polarity must be 1 (ON), 0 or -1 (OFF)");
     }
-    rec.reordered += e.t_us < last ? 1 : 0;
-    last = e.t_us;
     rec.events.push_back(e);
   }
-  if (rec.reordered > 0) {
-    std::stable_sort(rec.events.begin(), rec.events.end(),
-                     [](const PolarityEvent& a, const PolarityEvent& b) { return a.t_us < b.t_us; });
-  }
+  put_in_time_order(rec);
   return rec;
 }
 
