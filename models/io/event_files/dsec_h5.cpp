@@ -372,7 +372,8 @@ struct EventTable {
   double per_second;  // stamps a second: 1e6 for microseconds, 1 for seconds
 };
 
-PolarityRecording read_event_table(hid_t file, const EventTable& table, const std::string& path, std::uintmax_t file_bytes) {
+PolarityRecording read_event_table(hid_t file, const EventTable& table, const std::string& path,
+                                   std::uintmax_t file_bytes) {
   require_local(file, table.name, path, table.group);
   Handle d(H5Dopen2(file, table.name, H5P_DEFAULT));
   Handle space(d.ok() ? H5Dget_space(d.get()) : H5I_INVALID_HID);
@@ -459,10 +460,13 @@ PolarityRecording read_in_this_process(const std::string& path) {
       H5Lexists(file.get(), "CD/events", H5P_DEFAULT) > 0) {
     return read_metavision_cd(file.get(), path, file_bytes);
   }
-  if (is_dataset(file.get(), "events")) return read_event_table(file.get(), {"/events", "/events", 1, 2, 0, 1e6}, path, file_bytes);
+  if (is_dataset(file.get(), "events")) {
+    return read_event_table(file.get(), {"/events", "/events", 1, 2, 0, 1e6}, path, file_bytes);
+  }
   if (H5Lexists(file.get(), "events", H5P_DEFAULT) <= 0 && H5Lexists(file.get(), "davis", H5P_DEFAULT) > 0 &&
       H5Lexists(file.get(), "davis/left", H5P_DEFAULT) > 0 && is_dataset(file.get(), "davis/left/events")) {
-    PolarityRecording rec = read_event_table(file.get(), {"/davis/left/events", "/davis/left", 0, 1, 2, 1}, path, file_bytes);
+    PolarityRecording rec =
+        read_event_table(file.get(), {"/davis/left/events", "/davis/left", 0, 1, 2, 1}, path, file_bytes);
     if (H5Lexists(file.get(), "davis/right", H5P_DEFAULT) > 0 && is_dataset(file.get(), "davis/right/events")) {
       rec.notes.push_back("the right camera's events (/davis/right/events): the left camera's are read");
     }
@@ -599,7 +603,9 @@ bool receive_recording(int fd, PolarityRecording& rec, std::string& error) {
     have += take;
   }
   std::uint32_t notes = 0;
-  if (!read_all(fd, &rec.reordered, sizeof rec.reordered) || !read_all(fd, &notes, sizeof notes) || notes > 64) return false;
+  if (!read_all(fd, &rec.reordered, sizeof rec.reordered) || !read_all(fd, &notes, sizeof notes) || notes > 64) {
+    return false;
+  }
   rec.notes.resize(notes);
   for (std::string& note : rec.notes) {
     if (!read_text(fd, note)) return false;

@@ -40,7 +40,8 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
 EventRecording decode_events(const std::string& data, const std::string& label, EventFileFormat format);
 
 // The readers behind event_formats()'s rows: an AEDAT file (2.0 or 3.1, by its first line), AEDAT
-// 4.0, .npy, Prophesee RAW, N-MNIST's .bin, text events and CSV from their bytes; CSV and HDF5 from a path; a file's bytes, bounded.
+// 4.0, .npy, Prophesee RAW, N-MNIST's .bin, text events and CSV from their bytes; CSV and HDF5 from
+// a path; a file's bytes, bounded.
 EventRecording decode_aedat_recording(const std::string& data, const std::string& label, const std::string& layout);
 EventRecording decode_aedat4_recording(const std::string& data, const std::string& label);
 EventRecording decode_npy_recording(const std::string& data, const std::string& label);

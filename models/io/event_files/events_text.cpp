@@ -98,7 +98,9 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
     } else {
       double t = 0;
       const auto [t_end, t_ec] = std::from_chars(fields[0].data(), t_last, t);
-      if (t_ec != std::errc() || t_end != t_last || !std::isfinite(t)) fail(line, "the time is not a number of seconds");
+      if (t_ec != std::errc() || t_end != t_last || !std::isfinite(t)) {
+        fail(line, "the time is not a number of seconds");
+      }
       if (t < 0 || t > kLatestSeconds) fail(line, fmt::format("the time is outside 0 to {:g} s", kLatestSeconds));
       e.t_us = std::llround(t * 1e6);
     }
