@@ -89,6 +89,11 @@ TEST(SensorConfig, BadKeysValuesAndPhysicsNameTheKey) {
   SensorConfig big_tile;
   big_tile.set("array.tile_rows", "65");
   EXPECT_NE(error_of([&] { big_tile.validate(); }).find("array.tile_rows"), std::string::npos);
+  // A smaller array alone keeps the preset's 32-pixel tiles: the message gives both sizes.
+  SensorConfig small_array;
+  small_array.set("array.rows", "16");
+  EXPECT_NE(error_of([&] { small_array.validate(); }).find("32 rows a tile must be from 1 to array.rows (16)"),
+            std::string::npos);
   SensorConfig long_run;
   long_run.set("sim.duration", "1e7s");
   EXPECT_NE(error_of([&] { long_run.validate(); }).find("sim.duration"), std::string::npos);

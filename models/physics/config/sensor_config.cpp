@@ -289,10 +289,14 @@ void SensorConfig::validate() const {
   require(static_cast<long long>(array.rows) * array.cols <= kMaxArrayPixels, "array.rows",
           fmt::format("array of {} pixels, more than the {} (4096 x 4096) aesim models", 
                       static_cast<long long>(array.rows) * array.cols, kMaxArrayPixels));
+  // Named with both values: a smaller array set alone keeps the preset's tile, which then no
+  // longer fits.
   require(array.tile_rows >= 1 && array.tile_rows <= array.rows, "array.tile_rows",
-          "must be between 1 and array.rows");
+          fmt::format("{} rows a tile must be from 1 to array.rows ({}): set array.tile_rows too", array.tile_rows,
+                      array.rows));
   require(array.tile_cols >= 1 && array.tile_cols <= array.cols, "array.tile_cols",
-          "must be between 1 and array.cols");
+          fmt::format("{} columns a tile must be from 1 to array.cols ({}): set array.tile_cols too",
+                      array.tile_cols, array.cols));
   const AddressMap map(array);
   require(map.tiles() <= kMaxTiles, "array.tile_rows",
           fmt::format("{} tiles, more than the {} aesim models (each has its own bus and receiver)", map.tiles(),
