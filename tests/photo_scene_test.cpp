@@ -2,6 +2,7 @@
 // gAMA says), colour reduced to Rec. 709 luminance, against values computed by hand from the
 // sRGB standard; OpenEXR taken as linear light; malformed and oversized files refused in one line;
 // PNG and EXR frame folders; and `aesim run` on a PNG and an EXR.
+#include <algorithm>
 #include <cmath>
 #include <csetjmp>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include <ImfRgbaFile.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <jpeglib.h>
 #include <png.h>
@@ -495,6 +497,88 @@ TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {
   expect_refused([&] { decode_tiff("", "empty.tif"); }, "TIFF");
 }
 
+// A multi-page TIFF (a camera's or a microscope's stack) is a moving scene of its full-resolution
+// pages, as a 3-D .npy is: page k is frame k, shown at scene.frame_rate. A reduced copy (a
+// preview, NewSubfileType 1) is no frame. Written here page by page with libtiff.
+TEST_F(TiffScenes, AMultiPageFileIsAMovingSceneOfItsFullResolutionPages) {
+  constexpr std::uint32_t kWidth = 20, kHeight = 12;
+  const auto page_value = [](int page, std::uint32_t x, std::uint32_t y) {
+    return static_cast<unsigned char>(10 + (x * 7 + y * 3 + page * 50) % 200);
+  };
+  // Pages of kWidth x kHeight grey; `preview_after` > 0 puts a 4x4 reduced copy after that many.
+  const auto write_stack = [&](const std::string& name, int pages, int preview_after, std::uint32_t last_width) {
+    const std::string path = (dir_ / name).string();
+    TIFF* t = TIFFOpen(path.c_str(), "w");
+    for (int p = 0; p < pages; ++p) {
+      if (p == preview_after) {
+        TIFFSetField(t, TIFFTAG_SUBFILETYPE, FILETYPE_REDUCEDIMAGE);
+        TIFFSetField(t, TIFFTAG_IMAGEWIDTH, 4u);
+        TIFFSetField(t, TIFFTAG_IMAGELENGTH, 4u);
+        TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 8);
+        TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 1);
+        TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+        const std::vector<unsigned char> row(4, 255);
+        for (std::uint32_t y = 0; y < 4; ++y) TIFFWriteScanline(t, const_cast<unsigned char*>(row.data()), y, 0);
+        TIFFWriteDirectory(t);
+      }
+      const std::uint32_t width = p + 1 == pages ? last_width : kWidth;
+      TIFFSetField(t, TIFFTAG_IMAGEWIDTH, width);
+      TIFFSetField(t, TIFFTAG_IMAGELENGTH, kHeight);
+      TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 8);
+      TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 1);
+      TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+      std::vector<unsigned char> row(width);
+      for (std::uint32_t y = 0; y < kHeight; ++y) {
+        for (std::uint32_t x = 0; x < width; ++x) row[x] = page_value(p, x, y);
+        TIFFWriteScanline(t, row.data(), y, 0);
+      }
+      TIFFWriteDirectory(t);
+    }
+    TIFFClose(t);
+    return path;
+  };
+  const std::string stack = write_stack("stack.tif", 3, 1, kWidth);
+  const SceneFiles files = find_scene(stack);
+  EXPECT_EQ(files.tiff_pages, (std::vector<std::size_t>{0, 2, 3}));  // directory 1 is the preview
+  const std::vector<Image> frames = read_frames(files);
+  ASSERT_EQ(frames.size(), 3u);
+  for (int p = 0; p < 3; ++p) {
+    ASSERT_EQ(frames[p].width, static_cast<int>(kWidth)) << p;
+    for (std::uint32_t y = 0; y < kHeight; ++y) {
+      for (std::uint32_t x = 0; x < kWidth; ++x) {
+        ASSERT_DOUBLE_EQ(frames[p].at(x, y), page_value(p, x, y) / 255.0) << p << " " << x << " " << y;
+      }
+    }
+  }
+  // Run through: the same events, byte for byte, as the pages as a folder of frames.
+  std::filesystem::create_directory(dir_ / "pages");
+  for (int p = 0; p < 3; ++p) {
+    std::string pgm = fmt::format("P5\n{} {}\n255\n", kWidth, kHeight);
+    for (std::uint32_t y = 0; y < kHeight; ++y) {
+      for (std::uint32_t x = 0; x < kWidth; ++x) pgm += static_cast<char>(page_value(p, x, y));
+    }
+    write(fmt::format("pages/{}.pgm", p), pgm);
+  }
+  const std::string common = " --set scene.frame_rate=50 --duration 100ms";
+  const testing::Outcome from_stack = aesim("run --scene stack.tif --csv a.csv" + common);
+  ASSERT_EQ(from_stack.status, 0) << from_stack.err;
+  ASSERT_EQ(aesim("run --scene pages --csv b.csv" + common).status, 0);
+  const std::string a = testing::slurp(dir_ / "a.csv");
+  EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 200);
+  EXPECT_EQ(a, testing::slurp(dir_ / "b.csv"));
+  // One full-resolution page and a preview: a still scene of that page.
+  const SceneFiles one = find_scene(write_stack("one.tif", 1, 0, kWidth));
+  EXPECT_TRUE(one.tiff_pages.empty());
+  const std::vector<Image> still = read_frames(one);
+  ASSERT_EQ(still.size(), 1u);
+  EXPECT_EQ(still[0].width, static_cast<int>(kWidth));
+  // Pages of different sizes; a stack inside a folder of frames: one-line errors.
+  expect_refused([&] { read_frames(find_scene(write_stack("mixed.tif", 2, -1, 16))); },
+                 "mixed.tif frame 1' is 16x12, the first frame is 20x12");
+  std::filesystem::copy_file(dir_ / "stack.tif", dir_ / "pages" / "3.tif");
+  expect_refused([&] { read_frames(find_scene((dir_ / "pages").string())); },
+                 "a multi-page TIFF of 3 frames is a scene of its own");
+}
 
 TEST(PhotoScene, MalformedAndOversizedFilesAreOneLineErrors) {
   PngSpec s;

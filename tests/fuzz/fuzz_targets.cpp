@@ -54,6 +54,11 @@ int photo(const std::uint8_t* data, std::size_t size) {
   const std::string in = bytes(data, size);
   expect_result_or_input_error([&] { decode_png(in, "fuzz.png"); });
   expect_result_or_input_error([&] { decode_tiff(in, "fuzz.tif"); });
+  // A multi-page TIFF's pages, as a scene takes them (a few: each is a whole decode).
+  expect_result_or_input_error([&] {
+    const std::vector<std::size_t> pages = tiff_pages(in, "fuzz.tif");
+    for (std::size_t k = 0; k < pages.size() && k < 4; ++k) decode_tiff(in, "fuzz.tif", pages[k]);
+  });
   return expect_result_or_input_error([&] { decode_jpeg(in, "fuzz.jpg"); });
 }
 

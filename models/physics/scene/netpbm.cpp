@@ -227,7 +227,16 @@ Image read_image(const std::string& path) {
   if (ext == ".ppm") return read_ppm(path);
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
-  if (ext == ".tif" || ext == ".tiff") return decode_tiff(read_scene_file(path), path);
+  if (ext == ".tif" || ext == ".tiff") {
+    const std::string data = read_scene_file(path);
+    const std::vector<std::size_t> pages = tiff_pages(data, path);
+    if (pages.size() != 1) {
+      throw InputError(fmt::format("scene file '{}': a multi-page TIFF of {} frames is a scene of its own, not one frame "
+                                   "of a folder",
+                                   path, pages.size()));
+    }
+    return decode_tiff(data, path, pages.front());
+  }
   if (ext == ".exr") return decode_exr(read_scene_file(path), path);
   if (ext == ".npy") {
     const NpySceneFile file = open_npy_scene(path);

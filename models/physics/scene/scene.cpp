@@ -15,6 +15,8 @@
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/npy_scene.hpp"
 #include "aesim/scene/resample.hpp"
+#include "aesim/scene/scene_file.hpp"
+#include "aesim/scene/tiff_image.hpp"
 #include "aesim/scene/y4m_video.hpp"
 
 namespace aesim {
@@ -33,31 +35,38 @@ long long frame_number(const std::string& stem) {
 }
 
 
-// A scene's frames however they are stored: image files, a Y4M video's frames, or a 3-D NumPy
-// array's. A file of many frames is held whole while its frames are taken from it.
+// A scene's frames however they are stored: image files, a Y4M video's frames, a 3-D NumPy
+// array's or a multi-page TIFF's. A file of many frames is held whole while its frames are taken
+// from it.
 class SceneFrames {
  public:
   explicit SceneFrames(const SceneFiles& files) : files_(files) {
     if (files.video) video_ = open_y4m(files.frames.front());
     if (files.npy_stack) stack_ = open_npy_scene(files.frames.front());
+    if (!files.tiff_pages.empty()) tiff_ = read_scene_file(files.frames.front());
   }
   std::size_t count() const {
-    return files_.video ? video_.layout.luma.size() : files_.npy_stack ? stack_.layout.frames : files_.frames.size();
+    if (files_.video) return video_.layout.luma.size();
+    if (files_.npy_stack) return stack_.layout.frames;
+    return files_.tiff_pages.empty() ? files_.frames.size() : files_.tiff_pages.size();
   }
   Image frame(std::size_t k) const {
     if (files_.video) return y4m_light(video_.data, video_.layout, k);
     if (files_.npy_stack) return npy_scene_frame(stack_, k, files_.frames.front());
+    if (!files_.tiff_pages.empty()) return decode_tiff(tiff_, files_.frames.front(), files_.tiff_pages[k]);
     return read_image(files_.frames[k]);
   }
   // Frame k's name in a message.
   std::string name(std::size_t k) const {
-    return files_.video || files_.npy_stack ? fmt::format("{} frame {}", files_.frames.front(), k) : files_.frames[k];
+    return files_.video || files_.npy_stack || !files_.tiff_pages.empty() ? fmt::format("{} frame {}", files_.frames.front(), k)
+                                                                          : files_.frames[k];
   }
 
  private:
   const SceneFiles& files_;
   Y4mFile video_;
   NpySceneFile stack_;
+  std::string tiff_;
 };
 
 }  // namespace
@@ -74,6 +83,10 @@ SceneFiles find_scene(const std::string& file_or_dir) {
       files.video_frame_rate = read_y4m_header(file_or_dir).frame_rate;
     }
     if (file_extension(file_or_dir) == ".npy") files.npy_stack = read_npy_scene_header(file_or_dir).header.shape.size() == 3;
+    if (file_extension(file_or_dir) == ".tif" || file_extension(file_or_dir) == ".tiff") {
+      files.tiff_pages = tiff_pages(read_scene_file(file_or_dir), file_or_dir);
+      if (files.tiff_pages.size() == 1) files.tiff_pages.clear();
+    }
     return files;
   }
   if (!is_input_folder(file_or_dir, "scene")) {

@@ -12,8 +12,9 @@ namespace aesim {
 
 // Where a scene comes from: one image file, a folder of numbered frames with an optional
 // scene.toml (frame_rate, loop) that sets the scene.* keys before the command line does, a Y4M
-// video (a .y4m file: its frames, at the frame rate its header gives scene.frame_rate), or a 3-D
-// NumPy array (a .npy file of frames, rows, columns: its frames, at scene.frame_rate).
+// video (a .y4m file: its frames, at the frame rate its header gives scene.frame_rate), a 3-D
+// NumPy array (a .npy file of frames, rows, columns: its frames, at scene.frame_rate), or a
+// multi-page TIFF (its full-resolution pages, at scene.frame_rate).
 struct SceneFiles {
   std::string source;
   std::vector<std::string> frames;  // in frame order; a video's or a 3-D array's one file
@@ -21,6 +22,7 @@ struct SceneFiles {
   bool video = false;
   double video_frame_rate = 0;  // Hz, from a video's header
   bool npy_stack = false;       // a 3-D .npy array
+  std::vector<std::size_t> tiff_pages;  // a multi-page TIFF's frames (tiff_pages), when it has more than one
 };
 
 SceneFiles find_scene(const std::string& file_or_dir);

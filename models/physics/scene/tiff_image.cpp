@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -100,21 +101,50 @@ double sample_value(const unsigned char* p, const Layout& l) {
   }
 }
 
-}  // namespace
-
-Image decode_tiff(const std::string& data, const std::string& path) {
-  const auto fail = [&](const std::string& why) { throw InputError(fmt::format("scene file '{}': TIFF: {}", path, why)); };
-  TiffSource src{&data, 0, {}};
+// The file opened by libtiff on its bytes, its errors into `src`; null when it is not a TIFF.
+std::unique_ptr<TIFF, TiffCloser> open_tiff(const std::string& path, TiffSource& src) {
   std::unique_ptr<TIFFOpenOptions, OptionsFree> options(TIFFOpenOptionsAlloc());
   if (!options) throw std::bad_alloc();
   TIFFOpenOptionsSetErrorHandlerExtR(options.get(), on_error, &src);
   TIFFOpenOptionsSetWarningHandlerExtR(options.get(), on_warning, &src);
   // No single allocation past what a scene may take: a header claiming a huge strip is refused.
   TIFFOpenOptionsSetMaxSingleMemAlloc(options.get(), static_cast<tmsize_t>(kMaxInputFileBytes));
-  std::unique_ptr<TIFF, TiffCloser> tif(TIFFClientOpenExt(path.c_str(), "rm", &src, read_proc, write_proc, seek_proc,
-                                                          close_proc, size_proc, map_proc, unmap_proc, options.get()));
+  return std::unique_ptr<TIFF, TiffCloser>(TIFFClientOpenExt(path.c_str(), "rm", &src, read_proc, write_proc, seek_proc,
+                                                             close_proc, size_proc, map_proc, unmap_proc, options.get()));
+}
+
+}  // namespace
+
+std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& path) {
+  const auto fail = [&](const std::string& why) { throw InputError(fmt::format("scene file '{}': TIFF: {}", path, why)); };
+  TiffSource src{&data, 0, {}};
+  const std::unique_ptr<TIFF, TiffCloser> tif = open_tiff(path, src);
+  if (!tif) fail(src.error.empty() ? "not a TIFF file" : src.error);
+  std::vector<std::size_t> pages;
+  std::size_t directory = 0;
+  do {
+    std::uint32_t subfile = 0;
+    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_SUBFILETYPE, &subfile);
+    if ((subfile & (FILETYPE_REDUCEDIMAGE | FILETYPE_MASK)) == 0) pages.push_back(directory);
+    if (pages.size() > kMaxSceneFrames) {
+      fail(fmt::format("more than {} pages (the most frames a scene has)", kMaxSceneFrames));
+    }
+    ++directory;
+  } while (TIFFReadDirectory(tif.get()));
+  if (!src.error.empty()) fail(src.error);
+  if (pages.empty()) fail("no full-resolution image (every page is a reduced copy or a mask)");
+  return pages;
+}
+
+Image decode_tiff(const std::string& data, const std::string& path, std::size_t page) {
+  const auto fail = [&](const std::string& why) { throw InputError(fmt::format("scene file '{}': TIFF: {}", path, why)); };
+  TiffSource src{&data, 0, {}};
+  const std::unique_ptr<TIFF, TiffCloser> tif = open_tiff(path, src);
   if (!tif) fail(src.error.empty() ? "not a TIFF file" : src.error);
   TIFF* t = tif.get();
+  if (page > 0 && (page > std::numeric_limits<tdir_t>::max() || !TIFFSetDirectory(t, static_cast<tdir_t>(page)))) {
+    fail(src.error.empty() ? fmt::format("no page {}", page) : src.error);
+  }
   Layout l;
   TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &l.width);
   TIFFGetField(t, TIFFTAG_IMAGELENGTH, &l.height);

@@ -1,5 +1,7 @@
 #pragma once
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "aesim/scene/image.hpp"
 
@@ -13,10 +15,17 @@ namespace aesim {
 //    and PPM: a camera's raw values; a TIFF a photo tool wrote is usually gamma-encoded: convert
 //    it to PNG, which is decoded with the sRGB curve), or 32- and 64-bit floats as they are (as
 //    PFM and OpenEXR: 1.0 is full scale, brighter may exceed it; negative or non-finite refused);
-//  - colour reduced to Rec. 709 luminance; the first image of a multi-page file; turned as its
-//    Orientation tag says (as EXIF's).
+//  - colour reduced to Rec. 709 luminance; turned as its Orientation tag says (as EXIF's);
+//  - `page`: the file's directory to read (0, the first; a multi-page file's frames are the
+//    directories tiff_pages lists).
 // Other layouts (CMYK, YCbCr, Lab, signed or 1-bit samples, ...) are refused; so is anything
 // libtiff reports as broken. Throws InputError naming the file and the reason.
-Image decode_tiff(const std::string& data, const std::string& path);
+Image decode_tiff(const std::string& data, const std::string& path, std::size_t page = 0);
+
+// The directories of a TIFF file that are images of their own, in order: a multi-page file's
+// frames (a camera's or a microscope's stack). Reduced-resolution copies (a pyramid's levels, a
+// preview) and transparency masks (NewSubfileType bits 0 and 2) are not. At most kMaxSceneFrames;
+// throws InputError naming the file.
+std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& path);
 
 }  // namespace aesim
