@@ -121,6 +121,19 @@ TEST_F(SceneFilesTest, MalformedFilesAreInputErrorsNamingTheDefect) {
   EXPECT_THROW(read_pfm(write("s.pfm", "Pf\n1 1\n0\nxxxx")), InputError);
   EXPECT_THROW(read_image((dir_ / "missing.pgm").string()), InputError);
   EXPECT_THROW(read_image(write("x.png", "x")), InputError);
+  // Formats aesim does not decode name the conversion that gives one it does.
+  for (const auto& [name, words] : {std::pair<const char*, const char*>{"clip.MP4", "ffmpeg -i"},
+                                    {"clip.mov", "convert the video to Y4M"},
+                                    {"frames.gif", "convert the image to PNG or TIFF"},
+                                    {"scan.bmp", "convert the image to PNG or TIFF"}}) {
+    try {
+      read_image(write(name, "x"));
+      ADD_FAILURE() << name;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("unsupported format"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Resample, IntegerUpsamplingReplicatesDownsamplingAverages) {

@@ -246,7 +246,17 @@ Image read_image(const std::string& path) {
     }
     return npy_scene_frame(file, 0, path);
   }
-  throw InputError(fmt::format("scene file '{}': unsupported format (use {}, or a .y4m video)", path, scene_image_formats()));
+  // Common formats aesim does not decode, with the conversion that gives one it does.
+  const std::string stem = std::filesystem::path(path).stem().string();
+  std::string hint;
+  for (const char* video : {".mp4", ".avi", ".mov", ".mkv", ".webm", ".m4v", ".mpg", ".mpeg"}) {
+    if (ext == video) hint = fmt::format(": convert the video to Y4M, e.g. ffmpeg -i '{}' -pix_fmt gray '{}.y4m'", path, stem);
+  }
+  for (const char* image : {".gif", ".bmp", ".webp", ".heic", ".jxl"}) {
+    if (ext == image) hint = ": convert the image to PNG or TIFF (a GIF's frames to numbered PNGs in a folder)";
+  }
+  throw InputError(fmt::format("scene file '{}': unsupported format (use {}, or a .y4m video){}", path,
+                               scene_image_formats(), hint));
 }
 
 }  // namespace aesim
