@@ -610,6 +610,22 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
   refused("# timestamp(int32 us)\n0.5 1 2 1\n", "not a whole number of microseconds");
 }
 
+// The containers datasets ship events in that aesim does not open (ROS bags, MATLAB files): the
+// one-line refusal names the way out.
+TEST(ForeignReaders, ContainersAesimDoesNotOpenNameTheWayOut) {
+  for (const auto& [path, words] : {std::pair<const char*, const char*>{"shapes_6dof.bag", "a ROS bag; export its event topic"},
+                                    {"gesture.MAT", "a MATLAB file; save its events as .npy"},
+                                    {"events.es", "unsupported format (use .aedat"}}) {
+    try {
+      load_events(path);
+      ADD_FAILURE() << path;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+  }
+}
+
 class EmptyRuns : public testing::TempDirTest {};
 
 // A run that delivers no event still writes a file each reader opens: DV's AEDAT 4.0 readers

@@ -24,6 +24,7 @@
 #include "aesim/event_files/npy_events.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/event_files/prophesee_raw.hpp"
+#include "aesim/files/input_path.hpp"
 #include "aesim/files/input_file.hpp"
 
 namespace aesim {
@@ -299,7 +300,14 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
   try {
     row = &event_format_of(path, "event file");
   } catch (const InputError&) {
-    throw InputError(fmt::format("event file '{}': unsupported format (use {})", path, event_extensions()));
+    // Containers the datasets ship events in that aesim does not open, with the way out.
+    const std::string ext = file_extension(path);
+    const std::string hint =
+        ext == ".bag"   ? ": a ROS bag; export its event topic (e.g. with the dataset's tools) to .txt, .h5 or .npy"
+        : ext == ".mat" ? ": a MATLAB file; save its events as .npy (scipy.io.loadmat, then numpy.save with tonic's "
+                          "dtype) or as t x y p text"
+                        : "";
+    throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_extensions(), hint));
   }
   EventRecording rec = row->read(path, layout);
   if (!size) return rec;
