@@ -84,7 +84,7 @@ SceneFiles find_scene(const std::string& file_or_dir) {
     }
     if (file_extension(file_or_dir) == ".npy") files.npy_stack = read_npy_scene_header(file_or_dir).header.shape.size() == 3;
     if (file_extension(file_or_dir) == ".tif" || file_extension(file_or_dir) == ".tiff") {
-      files.tiff_pages = tiff_pages(read_scene_file(file_or_dir), file_or_dir);
+      files.tiff_pages = tiff_file_pages(file_or_dir);
       if (files.tiff_pages.size() == 1) files.tiff_pages.clear();
     }
     return files;

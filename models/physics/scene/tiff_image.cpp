@@ -101,7 +101,8 @@ double sample_value(const unsigned char* p, const Layout& l) {
   }
 }
 
-// The file opened by libtiff on its bytes, its errors into `src`; null when it is not a TIFF.
+// The file opened by libtiff, its errors into `src`: on its bytes (`src.data`), or read from
+// `path` as libtiff needs it (`src.data` null: only the parts asked for). Null when it is not a TIFF.
 std::unique_ptr<TIFF, TiffCloser> open_tiff(const std::string& path, TiffSource& src) {
   std::unique_ptr<TIFFOpenOptions, OptionsFree> options(TIFFOpenOptionsAlloc());
   if (!options) throw std::bad_alloc();
@@ -109,15 +110,14 @@ std::unique_ptr<TIFF, TiffCloser> open_tiff(const std::string& path, TiffSource&
   TIFFOpenOptionsSetWarningHandlerExtR(options.get(), on_warning, &src);
   // No single allocation past what a scene may take: a header claiming a huge strip is refused.
   TIFFOpenOptionsSetMaxSingleMemAlloc(options.get(), static_cast<tmsize_t>(kMaxInputFileBytes));
+  if (!src.data) return std::unique_ptr<TIFF, TiffCloser>(TIFFOpenExt(path.c_str(), "rm", options.get()));
   return std::unique_ptr<TIFF, TiffCloser>(TIFFClientOpenExt(path.c_str(), "rm", &src, read_proc, write_proc, seek_proc,
                                                              close_proc, size_proc, map_proc, unmap_proc, options.get()));
 }
 
-}  // namespace
-
-std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& path) {
+// tiff_pages, from the bytes in `src.data` or (null) the file at `path`.
+std::vector<std::size_t> pages_of(const std::string& path, TiffSource& src) {
   const auto fail = [&](const std::string& why) { throw InputError(fmt::format("scene file '{}': TIFF: {}", path, why)); };
-  TiffSource src{&data, 0, {}};
   const std::unique_ptr<TIFF, TiffCloser> tif = open_tiff(path, src);
   if (!tif) fail(src.error.empty() ? "not a TIFF file" : src.error);
   std::vector<std::size_t> pages;
@@ -134,6 +134,18 @@ std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& 
   if (!src.error.empty()) fail(src.error);
   if (pages.empty()) fail("no full-resolution image (every page is a reduced copy or a mask)");
   return pages;
+}
+
+}  // namespace
+
+std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& path) {
+  TiffSource src{&data, 0, {}};
+  return pages_of(path, src);
+}
+
+std::vector<std::size_t> tiff_file_pages(const std::string& path) {
+  TiffSource src{nullptr, 0, {}};
+  return pages_of(path, src);
 }
 
 Image decode_tiff(const std::string& data, const std::string& path, std::size_t page) {

@@ -27,5 +27,8 @@ Image decode_tiff(const std::string& data, const std::string& path, std::size_t 
 // preview) and transparency masks (NewSubfileType bits 0 and 2) are not. At most kMaxSceneFrames;
 // throws InputError naming the file.
 std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& path);
+// The same for the file at `path`, reading only its directories (what a scene needs to know
+// before it reads its frames).
+std::vector<std::size_t> tiff_file_pages(const std::string& path);
 
 }  // namespace aesim
