@@ -60,7 +60,6 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
   // A UTF-8 byte order mark, as Windows editors begin a text file.
   std::size_t at = data.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
   std::size_t line_number = 0;
-  bool first = true;
   // jAER's text writer says in its header when its stamps are whole microseconds.
   bool microseconds = false;
   std::string_view fields[6];
@@ -79,15 +78,14 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
       microseconds = microseconds || line.find("timestamp(int32 us)") != std::string_view::npos;
       continue;
     }
-    if (first && n == 2) {
-      first = false;
+    // rpg_e2vid's size line comes before any event.
+    if (n == 2 && rec.events.empty() && rec.width == 0) {
       if (!whole(fields[0], kMostSide, rec.width) || !whole(fields[1], kMostSide, rec.height) || rec.width == 0 ||
           rec.height == 0) {
         fail(line, "a line of two fields is rpg_e2vid's 'width height', two whole numbers from 1 to 65535");
       }
       continue;
     }
-    first = false;
     if (n < 4 || n > 5) fail(line, "expected 't x y p': time in s, x, y, polarity (1 ON, 0 or -1 OFF)");
     PolarityEvent e;
     const char* const t_last = fields[0].data() + fields[0].size();
