@@ -299,6 +299,7 @@ struct TiffSpec {
   std::uint32_t width = 2, height = 1;
   std::uint16_t spp = 1, bps = 8, format = SAMPLEFORMAT_UINT, photometric = PHOTOMETRIC_MINISBLACK;
   std::uint16_t planar = PLANARCONFIG_CONTIG, orientation = ORIENTATION_TOPLEFT, compression = COMPRESSION_NONE;
+  std::uint16_t fill_order = FILLORDER_MSB2LSB;
   bool tiled = false;
   std::vector<unsigned char> samples;
   std::vector<std::uint16_t> colormap;  // 3 x 256 for a palette
@@ -316,29 +317,30 @@ std::string encode_tiff(const TiffSpec& s, const std::filesystem::path& dir) {
   TIFFSetField(t, TIFFTAG_PLANARCONFIG, s.planar);
   TIFFSetField(t, TIFFTAG_ORIENTATION, s.orientation);
   TIFFSetField(t, TIFFTAG_COMPRESSION, s.compression);
-  if (s.spp == 4) {
+  TIFFSetField(t, TIFFTAG_FILLORDER, s.fill_order);
+  if (s.spp == 2 || s.spp == 4) {
     const std::uint16_t extra = EXTRASAMPLE_UNASSALPHA;
     TIFFSetField(t, TIFFTAG_EXTRASAMPLES, 1, &extra);
   }
   if (!s.colormap.empty()) {
     TIFFSetField(t, TIFFTAG_COLORMAP, s.colormap.data(), s.colormap.data() + 256, s.colormap.data() + 512);
   }
-  const std::size_t bytes = s.bps / 8u, planes = s.planar == PLANARCONFIG_SEPARATE ? s.spp : 1;
-  const std::size_t per_pixel = planes > 1 ? 1 : s.spp, pixels = std::size_t(s.width) * s.height;
-  std::vector<unsigned char> buffer = s.samples;
+  const std::size_t planes = s.planar == PLANARCONFIG_SEPARATE ? s.spp : 1;
+  const std::size_t per_pixel = planes > 1 ? 1 : s.spp;
+  // The bytes of `w` pixels' samples; below 8 bits a row's are packed and it ends on a byte.
+  const auto span = [&](std::size_t w) { return (w * per_pixel * s.bps + 7) / 8; };
+  std::vector<unsigned char> buffer = s.samples;  // libtiff's encoders may work in the row they are given
   if (s.tiled) {
     TIFFSetField(t, TIFFTAG_TILEWIDTH, 16u);
     TIFFSetField(t, TIFFTAG_TILELENGTH, 16u);
-    std::vector<unsigned char> tile(16 * 16 * per_pixel * bytes);
+    std::vector<unsigned char> tile(16 * span(16));
     for (std::size_t p = 0; p < planes; ++p) {
       for (std::uint32_t y0 = 0; y0 < s.height; y0 += 16) {
         for (std::uint32_t x0 = 0; x0 < s.width; x0 += 16) {
           std::fill(tile.begin(), tile.end(), 0);
           for (std::uint32_t y = y0; y < std::min(y0 + 16, s.height); ++y) {
-            const std::size_t n = std::size_t(std::min(x0 + 16, s.width) - x0) * per_pixel * bytes;
-            const std::size_t from = planes > 1 ? (p * pixels + std::size_t(y) * s.width + x0) * bytes
-                                                : (std::size_t(y) * s.width + x0) * per_pixel * bytes;
-            std::memcpy(&tile[std::size_t(y - y0) * 16 * per_pixel * bytes], &buffer[from], n);
+            const std::size_t from = (p * s.height + y) * span(s.width) + span(x0);
+            std::memcpy(&tile[std::size_t(y - y0) * span(16)], &buffer[from], span(std::min(x0 + 16, s.width) - x0));
           }
           TIFFWriteTile(t, tile.data(), x0, y0, 0, static_cast<std::uint16_t>(p));
         }
@@ -348,8 +350,7 @@ std::string encode_tiff(const TiffSpec& s, const std::filesystem::path& dir) {
     TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, 3u);
     for (std::size_t p = 0; p < planes; ++p) {
       for (std::uint32_t y = 0; y < s.height; ++y) {
-        const std::size_t from = planes > 1 ? (p * pixels + std::size_t(y) * s.width) * bytes : std::size_t(y) * s.width * per_pixel * bytes;
-        TIFFWriteScanline(t, &buffer[from], y, static_cast<std::uint16_t>(p));
+        TIFFWriteScanline(t, &buffer[(p * s.height + y) * span(s.width)], y, static_cast<std::uint16_t>(p));
       }
     }
   }
@@ -452,6 +453,81 @@ TEST_F(TiffScenes, StripsTilesCompressionAndOrientationGiveTheSameImage) {
   // Shown a quarter clockwise: stored (x, y) at (19 - y, x).
   EXPECT_DOUBLE_EQ(turned.at(19, 0), 0.0);
   EXPECT_DOUBLE_EQ(turned.at(19 - 3, 7), (3 * 40 + 7) * 80 / 65535.0);
+}
+
+// Samples of 1, 2 and 4 bits packed from each byte's high bits, a row ending on a byte (TIFF 6.0,
+// BitsPerSample and FillOrder): `values` packed here by hand, row by row.
+std::vector<unsigned char> pack_rows(const std::vector<unsigned>& values, std::size_t width, unsigned bps) {
+  const std::size_t row = (width * bps + 7) / 8;
+  std::vector<unsigned char> out(values.size() / width * row, 0);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::size_t bit = (i % width) * bps;
+    out[i / width * row + bit / 8] |= static_cast<unsigned char>(values[i] << (8 - bps - bit % 8));
+  }
+  return out;
+}
+
+TEST_F(TiffScenes, BilevelAndFewBitImagesAreTheirSamplesOverFullScale) {
+  // A scanned chart or a mask: 20x18 1-bit (each row 2.5 bytes, so every row ends in padding), a
+  // checkerboard of 3x3 squares, stored plain, PackBits, fax Group 3 and Group 4, in strips and in
+  // tiles, high bit first and low bit first; 0 white (fax's own MinIsWhite) and 0 black.
+  TiffSpec bilevel;
+  bilevel.width = 20;
+  bilevel.height = 18;
+  bilevel.bps = 1;
+  bilevel.photometric = PHOTOMETRIC_MINISWHITE;
+  std::vector<unsigned> ink(20 * 18);
+  for (std::size_t i = 0; i < ink.size(); ++i) ink[i] = (i % 20 / 3 + i / 20 / 3) % 2;
+  bilevel.samples = pack_rows(ink, 20, 1);
+  for (const std::uint16_t compression : {COMPRESSION_NONE, COMPRESSION_PACKBITS, COMPRESSION_CCITTFAX3, COMPRESSION_CCITTFAX4}) {
+    for (const bool tiled : {false, true}) {
+      for (const std::uint16_t order : {FILLORDER_MSB2LSB, FILLORDER_LSB2MSB}) {
+        bilevel.compression = compression;
+        bilevel.tiled = tiled;
+        bilevel.fill_order = order;
+        const Image img = decode_tiff(encode_tiff(bilevel, dir_), "chart.tif");
+        ASSERT_EQ(img.width, 20);
+        ASSERT_EQ(img.height, 18);
+        for (std::size_t i = 0; i < ink.size(); ++i) {
+          ASSERT_EQ(img.pixels[i], ink[i] ? 0.0 : 1.0) << i << " compression " << compression << " tiled " << tiled << " order " << order;
+        }
+      }
+    }
+  }
+  TiffSpec mask = bilevel;
+  mask.photometric = PHOTOMETRIC_MINISBLACK;
+  mask.compression = COMPRESSION_NONE;
+  mask.tiled = false;
+  mask.fill_order = FILLORDER_MSB2LSB;
+  const Image lit = decode_tiff(encode_tiff(mask, dir_), "mask.tif");
+  for (std::size_t i = 0; i < ink.size(); ++i) ASSERT_EQ(lit.pixels[i], ink[i] ? 1.0 : 0.0) << i;
+
+  // 2-bit grey, 0..3 over full scale, and a 4-bit palette of 16 entries.
+  TiffSpec two;
+  two.width = 5;
+  two.bps = 2;
+  two.samples = pack_rows({0, 1, 2, 3, 1}, 5, 2);
+  EXPECT_EQ(two.samples, (std::vector<unsigned char>{0x1B, 0x40}));  // 00 01 10 11 | 01 00 00 00
+  const Image grey = decode_tiff(encode_tiff(two, dir_), "two.tif");
+  ASSERT_EQ(grey.width, 5);
+  EXPECT_EQ(grey.pixels, (std::vector<double>{0.0, 1 / 3.0, 2 / 3.0, 1.0, 1 / 3.0}));
+  TiffSpec indexed;
+  indexed.width = 3;
+  indexed.bps = 4;
+  indexed.photometric = PHOTOMETRIC_PALETTE;
+  indexed.samples = pack_rows({15, 0, 1}, 3, 4);
+  indexed.colormap.assign(768, 0);
+  indexed.colormap[15] = 65535;        // entry 15 red
+  indexed.colormap[256 + 1] = 65535;   // entry 1 green
+  const Image colours = decode_tiff(encode_tiff(indexed, dir_), "palette4.tif");
+  EXPECT_NEAR(colours.pixels[0], 0.2126, 1e-12);
+  EXPECT_EQ(colours.pixels[1], 0.0);
+  EXPECT_NEAR(colours.pixels[2], 0.7152, 1e-12);
+
+  TiffSpec grey_alpha = two;  // a packed sample beside another: no layout aesim reads
+  grey_alpha.spp = 2;
+  grey_alpha.samples = pack_rows({0, 1, 2, 3, 1, 0, 0, 0, 0, 0}, 10, 2);
+  expect_refused([&] { decode_tiff(encode_tiff(grey_alpha, dir_), "ga.tif"); }, "2 samples a pixel of 2 bits");
 }
 
 TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {

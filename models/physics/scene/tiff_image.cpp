@@ -87,6 +87,9 @@ double sample_value(const unsigned char* p, const Layout& l) {
     return d;
   }
   switch (l.bps) {
+    case 1:
+    case 2:
+    case 4: return *p / double((1u << l.bps) - 1u);  // unpacked by unpack_row
     case 8: return *p / 255.0;
     case 16: {
       std::uint16_t v;
@@ -98,6 +101,16 @@ double sample_value(const unsigned char* p, const Layout& l) {
       std::memcpy(&v, p, sizeof v);
       return v / 4294967295.0;
     }
+  }
+}
+
+// `n` samples of `bps` bits (1, 2 or 4), packed from each byte's high bits down as TIFF stores
+// them (FillOrder 1; libtiff reverses the other order itself), one a byte in `out`.
+void unpack_row(const unsigned char* packed, unsigned char* out, std::size_t n, unsigned bps) {
+  const unsigned per_byte = 8u / bps, mask = (1u << bps) - 1u;
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned shift = 8u - bps * (1u + unsigned(i % per_byte));
+    out[i] = static_cast<unsigned char>((packed[i / per_byte] >> shift) & mask);
   }
 }
 
@@ -178,23 +191,27 @@ Image decode_tiff(const std::string& data, const std::string& path, std::size_t 
                             : "another";
     fail(fmt::format("{} colour (photometric interpretation {}; aesim reads grey, RGB and palette images)", named, l.photometric));
   }
-  const bool integer = l.format == SAMPLEFORMAT_UINT && (l.bps == 8 || l.bps == 16 || l.bps == 32);
+  // Bilevel and 2- or 4-bit images (a scanned chart, a mask, a fax-compressed page) are packed a
+  // row at a time; their samples are unpacked to a byte each as they are read.
+  const bool packed = l.bps == 1 || l.bps == 2 || l.bps == 4;
+  const bool integer = l.format == SAMPLEFORMAT_UINT && (packed || l.bps == 8 || l.bps == 16 || l.bps == 32);
   const bool floating = l.format == SAMPLEFORMAT_IEEEFP && (l.bps == 32 || l.bps == 64) && !palette;
   if (!integer && !floating) {
-    fail(fmt::format("{}-bit {} samples (aesim reads unsigned 8, 16 or 32 bits, or 32- or 64-bit floats)", l.bps,
+    fail(fmt::format("{}-bit {} samples (aesim reads unsigned 1, 2, 4, 8, 16 or 32 bits, or 32- or 64-bit floats)", l.bps,
                      l.format == SAMPLEFORMAT_INT      ? "signed"
                      : l.format == SAMPLEFORMAT_IEEEFP ? "float"
                      : l.format == SAMPLEFORMAT_UINT   ? "unsigned"
                                                        : "complex or unknown"));
   }
-  if (palette && l.bps != 8) fail(fmt::format("a {}-bit palette (aesim reads 8-bit palettes)", l.bps));
+  if (palette && l.bps > 8) fail(fmt::format("a {}-bit palette (aesim reads palettes of up to 8 bits)", l.bps));
   if (l.spp < l.colours || l.spp > 4) fail(fmt::format("{} samples a pixel (aesim reads {} to 4)", l.spp, l.colours));
+  if (packed && l.spp != 1) fail(fmt::format("{} samples a pixel of {} bits (aesim reads one, grey or a palette index)", l.spp, l.bps));
   if (floating && l.photometric == PHOTOMETRIC_MINISWHITE) fail("float samples with white at zero");
   std::uint16_t *red = nullptr, *green = nullptr, *blue = nullptr;
   if (palette && !TIFFGetField(t, TIFFTAG_COLORMAP, &red, &green, &blue)) fail("a palette image without its colour map");
 
   // Every sample of the image, plane after plane where they are stored apart.
-  const std::size_t bytes = l.bps / 8u, pixels = std::size_t(l.width) * l.height;
+  const std::size_t bytes = packed ? 1 : l.bps / 8u, pixels = std::size_t(l.width) * l.height;
   const std::size_t planes = l.planar == PLANARCONFIG_SEPARATE ? l.spp : 1, per_pixel = l.planar == PLANARCONFIG_SEPARATE ? 1 : l.spp;
   // At most 4096 x 4096 pixels of 4 samples of 8 bytes (512 MiB): bounded before it is taken.
   std::vector<unsigned char> samples(pixels * l.spp * bytes);
@@ -206,7 +223,9 @@ Image decode_tiff(const std::string& data, const std::string& path, std::size_t 
     TIFFGetField(t, TIFFTAG_TILEWIDTH, &tw);
     TIFFGetField(t, TIFFTAG_TILELENGTH, &th);
     const tmsize_t tile_size = TIFFTileSize(t);
-    if (tw == 0 || th == 0 || tile_size <= 0 || static_cast<std::uint64_t>(tile_size) != std::uint64_t(tw) * th * per_pixel * bytes) {
+    // A tile's rows, and a strip's, start on a byte: a packed row is its bits rounded up.
+    const std::uint64_t tile_row = packed ? (std::uint64_t(tw) * l.bps + 7) / 8 : std::uint64_t(tw) * per_pixel * bytes;
+    if (tw == 0 || th == 0 || tile_size <= 0 || static_cast<std::uint64_t>(tile_size) != tile_row * th) {
       fail(src.error.empty() ? "malformed tiles" : src.error);
     }
     // A tile no larger than the image itself could need (a header may claim any tile size).
@@ -222,21 +241,29 @@ Image decode_tiff(const std::string& data, const std::string& path, std::size_t 
             const std::size_t n = std::size_t(std::min(x0 + tw, l.width) - x0) * per_pixel * bytes;
             unsigned char* to = planes > 1 ? &samples[(p * pixels + std::size_t(y) * l.width + x0) * bytes]
                                            : &samples[(std::size_t(y) * l.width + x0) * per_pixel * bytes];
-            std::memcpy(to, &tile[std::size_t(y - y0) * tw * per_pixel * bytes], n);
+            const unsigned char* from = &tile[std::size_t(y - y0) * tile_row];
+            if (packed) {
+              unpack_row(from, to, std::min(x0 + tw, l.width) - x0, l.bps);
+            } else {
+              std::memcpy(to, from, n);
+            }
           }
         }
       }
     }
   } else {
     const tmsize_t line = TIFFScanlineSize(t);
-    if (line <= 0 || static_cast<std::uint64_t>(line) != std::uint64_t(l.width) * per_pixel * bytes) {
-      fail(src.error.empty() ? "malformed rows" : src.error);
-    }
+    const std::uint64_t row = packed ? (std::uint64_t(l.width) * l.bps + 7) / 8 : std::uint64_t(l.width) * per_pixel * bytes;
+    if (line <= 0 || static_cast<std::uint64_t>(line) != row) fail(src.error.empty() ? "malformed rows" : src.error);
+    std::vector<unsigned char> packed_row(packed ? row : 0);
     for (std::size_t p = 0; p < planes; ++p) {
       for (std::uint32_t y = 0; y < l.height; ++y) {
         unsigned char* to = planes > 1 ? &samples[(p * pixels + std::size_t(y) * l.width) * bytes]
                                        : &samples[std::size_t(y) * l.width * per_pixel * bytes];
-        if (TIFFReadScanline(t, to, y, static_cast<std::uint16_t>(p)) < 0) fail(src.error.empty() ? "a row does not read" : src.error);
+        if (TIFFReadScanline(t, packed ? packed_row.data() : to, y, static_cast<std::uint16_t>(p)) < 0) {
+          fail(src.error.empty() ? "a row does not read" : src.error);
+        }
+        if (packed) unpack_row(packed_row.data(), to, l.width, l.bps);
       }
     }
   }
