@@ -18,6 +18,7 @@
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/output/atomic_file.hpp"
+#include "support/recorded_events.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {
@@ -388,34 +389,10 @@ TEST(ForeignReaders, PropheseeDatGivesItsCdEventsWithWrappedStampsAndItsSize) {
 
 // Prophesee RAW: '%' header lines naming the encoding, then the camera's words, little-endian,
 // laid out here bit by bit from Prophesee's format pages (EVT 2.0, 2.1, 3.0) and OpenEB's decoders.
-struct RawWords {
-  std::string bytes;
-  template <typename T>
-  void put(T v) {
-    for (std::size_t b = 0; b < sizeof(T); ++b) bytes += static_cast<char>((static_cast<std::uint64_t>(v) >> (8 * b)) & 0xFF);
-  }
-};
-
-struct Cd {
-  std::int64_t t_us;
-  std::uint32_t x, y;
-  bool on;
-};
-
-void expect_events(const EventRecording& rec, const std::vector<Cd>& expected) {
-  ASSERT_EQ(rec.events.size(), expected.size());
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    SCOPED_TRACE(i);
-    EXPECT_DOUBLE_EQ(rec.events[i].t, static_cast<double>(expected[i].t_us) * 1e-6);
-    EXPECT_EQ(rec.events[i].x, expected[i].x);
-    EXPECT_EQ(rec.events[i].y, expected[i].y);
-    EXPECT_EQ(rec.events[i].flags, expected[i].on ? kNormalEvent : kOffEvent);
-  }
-}
-
-bool noted(const EventRecording& rec, const std::string& words) {
-  return std::any_of(rec.skipped.begin(), rec.skipped.end(), [&](const std::string& s) { return s.find(words) != std::string::npos; });
-}
+using RawWords = testing::LittleEndianBytes;
+using testing::Cd;
+using testing::expect_events;
+using testing::noted;
 
 TEST(ForeignReaders, PropheseeRawEvt3DecodesRowsVectorsAndTheWrappingTime) {
   RawWords w;
@@ -610,11 +587,12 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
   refused("# timestamp(int32 us)\n0.5 1 2 1\n", "not a whole number of microseconds");
 }
 
-// The containers datasets ship events in that aesim does not open (ROS bags, MATLAB files): the
+// The containers datasets ship events in that aesim does not open (MATLAB files, ROS 2 bags): the
 // one-line refusal names the way out.
 TEST(ForeignReaders, ContainersAesimDoesNotOpenNameTheWayOut) {
-  for (const auto& [path, words] : {std::pair<const char*, const char*>{"shapes_6dof.bag", "a ROS bag; export its event topic"},
-                                    {"gesture.MAT", "a MATLAB file; save its events as .npy"},
+  for (const auto& [path, words] : {std::pair<const char*, const char*>{"gesture.MAT", "a MATLAB file; save its events as .npy"},
+                                    {"rosbag2_0.db3", "a ROS 2 bag; convert it to a ROS 1 .bag"},
+                                    {"events_0.mcap", "a ROS 2 bag; convert it to a ROS 1 .bag"},
                                     {"events.es", "unsupported format (use .aedat"}}) {
     try {
       load_events(path);

@@ -80,10 +80,12 @@ int prophesee_raw(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.raw", EventFileFormat::PropheseeRaw); });
 }
 
-// The first byte chooses the reader: N-MNIST's .bin (odd) or `t x y p` text (even).
+// The first byte chooses the reader, by its remainder over 3: `t x y p` text (0), N-MNIST's .bin
+// (1) or a ROS bag (2).
 int dataset_files(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const EventFileFormat format = (data[0] & 1) ? EventFileFormat::NmnistBin : EventFileFormat::EventsText;
+  constexpr EventFileFormat kByRemainder[] = {EventFileFormat::EventsText, EventFileFormat::NmnistBin, EventFileFormat::RosBag};
+  const EventFileFormat format = kByRemainder[data[0] % 3];
   return expect_result_or_input_error([&] { decode_events(bytes(data + 1, size - 1), "fuzz.dataset", format); });
 }
 

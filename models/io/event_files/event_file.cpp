@@ -21,6 +21,7 @@
 #include "aesim/event_files/events_csv.hpp"
 #include "aesim/event_files/events_text.hpp"
 #include "aesim/event_files/nmnist_bin.hpp"
+#include "aesim/event_files/ros_bag.hpp"
 #include "aesim/event_files/npy_events.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/event_files/prophesee_raw.hpp"
@@ -280,6 +281,10 @@ EventRecording decode_nmnist_bin_recording(const std::string& data, const std::s
   return from_polarity(decode_nmnist_bin(data, label), label);
 }
 
+EventRecording decode_ros_bag_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_ros_bag(data, label), label);
+}
+
 EventRecording decode_events_text_recording(const std::string& data, const std::string& label) {
   return from_polarity(decode_events_text(data, label), label);
 }
@@ -303,10 +308,11 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
     // Containers the datasets ship events in that aesim does not open, with the way out.
     const std::string ext = file_extension(path);
     const std::string hint =
-        ext == ".bag"   ? ": a ROS bag; export its event topic (e.g. with the dataset's tools) to .txt, .h5 or .npy"
-        : ext == ".mat" ? ": a MATLAB file; save its events as .npy (scipy.io.loadmat, then numpy.save with tonic's "
+        ext == ".mat" ? ": a MATLAB file; save its events as .npy (scipy.io.loadmat, then numpy.save with tonic's "
                           "dtype) or as t x y p text"
-                        : "";
+        : ext == ".db3" || ext == ".mcap"
+            ? ": a ROS 2 bag; convert it to a ROS 1 .bag (rosbags-convert) or export its event topic to .txt, .h5 or .npy"
+            : "";
     throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_extensions(), hint));
   }
   EventRecording rec = row->read(path, layout);

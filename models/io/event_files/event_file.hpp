@@ -47,6 +47,7 @@ EventRecording decode_aedat4_recording(const std::string& data, const std::strin
 EventRecording decode_npy_recording(const std::string& data, const std::string& label);
 EventRecording decode_prophesee_raw_recording(const std::string& data, const std::string& label);
 EventRecording decode_nmnist_bin_recording(const std::string& data, const std::string& label);
+EventRecording decode_ros_bag_recording(const std::string& data, const std::string& label);
 EventRecording decode_events_text_recording(const std::string& data, const std::string& label);
 EventRecording decode_csv_recording(const std::string& data, const std::string& label);
 EventRecording read_csv_recording(const std::string& path);

@@ -136,6 +136,18 @@ std::vector<EventFormatRow> make_rows() {
     rows.push_back(std::move(r));
   }
   {
+    // Read: a ROS 1 bag's dvs_msgs/EventArray topic (the Event Camera Dataset, MVSEC, DAVIS and
+    // Prophesee cameras under ROS).
+    EventFormatRow r{EventFileFormat::RosBag, "ROS bag", {".bag"}, "ROS 1's, dvs_msgs/EventArray"};
+    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
+      return decode_ros_bag_recording(data, label);
+    };
+    r.read = [](const std::string& path, const std::string&) {
+      return decode_ros_bag_recording(read_event_file_bytes(path), path);
+    };
+    rows.push_back(std::move(r));
+  }
+  {
     EventFormatRow r{EventFileFormat::Csv, "CSV", {".csv"}, "t_us,x,y,tile,flags"};
     r.decode = [](const std::string& data, const std::string& label, const std::string&) {
       return decode_csv_recording(data, label);
