@@ -23,6 +23,7 @@
 #include "aesim/scene/exif_orientation.hpp"
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/photo_image.hpp"
+#include "aesim/scene/reduced_image.hpp"
 #include "aesim/scene/scene.hpp"
 #include "aesim/scene/tiff_image.hpp"
 #include "support/temp_dir_test.hpp"
@@ -41,6 +42,7 @@ struct PngSpec {
   std::vector<png_color> palette;
   double gamma = 0;  // a gAMA chunk when > 0
   std::string exif;  // an eXIf chunk when not empty
+  int interlace = PNG_INTERLACE_NONE;
 };
 
 void append(png_structp png, png_bytep data, png_size_t n) {
@@ -53,7 +55,7 @@ std::string encode_png(const PngSpec& s) {
   png_infop info = png_create_info_struct(png);
   png_set_write_fn(png, &out, append, nullptr);
   png_set_IHDR(png, info, static_cast<png_uint_32>(s.width), static_cast<png_uint_32>(s.height), s.depth, s.color_type,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+               s.interlace, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   if (!s.palette.empty()) png_set_PLTE(png, info, s.palette.data(), static_cast<int>(s.palette.size()));
   if (s.gamma > 0) png_set_gAMA(png, info, s.gamma);
   if (!s.exif.empty()) {
@@ -62,7 +64,10 @@ std::string encode_png(const PngSpec& s) {
   }
   png_write_info(png, info);
   const std::size_t row = s.bytes.size() / static_cast<std::size_t>(s.height);
-  for (int y = 0; y < s.height; ++y) png_write_row(png, s.bytes.data() + static_cast<std::size_t>(y) * row);
+  const int passes = png_set_interlace_handling(png);  // Adam7 writes every row once a pass
+  for (int pass = 0; pass < passes; ++pass) {
+    for (int y = 0; y < s.height; ++y) png_write_row(png, s.bytes.data() + static_cast<std::size_t>(y) * row);
+  }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   return out;
@@ -530,6 +535,20 @@ TEST_F(TiffScenes, BilevelAndFewBitImagesAreTheirSamplesOverFullScale) {
   expect_refused([&] { decode_tiff(encode_tiff(grey_alpha, dir_), "ga.tif"); }, "2 samples a pixel of 2 bits");
 }
 
+// A scientific camera's or a scanner's TIFF larger than aesim holds: averaged down in blocks as
+// its strips are read, as a PNG or JPEG is (PhotoScene.PicturesLargerThanAnArray...).
+TEST_F(TiffScenes, APictureLargerThanAnArrayIsAveragedDownAsItsStripsAreRead) {
+  TiffSpec board;
+  board.width = board.height = 4100;
+  board.compression = COMPRESSION_LZW;
+  board.samples.resize(std::size_t(4100) * 4100);
+  for (std::size_t i = 0; i < board.samples.size(); ++i) board.samples[i] = ((i % 4100 + i / 4100) % 2) ? 255 : 0;
+  const Image img = decode_tiff(encode_tiff(board, dir_), "board.tif");
+  ASSERT_EQ(img.width, 2050);
+  ASSERT_EQ(img.height, 2050);
+  for (const double v : img.pixels) ASSERT_DOUBLE_EQ(v, 0.5);
+}
+
 TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {
   TiffSpec cmyk;
   cmyk.spp = 4;
@@ -678,6 +697,59 @@ TEST(PhotoScene, MalformedAndOversizedFilesAreOneLineErrors) {
   expect_refused([&] { decode_png(huge, "huge.png"); }, "70000x70000 is more than");
   std::vector<unsigned char> cmyk(4 * 64, 9);
   expect_refused([&] { decode_jpeg(encode_jpeg(8, 8, 4, JCS_CMYK, cmyk), "cmyk.jpg"); }, "CMYK");
+}
+
+// A picture larger than aesim holds (a 45-61 MP camera's, a 200 MP phone's) is averaged over k x k
+// blocks in linear light as it is decoded, k the least that brings it within 2^24 pixels.
+TEST(PhotoScene, PicturesLargerThanAnArrayAreAveragedDownInLinearLight) {
+  // By hand: 65535 x 257 is over 2^24 pixels, 2 x 2 blocks bring it to 32768 x 129; the last
+  // column of blocks holds one column and the last row one row. Light x + 1000 y.
+  ReducedImage reduced(65535, 257, "wide.png");
+  ASSERT_EQ(reduced.factor(), 2);
+  std::vector<double> row(65535);
+  for (int y = 0; y < 257; ++y) {
+    for (int x = 0; x < 65535; ++x) row[x] = x + 1000.0 * y;
+    reduced.add_row(row.data());
+  }
+  const Image small = reduced.take();
+  ASSERT_EQ(small.width, 32768);
+  ASSERT_EQ(small.height, 129);
+  EXPECT_DOUBLE_EQ(small.at(0, 0), (0 + 1 + 1000 + 1001) / 4.0);
+  EXPECT_DOUBLE_EQ(small.at(10, 3), 20.5 + 6500);  // x 20 and 21, y 6 and 7
+  EXPECT_DOUBLE_EQ(small.at(32767, 0), (65534 + 66534) / 2.0);  // one column
+  EXPECT_DOUBLE_EQ(small.at(5, 128), (10 + 11) / 2.0 + 256000);  // one row
+  EXPECT_TRUE(ReducedImage::decodable(16384, 16384));  // 2^28
+  EXPECT_FALSE(ReducedImage::decodable(16384, 16385));
+  expect_refused([] { ReducedImage(65535, 65535, "huge.png"); }, "65535x65535 is more than the 268435456 pixels");
+
+  // 4100 x 4100 (16.8 M pixels): 2050 x 2050. A checkerboard of black and white pixels is half the
+  // light in every block (the codes' mean, 128, would decode to 0.216 in a PNG).
+  const int side = 4100;
+  std::vector<unsigned char> board(std::size_t(side) * side);
+  for (std::size_t i = 0; i < board.size(); ++i) board[i] = ((i % side + i / side) % 2) ? 255 : 0;
+  PngSpec png;
+  png.width = png.height = side;
+  png.bytes = board;
+  const Image from_png = decode_png(encode_png(png), "board.png");
+  ASSERT_EQ(from_png.width, 2050);
+  ASSERT_EQ(from_png.height, 2050);
+  for (const double v : from_png.pixels) ASSERT_DOUBLE_EQ(v, 0.5);
+  // An interlaced PNG comes whole only after its last pass: read whole, so only up to 2^24 pixels.
+  PngSpec interlaced = png;
+  interlaced.interlace = PNG_INTERLACE_ADAM7;
+  expect_refused([&] { decode_png(encode_png(interlaced), "adam7.png"); }, "an interlaced PNG of 4100x4100");
+  interlaced.width = interlaced.height = 8;
+  interlaced.bytes.resize(64);
+  png.width = png.height = 8;
+  png.bytes.resize(64);
+  EXPECT_EQ(decode_png(encode_png(interlaced), "adam7.png").pixels, decode_png(encode_png(png), "plain.png").pixels);
+
+  const std::vector<unsigned char> grey(std::size_t(side) * side, 128);
+  const Image from_jpeg = decode_jpeg(encode_jpeg(side, side, 1, JCS_GRAYSCALE, grey), "grey.jpg");
+  ASSERT_EQ(from_jpeg.width, 2050);
+  ASSERT_EQ(from_jpeg.height, 2050);
+  EXPECT_NEAR(from_jpeg.at(0, 0), kCode128, 1e-10);  // the constant's ten places
+  EXPECT_NEAR(from_jpeg.at(2049, 1234), kCode128, 1e-10);
 }
 
 // A legal progressive JPEG of many scans: each AC coefficient of each of three components in a

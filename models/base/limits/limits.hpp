@@ -7,6 +7,9 @@ namespace aesim {
 // What aesim handles at most, stated once; the docs/reliability.md lists them. Each is
 // checked before memory is taken for it, so a tiny file cannot ask for a huge allocation.
 constexpr long long kMaxArrayPixels = 1LL << 24;   // pixels in an array or an image: 4096 x 4096
+// Pixels of a photograph (PNG, JPEG, TIFF) decoded row by row and averaged down to at most
+// kMaxArrayPixels: a 200 MP phone's, at about 10 ns a pixel.
+constexpr long long kMaxDecodedPixels = 1LL << 28;
 constexpr int kMaxTiles = 1 << 16;                 // tiles (each has its own bus and receiver)
 constexpr std::uintmax_t kMaxInputFileBytes = 1ULL << 28;  // 256 MiB: a scene image or frame
 constexpr std::uintmax_t kMaxEventFileBytes = 1ULL << 34;  // 16 GiB: an event file, read whole

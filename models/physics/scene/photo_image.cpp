@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include <fmt/format.h>
@@ -12,7 +13,9 @@
 #include <png.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/limits/limits.hpp"
 #include "aesim/scene/exif_orientation.hpp"
+#include "aesim/scene/reduced_image.hpp"
 #include "aesim/scene/scene_file.hpp"
 
 namespace aesim {
@@ -28,19 +31,31 @@ std::vector<double> decoding_table(unsigned max_code, double exponent /* 0: sRGB
   return table;
 }
 
-// Linear-light luminance of rows of 1 (grey) or 3 (RGB) channels of `T` codes.
+// Linear-light luminance of a row of `n` pixels of 1 (grey) or 3 (RGB) channels of `T` codes.
 template <typename T>
-void to_luminance(const std::vector<T>& codes, int channels, const std::vector<double>& table, Image& img) {
-  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
-  img.pixels.resize(n);
+void row_luminance(const T* codes, std::size_t n, int channels, const std::vector<double>& table, double* light) {
   for (std::size_t i = 0; i < n; ++i) {
     if (channels == 1) {
-      img.pixels[i] = table[codes[i]];
+      light[i] = table[codes[i]];
     } else {
       const T* p = &codes[3 * i];
-      img.pixels[i] = rec709_luminance(table[p[0]], table[p[1]], table[p[2]]);
+      light[i] = rec709_luminance(table[p[0]], table[p[1]], table[p[2]]);
     }
   }
+}
+
+// A decoded row of 8- or 16-bit codes (16-bit in native order, copied out through `codes`) into
+// the image being built.
+void add_code_row(const unsigned char* row, std::size_t n, int channels, int depth, const std::vector<double>& table,
+                  std::vector<std::uint16_t>& codes, std::vector<double>& light, ReducedImage& image) {
+  if (depth == 16) {
+    codes.resize(n * channels);
+    std::memcpy(codes.data(), row, codes.size() * 2);
+    row_luminance(codes.data(), n, channels, table, light.data());
+  } else {
+    row_luminance(row, n, channels, table, light.data());
+  }
+  image.add_row(light.data());
 }
 
 // libpng reports through these; `message` is the decoder's reason for the one-line error.
@@ -107,9 +122,10 @@ Image decode_png(const std::string& data, const std::string& path) {
   // Everything that owns memory is made before setjmp, so a longjmp out of libpng skips no
   // destructor.
   std::vector<unsigned char> bytes;
-  std::vector<png_bytep> rows;
-  Image img;
-  bool too_large = false;
+  std::vector<double> light, table;
+  std::vector<std::uint16_t> codes;
+  std::unique_ptr<ReducedImage> image;
+  bool decodable = false, interlaced = false;
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &src, png_fail, png_ignore_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
@@ -126,8 +142,11 @@ Image decode_png(const std::string& data, const std::string& path) {
   png_set_read_fn(png, &src, png_read_from);
   png_read_info(png, info);
   const png_uint_32 width = png_get_image_width(png, info), height = png_get_image_height(png, info);
-  too_large = !scene_size_allowed(width, height);
-  if (!too_large) {
+  decodable = ReducedImage::decodable(width, height);
+  // An interlaced file's rows come whole only after its last pass: it is read whole, so only up to
+  // the size of an image aesim holds.
+  interlaced = png_get_interlace_type(png, info) != PNG_INTERLACE_NONE;
+  if (decodable && (!interlaced || scene_size_allowed(width, height))) {
     double gamma = 0;
     if (!png_get_valid(png, info, PNG_INFO_sRGB) && png_get_gAMA(png, info, &gamma) && gamma > 0 &&
         std::fabs(gamma - 1 / 2.2) > 0.01) {
@@ -136,34 +155,46 @@ Image decode_png(const std::string& data, const std::string& path) {
     png_set_expand(png);  // palette to RGB, grey below 8 bits to 8, transparency to alpha
     png_set_strip_alpha(png);
     if (png_get_bit_depth(png, info) == 16) png_set_swap(png);  // native byte order for uint16
+    if (interlaced) png_set_interlace_handling(png);
     png_read_update_info(png, info);
     channels = png_get_channels(png, info);
     depth = png_get_bit_depth(png, info);
-    const std::size_t row_bytes = png_get_rowbytes(png, info);
-    bytes.resize(row_bytes * height);
-    rows.resize(height);
-    for (png_uint_32 y = 0; y < height; ++y) rows[y] = bytes.data() + y * row_bytes;
-    png_read_image(png, rows.data());
-    // With the info: an eXIf chunk may come after the image data.
-    png_read_end(png, info);
-    png_uint_32 exif_size = 0;
-    png_bytep exif = nullptr;
-    if (png_get_eXIf_1(png, info, &exif_size, &exif) != 0) orientation = exif_orientation(exif, exif_size);
+    if (channels == 1 || channels == 3) {
+      const std::size_t row_bytes = png_get_rowbytes(png, info);
+      image = std::make_unique<ReducedImage>(width, height, path);
+      table = decoding_table(depth == 16 ? 65535 : 255, exponent);
+      light.resize(width);
+      if (interlaced) {
+        std::vector<png_bytep> rows(height);
+        bytes.resize(row_bytes * height);
+        for (png_uint_32 y = 0; y < height; ++y) rows[y] = bytes.data() + y * row_bytes;
+        png_read_image(png, rows.data());
+        for (png_uint_32 y = 0; y < height; ++y) add_code_row(rows[y], width, channels, depth, table, codes, light, *image);
+      } else {
+        bytes.resize(row_bytes);
+        for (png_uint_32 y = 0; y < height; ++y) {
+          png_read_row(png, bytes.data(), nullptr);
+          add_code_row(bytes.data(), width, channels, depth, table, codes, light, *image);
+        }
+      }
+      // With the info: an eXIf chunk may come after the image data.
+      png_read_end(png, info);
+      png_uint_32 exif_size = 0;
+      png_bytep exif = nullptr;
+      if (png_get_eXIf_1(png, info, &exif_size, &exif) != 0) orientation = exif_orientation(exif, exif_size);
+    }
   }
   png_destroy_read_struct(&png, &info, nullptr);
-  check_scene_size(width, height, path);
+  ReducedImage::check(width, height, path);
+  if (interlaced && !scene_size_allowed(width, height)) {
+    throw InputError(fmt::format("scene file '{}': an interlaced PNG of {}x{} (aesim averages down only PNGs saved "
+                                 "without interlacing; interlaced ones up to {} pixels)",
+                                 path, width, height, kMaxArrayPixels));
+  }
   if (channels != 1 && channels != 3) {
     throw InputError(fmt::format("scene file '{}': PNG with {} channels after expansion", path, channels));
   }
-  img.width = static_cast<int>(width);
-  img.height = static_cast<int>(height);
-  if (depth == 16) {
-    std::vector<std::uint16_t> codes(bytes.size() / 2);
-    std::memcpy(codes.data(), bytes.data(), codes.size() * 2);
-    to_luminance(codes, channels, decoding_table(65535, exponent), img);
-  } else {
-    to_luminance(bytes, channels, decoding_table(255, exponent), img);
-  }
+  Image img = image->take();
   apply_exif_orientation(img, orientation);
   return img;
 }
@@ -175,10 +206,12 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   errors.mgr.error_exit = jpeg_fail;
   errors.mgr.emit_message = jpeg_message;
   errors.mgr.trace_level = 1;
-  std::vector<unsigned char> bytes;
-  Image img;
-  int channels = 0, orientation = 1;
-  bool too_large = false;
+  std::vector<unsigned char> row;
+  std::vector<double> light;
+  const std::vector<double> table = decoding_table(255, 0);
+  std::unique_ptr<ReducedImage> image;
+  int orientation = 1;
+  bool decodable = false;
   unsigned long width = 0, height = 0;
   if (setjmp(errors.jump)) {
     jpeg_destroy_decompress(&cinfo);
@@ -197,26 +230,27 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   }
   width = cinfo.image_width;
   height = cinfo.image_height;
-  too_large = !scene_size_allowed(width, height);
+  decodable = ReducedImage::decodable(static_cast<long long>(width), static_cast<long long>(height));
   const bool cmyk = cinfo.jpeg_color_space == JCS_CMYK || cinfo.jpeg_color_space == JCS_YCCK;
-  if (!too_large && !cmyk) {
+  if (decodable && !cmyk) {
     cinfo.out_color_space = cinfo.num_components == 1 ? JCS_GRAYSCALE : JCS_RGB;
     jpeg_start_decompress(&cinfo);
-    channels = cinfo.output_components;
-    const std::size_t row_bytes = static_cast<std::size_t>(cinfo.output_width) * cinfo.output_components;
-    bytes.resize(row_bytes * cinfo.output_height);
+    const int channels = cinfo.output_components;
+    image = std::make_unique<ReducedImage>(static_cast<long long>(width), static_cast<long long>(height), path);
+    row.resize(static_cast<std::size_t>(cinfo.output_width) * channels);
+    light.resize(cinfo.output_width);
     while (cinfo.output_scanline < cinfo.output_height) {
-      JSAMPROW row = bytes.data() + cinfo.output_scanline * row_bytes;
-      jpeg_read_scanlines(&cinfo, &row, 1);
+      JSAMPROW at = row.data();
+      jpeg_read_scanlines(&cinfo, &at, 1);
+      row_luminance(row.data(), cinfo.output_width, channels, table, light.data());
+      image->add_row(light.data());
     }
     jpeg_finish_decompress(&cinfo);
   }
   jpeg_destroy_decompress(&cinfo);
   if (cmyk) throw InputError(fmt::format("scene file '{}': CMYK JPEG (use a grey or RGB image)", path));
-  check_scene_size(static_cast<long long>(width), static_cast<long long>(height), path);
-  img.width = static_cast<int>(width);
-  img.height = static_cast<int>(height);
-  to_luminance(bytes, channels, decoding_table(255, 0), img);
+  ReducedImage::check(static_cast<long long>(width), static_cast<long long>(height), path);
+  Image img = image->take();
   apply_exif_orientation(img, orientation);
   return img;
 }

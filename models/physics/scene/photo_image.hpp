@@ -17,6 +17,8 @@ namespace aesim {
 // Both are turned as their EXIF Orientation says (a JPEG's APP1 Exif segment, a PNG's eXIf chunk;
 // exif_orientation.hpp), so that the scene is the picture a viewer shows: a camera held upright
 // stores its pixels on their side and says so there.
+// Rows are decoded one at a time into a ReducedImage: a picture larger than aesim holds is
+// averaged down in linear light as it is read.
 // Throws InputError naming the file and the decoder's reason.
 Image decode_png(const std::string& data, const std::string& path);
 Image decode_jpeg(const std::string& data, const std::string& path);

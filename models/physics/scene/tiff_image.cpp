@@ -16,6 +16,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/limits/limits.hpp"
 #include "aesim/scene/exif_orientation.hpp"
+#include "aesim/scene/reduced_image.hpp"
 #include "aesim/scene/scene_file.hpp"
 
 namespace aesim {
@@ -179,7 +180,7 @@ Image decode_tiff(const std::string& data, const std::string& path, std::size_t 
   TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &l.planar);
   TIFFGetFieldDefaulted(t, TIFFTAG_ORIENTATION, &l.orientation);
   if (!TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &l.photometric)) fail("no PhotometricInterpretation tag");
-  check_scene_size(l.width, l.height, path);
+  ReducedImage::check(l.width, l.height, path);
   const bool grey = l.photometric == PHOTOMETRIC_MINISBLACK || l.photometric == PHOTOMETRIC_MINISWHITE;
   const bool palette = l.photometric == PHOTOMETRIC_PALETTE;
   l.colours = l.photometric == PHOTOMETRIC_RGB ? 3 : 1;
@@ -210,83 +211,105 @@ Image decode_tiff(const std::string& data, const std::string& path, std::size_t 
   std::uint16_t *red = nullptr, *green = nullptr, *blue = nullptr;
   if (palette && !TIFFGetField(t, TIFFTAG_COLORMAP, &red, &green, &blue)) fail("a palette image without its colour map");
 
-  // Every sample of the image, plane after plane where they are stored apart.
-  const std::size_t bytes = packed ? 1 : l.bps / 8u, pixels = std::size_t(l.width) * l.height;
-  const std::size_t planes = l.planar == PLANARCONFIG_SEPARATE ? l.spp : 1, per_pixel = l.planar == PLANARCONFIG_SEPARATE ? 1 : l.spp;
-  // At most 4096 x 4096 pixels of 4 samples of 8 bytes (512 MiB): bounded before it is taken.
-  std::vector<unsigned char> samples(pixels * l.spp * bytes);
-  const auto sample_at = [&](std::size_t pixel, std::size_t s) -> const unsigned char* {
-    return planes > 1 ? &samples[(s * pixels + pixel) * bytes] : &samples[(pixel * l.spp + s) * bytes];
+  // The picture a band of rows at a time (a strip's rows, or a row of tiles', of every plane), each
+  // row then turned to light and handed on: a picture larger than aesim holds is averaged down as
+  // it is read (ReducedImage), and no more than a band of its samples is held at once.
+  const std::size_t bytes = packed ? 1 : l.bps / 8u;
+  const std::size_t planes = l.planar == PLANARCONFIG_SEPARATE ? l.spp : 1, per_pixel = planes > 1 ? 1 : l.spp;
+  // One row of one plane as stored: packed rows are their bits rounded up to a byte.
+  const auto stored_row = [&](std::uint64_t pixels) {
+    return packed ? (pixels * l.bps + 7) / 8 : pixels * per_pixel * bytes;
   };
-  if (TIFFIsTiled(t)) {
-    std::uint32_t tw = 0, th = 0;
+  const std::size_t unpacked_row = std::size_t(l.width) * per_pixel * bytes;
+  const tmsize_t line = TIFFScanlineSize(t);
+  if (line <= 0 || static_cast<std::uint64_t>(line) != stored_row(l.width)) fail(src.error.empty() ? "malformed rows" : src.error);
+  // A stored row (`n` pixels of it) into the band's unpacked samples.
+  const auto place = [&](const unsigned char* from, unsigned char* to, std::size_t n) {
+    if (packed) {
+      unpack_row(from, to, n, l.bps);
+    } else {
+      std::memcpy(to, from, n * per_pixel * bytes);
+    }
+  };
+  std::uint32_t band_rows = 0, tw = 0, th = 0;
+  std::vector<unsigned char> piece;  // one tile or strip as read
+  const bool tiled = TIFFIsTiled(t);
+  if (tiled) {
     TIFFGetField(t, TIFFTAG_TILEWIDTH, &tw);
     TIFFGetField(t, TIFFTAG_TILELENGTH, &th);
     const tmsize_t tile_size = TIFFTileSize(t);
-    // A tile's rows, and a strip's, start on a byte: a packed row is its bits rounded up.
-    const std::uint64_t tile_row = packed ? (std::uint64_t(tw) * l.bps + 7) / 8 : std::uint64_t(tw) * per_pixel * bytes;
-    if (tw == 0 || th == 0 || tile_size <= 0 || static_cast<std::uint64_t>(tile_size) != tile_row * th) {
+    if (tw == 0 || th == 0 || tile_size <= 0 || static_cast<std::uint64_t>(tile_size) != stored_row(tw) * th) {
       fail(src.error.empty() ? "malformed tiles" : src.error);
     }
     // A tile no larger than the image itself could need (a header may claim any tile size).
     if (static_cast<std::uint64_t>(tile_size) > std::uint64_t(kMaxInputFileBytes)) {
       fail(fmt::format("tiles of {}x{} pixels, larger than aesim reads", tw, th));
     }
-    std::vector<unsigned char> tile(static_cast<std::size_t>(tile_size));
+    piece.resize(static_cast<std::size_t>(tile_size));
+    band_rows = th;
+  } else {
+    TIFFGetFieldDefaulted(t, TIFFTAG_ROWSPERSTRIP, &band_rows);
+    band_rows = std::max<std::uint32_t>(1, std::min(band_rows, l.height));
+    const tmsize_t strip_size = TIFFStripSize(t);
+    if (strip_size <= 0 || static_cast<std::uint64_t>(strip_size) < stored_row(l.width) * band_rows) {
+      fail(src.error.empty() ? "malformed strips" : src.error);
+    }
+    if (static_cast<std::uint64_t>(strip_size) > std::uint64_t(kMaxInputFileBytes)) {
+      fail(fmt::format("strips of {} rows, larger than aesim reads", band_rows));
+    }
+    piece.resize(static_cast<std::size_t>(strip_size));
+  }
+  ReducedImage image(l.width, l.height, path);
+  std::vector<unsigned char> band;
+  std::vector<double> light(l.width);
+  for (std::uint32_t y0 = 0; y0 < l.height; y0 += band_rows) {
+    const std::uint32_t rows = std::min(band_rows, l.height - y0);
+    band.resize(planes * rows * unpacked_row);
     for (std::size_t p = 0; p < planes; ++p) {
-      for (std::uint32_t y0 = 0; y0 < l.height; y0 += th) {
+      unsigned char* plane = &band[p * rows * unpacked_row];
+      if (tiled) {
         for (std::uint32_t x0 = 0; x0 < l.width; x0 += tw) {
-          if (TIFFReadTile(t, tile.data(), x0, y0, 0, static_cast<std::uint16_t>(p)) < 0) fail(src.error.empty() ? "a tile does not read" : src.error);
-          for (std::uint32_t y = y0; y < std::min(y0 + th, l.height); ++y) {
-            const std::size_t n = std::size_t(std::min(x0 + tw, l.width) - x0) * per_pixel * bytes;
-            unsigned char* to = planes > 1 ? &samples[(p * pixels + std::size_t(y) * l.width + x0) * bytes]
-                                           : &samples[(std::size_t(y) * l.width + x0) * per_pixel * bytes];
-            const unsigned char* from = &tile[std::size_t(y - y0) * tile_row];
-            if (packed) {
-              unpack_row(from, to, std::min(x0 + tw, l.width) - x0, l.bps);
-            } else {
-              std::memcpy(to, from, n);
-            }
+          if (TIFFReadTile(t, piece.data(), x0, y0, 0, static_cast<std::uint16_t>(p)) < 0) {
+            fail(src.error.empty() ? "a tile does not read" : src.error);
+          }
+          for (std::uint32_t r = 0; r < rows; ++r) {
+            place(&piece[r * stored_row(tw)], plane + r * unpacked_row + std::size_t(x0) * per_pixel * bytes,
+                  std::min(x0 + tw, l.width) - x0);
           }
         }
-      }
-    }
-  } else {
-    const tmsize_t line = TIFFScanlineSize(t);
-    const std::uint64_t row = packed ? (std::uint64_t(l.width) * l.bps + 7) / 8 : std::uint64_t(l.width) * per_pixel * bytes;
-    if (line <= 0 || static_cast<std::uint64_t>(line) != row) fail(src.error.empty() ? "malformed rows" : src.error);
-    std::vector<unsigned char> packed_row(packed ? row : 0);
-    for (std::size_t p = 0; p < planes; ++p) {
-      for (std::uint32_t y = 0; y < l.height; ++y) {
-        unsigned char* to = planes > 1 ? &samples[(p * pixels + std::size_t(y) * l.width) * bytes]
-                                       : &samples[std::size_t(y) * l.width * per_pixel * bytes];
-        if (TIFFReadScanline(t, packed ? packed_row.data() : to, y, static_cast<std::uint16_t>(p)) < 0) {
-          fail(src.error.empty() ? "a row does not read" : src.error);
+      } else {
+        const tstrip_t strip = TIFFComputeStrip(t, y0, static_cast<std::uint16_t>(p));
+        const tmsize_t got = TIFFReadEncodedStrip(t, strip, piece.data(), static_cast<tmsize_t>(piece.size()));
+        if (got < 0 || static_cast<std::uint64_t>(got) < stored_row(l.width) * rows) {
+          fail(src.error.empty() ? "a strip does not read" : src.error);
         }
-        if (packed) unpack_row(packed_row.data(), to, l.width, l.bps);
+        for (std::uint32_t r = 0; r < rows; ++r) place(&piece[r * stored_row(l.width)], plane + r * unpacked_row, l.width);
       }
     }
-  }
-
-  Image img;
-  img.width = static_cast<int>(l.width);
-  img.height = static_cast<int>(l.height);
-  img.pixels.resize(pixels);
-  for (std::size_t i = 0; i < pixels; ++i) {
-    double v;
-    if (palette) {
-      const unsigned index = *sample_at(i, 0);
-      v = rec709_luminance(red[index] / 65535.0, green[index] / 65535.0, blue[index] / 65535.0);
-    } else if (l.colours == 3) {
-      v = rec709_luminance(sample_value(sample_at(i, 0), l), sample_value(sample_at(i, 1), l), sample_value(sample_at(i, 2), l));
-    } else {
-      v = sample_value(sample_at(i, 0), l);
-      if (l.photometric == PHOTOMETRIC_MINISWHITE && integer) v = 1.0 - v;
+    for (std::uint32_t r = 0; r < rows; ++r) {
+      const auto sample_at = [&](std::size_t x, std::size_t s) -> const unsigned char* {
+        return planes > 1 ? &band[((s * rows + r) * l.width + x) * bytes] : &band[r * unpacked_row + (x * l.spp + s) * bytes];
+      };
+      for (std::size_t x = 0; x < l.width; ++x) {
+        double v;
+        if (palette) {
+          const unsigned index = *sample_at(x, 0);
+          v = rec709_luminance(red[index] / 65535.0, green[index] / 65535.0, blue[index] / 65535.0);
+        } else if (l.colours == 3) {
+          v = rec709_luminance(sample_value(sample_at(x, 0), l), sample_value(sample_at(x, 1), l), sample_value(sample_at(x, 2), l));
+        } else {
+          v = sample_value(sample_at(x, 0), l);
+          if (l.photometric == PHOTOMETRIC_MINISWHITE && integer) v = 1.0 - v;
+        }
+        if (!(v >= 0) || !std::isfinite(v)) {
+          fail(fmt::format("pixel ({}, {}) is {} (values must be finite and not negative)", x, y0 + r, v));
+        }
+        light[x] = v;
+      }
+      image.add_row(light.data());
     }
-    if (!(v >= 0) || !std::isfinite(v)) fail(fmt::format("pixel ({}, {}) is {} (values must be finite and not negative)",
-                                                        i % l.width, i / l.width, v));
-    img.pixels[i] = v;
   }
+  Image img = image.take();
   apply_exif_orientation(img, l.orientation);
   return img;
 }
