@@ -547,6 +547,8 @@ TEST_F(TiffScenes, APictureLargerThanAnArrayIsAveragedDownAsItsStripsAreRead) {
   ASSERT_EQ(img.width, 2050);
   ASSERT_EQ(img.height, 2050);
   for (const double v : img.pixels) ASSERT_DOUBLE_EQ(v, 0.5);
+  // Read from the file a strip at a time, as a scene's TIFF is: the same picture.
+  EXPECT_EQ(read_tiff_file((dir_ / "w.tif").string()).pixels, img.pixels);
 }
 
 TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {

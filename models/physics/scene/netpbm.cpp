@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/input_file.hpp"
 #include "aesim/files/input_path.hpp"
 #include "aesim/limits/limits.hpp"
 #include "aesim/scene/exr_image.hpp"
@@ -228,14 +229,16 @@ Image read_image(const std::string& path) {
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
   if (ext == ".tif" || ext == ".tiff") {
-    const std::string data = read_scene_file(path);
-    const std::vector<std::size_t> pages = tiff_pages(data, path);
+    // Read from the file as libtiff needs it, a strip at a time: a camera's 16-bit frame may be
+    // larger than a scene file read whole (kMaxInputFileBytes); its pixels bound the work.
+    read_input_head(path, "scene file", 8);
+    const std::vector<std::size_t> pages = tiff_file_pages(path);
     if (pages.size() != 1) {
       throw InputError(fmt::format("scene file '{}': a multi-page TIFF of {} frames is a scene of its own, not one frame "
                                    "of a folder",
                                    path, pages.size()));
     }
-    return decode_tiff(data, path, pages.front());
+    return read_tiff_file(path, pages.front());
   }
   if (ext == ".exr") return decode_exr(read_scene_file(path), path);
   if (ext == ".npy") {

@@ -150,21 +150,9 @@ std::vector<std::size_t> pages_of(const std::string& path, TiffSource& src) {
   return pages;
 }
 
-}  // namespace
-
-std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& path) {
-  TiffSource src{&data, 0, {}};
-  return pages_of(path, src);
-}
-
-std::vector<std::size_t> tiff_file_pages(const std::string& path) {
-  TiffSource src{nullptr, 0, {}};
-  return pages_of(path, src);
-}
-
-Image decode_tiff(const std::string& data, const std::string& path, std::size_t page) {
+// decode_tiff, from the bytes in `src.data` or (null) the file at `path`.
+Image decode_tiff_from(TiffSource& src, const std::string& path, std::size_t page) {
   const auto fail = [&](const std::string& why) { throw InputError(fmt::format("scene file '{}': TIFF: {}", path, why)); };
-  TiffSource src{&data, 0, {}};
   const std::unique_ptr<TIFF, TiffCloser> tif = open_tiff(path, src);
   if (!tif) fail(src.error.empty() ? "not a TIFF file" : src.error);
   TIFF* t = tif.get();
@@ -312,6 +300,28 @@ Image decode_tiff(const std::string& data, const std::string& path, std::size_t 
   Image img = image.take();
   apply_exif_orientation(img, l.orientation);
   return img;
+}
+
+}  // namespace
+
+std::vector<std::size_t> tiff_pages(const std::string& data, const std::string& path) {
+  TiffSource src{&data, 0, {}};
+  return pages_of(path, src);
+}
+
+std::vector<std::size_t> tiff_file_pages(const std::string& path) {
+  TiffSource src{nullptr, 0, {}};
+  return pages_of(path, src);
+}
+
+Image decode_tiff(const std::string& data, const std::string& path, std::size_t page) {
+  TiffSource src{&data, 0, {}};
+  return decode_tiff_from(src, path, page);
+}
+
+Image read_tiff_file(const std::string& path, std::size_t page) {
+  TiffSource src{nullptr, 0, {}};
+  return decode_tiff_from(src, path, page);
 }
 
 }  // namespace aesim
