@@ -41,7 +41,7 @@ TEST_F(Y4mTest, MalformedVideosAreInputErrors) {
       {"bad frame size", "YUV4MPEG2 W0 H2\nFRAME\n"},
       {"truncated", "YUV4MPEG2 W4 H2 Cmono\nFRAME\nabc"},
       {"missing FRAME", "YUV4MPEG2 W1 H1 Cmono\nFRAMX\nz"},
-      {"unsupported colour space", "YUV4MPEG2 W1 H1 C420p10\nFRAME\n"},
+      {"unsupported colour space C420p10 (8-bit 420, 422, 444 or mono; write 8-bit grey with ffmpeg", "YUV4MPEG2 W1 H1 C420p10\nFRAME\n"},
       {"malformed header", "YUV4MPEG2 Wx H1\n"},
       {"no frames", "YUV4MPEG2 W1 H1 Cmono\n"},
   };

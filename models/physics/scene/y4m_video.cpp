@@ -29,7 +29,10 @@ std::size_t chroma_bytes(const std::string& chroma, std::size_t width, std::size
   if (chroma == "422") return 2 * cw * height;
   if (chroma == "444") return 2 * width * height;
   if (chroma == "mono") return 0;
-  fail(path, fmt::format("unsupported colour space C{} (8-bit 420, 422, 444 or mono)", chroma));
+  // ffmpeg writes 9- to 16-bit video as C420p10, Cmono16, ...: a camera's 10-bit (often HDR) clip.
+  fail(path, fmt::format("unsupported colour space C{} (8-bit 420, 422, 444 or mono; write 8-bit grey with "
+                         "ffmpeg -i CLIP -pix_fmt gray CLIP.y4m)",
+                         chroma));
 }
 
 // BT.709's opto-electronic transfer function inverted (ITU-R BT.709-6, item 1.2): V = 4.5 L below
