@@ -141,9 +141,11 @@ void add_compare(CLI::App& app, int& status) {
 
 void add_emulate(CLI::App& app, int& status) {
   auto opt = std::make_shared<EmulateOptions>();
-  CLI::App* cmd = app.add_subcommand("emulate", "Turn ordinary frames (PGM, numbered frames, Y4M video) into address events "
-                                                "as the source paper's emulator does (eq. 1 and eq. 3)");
-  cmd->add_option("INPUT", opt->input, "A .pgm/.pfm image, a folder of numbered frames, or a .y4m video")->required();
+  CLI::App* cmd = app.add_subcommand("emulate", "Turn ordinary frames (an image, numbered frames, a TIFF stack, Y4M video) into "
+                                                "address events as the source paper's emulator does (eq. 1 and eq. 3)");
+  cmd->add_option("INPUT", opt->input,
+                  fmt::format("An image ({}), a folder of numbered frames, a multi-page TIFF or a .y4m video", scene_image_formats()))
+      ->required();
   cmd->add_option("--behaviour", opt->behaviour, "intensity, motion, edge or centroid")->capture_default_str();
   cmd->add_option("--threshold", opt->threshold, "Grey level (0-255) at or below which the behaviour's map is zero")
       ->capture_default_str();
