@@ -251,7 +251,6 @@ class BagReader {
     }
     events_ += n;
     if (events_ > kMaxExpandedEvents) m.fail(fmt::format("more than the {} events aesim reads from one file", kMaxExpandedEvents));
-    topic.events.reserve(topic.events.size() + n);
     for (std::uint32_t k = 0; k < n; ++k) {
       PolarityEvent e;
       e.x = m.number<std::uint16_t>("x");
