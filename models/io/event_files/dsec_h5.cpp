@@ -13,9 +13,9 @@
 
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/event_stamps.hpp"
+#include "aesim/event_files/forked_reader.hpp"
 #include "aesim/files/input_path.hpp"
 #include "aesim/output/temp_files.hpp"
-#include "aesim/event_files/forked_reader.hpp"
 
 namespace aesim {
 namespace h5 {
