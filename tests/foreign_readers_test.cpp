@@ -587,11 +587,10 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
   refused("# timestamp(int32 us)\n0.5 1 2 1\n", "not a whole number of microseconds");
 }
 
-// The containers datasets ship events in that aesim does not open (MATLAB files, ROS 2 bags): the
-// one-line refusal names the way out.
+// The containers events come in that aesim does not open (ROS 2 bags): the one-line refusal names
+// the way out.
 TEST(ForeignReaders, ContainersAesimDoesNotOpenNameTheWayOut) {
-  for (const auto& [path, words] : {std::pair<const char*, const char*>{"gesture.MAT", "a MATLAB file; save its events as .npy"},
-                                    {"rosbag2_0.db3", "a ROS 2 bag; convert it to a ROS 1 .bag"},
+  for (const auto& [path, words] : {std::pair<const char*, const char*>{"rosbag2_0.db3", "a ROS 2 bag; convert it to a ROS 1 .bag"},
                                     {"events_0.mcap", "a ROS 2 bag; convert it to a ROS 1 .bag"},
                                     {"events.es", "unsupported format (use .aedat"}}) {
     try {

@@ -32,6 +32,7 @@ int info_command(const std::string& path, const std::string& layout) {
   if (ghosts > 0) fmt::print(report_stream(), "  ghost events {}\n", ghosts);
   if (off > 0) fmt::print(report_stream(), "  OFF events {} (polarity as contrast: a recording of another tool's)\n", off);
   for (const std::string& s : rec.skipped) fmt::print(report_stream(), "  left out {}\n", s);
+  for (const std::string& s : rec.read_as) fmt::print(report_stream(), "  read as {}\n", s);
   if (rec.reordered > 0) fmt::print(report_stream(), "  {} events stamped before the one ahead of them in the file, read in time order\n", rec.reordered);
   if (rec.stamp_wraps > 0) fmt::print(report_stream(), "  stamps wrapped past 2^32 us {} times, unwrapped\n", rec.stamp_wraps);
   for (std::size_t t = 0; t < per_tile.size() && n > 0; ++t) {

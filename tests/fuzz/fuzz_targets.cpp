@@ -124,6 +124,18 @@ int h5(const std::uint8_t* data, std::size_t size) {
   return r;
 }
 
+// matio reads files too: the same way through a file of this process's own.
+int mat(const std::uint8_t* data, std::size_t size) {
+  static const std::string path = fmt::format("/dev/shm/aesim-fuzz-{}.mat", ::getpid());
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  }
+  const int r = expect_result_or_input_error([&] { load_events(path); });
+  std::remove(path.c_str());
+  return r;
+}
+
 int set_values(const std::uint8_t* data, std::size_t size) {
   std::vector<std::string> lines;
   std::istringstream in(bytes(data, size));

@@ -73,6 +73,7 @@ struct PolarityRecording {
   std::vector<SkippedPackets> skipped;  // other streams' packets, by stream
   std::uint64_t invalid = 0;            // events their producer marked invalid (AEDAT 3.1), left out
   std::vector<std::string> notes;       // anything else left out, in words ("3 external trigger events")
+  std::vector<std::string> read_as;     // how numbers the format leaves open were taken (EventRecording's)
   // Events stamped before the one ahead of them, put in time order by their reader (a stable
   // sort); those readers' files may hold them (v2e's text output).
   std::uint64_t reordered = 0;

@@ -20,6 +20,7 @@
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/events_csv.hpp"
 #include "aesim/event_files/events_text.hpp"
+#include "aesim/event_files/mat_events.hpp"
 #include "aesim/event_files/nmnist_bin.hpp"
 #include "aesim/event_files/ros_bag.hpp"
 #include "aesim/event_files/npy_events.hpp"
@@ -218,6 +219,7 @@ EventRecording from_polarity(const PolarityRecording& in, const std::string& pat
   }
   if (in.invalid > 0) rec.skipped.push_back(fmt::format("{} events their recorder marked invalid", in.invalid));
   rec.skipped.insert(rec.skipped.end(), in.notes.begin(), in.notes.end());
+  rec.read_as = in.read_as;
   if (in.width > 0 && in.height > 0) {
     if (rec.width > in.width || rec.height > in.height) {
       throw InputError(fmt::format("event file '{}': events reach ({}, {}), outside its {}x{} array", path,
@@ -298,6 +300,8 @@ EventRecording read_csv_recording(const std::string& path) { return from_csv(rea
 
 EventRecording read_h5_recording(const std::string& path) { return from_polarity(read_dsec_h5(path), path); }
 
+EventRecording read_mat_recording(const std::string& path) { return from_polarity(read_mat_events(path), path); }
+
 std::string read_event_file_bytes(const std::string& path) { return read_whole(path); }
 
 EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size, const std::string& layout) {
@@ -305,12 +309,10 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
   try {
     row = &event_format_of(path, "event file");
   } catch (const InputError&) {
-    // Containers the datasets ship events in that aesim does not open, with the way out.
+    // Containers events come in that aesim does not open (ROS 2 bags), with the way out.
     const std::string ext = file_extension(path);
     const std::string hint =
-        ext == ".mat" ? ": a MATLAB file; save its events as .npy (scipy.io.loadmat, then numpy.save with tonic's "
-                          "dtype) or as t x y p text"
-        : ext == ".db3" || ext == ".mcap"
+        ext == ".db3" || ext == ".mcap"
             ? ": a ROS 2 bag; convert it to a ROS 1 .bag (rosbags-convert) or export its event topic to .txt, .h5 or .npy"
             : "";
     throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_extensions(), hint));

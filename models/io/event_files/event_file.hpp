@@ -28,6 +28,9 @@ struct EventRecording {
   // stamped otherwise): read in time order (a stable sort), and counted here.
   std::uint64_t reordered = 0;
   std::uint64_t stamp_wraps = 0;     // jAER stamps that wrapped past 2^32 us, unwrapped
+  // How the reader took numbers the format leaves open, in words ("TD counts from 1, as MATLAB
+  // does: x and y one less, polarity 2 ON").
+  std::vector<std::string> read_as;
 };
 
 // `size`, when given, is the array's: a CSV takes it (its events must lie within), an AEDAT
@@ -48,6 +51,7 @@ EventRecording decode_npy_recording(const std::string& data, const std::string& 
 EventRecording decode_prophesee_raw_recording(const std::string& data, const std::string& label);
 EventRecording decode_nmnist_bin_recording(const std::string& data, const std::string& label);
 EventRecording decode_ros_bag_recording(const std::string& data, const std::string& label);
+EventRecording read_mat_recording(const std::string& path);
 EventRecording decode_events_text_recording(const std::string& data, const std::string& label);
 EventRecording decode_csv_recording(const std::string& data, const std::string& label);
 EventRecording read_csv_recording(const std::string& path);

@@ -148,6 +148,13 @@ std::vector<EventFormatRow> make_rows() {
     rows.push_back(std::move(r));
   }
   {
+    // Read: MATLAB files of event vectors (ASL-DVS; Orchard's TD structs), from a path (matio
+    // reads files).
+    EventFormatRow r{EventFileFormat::MatEvents, "MATLAB", {".mat"}, "x, y, ts, p vectors or a TD struct"};
+    r.read = [](const std::string& path, const std::string&) { return read_mat_recording(path); };
+    rows.push_back(std::move(r));
+  }
+  {
     EventFormatRow r{EventFileFormat::Csv, "CSV", {".csv"}, "t_us,x,y,tile,flags"};
     r.decode = [](const std::string& data, const std::string& label, const std::string&) {
       return decode_csv_recording(data, label);

@@ -53,6 +53,9 @@ void send_recording(int fd, const std::string& path, const std::function<Polarit
   const std::uint32_t notes = static_cast<std::uint32_t>(rec.notes.size());
   write_all(fd, &notes, sizeof notes);
   for (const std::string& note : rec.notes) write_text(fd, note);
+  const std::uint32_t read_as = static_cast<std::uint32_t>(rec.read_as.size());
+  write_all(fd, &read_as, sizeof read_as);
+  for (const std::string& r : rec.read_as) write_text(fd, r);
   const std::uint32_t keys = static_cast<std::uint32_t>(rec.sensor.size());
   write_all(fd, &keys, sizeof keys);
   for (const auto& [key, value] : rec.sensor) {
@@ -104,6 +107,12 @@ bool receive_recording(int fd, PolarityRecording& rec, std::string& error) {
   rec.notes.resize(notes);
   for (std::string& note : rec.notes) {
     if (!read_text(fd, note)) return false;
+  }
+  std::uint32_t read_as = 0;
+  if (!read_all(fd, &read_as, sizeof read_as) || read_as > 64) return false;
+  rec.read_as.resize(read_as);
+  for (std::string& r : rec.read_as) {
+    if (!read_text(fd, r)) return false;
   }
   std::uint32_t keys = 0;
   if (!read_all(fd, &keys, sizeof keys)) return false;
