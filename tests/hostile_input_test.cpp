@@ -483,7 +483,7 @@ TEST_F(HostileInputTest, InputsThatAreNotFilesSayWhatTheyAre) {
 }
 
 // Readers bounded by the bytes they are given: an HDF5 file whose datasets claim 3e8 entries it
-// does not store, or that links to another file; a scene whose frames at the array's size would
+// does not store, or that links to another file; a MATLAB 7.3 file's vectors claiming 2e8; a scene whose frames at the array's size would
 // not fit; a truncated JPEG (libjpeg would invent its missing rows).
 TEST_F(HostileInputTest, ReadersAreBoundedByTheBytesTheyAreGiven) {
   write("make.py",
@@ -499,11 +499,21 @@ TEST_F(HostileInputTest, ReadersAreBoundedByTheBytesTheyAreGiven) {
         "with h5py.File('linked.h5', 'w') as f:\n"
         "    f['events'] = h5py.ExternalLink('target.h5', '/events')\n"
         "with h5py.File('table.h5', 'w') as f:\n"
-        "    f.create_dataset('events', shape=(300000000, 4), dtype='u4', chunks=(65536, 4))\n");
+        "    f.create_dataset('events', shape=(300000000, 4), dtype='u4', chunks=(65536, 4))\n"
+        // MATLAB 7.3 is HDF5 after a 128-byte header in a 512-byte user block (version 0x0200, 'IM').
+        "import struct\n"
+        "with h5py.File('claims.mat', 'w', userblock_size=512) as f:\n"
+        "    for n in ['x', 'y', 'ts', 'pol']:\n"
+        "        f.create_dataset(n, shape=(1, 200000000), dtype='f8', chunks=(1, 65536))"
+        ".attrs['MATLAB_class'] = np.bytes_('double')\n"
+        "head = b'MATLAB 7.3 MAT-file, Platform: GLNXA64'.ljust(116, b' ') + bytes(8) + struct.pack('<H', 0x0200) + b'IM'\n"
+        "with open('claims.mat', 'r+b') as f:\n"
+        "    f.write(head)\n");
   ASSERT_EQ(std::system(("cd '" + dir_.string() + "' && /usr/bin/python3 make.py").c_str()), 0);
   expect_refused("info huge.h5", "claims 300000000 entries");
   expect_refused("info linked.h5", "/events is an external link");
   expect_refused("info table.h5", "/events claims 1200000000 entries");
+  expect_refused("info claims.mat", "claims 200000000 numbers, more than its");
 
   fs::create_directory(dir_ / "many");
   for (int i = 0; i < 9; ++i) write(fmt::format("many/{:02d}.pgm", i), "P2\n1 1\n255\n7\n");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <string_view>
 #include <vector>
@@ -21,6 +22,11 @@ namespace aesim {
 namespace {
 
 constexpr double kSidesUpTo = 4096;  // a pixel of a 4096x4096 array at most
+// Numbers a byte of the file can hold at most: deflate (MATLAB's version 5 and 7.3 compression)
+// expands a byte to at most 1032. A vector claiming more than that is refused before matio reads
+// it: an HDF5 dataset's unwritten chunks would otherwise be read as fill, work the file's bytes
+// never paid for.
+constexpr std::uintmax_t kMostPerByte = 1032;
 
 // The names each vector goes by, first the usual one.
 constexpr std::array<const char*, 1> kX = {"x"};
@@ -157,17 +163,27 @@ PolarityRecording read_in_this_process(const std::string& path) {
                                  "of a struct (it holds {})",
                                  path, held.empty() ? "no variables" : held));
   }
-  // The vectors' numbers.
+  // The vectors' numbers, each first bounded by its length and by the file's bytes.
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
+  const auto bound = [&](const matvar_t* info, const std::string& name) {
+    const std::size_t n = info != nullptr ? elements(info) : 0;
+    if (n > kMaxExpandedEvents) {
+      throw InputError(fmt::format("event file '{}': {} holds more than the {} events aesim reads from one file", path, name,
+                                   kMaxExpandedEvents));
+    }
+    if (!size_error && n > kMostPerByte * file_bytes) {
+      throw InputError(fmt::format("event file '{}': {} claims {} numbers, more than its {} bytes hold even deflated", path,
+                                   name, n, file_bytes));
+    }
+  };
   std::vector<double> column[4];
   const char* const which[4] = {where.x, where.y, where.t, where.p};
   const auto named = [&](const char* name) { return where.structure.empty() ? std::string(name) : where.structure + "." + name; };
   if (where.structure.empty()) {
     for (int c = 0; c < 4; ++c) {
       const Var info{Mat_VarReadInfo(mat.get(), which[c])};
-      if (!info || elements(info.get()) > kMaxExpandedEvents) {
-        throw InputError(fmt::format("event file '{}': {} holds more than the {} events aesim reads from one file", path,
-                                     which[c], kMaxExpandedEvents));
-      }
+      bound(info.get(), which[c]);
       const Var v{Mat_VarRead(mat.get(), which[c])};
       if (!v) throw InputError(fmt::format("event file '{}': {} does not read ({})", path, which[c], matio_message()));
       column[c] = numbers(v.get(), named(which[c]), path);
@@ -175,11 +191,7 @@ PolarityRecording read_in_this_process(const std::string& path) {
   } else {
     const Var info{Mat_VarReadInfo(mat.get(), where.structure.c_str())};
     for (int c = 0; info && c < 4; ++c) {
-      const matvar_t* f = Mat_VarGetStructFieldByName(info.get(), which[c], 0);
-      if (f != nullptr && elements(f) > kMaxExpandedEvents) {
-        throw InputError(fmt::format("event file '{}': {} holds more than the {} events aesim reads from one file", path,
-                                     named(which[c]), kMaxExpandedEvents));
-      }
+      bound(Mat_VarGetStructFieldByName(info.get(), which[c], 0), named(which[c]));
     }
     const Var v{Mat_VarRead(mat.get(), where.structure.c_str())};
     if (!v) throw InputError(fmt::format("event file '{}': {} does not read ({})", path, where.structure, matio_message()));
