@@ -549,6 +549,18 @@ TEST_F(TiffScenes, APictureLargerThanAnArrayIsAveragedDownAsItsStripsAreRead) {
   for (const double v : img.pixels) ASSERT_DOUBLE_EQ(v, 0.5);
   // Read from the file a strip at a time, as a scene's TIFF is: the same picture.
   EXPECT_EQ(read_tiff_file((dir_ / "w.tif").string()).pixels, img.pixels);
+  // In 16x16 tiles, RGB with each colour a plane of its own: a row of tiles of every plane at a
+  // time, the same picture.
+  TiffSpec planes = board;
+  planes.tiled = true;
+  planes.spp = 3;
+  planes.photometric = PHOTOMETRIC_RGB;
+  planes.planar = PLANARCONFIG_SEPARATE;
+  planes.samples.insert(planes.samples.end(), board.samples.begin(), board.samples.end());
+  planes.samples.insert(planes.samples.end(), board.samples.begin(), board.samples.end());
+  const Image tiled = decode_tiff(encode_tiff(planes, dir_), "planes.tif");
+  ASSERT_EQ(tiled.width, 2050);
+  for (const double v : tiled.pixels) ASSERT_NEAR(v, 0.5, 1e-15);
 }
 
 TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {
