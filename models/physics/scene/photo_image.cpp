@@ -124,6 +124,7 @@ Image decode_png(const std::string& data, const std::string& path) {
   std::vector<unsigned char> bytes;
   std::vector<double> light, table;
   std::vector<std::uint16_t> codes;
+  std::vector<png_bytep> rows;
   std::unique_ptr<ReducedImage> image;
   bool decodable = false, interlaced = false;
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &src, png_fail, png_ignore_warning);
@@ -165,7 +166,7 @@ Image decode_png(const std::string& data, const std::string& path) {
       table = decoding_table(depth == 16 ? 65535 : 255, exponent);
       light.resize(width);
       if (interlaced) {
-        std::vector<png_bytep> rows(height);
+        rows.resize(height);
         bytes.resize(row_bytes * height);
         for (png_uint_32 y = 0; y < height; ++y) rows[y] = bytes.data() + y * row_bytes;
         png_read_image(png, rows.data());

@@ -247,6 +247,11 @@ Image decode_tiff_from(TiffSource& src, const std::string& path, std::size_t pag
     }
     piece.resize(static_cast<std::size_t>(strip_size));
   }
+  // A band held at once: at most what the largest image aesim holds whole once took (4096 x 4096
+  // pixels of 4 samples of 8 bytes), whatever shape of tile or strip the header claims.
+  if (std::uint64_t(planes) * band_rows * unpacked_row > 2 * std::uint64_t(kMaxInputFileBytes)) {
+    fail(fmt::format("{} rows of {} pixels a {}, more than aesim holds at once", band_rows, l.width, tiled ? "tile" : "strip"));
+  }
   ReducedImage image(l.width, l.height, path);
   std::vector<unsigned char> band;
   std::vector<double> light(l.width);
