@@ -111,29 +111,27 @@ int npy(const std::uint8_t* data, std::size_t size) {
   });
 }
 
-int h5(const std::uint8_t* data, std::size_t size) {
-  // libhdf5 reads files, not memory: the bytes go to a file of this process's own (in memory on
-  // Linux), read by the DSEC reader under the fuzzer's limits.
-  static const std::string path = fmt::format("/dev/shm/aesim-fuzz-{}.h5", ::getpid());
+// A reader through a library that reads files, not memory (libhdf5, matio): the bytes go to a file
+// of this process's own (in memory on Linux), named with `extension`, and `read` reads it under the
+// fuzzer's limits.
+template <typename Read>
+int through_file(const std::uint8_t* data, std::size_t size, const char* extension, Read read) {
+  const std::string path = fmt::format("/dev/shm/aesim-fuzz-{}{}", ::getpid(), extension);
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
-  const int r = expect_result_or_input_error([&] { read_dsec_h5(path); });
+  const int r = expect_result_or_input_error([&] { read(path); });
   std::remove(path.c_str());
   return r;
 }
 
-// matio reads files too: the same way through a file of this process's own.
+int h5(const std::uint8_t* data, std::size_t size) {
+  return through_file(data, size, ".h5", [](const std::string& path) { read_dsec_h5(path); });
+}
+
 int mat(const std::uint8_t* data, std::size_t size) {
-  static const std::string path = fmt::format("/dev/shm/aesim-fuzz-{}.mat", ::getpid());
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  }
-  const int r = expect_result_or_input_error([&] { load_events(path); });
-  std::remove(path.c_str());
-  return r;
+  return through_file(data, size, ".mat", [](const std::string& path) { load_events(path); });
 }
 
 int set_values(const std::uint8_t* data, std::size_t size) {
