@@ -45,8 +45,8 @@ nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* giv
   // The size scales events onto the templates: guessed from the events it would change the
   // decision with the events that happened to fire (a CSV records no size).
   if (!rec.size_recorded) {
-    throw InputError(fmt::format("event file '{}' records no array size (a CSV, .npy, N-MNIST .bin or text file "
-                                 "does not): give --size WIDTHxHEIGHT",
+    throw InputError(fmt::format("event file '{}' records no array size: give it (--size WIDTHxHEIGHT; size='WIDTHxHEIGHT' "
+                                 "in Python)",
                                  opt.events));
   }
   std::vector<std::pair<double, double>> events;
