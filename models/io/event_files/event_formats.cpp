@@ -26,6 +26,17 @@ EventRecording read_bytes(const std::string& path, const std::string& layout) {
   return decode(read_event_file_bytes(path), path, layout);
 }
 
+// A row's decoder for a format that has no layout to choose (only AEDAT 2.0 has jAER's).
+template <EventRecording (*decode)(const std::string&, const std::string&)>
+EventRecording without_layout(const std::string& data, const std::string& label, const std::string&) {
+  return decode(data, label);
+}
+// A row's reader for a format read from its path (by a library that reads files, or line by line).
+template <EventRecording (*read)(const std::string&)>
+EventRecording path_only(const std::string& path, const std::string&) {
+  return read(path);
+}
+
 std::vector<EventFormatRow> make_rows() {
   std::vector<EventFormatRow> rows;
   {
@@ -39,9 +50,7 @@ std::vector<EventFormatRow> make_rows() {
       header.insert(header.begin() + 1, spec.notes.begin(), spec.notes.end());
       return std::make_unique<AedatWriter>(files.open(path), header, map, spec.tick, spec.layout);
     };
-    r.decode = [](const std::string& data, const std::string& label, const std::string& layout) {
-      return decode_aedat_recording(data, label, layout);
-    };
+    r.decode = decode_aedat_recording;
     r.read = read_bytes<decode_aedat_recording>;
     rows.push_back(std::move(r));
   }
@@ -50,12 +59,8 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<Aedat4Writer>(files.open(path), spec);
     };
-    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
-      return decode_aedat4_recording(data, label);
-    };
-    r.read = [](const std::string& path, const std::string&) {
-      return decode_aedat4_recording(read_event_file_bytes(path), path);
-    };
+    r.decode = without_layout<decode_aedat4_recording>;
+    r.read = read_bytes<without_layout<decode_aedat4_recording>>;
     rows.push_back(std::move(r));
   }
   {
@@ -63,12 +68,8 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<NpyWriter>(files.adopt(path), spec.tick);
     };
-    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
-      return decode_npy_recording(data, label);
-    };
-    r.read = [](const std::string& path, const std::string&) {
-      return decode_npy_recording(read_event_file_bytes(path), path);
-    };
+    r.decode = without_layout<decode_npy_recording>;
+    r.read = read_bytes<without_layout<decode_npy_recording>>;
     rows.push_back(std::move(r));
   }
   {
@@ -78,7 +79,7 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<DsecWriter>(files.adopt(path), spec, spec.duration);
     };
-    r.read = [](const std::string& path, const std::string&) { return read_h5_recording(path); };
+    r.read = path_only<read_h5_recording>;
     rows.push_back(std::move(r));
   }
   {
@@ -89,12 +90,8 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<PropheseeRawWriter>(files.open(path), spec.array, spec.tick, spec.raw_encoding);
     };
-    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
-      return decode_prophesee_raw_recording(data, label);
-    };
-    r.read = [](const std::string& path, const std::string&) {
-      return decode_prophesee_raw_recording(read_event_file_bytes(path), path);
-    };
+    r.decode = without_layout<decode_prophesee_raw_recording>;
+    r.read = read_bytes<without_layout<decode_prophesee_raw_recording>>;
     rows.push_back(std::move(r));
   }
   {
@@ -107,59 +104,43 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<PropheseeDatWriter>(files.open(path), spec.array, spec.tick);
     };
-    r.decode = [](const std::string& data, const std::string& label, const std::string& layout) {
-      return decode_aedat_recording(data, label, layout);
-    };
+    r.decode = decode_aedat_recording;
     r.read = read_bytes<decode_aedat_recording>;
     rows.push_back(std::move(r));
   }
   {
     // Read: the ATIS saccade datasets' recordings (N-MNIST, N-Caltech101).
     EventFormatRow r{EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"}, "N-MNIST's and N-Caltech101's"};
-    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
-      return decode_nmnist_bin_recording(data, label);
-    };
-    r.read = [](const std::string& path, const std::string&) {
-      return decode_nmnist_bin_recording(read_event_file_bytes(path), path);
-    };
+    r.decode = without_layout<decode_nmnist_bin_recording>;
+    r.read = read_bytes<without_layout<decode_nmnist_bin_recording>>;
     rows.push_back(std::move(r));
   }
   {
     // Read: `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e, rpg_e2vid).
     EventFormatRow r{EventFileFormat::EventsText, "events text", {".txt"}, "t x y p a line, t in s"};
-    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
-      return decode_events_text_recording(data, label);
-    };
-    r.read = [](const std::string& path, const std::string&) {
-      return decode_events_text_recording(read_event_file_bytes(path), path);
-    };
+    r.decode = without_layout<decode_events_text_recording>;
+    r.read = read_bytes<without_layout<decode_events_text_recording>>;
     rows.push_back(std::move(r));
   }
   {
     // Read: a ROS 1 bag's dvs_msgs/EventArray topic (the Event Camera Dataset, MVSEC, DAVIS and
     // Prophesee cameras under ROS).
     EventFormatRow r{EventFileFormat::RosBag, "ROS bag", {".bag"}, "ROS 1's, dvs_msgs/EventArray"};
-    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
-      return decode_ros_bag_recording(data, label);
-    };
-    r.read = [](const std::string& path, const std::string&) {
-      return decode_ros_bag_recording(read_event_file_bytes(path), path);
-    };
+    r.decode = without_layout<decode_ros_bag_recording>;
+    r.read = read_bytes<without_layout<decode_ros_bag_recording>>;
     rows.push_back(std::move(r));
   }
   {
     // Read: MATLAB files of event vectors (ASL-DVS; Orchard's TD structs), from a path (matio
     // reads files).
     EventFormatRow r{EventFileFormat::MatEvents, "MATLAB", {".mat"}, "x, y, ts, p vectors or a TD struct"};
-    r.read = [](const std::string& path, const std::string&) { return read_mat_recording(path); };
+    r.read = path_only<read_mat_recording>;
     rows.push_back(std::move(r));
   }
   {
     EventFormatRow r{EventFileFormat::Csv, "CSV", {".csv"}, "t_us,x,y,tile,flags"};
-    r.decode = [](const std::string& data, const std::string& label, const std::string&) {
-      return decode_csv_recording(data, label);
-    };
-    r.read = [](const std::string& path, const std::string&) { return read_csv_recording(path); };
+    r.decode = without_layout<decode_csv_recording>;
+    r.read = path_only<read_csv_recording>;
     rows.push_back(std::move(r));
   }
   return rows;
