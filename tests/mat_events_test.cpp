@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -22,28 +24,22 @@ namespace {
 using testing::Cd;
 using testing::expect_events;
 
+// matio's class and storage type of a C++ number type.
 template <typename T>
-constexpr matio_classes class_of() {
-  if constexpr (std::is_same_v<T, double>) return MAT_C_DOUBLE;
-  if constexpr (std::is_same_v<T, std::uint8_t>) return MAT_C_UINT8;
-  if constexpr (std::is_same_v<T, std::uint16_t>) return MAT_C_UINT16;
-  if constexpr (std::is_same_v<T, std::uint32_t>) return MAT_C_UINT32;
-  return MAT_C_INT32;
-}
-template <typename T>
-constexpr matio_types type_of() {
-  if constexpr (std::is_same_v<T, double>) return MAT_T_DOUBLE;
-  if constexpr (std::is_same_v<T, std::uint8_t>) return MAT_T_UINT8;
-  if constexpr (std::is_same_v<T, std::uint16_t>) return MAT_T_UINT16;
-  if constexpr (std::is_same_v<T, std::uint32_t>) return MAT_T_UINT32;
-  return MAT_T_INT32;
+constexpr std::pair<matio_classes, matio_types> matio_type() {
+  if constexpr (std::is_same_v<T, double>) return {MAT_C_DOUBLE, MAT_T_DOUBLE};
+  if constexpr (std::is_same_v<T, std::uint8_t>) return {MAT_C_UINT8, MAT_T_UINT8};
+  if constexpr (std::is_same_v<T, std::uint16_t>) return {MAT_C_UINT16, MAT_T_UINT16};
+  if constexpr (std::is_same_v<T, std::uint32_t>) return {MAT_C_UINT32, MAT_T_UINT32};
+  return {MAT_C_INT32, MAT_T_INT32};
 }
 
 // A column vector (N x 1, as MATLAB's and ASL-DVS's), its data left with the caller.
 template <typename T>
 matvar_t* column(const char* name, std::vector<T>& values) {
   std::size_t dims[2] = {values.size(), 1};
-  return Mat_VarCreate(name, class_of<T>(), type_of<T>(), 2, dims, values.data(), MAT_F_DONT_COPY_DATA);
+  constexpr auto type = matio_type<T>();
+  return Mat_VarCreate(name, type.first, type.second, 2, dims, values.data(), MAT_F_DONT_COPY_DATA);
 }
 
 class MatFiles : public testing::TempDirTest {

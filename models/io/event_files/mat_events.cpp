@@ -2,13 +2,12 @@
 
 #include <matio.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <memory>
-#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
