@@ -37,6 +37,15 @@ EventRecording path_only(const std::string& path, const std::string&) {
   return read(path);
 }
 
+// The row of a format read from its bytes and not written.
+template <EventRecording (*decode)(const std::string&, const std::string&)>
+EventFormatRow read_only(EventFileFormat format, const char* name, std::vector<std::string> extensions, const char* help) {
+  EventFormatRow r{format, name, std::move(extensions), help};
+  r.decode = without_layout<decode>;
+  r.read = read_bytes<without_layout<decode>>;
+  return r;
+}
+
 std::vector<EventFormatRow> make_rows() {
   std::vector<EventFormatRow> rows;
   {
@@ -108,28 +117,16 @@ std::vector<EventFormatRow> make_rows() {
     r.read = read_bytes<decode_aedat_recording>;
     rows.push_back(std::move(r));
   }
-  {
-    // Read: the ATIS saccade datasets' recordings (N-MNIST, N-Caltech101).
-    EventFormatRow r{EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"}, "N-MNIST's and N-Caltech101's"};
-    r.decode = without_layout<decode_nmnist_bin_recording>;
-    r.read = read_bytes<without_layout<decode_nmnist_bin_recording>>;
-    rows.push_back(std::move(r));
-  }
-  {
-    // Read: `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e, rpg_e2vid).
-    EventFormatRow r{EventFileFormat::EventsText, "events text", {".txt"}, "t x y p a line, t in s"};
-    r.decode = without_layout<decode_events_text_recording>;
-    r.read = read_bytes<without_layout<decode_events_text_recording>>;
-    rows.push_back(std::move(r));
-  }
-  {
-    // Read: a ROS 1 bag's dvs_msgs/EventArray topic (the Event Camera Dataset, MVSEC, DAVIS and
-    // Prophesee cameras under ROS).
-    EventFormatRow r{EventFileFormat::RosBag, "ROS bag", {".bag"}, "ROS 1's, dvs_msgs/EventArray"};
-    r.decode = without_layout<decode_ros_bag_recording>;
-    r.read = read_bytes<without_layout<decode_ros_bag_recording>>;
-    rows.push_back(std::move(r));
-  }
+  // Formats read, not written, from their bytes: the ATIS saccade datasets' recordings (N-MNIST,
+  // N-Caltech101); `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e,
+  // rpg_e2vid); a ROS 1 bag's event topic (the Event Camera Dataset, MVSEC, DAVIS and Prophesee
+  // cameras under ROS).
+  rows.push_back(read_only<decode_nmnist_bin_recording>(EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"},
+                                                        "N-MNIST's and N-Caltech101's"));
+  rows.push_back(read_only<decode_events_text_recording>(EventFileFormat::EventsText, "events text", {".txt"},
+                                                         "t x y p a line, t in s"));
+  rows.push_back(read_only<decode_ros_bag_recording>(EventFileFormat::RosBag, "ROS bag", {".bag"},
+                                                     "ROS 1's, dvs_msgs/EventArray"));
   {
     // Read: MATLAB files of event vectors (ASL-DVS; Orchard's TD structs), from a path (matio
     // reads files).
