@@ -151,15 +151,26 @@ void AedatWriter::events(const AddressEvent* first, std::size_t count) {
     first_written_ = true;
     first_is_hash_ = (address_of(first[0]) >> 24) == '#';
   }
-  // Through locals: the stores into the buffer would make the compiler reload every member a
-  // record (a quarter of the writer's time).
+  if (layout_ == AedatLayout::Aesim) {
+    const unsigned bus_bits = bus_bits_;
+    pack(first, count, [bus_bits](const AddressEvent& e) { return aedat_address(e, bus_bits); });
+  } else {
+    pack(first, count, [this](const AddressEvent& e) { return jaer_address(layout_, chip_, rows_, e); });
+  }
+}
+
+template <class Address>
+void AedatWriter::pack(const AddressEvent* first, std::size_t count, Address address) {
+  // Through locals, the stamps' constants too: the stores into the buffer would make the compiler
+  // reload every member a record (a quarter of the writer's time).
+  const MicrosecondStamps stamps = stamps_;
   char* out = buffer_.data() + used_;
   char* full = buffer_.data() + buffer_.size();
   bool takes_next = jaer_takes_next_;
   std::uint64_t lost = jaer_lost_;
   for (std::size_t i = 0; i < count; ++i) {
-    const std::int64_t stamp = aedat_stamp(first[i], stamps_);
-    put_be32(out, address_of(first[i]));
+    const std::int64_t stamp = aedat_stamp(first[i], stamps);
+    put_be32(out, address(first[i]));
     // jAER reads the record after one stamped 0 in its place without looking at its stamp: of a run
     // of such records it loses every other one.
     const bool zero = stamp == 0 && !takes_next;

@@ -82,6 +82,9 @@ class AedatWriter : public EventFileWriter {
   std::uint32_t address_of(const AddressEvent& e) const {
     return layout_ == AedatLayout::Aesim ? aedat_address(e, bus_bits_) : jaer_address(layout_, chip_, rows_, e);
   }
+  // Packs `count` records, each's address word `address(event)`, the layout chosen once a call.
+  template <class Address>
+  void pack(const AddressEvent* first, std::size_t count, Address address);
 
   bool first_written_ = false, first_is_hash_ = false;
   bool jaer_takes_next_ = false;
