@@ -22,7 +22,10 @@
 #include "aesim/event_files/events_text.hpp"
 #include "aesim/event_files/mat_events.hpp"
 #include "aesim/event_files/nmnist_bin.hpp"
+#include "aesim/event_files/mcap_bag.hpp"
+#include "aesim/event_files/ros2_bag_folder.hpp"
 #include "aesim/event_files/ros_bag.hpp"
+#include "aesim/event_files/rosbag2_sqlite.hpp"
 #include "aesim/event_files/npy_events.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/event_files/prophesee_raw.hpp"
@@ -287,6 +290,14 @@ EventRecording decode_ros_bag_recording(const std::string& data, const std::stri
   return from_polarity(decode_ros_bag(data, label), label);
 }
 
+EventRecording decode_mcap_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_mcap(data, label), label);
+}
+
+EventRecording decode_rosbag2_sqlite_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_rosbag2_sqlite(data, label), label);
+}
+
 EventRecording decode_events_text_recording(const std::string& data, const std::string& label) {
   return from_polarity(decode_events_text(data, label), label);
 }
@@ -305,19 +316,22 @@ EventRecording read_mat_recording(const std::string& path) { return from_polarit
 std::string read_event_file_bytes(const std::string& path) { return read_whole(path); }
 
 EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size, const std::string& layout) {
-  const EventFormatRow* row = nullptr;
-  try {
-    row = &event_format_of(path, "event file");
-  } catch (const InputError&) {
-    // Containers events come in that aesim does not open (ROS 2 bags), with the way out.
-    const std::string ext = file_extension(path);
-    const std::string hint =
-        ext == ".db3" || ext == ".mcap"
-            ? ": a ROS 2 bag; convert it to a ROS 1 .bag (rosbags-convert) or export its event topic to .txt, .h5 or .npy"
-            : "";
-    throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_extensions(), hint));
+  EventRecording rec;
+  std::error_code not_a_folder;
+  if (std::filesystem::is_directory(path, not_a_folder)) {
+    // A ROS 2 bag is a folder of its storage files.
+    rec = from_polarity(read_ros2_bag_folder(path), path);
+  } else {
+    const EventFormatRow* row = nullptr;
+    try {
+      row = &event_format_of(path, "event file");
+    } catch (const InputError&) {
+      const std::string hint =
+          file_extension(path) == ".zstd" ? ": a file compressed whole (rosbag2's file compression): uncompress it with `zstd -d`" : "";
+      throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_extensions(), hint));
+    }
+    rec = row->read(path, layout);
   }
-  EventRecording rec = row->read(path, layout);
   if (!size) return rec;
   if (rec.size_recorded && (rec.width != size->width || rec.height != size->height)) {
     throw InputError(fmt::format("--size {}x{}: event file '{}' records a {}x{} array", size->width, size->height, path,

@@ -119,14 +119,18 @@ std::vector<EventFormatRow> make_rows() {
   }
   // Formats read, not written, from their bytes: the ATIS saccade datasets' recordings (N-MNIST,
   // N-Caltech101); `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e,
-  // rpg_e2vid); a ROS 1 bag's event topic (the Event Camera Dataset, MVSEC, DAVIS and Prophesee
-  // cameras under ROS).
+  // rpg_e2vid); a ROS bag's event topic (the Event Camera Dataset, MVSEC, DAVIS and Prophesee
+  // cameras under ROS 1; under ROS 2, bags in MCAP or SQLite).
   rows.push_back(read_only<decode_nmnist_bin_recording>(EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"},
                                                         "N-MNIST's and N-Caltech101's"));
   rows.push_back(read_only<decode_events_text_recording>(EventFileFormat::EventsText, "events text", {".txt"},
                                                          "t x y p a line, t in s"));
   rows.push_back(read_only<decode_ros_bag_recording>(EventFileFormat::RosBag, "ROS bag", {".bag"},
                                                      "ROS 1's, dvs_msgs/EventArray"));
+  rows.push_back(read_only<decode_mcap_recording>(EventFileFormat::Mcap, "MCAP", {".mcap"},
+                                                  "ROS 2's bags since Iron, event_camera_msgs/EventPacket"));
+  rows.push_back(read_only<decode_rosbag2_sqlite_recording>(EventFileFormat::Rosbag2Sqlite, "ROS 2 SQLite bag", {".db3"},
+                                                            "ROS 2's bags before Iron"));
   {
     // Read: MATLAB files of event vectors (ASL-DVS; Orchard's TD structs), from a path (matio
     // reads files).

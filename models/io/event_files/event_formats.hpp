@@ -11,7 +11,21 @@ struct EventFileSpec;
 struct EventRecording;
 
 // The event file formats aesim writes and reads.
-enum class EventFileFormat { Aedat2, Aedat4, Npy, Hdf5, PropheseeRaw, PropheseeDat, NmnistBin, EventsText, RosBag, MatEvents, Csv };
+enum class EventFileFormat {
+  Aedat2,
+  Aedat4,
+  Npy,
+  Hdf5,
+  PropheseeRaw,
+  PropheseeDat,
+  NmnistBin,
+  EventsText,
+  RosBag,
+  Mcap,
+  Rosbag2Sqlite,
+  MatEvents,
+  Csv
+};
 
 // One format, one row: what names it, what writes and reads it, what it cannot hold. Every command,
 // the CLI's help texts and docs/reference.md's format table follow from the rows; adding a format

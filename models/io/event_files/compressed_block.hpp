@@ -1,0 +1,22 @@
+#pragma once
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace aesim {
+
+// How a container compressed a block of its records whole: ROS 1 bags' chunks (bz2, lz4) and
+// MCAP's (lz4, zstd).
+enum class BlockCompression { Bz2, Lz4Frame, Zstd };
+
+// Why a block did not uncompress to the size its container states.
+struct BlockError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// `data` uncompressed, which must come to exactly `size` bytes (the container states it, and the
+// caller has bounded it); throws BlockError otherwise, or for bytes past the compressed stream,
+// saying what the block is as `noun` does ("chunk").
+std::string uncompressed_block(BlockCompression compression, std::string_view data, std::size_t size, const char* noun);
+
+}  // namespace aesim
