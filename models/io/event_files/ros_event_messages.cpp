@@ -237,10 +237,16 @@ void RosEventTopics::packet(EventTopic& topic, RosMessageBytes& m) {
   topic.encoding = std::string(encoding);
   if (m.number<std::uint8_t>("is_bigendian") != 0) m.fail("big-endian words (cameras and aesim are little-endian)");
   const auto n = m.number<std::uint32_t>("the words' length");
-  if (topic.words.size() + n > kMaxEventFileBytes) {
+  if (topic.stream.size() + n > kMaxEventFileBytes) {
     m.fail(fmt::format("more than the {} bytes of words aesim reads from one file", kMaxEventFileBytes));
   }
-  topic.words += m.take(n, "the camera's words");
+  // The stream the RAW reader takes begins with a RAW header, written before the first packet's
+  // words (the array is known by then), so that the words are held once.
+  if (topic.messages == 1) {
+    topic.stream = topic.width > 0 ? fmt::format("% format EVT3;height={};width={}\n% end\n", topic.height, topic.width)
+                                   : std::string("% evt 3.0\n% end\n");
+  }
+  topic.stream += m.take(n, "the camera's words");
   m.end();
 }
 
@@ -251,9 +257,7 @@ PolarityRecording RosEventTopics::decode_packets(const std::string& name, const 
     throw InputError(fmt::format("event file '{}': {} carries events encoded '{}' (aesim reads 'evt3' packets)", label_, name,
                                  topic.encoding));
   }
-  const std::string stream = topic.width > 0 ? fmt::format("% format EVT3;height={};width={}\n% end\n", topic.height, topic.width)
-                                             : std::string("% evt 3.0\n% end\n");
-  return decode_prophesee_raw(stream + topic.words, fmt::format("{} ({})", label_, name));
+  return decode_prophesee_raw(topic.stream, fmt::format("{} ({})", label_, name));
 }
 
 PolarityRecording RosEventTopics::result() {

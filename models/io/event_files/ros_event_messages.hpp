@@ -44,11 +44,11 @@ class RosEventTopics {
 
  private:
   // One event topic as read so far: decoded events (EventArray), or the camera's words of every
-  // packet in order (EventPacket).
+  // packet in order after a RAW header (EventPacket).
   struct EventTopic {
     RosEventLayout layout = RosEventLayout::EventArray;
     std::vector<PolarityEvent> events;
-    std::string encoding, words;
+    std::string encoding, stream;
     std::uint32_t width = 0, height = 0;
     std::uint64_t messages = 0;
   };
