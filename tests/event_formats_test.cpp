@@ -26,11 +26,13 @@
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "events_generated.h"
 #include "aesim/output/atomic_file.hpp"
+#include "support/recorded_events.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {
 namespace {
 namespace fs = std::filesystem;
+using testing::noted;
 
 // A .npy and a Prophesee RAW file hold no tiles: read back, the array is one.
 bool no_tiles_in(const std::string& name) {
@@ -303,6 +305,77 @@ TEST_F(EventFormats, V2eAndMvsecHdf5EventTablesAreReadInTimeOrder) {
     ADD_FAILURE() << "read x = 1.5";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("is not a pixel"), std::string::npos) << e.what();
+  }
+}
+
+// Other datasets keep an event column a dataset in a group of their own: M3ED's
+// /prophesee/left/{x,y,t,p} beside its right camera's (uint16 x and y, int64 t in us, int8 p), or
+// a file's root holding x, y, ts and polarity (-1/1). The first such group by name is read, the
+// others counted; the columns' names are said in `info`'s "read as". Written here with HDF5's C
+// API.
+TEST_F(EventFormats, AnyGroupOfEventColumnsIsReadTheFirstByName) {
+  const auto column = [](hid_t group, const char* name, hid_t type, const void* values, hsize_t n) {
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t d = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), 0);
+    H5Idec_ref(d);
+    H5Idec_ref(space);
+  };
+  const std::uint16_t x[] = {1279, 3, 4}, y[] = {719, 5, 6};
+  const std::int64_t t[] = {300, 100, 200};
+  const std::int8_t p[] = {1, 0, 1};
+  const std::string m3ed = (dir_ / "m3ed.h5").string();
+  hid_t file = H5Fcreate(m3ed.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  H5Idec_ref(H5Gcreate2(file, "prophesee", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  for (const char* camera : {"prophesee/right", "prophesee/left"}) {
+    const hid_t g = H5Gcreate2(file, camera, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hsize_t n = std::string(camera) == "prophesee/left" ? 3 : 1;
+    column(g, "x", H5T_NATIVE_UINT16, x, n);
+    column(g, "y", H5T_NATIVE_UINT16, y, n);
+    column(g, "t", H5T_NATIVE_INT64, t, n);
+    column(g, "p", H5T_NATIVE_INT8, p, n);
+    H5Idec_ref(g);
+  }
+  H5Fclose(file);
+  const EventRecording rec = load_events(m3ed);
+  ASSERT_EQ(rec.events.size(), 3u);
+  const std::size_t order[] = {1, 2, 0};
+  for (std::size_t i = 0; i < 3; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_DOUBLE_EQ(rec.events[i].t, static_cast<double>(t[order[i]]) * 1e-6);
+    EXPECT_EQ(rec.events[i].x, x[order[i]]);
+    EXPECT_EQ(rec.events[i].y, y[order[i]]);
+    EXPECT_EQ(rec.events[i].flags, p[order[i]] ? kNormalEvent : kOffEvent);
+  }
+  EXPECT_TRUE(noted(rec, "the events of /prophesee/right (/prophesee/left's are read)"));
+  ASSERT_EQ(rec.read_as.size(), 1u);
+  EXPECT_NE(rec.read_as[0].find("/prophesee/left/x, /prophesee/left/y, /prophesee/left/t, /prophesee/left/p"), std::string::npos);
+
+  const std::string root = (dir_ / "root.h5").string();
+  file = H5Fcreate(root.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const std::int32_t ts[] = {7, 9};
+  const std::int16_t polarity[] = {-1, 1};
+  column(file, "x", H5T_NATIVE_UINT16, x, 2);
+  column(file, "y", H5T_NATIVE_UINT16, y, 2);
+  column(file, "ts", H5T_NATIVE_INT32, ts, 2);
+  column(file, "polarity", H5T_NATIVE_INT16, polarity, 2);
+  H5Fclose(file);
+  const EventRecording flat = load_events(root);
+  ASSERT_EQ(flat.events.size(), 2u);
+  EXPECT_EQ(flat.events[0].flags, kOffEvent);  // -1
+  EXPECT_EQ(flat.events[1].flags, kNormalEvent);
+  EXPECT_DOUBLE_EQ(flat.events[1].t, 9e-6);
+
+  const std::string none = (dir_ / "none.h5").string();
+  file = H5Fcreate(none.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  column(file, "x", H5T_NATIVE_UINT16, x, 2);
+  column(file, "t", H5T_NATIVE_INT64, t, 2);
+  H5Fclose(file);
+  try {
+    load_events(none);
+    ADD_FAILURE() << "a file of no events read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no events (aesim reads /events/{x,y,t,p} as DSEC"), std::string::npos) << e.what();
   }
 }
 

@@ -1,6 +1,7 @@
 #include "aesim/event_files/dsec_h5.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -289,8 +290,10 @@ struct Column {
   Handle d;
   hsize_t n = 0;
 };
-Column open_column(hid_t file, const char* name, const std::string& path, hsize_t expected, std::uintmax_t file_bytes) {
-  require_local(file, name, path);
+// `first`: the group's first column, whose length the others must have (`expected`).
+Column open_column(hid_t file, const char* name, const char* group, const std::string& path, const char* first,
+                   hsize_t expected, std::uintmax_t file_bytes) {
+  require_local(file, name, path, group);
   Column c;
   c.d = Handle(H5Dopen2(file, name, H5P_DEFAULT));
   if (!c.d.ok()) throw InputError(fmt::format("event file '{}': no dataset {} (not the DSEC layout)", path, name));
@@ -301,7 +304,7 @@ Column open_column(hid_t file, const char* name, const std::string& path, hsize_
   }
   H5Sget_simple_extent_dims(space.get(), &c.n, nullptr);
   if (expected != static_cast<hsize_t>(-1) && c.n != expected) {
-    throw InputError(fmt::format("event file '{}': {} has {} entries, /events/x {}", path, name, c.n, expected));
+    throw InputError(fmt::format("event file '{}': {} has {} entries, {} {}", path, name, c.n, first, expected));
   }
   check_stored(c.d.get(), stored.get(), c.n, name, path, file_bytes);
   return c;
@@ -449,6 +452,69 @@ herr_t collect_sensor_attribute(hid_t object, const char* name, const H5A_info_t
   return 0;
 }
 
+// Four columns x, y, t (integer microseconds, plus `t_offset`) and p (ON above 0), opened and
+// checked, read in blocks straight into the events: memory is the events' own, not four columns
+// more.
+PolarityRecording read_columns(const Column (&columns)[4], const std::string (&names)[4], std::int64_t t_offset,
+                               const std::string& path) {
+  const hsize_t n = columns[0].n;
+  PolarityRecording rec;
+  rec.events.reserve(n);
+  std::vector<std::int64_t> block[4];
+  for (auto& b : block) b.resize(std::min<hsize_t>(n, kBlock));
+  for (hsize_t from = 0; from < n; from += kBlock) {
+    const hsize_t count = std::min(kBlock, n - from);
+    for (int k = 0; k < 4; ++k) read_block(columns[k], from, count, block[k].data(), names[k].c_str(), path);
+    for (hsize_t j = 0; j < count; ++j) {
+      const std::int64_t x = block[0][j], y = block[1][j];
+      if (x < 0 || y < 0 || x >= kMostSide || y >= kMostSide) {
+        throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is outside 4096x4096", path, from + j, x, y));
+      }
+      rec.events.push_back({block[2][j] + t_offset, static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), block[3][j] > 0});
+    }
+  }
+  return rec;
+}
+
+// Names a column of events goes by in the field's files: M3ED's /prophesee/left/{x,y,t,p}, and
+// anyone's group of the four.
+constexpr const char* kStampNames[] = {"t", "ts", "timestamp", "timestamps"};
+constexpr const char* kPolarityNames[] = {"p", "polarity", "pol", "polarities"};
+// A file's groups are searched up to this many objects (a file of millions of empty groups would
+// otherwise take its time to say it holds no events).
+constexpr std::size_t kMostObjectsSearched = 100000;
+
+// The groups holding datasets x, y, a stamp and a polarity, in HDF5's name order (a stereo rig's
+// left before its right), each with its four datasets' paths.
+struct EventGroups {
+  hid_t file;
+  std::vector<std::array<std::string, 4>> found;
+  std::vector<std::string> groups;
+  std::size_t visited = 0;
+};
+
+std::string member(const std::string& group, const char* name) { return group == "." ? std::string("/") + name : "/" + group + "/" + name; }
+
+herr_t collect_event_group(hid_t, const char* name, const H5O_info_t* info, void* data) {
+  auto& search = *static_cast<EventGroups*>(data);
+  if (++search.visited > kMostObjectsSearched) return 1;
+  if (info->type != H5O_TYPE_GROUP) return 0;
+  const auto first_of = [&](const auto& names) -> std::string {
+    for (const char* n : names) {
+      const std::string p = member(name, n);
+      if (is_dataset(search.file, p.c_str())) return p;
+    }
+    return "";
+  };
+  const std::string x = member(name, "x"), y = member(name, "y");
+  if (!is_dataset(search.file, x.c_str()) || !is_dataset(search.file, y.c_str())) return 0;
+  const std::string t = first_of(kStampNames), p = first_of(kPolarityNames);
+  if (t.empty() || p.empty()) return 0;
+  search.found.push_back({x, y, t, p});
+  search.groups.push_back(std::string(name) == "." ? "/" : "/" + std::string(name));
+  return 0;
+}
+
 PolarityRecording read_in_this_process(const std::string& path) {
   quiet_hdf5();
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
@@ -471,11 +537,36 @@ PolarityRecording read_in_this_process(const std::string& path) {
     }
     return rec;
   }
-  const char* names[] = {"/events/x", "/events/y", "/events/t", "/events/p"};
+  if (H5Lexists(file.get(), "events", H5P_DEFAULT) <= 0) {
+    EventGroups search{file.get(), {}, {}, 0};
+    H5Ovisit2(file.get(), H5_INDEX_NAME, H5_ITER_INC, collect_event_group, &search, H5O_INFO_BASIC);
+    if (search.found.empty()) {
+      throw InputError(fmt::format("event file '{}': no events (aesim reads /events/{{x,y,t,p}} as DSEC, /CD/events as "
+                                   "Metavision, an /events table as v2e, /davis/left/events as MVSEC, or any group of "
+                                   "datasets x, y, t and p)", path));
+    }
+    const std::array<std::string, 4>& chosen = search.found.front();
+    const std::string names[] = {chosen[0], chosen[1], chosen[2], chosen[3]};
+    Column columns[4];
+    hsize_t n = static_cast<hsize_t>(-1);
+    for (int k = 0; k < 4; ++k) {
+      columns[k] = open_column(file.get(), names[k].c_str(), search.groups.front().c_str(), path, names[0].c_str(), n, file_bytes);
+      n = columns[k].n;
+    }
+    PolarityRecording rec = read_columns(columns, names, 0, path);
+    rec.read_as.push_back(fmt::format("{}, {}, {}, {} (stamps in microseconds, ON where the polarity is above 0)", names[0],
+                                      names[1], names[2], names[3]));
+    for (std::size_t g = 1; g < search.groups.size(); ++g) {
+      rec.notes.push_back(fmt::format("the events of {} ({}'s are read)", search.groups[g], search.groups.front()));
+    }
+    put_in_time_order(rec);
+    return rec;
+  }
+  const std::string names[] = {"/events/x", "/events/y", "/events/t", "/events/p"};
   Column columns[4];
   hsize_t n = static_cast<hsize_t>(-1);
   for (int k = 0; k < 4; ++k) {
-    columns[k] = open_column(file.get(), names[k], path, n, file_bytes);
+    columns[k] = open_column(file.get(), names[k].c_str(), "/events", path, names[0].c_str(), n, file_bytes);
     n = columns[k].n;
   }
   std::int64_t t_offset = 0;
@@ -488,22 +579,7 @@ PolarityRecording read_in_this_process(const std::string& path) {
       throw InputError(fmt::format("event file '{}': /t_offset is not one integer", path));
     }
   }
-  // Read in blocks, straight into the events: memory is the events' own, not four columns more.
-  PolarityRecording rec;
-  rec.events.reserve(n);
-  std::vector<std::int64_t> block[4];
-  for (auto& b : block) b.resize(std::min<hsize_t>(n, kBlock));
-  for (hsize_t from = 0; from < n; from += kBlock) {
-    const hsize_t count = std::min(kBlock, n - from);
-    for (int k = 0; k < 4; ++k) read_block(columns[k], from, count, block[k].data(), names[k], path);
-    for (hsize_t j = 0; j < count; ++j) {
-      const std::int64_t x = block[0][j], y = block[1][j];
-      if (x < 0 || y < 0 || x >= kMostSide || y >= kMostSide) {
-        throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is outside 4096x4096", path, from + j, x, y));
-      }
-      rec.events.push_back({block[2][j] + t_offset, static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), block[3][j] != 0});
-    }
-  }
+  PolarityRecording rec = read_columns(columns, names, t_offset, path);
   // aesim's own attributes, when aesim wrote the file.
   Handle events(H5Gopen2(file.get(), "events", H5P_DEFAULT));
   for (const char* name : {"width", "height"}) {
