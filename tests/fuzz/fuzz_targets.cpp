@@ -80,13 +80,13 @@ int prophesee_raw(const std::uint8_t* data, std::size_t size) {
   return expect_result_or_input_error([&] { decode_events(bytes(data, size), "fuzz.raw", EventFileFormat::PropheseeRaw); });
 }
 
-// The first byte chooses the reader, by its remainder over 5: `t x y p` text (0), N-MNIST's .bin
-// (1), a ROS 1 bag (2), an MCAP file (3) or a ROS 2 SQLite bag (4).
+// The first byte chooses the reader, by its remainder over 6: `t x y p` text (0), N-MNIST's .bin
+// (1), a ROS 1 bag (2), an MCAP file (3), a ROS 2 SQLite bag (4) or a NumPy archive (5).
 int dataset_files(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   constexpr EventFileFormat kByRemainder[] = {EventFileFormat::EventsText, EventFileFormat::NmnistBin, EventFileFormat::RosBag,
-                                              EventFileFormat::Mcap, EventFileFormat::Rosbag2Sqlite};
-  const EventFileFormat format = kByRemainder[data[0] % 5];
+                                              EventFileFormat::Mcap,       EventFileFormat::Rosbag2Sqlite, EventFileFormat::Npz};
+  const EventFileFormat format = kByRemainder[data[0] % 6];
   return expect_result_or_input_error([&] { decode_events(bytes(data + 1, size - 1), "fuzz.dataset", format); });
 }
 

@@ -17,7 +17,7 @@ int events_csv(const std::uint8_t* data, std::size_t size);    // event CSV file
 int aedat4(const std::uint8_t* data, std::size_t size);        // AEDAT 4.0 event files (FlatBuffers, LZ4)
 int npy(const std::uint8_t* data, std::size_t size);           // NumPy .npy event files
 int prophesee_raw(const std::uint8_t* data, std::size_t size); // Prophesee RAW recordings (EVT 2.0, 2.1, 3.0)
-int dataset_files(const std::uint8_t* data, std::size_t size); // `t x y p` text, N-MNIST .bin, ROS 1 and ROS 2 bags
+int dataset_files(const std::uint8_t* data, std::size_t size); // text, N-MNIST .bin, ROS 1 and 2 bags, .npz
 int h5(const std::uint8_t* data, std::size_t size);            // DSEC HDF5 event files (through libhdf5)
 int mat(const std::uint8_t* data, std::size_t size);           // MATLAB files of events (through matio)
 int set_values(const std::uint8_t* data, std::size_t size);    // --set key=value lines with units

@@ -23,6 +23,7 @@
 #include "aesim/event_files/mat_events.hpp"
 #include "aesim/event_files/nmnist_bin.hpp"
 #include "aesim/event_files/mcap_bag.hpp"
+#include "aesim/event_files/npz_events.hpp"
 #include "aesim/event_files/ros2_bag_folder.hpp"
 #include "aesim/event_files/ros_bag.hpp"
 #include "aesim/event_files/rosbag2_sqlite.hpp"
@@ -288,6 +289,10 @@ EventRecording decode_nmnist_bin_recording(const std::string& data, const std::s
 
 EventRecording decode_ros_bag_recording(const std::string& data, const std::string& label) {
   return from_polarity(decode_ros_bag(data, label), label);
+}
+
+EventRecording decode_npz_recording(const std::string& data, const std::string& label) {
+  return from_polarity(decode_npz(data, label), label);
 }
 
 EventRecording decode_mcap_recording(const std::string& data, const std::string& label) {

@@ -51,6 +51,7 @@ EventRecording decode_npy_recording(const std::string& data, const std::string& 
 EventRecording decode_prophesee_raw_recording(const std::string& data, const std::string& label);
 EventRecording decode_nmnist_bin_recording(const std::string& data, const std::string& label);
 EventRecording decode_ros_bag_recording(const std::string& data, const std::string& label);
+EventRecording decode_npz_recording(const std::string& data, const std::string& label);
 EventRecording decode_mcap_recording(const std::string& data, const std::string& label);
 EventRecording decode_rosbag2_sqlite_recording(const std::string& data, const std::string& label);
 EventRecording read_mat_recording(const std::string& path);

@@ -117,10 +117,12 @@ std::vector<EventFormatRow> make_rows() {
     r.read = read_bytes<decode_aedat_recording>;
     rows.push_back(std::move(r));
   }
-  // Formats read, not written, from their bytes: the ATIS saccade datasets' recordings (N-MNIST,
-  // N-Caltech101); `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e,
+  // Formats read, not written, from their bytes: NumPy archives of events; the ATIS saccade
+  // datasets' recordings (N-MNIST, N-Caltech101); `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e,
   // rpg_e2vid); a ROS bag's event topic (the Event Camera Dataset, MVSEC, DAVIS and Prophesee
   // cameras under ROS 1; under ROS 2, bags in MCAP or SQLite).
+  rows.push_back(read_only<decode_npz_recording>(EventFileFormat::Npz, "NumPy archive", {".npz"},
+                                                 "numpy.savez of an x, y, t, p array or of arrays x, y, t, p"));
   rows.push_back(read_only<decode_nmnist_bin_recording>(EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"},
                                                         "N-MNIST's and N-Caltech101's"));
   rows.push_back(read_only<decode_events_text_recording>(EventFileFormat::EventsText, "events text", {".txt"},

@@ -15,6 +15,7 @@ enum class EventFileFormat {
   Aedat2,
   Aedat4,
   Npy,
+  Npz,
   Hdf5,
   PropheseeRaw,
   PropheseeDat,

@@ -171,7 +171,7 @@ PolarityRecording decode_npy(const std::string& data, const std::string& label) 
     e.x = static_cast<std::int32_t>(x);
     e.y = static_cast<std::int32_t>(y);
     e.t_us = value(r, fields["t"]);
-    e.on = value(r, fields["p"]) != 0;
+    e.on = value(r, fields["p"]) > 0;
   }
   return rec;
 }

@@ -30,8 +30,9 @@ class NpyWriter : public EventFileWriter {
   UninitializedGrowthVector<char> buffer_;
 };
 
-// Reads a .npy structured array with fields x, y, t (integers) and p (bool or integer), in any
-// order and little-endian widths; the file records no array size. Throws InputError naming `label`.
+// Reads a .npy structured array with fields x, y, t (integers) and p (bool or integer, ON above
+// 0: 1 or True, not 0, False or -1), in any order and little-endian widths; the file records no
+// array size. Throws InputError naming `label`.
 PolarityRecording decode_npy(const std::string& data, const std::string& label);
 
 }  // namespace aesim

@@ -1,0 +1,300 @@
+#include "aesim/event_files/npz_events.hpp"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
+#include <string_view>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/checked_bytes.hpp"
+#include "aesim/event_files/npy_events.hpp"
+#include "aesim/files/npy_header.hpp"
+#include "aesim/limits/limits.hpp"
+
+namespace aesim {
+namespace {
+
+// One array of the archive, where PKWARE's APPNOTE (4.3.12, 4.5.3) puts it.
+struct Member {
+  std::string name;  // without ".npy"
+  std::uint16_t method = 0, flags = 0;
+  std::uint32_t crc = 0;
+  std::uint64_t packed = 0, size = 0, local = 0;
+};
+
+constexpr std::uint32_t kLocalHeader = 0x04034b50, kCentralHeader = 0x02014b50, kEnd = 0x06054b50;
+constexpr std::uint32_t kZip64End = 0x06064b50, kZip64Locator = 0x07064b50;
+constexpr std::uint32_t kUnknown32 = 0xFFFFFFFFu;
+
+class NpzArchive {
+ public:
+  NpzArchive(const std::string& data, const std::string& label) : data_(data), label_(label) { members_ = directory(); }
+
+  const std::vector<Member>& members() const { return members_; }
+
+  // A member's bytes, uncompressed and checked against its CRC32; or only its first `most` bytes
+  // (a .npy header's), unchecked.
+  std::string bytes(const Member& m, std::uint64_t most = ~std::uint64_t(0)) const {
+    CheckedBytes in(std::string_view(data_).substr(std::min<std::uint64_t>(m.local, data_.size())), label_,
+                    fmt::format("{}.npy's local header", m.name), static_cast<std::size_t>(std::min<std::uint64_t>(m.local, data_.size())));
+    if (in.number<std::uint32_t>("its signature") != kLocalHeader) in.fail("no local file header where the directory says");
+    in.take(22, "its fixed fields");
+    const auto name = in.number<std::uint16_t>("its name's length");
+    const auto extra = in.number<std::uint16_t>("its extra field's length");
+    in.take(name + extra, "its name and extra field");
+    const std::string_view packed = in.take(m.packed, "its data");
+    const bool whole = most >= m.size;
+    std::string out;
+    if (m.method == 0) {
+      if (m.packed != m.size) in.fail("a stored array whose sizes differ");
+      out.assign(packed.substr(0, whole ? packed.size() : most));
+    } else {
+      out.resize(whole ? m.size : most);
+      z_stream z{};
+      if (inflateInit2(&z, -MAX_WBITS) != Z_OK) throw std::bad_alloc();
+      // zlib counts in 32 bits: large arrays go through a gigabyte at a time.
+      constexpr std::size_t kSlice = std::size_t(1) << 30;
+      std::size_t in_at = 0, out_at = 0;
+      int status = Z_OK;
+      while (status == Z_OK && out_at < out.size()) {
+        const std::size_t in_n = std::min(packed.size() - in_at, kSlice), out_n = std::min(out.size() - out_at, kSlice);
+        z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(packed.data() + in_at));
+        z.avail_in = static_cast<uInt>(in_n);
+        z.next_out = reinterpret_cast<Bytef*>(out.data() + out_at);
+        z.avail_out = static_cast<uInt>(out_n);
+        status = inflate(&z, Z_NO_FLUSH);
+        const std::size_t used = in_n - z.avail_in, made = out_n - z.avail_out;
+        in_at += used;
+        out_at += made;
+        if (status == Z_BUF_ERROR && (used > 0 || made > 0)) status = Z_OK;
+      }
+      inflateEnd(&z);
+      if (out_at != out.size() || (whole && status != Z_STREAM_END)) {
+        in.fail(fmt::format("its deflated data do not inflate to its {} bytes", m.size));
+      }
+    }
+    if (whole) {
+      const auto sum = static_cast<std::uint32_t>(crc32_z(crc32_z(0, nullptr, 0), reinterpret_cast<const Bytef*>(out.data()), out.size()));
+      if (sum != m.crc) in.fail(fmt::format("its data do not match their CRC32 (0x{:08x}, the archive says 0x{:08x})", sum, m.crc));
+    }
+    return out;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InputError(fmt::format("event file '{}': {}", label_, why));
+  }
+
+  // The central directory, found from its end record (and Zip64's, which NumPy writes).
+  std::vector<Member> directory() const {
+    if (data_.size() < 22) fail("not a .npz archive (too short for a ZIP file's end record)");
+    // The end record is the last 22 bytes, or earlier by an archive comment of up to 65535 bytes.
+    std::size_t end = std::string::npos;
+    for (std::size_t at = data_.size() - 22;; --at) {
+      std::uint32_t sig;
+      std::memcpy(&sig, data_.data() + at, 4);
+      if (sig == kEnd) {
+        end = at;
+        break;
+      }
+      if (at == 0 || data_.size() - at > 22 + 65535) break;
+    }
+    if (end == std::string::npos) {
+      if (data_.compare(0, 6, kNpyMagic) == 0) fail("a .npy file named .npz: rename it .npy");
+      fail("not a .npz archive (no ZIP end record)");
+    }
+    CheckedBytes e(std::string_view(data_).substr(end), label_, "the ZIP end record", end);
+    e.take(10, "its disk numbers and count on this disk");
+    std::uint64_t count = e.number<std::uint16_t>("its count of arrays");
+    std::uint64_t size = e.number<std::uint32_t>("its directory's size");
+    std::uint64_t offset = e.number<std::uint32_t>("its directory's offset");
+    if ((count == 0xFFFF || size == kUnknown32 || offset == kUnknown32) && end >= 20) {
+      CheckedBytes locator(std::string_view(data_).substr(end - 20, 20), label_, "the Zip64 end locator", end - 20);
+      if (locator.number<std::uint32_t>("its signature") == kZip64Locator) {
+        locator.take(4, "its disk");
+        const auto at = locator.number<std::uint64_t>("the Zip64 end record's offset");
+        CheckedBytes z(std::string_view(data_).substr(std::min<std::uint64_t>(at, data_.size())), label_, "the Zip64 end record",
+                       static_cast<std::size_t>(std::min<std::uint64_t>(at, data_.size())));
+        if (z.number<std::uint32_t>("its signature") != kZip64End) z.fail("no Zip64 end record where its locator says");
+        z.take(8 + 2 + 2 + 4 + 4 + 8, "its sizes, versions and disks");
+        count = z.number<std::uint64_t>("its count of arrays");
+        size = z.number<std::uint64_t>("its directory's size");
+        offset = z.number<std::uint64_t>("its directory's offset");
+      }
+    }
+    if (offset > data_.size() || size > data_.size() - offset) fail("its directory lies past the end of the file");
+    CheckedBytes d(std::string_view(data_).substr(offset, size), label_, "the ZIP directory", offset);
+    if (count > size / 46) fail(fmt::format("its directory claims {} arrays in {} bytes", count, size));
+    std::vector<Member> members;
+    for (std::uint64_t k = 0; k < count; ++k) {
+      if (d.number<std::uint32_t>("an entry's signature") != kCentralHeader) d.fail("not a directory entry");
+      d.take(4, "its versions");
+      Member m;
+      m.flags = d.number<std::uint16_t>("its flags");
+      m.method = d.number<std::uint16_t>("its compression");
+      d.take(4, "its time and date");
+      m.crc = d.number<std::uint32_t>("its CRC32");
+      m.packed = d.number<std::uint32_t>("its compressed size");
+      m.size = d.number<std::uint32_t>("its size");
+      const auto name = d.number<std::uint16_t>("its name's length");
+      const auto extra = d.number<std::uint16_t>("its extra field's length");
+      const auto comment = d.number<std::uint16_t>("its comment's length");
+      d.take(8, "its disk and attributes");
+      m.local = d.number<std::uint32_t>("its local header's offset");
+      m.name = std::string(d.take(name, "its name"));
+      // Zip64's extra field: the 8-byte sizes and offset the 4-byte fields could not hold, in this order.
+      CheckedBytes x(d.take(extra, "its extra field"), label_, fmt::format("{}'s extra field", m.name));
+      while (x.left() >= 4) {
+        const auto id = x.number<std::uint16_t>("a field's id");
+        CheckedBytes f(x.take(x.number<std::uint16_t>("a field's length"), "a field"), label_, fmt::format("{}'s Zip64 field", m.name));
+        if (id != 0x0001) continue;
+        if (m.size == kUnknown32) m.size = f.number<std::uint64_t>("its size");
+        if (m.packed == kUnknown32) m.packed = f.number<std::uint64_t>("its compressed size");
+        if (m.local == kUnknown32) m.local = f.number<std::uint64_t>("its local header's offset");
+      }
+      d.take(comment, "its comment");
+      if (m.flags & 1) fail(fmt::format("{} is encrypted", m.name));
+      if (m.method != 0 && m.method != 8) fail(fmt::format("{} is compressed with ZIP method {} (NumPy stores or deflates)", m.name, m.method));
+      if (m.size > kMaxEventFileBytes) fail(fmt::format("{} claims {} bytes, more than aesim reads from one file", m.name, m.size));
+      // Deflate makes at most about 1032 bytes of one: a claim past that is false.
+      if (m.method == 8 && m.size / 1032 > m.packed + 1) fail(fmt::format("{} claims {} bytes from {} deflated", m.name, m.size, m.packed));
+      if (m.name.size() > 4 && m.name.compare(m.name.size() - 4, 4, ".npy") == 0) {
+        m.name.resize(m.name.size() - 4);
+        members.push_back(m);
+      }
+    }
+    return members;
+  }
+
+  const std::string& data_;
+  std::string label_;
+  std::vector<Member> members_;
+};
+
+// A 1-D array of numbers (N, or N x 1), as doubles (whole numbers past 2^53 are not stamps).
+struct Numbers {
+  std::vector<double> values;
+  bool floating = false;
+};
+
+Numbers numbers(const std::string& npy, const std::string& what) {
+  const NpyHeader h = parse_npy_header(npy, what);
+  const std::string& d = h.descr;
+  const auto fail = [&](const std::string& why) { return InputError(fmt::format("{}: {}", what, why)); };
+  if (d.size() != 3 || (d[0] != '<' && d[0] != '>' && d[0] != '|') || std::string("iufb").find(d[1]) == std::string::npos ||
+      d[2] < '1' || d[2] > '8') {
+    throw fail(fmt::format("its dtype '{}' is not one of integers, floats or bools", d));
+  }
+  const int bytes = d[2] - '0';
+  if ((d[1] == 'f' && bytes != 4 && bytes != 8) || (d[1] != 'f' && bytes != 1 && bytes != 2 && bytes != 4 && bytes != 8)) {
+    throw fail(fmt::format("its dtype '{}' is not one aesim reads", d));
+  }
+  std::uint64_t n = h.shape.empty() ? 1 : h.shape[0];
+  if (h.shape.size() > 2 || (h.shape.size() == 2 && h.shape[1] != 1)) throw fail("it is not one number an event (N or N x 1)");
+  if (n > (npy.size() - h.data_offset) / static_cast<std::uint64_t>(bytes)) throw fail(fmt::format("truncated: {} numbers announced", n));
+  Numbers out;
+  out.floating = d[1] == 'f';
+  out.values.resize(n);
+  const char* p = npy.data() + h.data_offset;
+  for (std::uint64_t i = 0; i < n; ++i, p += bytes) {
+    unsigned char b[8];
+    std::memcpy(b, p, static_cast<std::size_t>(bytes));
+    if (d[0] == '>') std::reverse(b, b + bytes);
+    double v = 0;
+    if (d[1] == 'f') {
+      if (bytes == 4) {
+        float f;
+        std::memcpy(&f, b, 4);
+        v = f;
+      } else {
+        std::memcpy(&v, b, 8);
+      }
+    } else {
+      std::uint64_t raw = 0;
+      std::memcpy(&raw, b, static_cast<std::size_t>(bytes));
+      if (d[1] == 'i' && bytes < 8) {
+        const std::uint64_t sign = std::uint64_t(1) << (8 * bytes - 1);
+        raw = (raw ^ sign) - sign;
+      }
+      v = d[1] == 'u' ? static_cast<double>(raw) : static_cast<double>(static_cast<std::int64_t>(raw));
+    }
+    out.values[i] = v;
+  }
+  return out;
+}
+
+const Member* named(const std::vector<Member>& members, std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    const auto it = std::find_if(members.begin(), members.end(), [&](const Member& m) { return m.name == name; });
+    if (it != members.end()) return &*it;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+PolarityRecording decode_npz(const std::string& data, const std::string& label) {
+  const NpzArchive archive(data, label);
+  const std::vector<Member>& members = archive.members();
+  // A structured array of events, the first the archive holds.
+  for (const Member& m : members) {
+    // Its header alone first (a .npy header is under 64 kB): the arrays are read whole only once chosen.
+    const NpyHeader h = parse_npy_header(archive.bytes(m, 1u << 16), fmt::format("event file '{}' ({}.npy)", label, m.name));
+    if (h.descr.empty() || h.descr.front() != '[' || h.descr.find("('x'") == std::string::npos) continue;
+    PolarityRecording rec = decode_npy(archive.bytes(m), fmt::format("{} ({}.npy)", label, m.name));
+    for (const Member& other : members) {
+      if (&other != &m) rec.notes.push_back(fmt::format("the array {} (the events are {}'s)", other.name, m.name));
+    }
+    put_in_time_order(rec);
+    return rec;
+  }
+  // Or one array a field.
+  const Member* x = named(members, {"x"});
+  const Member* y = named(members, {"y"});
+  const Member* t = named(members, {"t", "ts", "timestamp", "timestamps"});
+  const Member* p = named(members, {"p", "polarity", "pol", "polarities"});
+  if (x == nullptr || y == nullptr || t == nullptr || p == nullptr) {
+    std::string held;
+    for (const Member& m : members) held += (held.empty() ? "" : ", ") + m.name;
+    throw InputError(fmt::format("event file '{}': no events (a structured array of x, y, t, p, or arrays x, y, t and p; the "
+                                 "archive holds {})",
+                                 label, held.empty() ? "no arrays" : held));
+  }
+  const auto column = [&](const Member* m) { return numbers(archive.bytes(*m), fmt::format("event file '{}' ({}.npy)", label, m->name)); };
+  const Numbers xs = column(x), ys = column(y), ts = column(t), ps = column(p);
+  const std::size_t n = xs.values.size();
+  if (ys.values.size() != n || ts.values.size() != n || ps.values.size() != n) {
+    throw InputError(fmt::format("event file '{}': the arrays {}, {}, {} and {} hold {}, {}, {} and {} numbers", label, x->name,
+                                 y->name, t->name, p->name, n, ys.values.size(), ts.values.size(), ps.values.size()));
+  }
+  if (n > kMaxExpandedEvents) throw InputError(fmt::format("event file '{}': more than the {} events aesim reads", label, kMaxExpandedEvents));
+  // Whole stamps are microseconds; a stamp with a fraction makes them all seconds.
+  const bool seconds = ts.floating && std::any_of(ts.values.begin(), ts.values.end(), [](double v) { return v != std::floor(v); });
+  PolarityRecording rec;
+  rec.events.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double xi = xs.values[i], yi = ys.values[i];
+    if (!(xi >= 0 && yi >= 0 && xi < 4096 && yi < 4096) || xi != std::floor(xi) || yi != std::floor(yi)) {
+      throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is not a pixel of a 4096x4096 array", label, i, xi, yi));
+    }
+    const double us = seconds ? std::round(ts.values[i] * 1e6) : ts.values[i];
+    if (!(us >= 0 && us < 9e18)) throw InputError(fmt::format("event file '{}': event {} has the stamp {}", label, i, ts.values[i]));
+    rec.events[i] = {static_cast<std::int64_t>(us), static_cast<std::int32_t>(xi), static_cast<std::int32_t>(yi), ps.values[i] > 0};
+  }
+  rec.read_as.push_back(fmt::format("the arrays {}, {}, {}, {} (stamps in {}, ON where the polarity is above 0)", x->name, y->name,
+                                    t->name, p->name, seconds ? "seconds: they have fractions" : "microseconds"));
+  for (const Member& m : members) {
+    if (&m != x && &m != y && &m != t && &m != p) rec.notes.push_back(fmt::format("the array {}", m.name));
+  }
+  put_in_time_order(rec);
+  return rec;
+}
+
+}  // namespace aesim
