@@ -19,17 +19,9 @@
 namespace aesim {
 namespace {
 
-using testing::Cd;
 using testing::expect_events;
-using testing::LittleEndianBytes;
+using testing::little;
 using testing::noted;
-
-template <typename T>
-std::string little(T v) {
-  LittleEndianBytes b;
-  b.put(v);
-  return b.bytes;
-}
 
 // A float's bytes as this (little-endian) machine stores them.
 template <typename T>

@@ -29,14 +29,8 @@ namespace {
 using testing::Cd;
 using testing::expect_events;
 using testing::LittleEndianBytes;
+using testing::little;
 using testing::noted;
-
-template <typename T>
-std::string little(T v) {
-  LittleEndianBytes b;
-  b.put(v);
-  return b.bytes;
-}
 
 // A CDR message: XCDR1 little-endian unless said (big-endian, or XCDR2's alignment of at most 4).
 class Cdr {
@@ -201,29 +195,17 @@ TEST(Ros2Bags, EventArraysInCdrAreReadInTimeOrderWhateverTheChunksCompression) {
 // and the vector and inside a word, read as one stream; the packets in XCDR1 (seq at a multiple
 // of 8) and XCDR2 (of 4), and an EventArray in big-endian CDR, give the same events.
 TEST(Ros2Bags, EventPacketsAreOneStreamAndEveryCdrByteOrderAndAlignmentReads) {
-  LittleEndianBytes w;
-  const auto word = [&](unsigned type, unsigned v) { w.put<std::uint16_t>(static_cast<std::uint16_t>((type << 12) | v)); };
-  word(0x8, 0x005);            // EVT_TIME_HIGH
-  word(0x6, 0x010);            // EVT_TIME_LOW: t = 5 * 4096 + 16
-  word(0x0, 3);                // EVT_ADDR_Y: row 3
-  word(0x2, (1u << 11) | 7);   // EVT_ADDR_X: (7, 3) ON
-  word(0x3, 16);               // VECT_BASE_X: column 16, OFF
-  const std::size_t first_cut = w.bytes.size();
-  word(0x5, 0x81);             // VECT_8: columns 16 and 23
-  word(0x6, 0x020);            // EVT_TIME_LOW: t = 5 * 4096 + 32
-  word(0x2, (1u << 11) | 39);  // (39, 3) ON
-  const std::size_t second_cut = first_cut + 3;
+  const testing::CutEvt3Words c = testing::cut_evt3_words();
   for (const bool xcdr2 : {false, true}) {
     SCOPED_TRACE(xcdr2);
     // seq at 28 (XCDR2) or 32 (XCDR1) after the 4-byte header, so the words' length at 56 or 60.
     EXPECT_EQ(event_packet("", xcdr2).size(), xcdr2 ? 64u : 68u);
     const std::string records = schema(3, "event_camera_msgs/msg/EventPacket", kEventPacketDefinition) + channel(9, 3, "/event_camera/events") +
-                                message(9, event_packet(w.bytes.substr(0, first_cut), xcdr2)) +
-                                message(9, event_packet(w.bytes.substr(first_cut, second_cut - first_cut), xcdr2)) +
-                                message(9, event_packet(w.bytes.substr(second_cut), xcdr2));
+                                message(9, event_packet(c.words.substr(0, c.first_cut), xcdr2)) +
+                                message(9, event_packet(c.words.substr(c.first_cut, c.second_cut - c.first_cut), xcdr2)) +
+                                message(9, event_packet(c.words.substr(c.second_cut), xcdr2));
     const EventRecording rec = read_mcap(mcap(chunk(records, "zstd")));
-    const std::int64_t t0 = 5 * 4096 + 16, t1 = 5 * 4096 + 32;
-    expect_events(rec, {{t0, 7, 3, true}, {t0, 16, 3, false}, {t0, 23, 3, false}, {t1, 39, 3, true}});
+    expect_events(rec, c.events);
     EXPECT_EQ(rec.width, 40);
     EXPECT_EQ(rec.height, 8);
   }

@@ -21,21 +21,13 @@
 namespace aesim {
 namespace {
 
-using testing::Cd;
 using testing::expect_events;
-using testing::LittleEndianBytes;
+using testing::little;
 using testing::noted;
 
 const std::string kEventArrayMd5 = "5e8beee5a6c107e504c2e78903c224b8";
 const std::string kEventPacketMd5 = "8a6101b351a64529ac77bd8b71074e52";
 const std::string kImuMd5 = "6a62c6daae103f4ff57a132d6f95cec2";
-
-template <typename T>
-std::string little(T v) {
-  LittleEndianBytes b;
-  b.put(v);
-  return b.bytes;
-}
 
 // A length-prefixed string or byte array, as ROS serializes one and as a header field is stored.
 std::string sized(const std::string& s) { return little<std::uint32_t>(static_cast<std::uint32_t>(s.size())) + s; }
@@ -183,25 +175,13 @@ TEST(RosBags, OfSeveralEventTopicsTheFirstByNameIsReadAndTheOthersCounted) {
 // between a vector's base and the vector, and inside a word. Read as one stream, as the camera
 // wrote it (a time-high word in one packet still times the events of the next).
 TEST(RosBags, EventPacketsOfEvt3AreOneStreamOfTheCamerasWords) {
-  LittleEndianBytes w;
-  const auto word = [&](unsigned type, unsigned v) { w.put<std::uint16_t>(static_cast<std::uint16_t>((type << 12) | v)); };
-  word(0x8, 0x005);               // EVT_TIME_HIGH
-  word(0x6, 0x010);               // EVT_TIME_LOW: t = 5 * 4096 + 16
-  word(0x0, 3);                   // EVT_ADDR_Y: row 3
-  word(0x2, (1u << 11) | 7);      // EVT_ADDR_X: (7, 3) ON
-  word(0x3, 16);                  // VECT_BASE_X: column 16, OFF
-  const std::size_t first_cut = w.bytes.size();
-  word(0x5, 0x81);                // VECT_8: columns 16 and 23
-  word(0x6, 0x020);               // EVT_TIME_LOW: t = 5 * 4096 + 32
-  word(0x2, (1u << 11) | 39);     // (39, 3) ON
-  const std::size_t second_cut = first_cut + 3;  // inside the time-low word after the vector
+  const testing::CutEvt3Words c = testing::cut_evt3_words();
   const std::string conns = connection(4, "/event_camera/events", "event_camera_msgs/EventPacket", kEventPacketMd5);
-  const std::string records = conns + message(4, 1, event_packet("evt3", w.bytes.substr(0, first_cut))) +
-                              message(4, 1, event_packet("evt3", w.bytes.substr(first_cut, second_cut - first_cut))) +
-                              message(4, 1, event_packet("evt3", w.bytes.substr(second_cut)));
+  const std::string records = conns + message(4, 1, event_packet("evt3", c.words.substr(0, c.first_cut))) +
+                              message(4, 1, event_packet("evt3", c.words.substr(c.first_cut, c.second_cut - c.first_cut))) +
+                              message(4, 1, event_packet("evt3", c.words.substr(c.second_cut)));
   const EventRecording rec = read_bag(kMagic + bag_header(1, 1) + chunk(records, "lz4") + index_section({conns}));
-  const std::int64_t t0 = 5 * 4096 + 16, t1 = 5 * 4096 + 32;
-  expect_events(rec, {{t0, 7, 3, true}, {t0, 16, 3, false}, {t0, 23, 3, false}, {t1, 39, 3, true}});
+  expect_events(rec, c.events);
   EXPECT_EQ(rec.width, 40);
   EXPECT_EQ(rec.height, 8);
 }

@@ -49,6 +49,13 @@ void zstd(std::string_view data, std::string& plain, const char* noun) {
 
 }  // namespace
 
+std::optional<BlockCompression> block_compression_named(std::string_view name) {
+  if (name == "bz2") return BlockCompression::Bz2;
+  if (name == "lz4") return BlockCompression::Lz4Frame;
+  if (name == "zstd") return BlockCompression::Zstd;
+  return std::nullopt;
+}
+
 std::string uncompressed_block(BlockCompression compression, std::string_view data, std::size_t size, const char* noun) {
   std::string plain(size, '\0');
   switch (compression) {

@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -8,6 +9,9 @@ namespace aesim {
 // How a container compressed a block of its records whole: ROS 1 bags' chunks (bz2, lz4) and
 // MCAP's (lz4, zstd).
 enum class BlockCompression { Bz2, Lz4Frame, Zstd };
+
+// The compression a container names "bz2", "lz4" (frames) or "zstd"; nullopt for any other name.
+std::optional<BlockCompression> block_compression_named(std::string_view name);
 
 // Why a block did not uncompress to the size its container states.
 struct BlockError : std::runtime_error {

@@ -164,16 +164,12 @@ class McapReader {
     if (compression.empty()) {
       if (size != data.size()) in.fail(fmt::format("an uncompressed chunk of {} bytes says it holds {}", data.size(), size));
     } else {
-      BlockCompression how{};
-      if (compression == "lz4") {
-        how = BlockCompression::Lz4Frame;
-      } else if (compression == "zstd") {
-        how = BlockCompression::Zstd;
-      } else {
+      const auto how = block_compression_named(compression);
+      if (!how || *how == BlockCompression::Bz2) {
         in.fail(fmt::format("a chunk compressed with '{}' (MCAP's writers use lz4 or zstd)", compression));
       }
       try {
-        plain = uncompressed_block(how, data, size, "chunk");
+        plain = uncompressed_block(*how, data, size, "chunk");
       } catch (const BlockError& e) {
         in.fail(e.what());
       }

@@ -122,17 +122,13 @@ class BagReader {
       records(data, fmt::format("chunk {}", chunks_), 0);
       return;
     }
-    BlockCompression how{};
-    if (compression == "bz2") {
-      how = BlockCompression::Bz2;
-    } else if (compression == "lz4") {
-      how = BlockCompression::Lz4Frame;
-    } else {
+    const auto how = block_compression_named(compression);
+    if (!how || *how == BlockCompression::Zstd) {
       in.fail(fmt::format("a chunk compressed with '{}' (rosbag writes none, bz2 or lz4)", compression));
     }
     std::string plain;
     try {
-      plain = uncompressed_block(how, data, size, "chunk");
+      plain = uncompressed_block(*how, data, size, "chunk");
     } catch (const BlockError& e) {
       in.fail(e.what());
     }
