@@ -260,7 +260,8 @@ TEST(Ros2Bags, MalformedMcapFilesAreOneLineErrors) {
   ASSERT_EQ(read_mcap(good).events.size(), 1u);
   const auto refused = [](const std::string& bytes, const std::string& words) { expect_refused(bytes, EventFileFormat::Mcap, words); };
   refused("#ROSBAG V2.0\n", "not an MCAP file");
-  refused("\x89MCAP1\r\n", "MCAP of major version '1' (aesim reads version 0)");
+  refused("\x89MCAP1\r\n", "MCAP of major version '1' (aesim reads version '0')");
+  refused("\x89MCAP\n\r\n", "MCAP of major version byte 0x0a");
   // A recording that did not end: cut inside a chunk, or before its footer.
   refused(good.substr(0, good.size() / 2), "runs past the end (a recording that did not end? `mcap recover` rewrites what it holds)");
   refused(good.substr(0, good.size() - 8 - 29), "the file ends without MCAP's footer");

@@ -57,7 +57,9 @@ class McapReader {
   void read(const std::string& data) {
     if (data.compare(0, kMcapMagic.size(), kMcapMagic) != 0) {
       if (data.compare(0, 5, kMcapMagic.substr(0, 5)) == 0 && data.size() > 5) {
-        throw InputError(fmt::format("event file '{}': MCAP of major version '{}' (aesim reads version 0)", label_, data[5]));
+        const auto v = static_cast<unsigned char>(data[5]);
+        throw InputError(fmt::format("event file '{}': MCAP of major version {} (aesim reads version '0')", label_,
+                                     v >= 0x20 && v < 0x7F ? fmt::format("'{}'", static_cast<char>(v)) : fmt::format("byte 0x{:02x}", v)));
       }
       throw InputError(fmt::format("event file '{}': not an MCAP file (it does not begin with MCAP's magic bytes)", label_));
     }
