@@ -587,12 +587,11 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
   refused("# timestamp(int32 us)\n0.5 1 2 1\n", "not a whole number of microseconds");
 }
 
-// The containers events come in that aesim does not open (a ROS 2 bag's file compressed whole,
-// Event Stream files): the one-line refusal names the way out where there is one.
+// The containers events come in that aesim does not open (a file compressed whole that is not a
+// ROS 2 bag's, Event Stream files): the one-line refusal names the way out where there is one.
 TEST(ForeignReaders, ContainersAesimDoesNotOpenNameTheWayOut) {
-  for (const auto& [path, words] :
-       {std::pair<const char*, const char*>{"rosbag2_0.mcap.zstd", "a file compressed whole (rosbag2's file compression): uncompress it with `zstd -d`"},
-        {"events.es", "unsupported format (use .aedat"}}) {
+  for (const auto& [path, words] : {std::pair<const char*, const char*>{"events.txt.zstd", "a file compressed whole: uncompress it with `zstd -d`"},
+                                    {"events.es", "unsupported format (use .aedat"}}) {
     try {
       load_events(path);
       ADD_FAILURE() << path;

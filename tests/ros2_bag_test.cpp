@@ -218,6 +218,25 @@ TEST(Ros2Bags, EventPacketsAreOneStreamAndEveryCdrByteOrderAndAlignmentReads) {
                  "event 0 has a negative timestamp (-1000000 us)");
 }
 
+// An MCAP of ROS 1's profile holds ROS 1's messages (told by the schema's ROS 1 text); rosbag2's
+// message compression makes each message's CDR a zstd frame of its own.
+TEST(Ros2Bags, Ros1MessagesInMcapAndMessagesCompressedOneByOneRead) {
+  std::string ros1 = little<std::uint32_t>(0) + little<std::uint32_t>(7) + little<std::uint32_t>(0) + sized("cam0") +
+                     little<std::uint32_t>(180) + little<std::uint32_t>(240) + little<std::uint32_t>(1);
+  ros1 += little<std::uint16_t>(3) + little<std::uint16_t>(4) + little<std::uint32_t>(7) + little<std::uint32_t>(5000) + std::string(1, '\1');
+  const std::string ros1_text = "Header header\nuint32 height\nuint32 width\nEvent[] events\n" + kSeparator +
+                                "MSG: dvs_msgs/Event\nuint16 x\nuint16 y\ntime ts\nbool polarity\n";
+  const EventRecording one = read_mcap(mcap(schema(1, "dvs_msgs/EventArray", ros1_text, "ros1msg") + channel(1, 1, "/dvs/events", "ros1") +
+                                            message(1, ros1)));
+  expect_events(one, {{7000005, 3, 4, true}});
+  EXPECT_EQ(one.width, 240);
+
+  const std::string cdr = event_array({{1, 2, 3, 0, true}, {5, 6, 3, 1000, false}});
+  const EventRecording packed = read_mcap(mcap(schema(1, "dvs_msgs/msg/EventArray", kEventArrayDefinition) + channel(1, 1, "/events") +
+                                               message(1, compressed(cdr, "zstd"))));
+  expect_events(packed, {{3000000, 1, 2, true}, {3000001, 5, 6, false}});
+}
+
 // ROS 2 gives a type no checksum: its definition decides where the bag holds one, whatever the
 // package (a lab's copy of the layout), and a known name with other fields is not read as
 // events; an IDL definition, which aesim does not compare, leaves the name to decide.
@@ -386,15 +405,28 @@ TEST_F(Ros2BagFolders, AreReadFileByFileInSplitOrder) {
   const EventRecording rec = load_events((dir_ / "rec").string());
   expect_events(rec, expected);
 
+  // rosbag2's file compression: each file one zstd frame, `.mcap.zstd`; in a folder or alone.
+  std::filesystem::create_directory(dir_ / "whole");
+  const std::string one = mcap(schema(1, "dvs_msgs/msg/EventArray", kEventArrayDefinition) + channel(1, 1, "/events") +
+                               message(1, event_array({{1, 2, 3, 0, true}})));
+  write("whole/rec_0.mcap.zstd", compressed(one, "zstd"));
+  expect_events(load_events((dir_ / "whole").string()), {{3000000, 1, 2, true}});
+  expect_events(load_events((dir_ / "whole" / "rec_0.mcap.zstd").string()), {{3000000, 1, 2, true}});
+
   std::filesystem::create_directory(dir_ / "empty");
   write("empty/metadata.yaml", "");
-  std::filesystem::create_directory(dir_ / "whole");
-  write("whole/rec_0.mcap.zstd", "x");
-  for (const auto& [folder, words] : {std::pair<std::string, std::string>{"empty", "a folder holding no .mcap or .db3 file"},
-                                      {"whole", "a ROS 2 bag whose files rosbag2 compressed whole (rec_0.mcap.zstd)"}}) {
+  // A zstd frame that does not state its size (a stream's), which rosbag2 does not write.
+  ZSTD_CCtx* cctx = ZSTD_createCCtx();
+  ZSTD_CCtx_setParameter(cctx, ZSTD_c_contentSizeFlag, 0);
+  std::string unsized(ZSTD_compressBound(one.size()), '\0');
+  unsized.resize(ZSTD_compress2(cctx, unsized.data(), unsized.size(), one.data(), one.size()));
+  ZSTD_freeCCtx(cctx);
+  write("unsized.mcap.zstd", unsized);
+  for (const auto& [name, words] : {std::pair<std::string, std::string>{"empty", "a folder holding no .mcap or .db3 file"},
+                                    {"unsized.mcap.zstd", "a zstd file that does not state its size"}}) {
     try {
-      load_events((dir_ / folder).string());
-      ADD_FAILURE() << folder;
+      load_events((dir_ / name).string());
+      ADD_FAILURE() << name;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }

@@ -66,4 +66,15 @@ std::string uncompressed_block(BlockCompression compression, std::string_view da
   return plain;
 }
 
+bool is_zstd_frame(std::string_view data) { return data.size() >= 4 && data.substr(0, 4) == std::string_view("\x28\xb5\x2f\xfd", 4); }
+
+std::string uncompressed_zstd(std::string_view data, std::uint64_t most, const char* noun) {
+  const unsigned long long size = ZSTD_getFrameContentSize(data.data(), data.size());
+  if (size == ZSTD_CONTENTSIZE_UNKNOWN || size == ZSTD_CONTENTSIZE_ERROR) {
+    throw BlockError(fmt::format("a zstd {} that does not state its size", noun));
+  }
+  if (size > most) throw BlockError(fmt::format("a zstd {} of {} bytes uncompressed, more than aesim reads in one", noun, size));
+  return uncompressed_block(BlockCompression::Zstd, data, static_cast<std::size_t>(size), noun);
+}
+
 }  // namespace aesim

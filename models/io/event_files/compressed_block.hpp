@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -22,5 +23,11 @@ struct BlockError : std::runtime_error {
 // caller has bounded it); throws BlockError otherwise, or for bytes past the compressed stream,
 // saying what the block is as `noun` does ("chunk").
 std::string uncompressed_block(BlockCompression compression, std::string_view data, std::size_t size, const char* noun);
+
+// Whether `data` begins as a zstd frame does (its magic number).
+bool is_zstd_frame(std::string_view data);
+// A zstd frame (or frames) that states its content's size, as ZSTD_compress writes one,
+// uncompressed; a size over `most` bytes, or none stated, throws BlockError naming `noun`.
+std::string uncompressed_zstd(std::string_view data, std::uint64_t most, const char* noun);
 
 }  // namespace aesim

@@ -326,13 +326,15 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
   if (std::filesystem::is_directory(path, not_a_folder)) {
     // A ROS 2 bag is a folder of its storage files.
     rec = from_polarity(read_ros2_bag_folder(path), path);
+  } else if (is_compressed_ros2_bag_file(path)) {
+    rec = from_polarity(read_compressed_ros2_bag_file(path), path);
   } else {
     const EventFormatRow* row = nullptr;
     try {
       row = &event_format_of(path, "event file");
     } catch (const InputError&) {
       const std::string hint =
-          file_extension(path) == ".zstd" ? ": a file compressed whole (rosbag2's file compression): uncompress it with `zstd -d`" : "";
+          file_extension(path) == ".zstd" ? ": a file compressed whole: uncompress it with `zstd -d`" : "";
       throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_extensions(), hint));
     }
     rec = row->read(path, layout);

@@ -10,6 +10,7 @@
 
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/checked_bytes.hpp"
+#include "aesim/event_files/compressed_block.hpp"
 #include "aesim/event_files/prophesee_raw.hpp"
 #include "aesim/limits/limits.hpp"
 
@@ -183,6 +184,16 @@ void RosEventTopics::message(const std::string& topic, RosEventLayout layout, Ro
     ++o.messages;
     o.bytes += data.size();
     return;
+  }
+  // rosbag2's message compression: each message's CDR a zstd frame of its own.
+  std::string uncompressed;
+  if (wire == RosWire::Cdr && is_zstd_frame(data)) {
+    try {
+      uncompressed = uncompressed_zstd(data, kMaxInputFileBytes, "message");
+    } catch (const BlockError& e) {
+      throw InputError(fmt::format("event file '{}': {}: {}", label_, topic, e.what()));
+    }
+    data = uncompressed;
   }
   others_.erase(topic);
   EventTopic& t = events_[topic];
