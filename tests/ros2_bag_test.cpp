@@ -149,13 +149,7 @@ std::string mcap(const std::string& data, const std::string& summary = "") {
 EventRecording read_mcap(const std::string& bytes) { return decode_events(bytes, "test.mcap", EventFileFormat::Mcap); }
 
 void expect_refused(const std::string& bytes, EventFileFormat format, const std::string& words) {
-  try {
-    decode_events(bytes, "test.bag", format);
-    ADD_FAILURE() << "accepted: " << words;
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
-  }
+  testing::expect_refused_saying([&] { decode_events(bytes, "test.bag", format); }, words);
 }
 
 // The test's CDR writer pads as CDR's rule says, counted by hand (offsets after the 4-byte
@@ -424,12 +418,7 @@ TEST_F(Ros2BagFolders, AreReadFileByFileInSplitOrder) {
   write("unsized.mcap.zstd", unsized);
   for (const auto& [name, words] : {std::pair<std::string, std::string>{"empty", "a folder holding no .mcap or .db3 file"},
                                     {"unsized.mcap.zstd", "a zstd file that does not state its size"}}) {
-    try {
-      load_events((dir_ / name).string());
-      ADD_FAILURE() << name;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    }
+    testing::expect_refused_saying([&] { load_events((dir_ / name).string()); }, words);
   }
 }
 

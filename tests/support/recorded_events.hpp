@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/event_file.hpp"
 
 namespace aesim::testing {
@@ -74,6 +75,18 @@ inline void expect_events(const EventRecording& rec, const std::vector<Cd>& expe
     EXPECT_EQ(rec.events[i].x, expected[i].x);
     EXPECT_EQ(rec.events[i].y, expected[i].y);
     EXPECT_EQ(rec.events[i].flags, expected[i].on ? kNormalEvent : kOffEvent);
+  }
+}
+
+// That reading (`read()`) is refused with a one-line InputError saying `words`.
+template <typename Read>
+void expect_refused_saying(Read read, const std::string& words) {
+  try {
+    read();
+    ADD_FAILURE() << "accepted: " << words;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
   }
 }
 
