@@ -166,6 +166,8 @@ TEST(NpzEvents, MalformedArchivesAndOnesWithoutEventsAreOneLineErrors) {
   refused(zip({{"x", npy("'<f4'", "(2,)", float_bytes(0.5f) + float_bytes(1.0f))}, {"y", x}, {"t", x}, {"p", x}}),
           "event 0 at (0.5, 1) is not a pixel");
   refused(zip({{"x", npy("'<c8'", "(2,)", std::string(16, '\0'))}, {"y", x}, {"t", x}, {"p", x}}), "its dtype '<c8' is not one of");
+  // An array of more events than aesim reads, refused from its header before it is read whole.
+  refused(zip({{"x", npy("'<u2'", "(300000000,)", "")}, {"y", x}, {"t", x}, {"p", x}}), "x holds more than the 268435456 events");
   // A deflated member claiming far more than deflate can make of its bytes, refused before inflating.
   std::string claim = zip({{"event_data", structured(), true}});
   const std::size_t size_at = claim.find(std::string("PK\x01\x02", 4)) + 24;

@@ -244,10 +244,23 @@ PolarityRecording decode_npz(const std::string& data, const std::string& label) 
   const NpzArchive archive(data, label);
   const std::vector<Member>& members = archive.members();
   // A structured array of events, the first the archive holds.
+  // An array's header alone (a .npy header is under 64 kB): arrays are read whole only once
+  // chosen, and only if they hold no more events than aesim reads.
+  const auto header = [&](const Member& m) {
+    return parse_npy_header(archive.bytes(m, 1u << 16), fmt::format("event file '{}' ({}.npy)", label, m.name));
+  };
+  const auto bounded = [&](const Member& m, const NpyHeader& h) {
+    std::uint64_t n = 1;
+    for (const std::uint64_t d : h.shape) n = d != 0 && n > kMaxExpandedEvents / d ? kMaxExpandedEvents + 1 : n * d;
+    if (n > kMaxExpandedEvents) {
+      throw InputError(fmt::format("event file '{}': {} holds more than the {} events aesim reads from one file", label, m.name,
+                                   kMaxExpandedEvents));
+    }
+  };
   for (const Member& m : members) {
-    // Its header alone first (a .npy header is under 64 kB): the arrays are read whole only once chosen.
-    const NpyHeader h = parse_npy_header(archive.bytes(m, 1u << 16), fmt::format("event file '{}' ({}.npy)", label, m.name));
+    const NpyHeader h = header(m);
     if (h.descr.empty() || h.descr.front() != '[' || h.descr.find("('x'") == std::string::npos) continue;
+    bounded(m, h);
     PolarityRecording rec = decode_npy(archive.bytes(m), fmt::format("{} ({}.npy)", label, m.name));
     for (const Member& other : members) {
       if (&other != &m) rec.notes.push_back(fmt::format("the array {} (the events are {}'s)", other.name, m.name));
@@ -267,7 +280,10 @@ PolarityRecording decode_npz(const std::string& data, const std::string& label) 
                                  "archive holds {})",
                                  label, held.empty() ? "no arrays" : held));
   }
-  const auto column = [&](const Member* m) { return numbers(archive.bytes(*m), fmt::format("event file '{}' ({}.npy)", label, m->name)); };
+  const auto column = [&](const Member* m) {
+    bounded(*m, header(*m));
+    return numbers(archive.bytes(*m), fmt::format("event file '{}' ({}.npy)", label, m->name));
+  };
   const Numbers xs = column(x), ys = column(y), ts = column(t), ps = column(p);
   const std::size_t n = xs.values.size();
   if (ys.values.size() != n || ts.values.size() != n || ps.values.size() != n) {
