@@ -418,7 +418,8 @@ TEST_F(Ros2BagFolders, AreReadFileByFileInSplitOrder) {
   write("unsized.mcap.zstd", unsized);
   for (const auto& [name, words] : {std::pair<std::string, std::string>{"empty", "a folder holding no .mcap or .db3 file"},
                                     {"unsized.mcap.zstd", "a zstd file that does not state its size"}}) {
-    testing::expect_refused_saying([&] { load_events((dir_ / name).string()); }, words);
+    const std::string path = (dir_ / name).string();
+    testing::expect_refused_saying([&] { load_events(path); }, words);
   }
 }
 
