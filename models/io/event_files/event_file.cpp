@@ -15,21 +15,11 @@
 #include "aesim/event_files/aedat.hpp"
 #include "aesim/event_files/aedat31.hpp"
 #include "aesim/event_files/aedat4.hpp"
-#include "aesim/event_files/dsec_h5.hpp"
 #include "aesim/event_files/event_formats.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/events_csv.hpp"
-#include "aesim/event_files/events_text.hpp"
-#include "aesim/event_files/mat_events.hpp"
-#include "aesim/event_files/nmnist_bin.hpp"
-#include "aesim/event_files/mcap_bag.hpp"
-#include "aesim/event_files/npz_events.hpp"
 #include "aesim/event_files/ros2_bag_folder.hpp"
-#include "aesim/event_files/ros_bag.hpp"
-#include "aesim/event_files/rosbag2_sqlite.hpp"
-#include "aesim/event_files/npy_events.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
-#include "aesim/event_files/prophesee_raw.hpp"
 #include "aesim/files/input_path.hpp"
 #include "aesim/files/input_file.hpp"
 
@@ -170,6 +160,8 @@ EventRecording from_csv(std::vector<AddressEvent> events, const std::string& pat
   return rec;
 }
 
+}  // namespace
+
 // Events of the polarity formats. A file aesim wrote records its array (and tiles), and polarity 0
 // is a ghost (docs/reference.md section 5); so in a .npy, which cannot say who wrote it. In another recorder's
 // AEDAT 4.0 or HDF5 file polarity is a camera's ON/OFF and every event counts as a normal one;
@@ -237,6 +229,8 @@ EventRecording from_polarity(const PolarityRecording& in, const std::string& pat
   return rec;
 }
 
+namespace {
+
 std::string read_whole(const std::string& path) { return read_input_file(path, "event file", kMaxEventFileBytes); }
 
 }  // namespace
@@ -271,52 +265,12 @@ EventRecording decode_aedat_recording(const std::string& data, const std::string
   return from_aedat(decode_aedat(data, label), label, layout);
 }
 
-EventRecording decode_aedat4_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_aedat4(data, label), label);
-}
-
-EventRecording decode_prophesee_raw_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_prophesee_raw(data, label), label);
-}
-
-EventRecording decode_npy_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_npy(data, label), label);
-}
-
-EventRecording decode_nmnist_bin_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_nmnist_bin(data, label), label);
-}
-
-EventRecording decode_ros_bag_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_ros_bag(data, label), label);
-}
-
-EventRecording decode_npz_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_npz(data, label), label);
-}
-
-EventRecording decode_mcap_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_mcap(data, label), label);
-}
-
-EventRecording decode_rosbag2_sqlite_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_rosbag2_sqlite(data, label), label);
-}
-
-EventRecording decode_events_text_recording(const std::string& data, const std::string& label) {
-  return from_polarity(decode_events_text(data, label), label);
-}
-
 EventRecording decode_csv_recording(const std::string& data, const std::string& label) {
   std::istringstream in(data);
   return from_csv(parse_events_csv(in, label), label);
 }
 
 EventRecording read_csv_recording(const std::string& path) { return from_csv(read_events_csv(path), path); }
-
-EventRecording read_h5_recording(const std::string& path) { return from_polarity(read_dsec_h5(path), path); }
-
-EventRecording read_mat_recording(const std::string& path) { return from_polarity(read_mat_events(path), path); }
 
 std::string read_event_file_bytes(const std::string& path) { return read_whole(path); }
 

@@ -42,23 +42,19 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
 // The same from a file's bytes; `label` names it in messages.
 EventRecording decode_events(const std::string& data, const std::string& label, EventFileFormat format);
 
-// The readers behind event_formats()'s rows: an AEDAT file (2.0 or 3.1, by its first line), AEDAT
-// 4.0, .npy, Prophesee RAW, N-MNIST's .bin, text events and CSV from their bytes; CSV and HDF5 from
-// a path; a file's bytes, bounded.
+// The readers behind event_formats()'s rows that are not a polarity format's (from_polarity): an
+// AEDAT file (2.0 or 3.1, by its first line), CSV from its bytes or its path; a file's bytes,
+// bounded.
 EventRecording decode_aedat_recording(const std::string& data, const std::string& label, const std::string& layout);
-EventRecording decode_aedat4_recording(const std::string& data, const std::string& label);
-EventRecording decode_npy_recording(const std::string& data, const std::string& label);
-EventRecording decode_prophesee_raw_recording(const std::string& data, const std::string& label);
-EventRecording decode_nmnist_bin_recording(const std::string& data, const std::string& label);
-EventRecording decode_ros_bag_recording(const std::string& data, const std::string& label);
-EventRecording decode_npz_recording(const std::string& data, const std::string& label);
-EventRecording decode_mcap_recording(const std::string& data, const std::string& label);
-EventRecording decode_rosbag2_sqlite_recording(const std::string& data, const std::string& label);
-EventRecording read_mat_recording(const std::string& path);
-EventRecording decode_events_text_recording(const std::string& data, const std::string& label);
 EventRecording decode_csv_recording(const std::string& data, const std::string& label);
 EventRecording read_csv_recording(const std::string& path);
-EventRecording read_h5_recording(const std::string& path);
 std::string read_event_file_bytes(const std::string& path);
+
+// A polarity format's events (another tool's recording, or aesim's .npy/.h5/.aedat4/.raw) as a
+// recording: a file aesim wrote keeps its array and tiles and reads polarity 0 as a ghost; another
+// tool's keeps ON and OFF, its size the file's or the events' span. Throws InputError naming
+// `path` for negative or decreasing stamps, or events outside a recorded array.
+struct PolarityRecording;  // aedat4.hpp: what every polarity format's reader gives
+EventRecording from_polarity(const PolarityRecording& in, const std::string& path);
 
 }  // namespace aesim

@@ -12,9 +12,16 @@
 #include "aesim/event_files/dsec_h5.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_writer.hpp"
+#include "aesim/event_files/events_text.hpp"
+#include "aesim/event_files/mat_events.hpp"
+#include "aesim/event_files/mcap_bag.hpp"
+#include "aesim/event_files/nmnist_bin.hpp"
 #include "aesim/event_files/npy_events.hpp"
+#include "aesim/event_files/npz_events.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/event_files/prophesee_raw.hpp"
+#include "aesim/event_files/ros_bag.hpp"
+#include "aesim/event_files/rosbag2_sqlite.hpp"
 #include "aesim/output/atomic_file.hpp"
 
 namespace aesim {
@@ -35,6 +42,17 @@ EventRecording without_layout(const std::string& data, const std::string& label,
 template <EventRecording (*read)(const std::string&)>
 EventRecording path_only(const std::string& path, const std::string&) {
   return read(path);
+}
+
+// A row's decoder for a polarity format (event_file.hpp's from_polarity), from its bytes or from
+// its path.
+template <PolarityRecording (*decode)(const std::string&, const std::string&)>
+EventRecording polarity_bytes(const std::string& data, const std::string& label) {
+  return from_polarity(decode(data, label), label);
+}
+template <PolarityRecording (*read)(const std::string&)>
+EventRecording polarity_file(const std::string& path) {
+  return from_polarity(read(path), path);
 }
 
 // The row of a format read from its bytes and not written.
@@ -68,8 +86,8 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<Aedat4Writer>(files.open(path), spec);
     };
-    r.decode = without_layout<decode_aedat4_recording>;
-    r.read = read_bytes<without_layout<decode_aedat4_recording>>;
+    r.decode = without_layout<polarity_bytes<decode_aedat4>>;
+    r.read = read_bytes<without_layout<polarity_bytes<decode_aedat4>>>;
     rows.push_back(std::move(r));
   }
   {
@@ -77,8 +95,8 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<NpyWriter>(files.adopt(path), spec.tick);
     };
-    r.decode = without_layout<decode_npy_recording>;
-    r.read = read_bytes<without_layout<decode_npy_recording>>;
+    r.decode = without_layout<polarity_bytes<decode_npy>>;
+    r.read = read_bytes<without_layout<polarity_bytes<decode_npy>>>;
     rows.push_back(std::move(r));
   }
   {
@@ -88,7 +106,7 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<DsecWriter>(files.adopt(path), spec, spec.duration);
     };
-    r.read = path_only<read_h5_recording>;
+    r.read = path_only<polarity_file<read_dsec_h5>>;
     rows.push_back(std::move(r));
   }
   {
@@ -99,8 +117,8 @@ std::vector<EventFormatRow> make_rows() {
     r.open = [](OutputFiles& files, const std::string& path, const EventFileSpec& spec) -> std::unique_ptr<EventFileWriter> {
       return std::make_unique<PropheseeRawWriter>(files.open(path), spec.array, spec.tick, spec.raw_encoding);
     };
-    r.decode = without_layout<decode_prophesee_raw_recording>;
-    r.read = read_bytes<without_layout<decode_prophesee_raw_recording>>;
+    r.decode = without_layout<polarity_bytes<decode_prophesee_raw>>;
+    r.read = read_bytes<without_layout<polarity_bytes<decode_prophesee_raw>>>;
     rows.push_back(std::move(r));
   }
   {
@@ -121,23 +139,23 @@ std::vector<EventFormatRow> make_rows() {
   // datasets' recordings (N-MNIST, N-Caltech101); `t x y p` a line (the Event Camera Dataset's events.txt, ESIM, v2e,
   // rpg_e2vid); a ROS bag's event topic (the Event Camera Dataset, MVSEC, DAVIS and Prophesee
   // cameras under ROS 1; under ROS 2, bags in MCAP or SQLite).
-  rows.push_back(read_only<decode_npz_recording>(EventFileFormat::Npz, "NumPy archive", {".npz"},
+  rows.push_back(read_only<polarity_bytes<decode_npz>>(EventFileFormat::Npz, "NumPy archive", {".npz"},
                                                  "numpy.savez of an x, y, t, p array or of arrays x, y, t, p"));
-  rows.push_back(read_only<decode_nmnist_bin_recording>(EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"},
+  rows.push_back(read_only<polarity_bytes<decode_nmnist_bin>>(EventFileFormat::NmnistBin, "N-MNIST binary", {".bin"},
                                                         "N-MNIST's and N-Caltech101's"));
-  rows.push_back(read_only<decode_events_text_recording>(EventFileFormat::EventsText, "events text", {".txt"},
+  rows.push_back(read_only<polarity_bytes<decode_events_text>>(EventFileFormat::EventsText, "events text", {".txt"},
                                                          "t x y p a line, t in s"));
-  rows.push_back(read_only<decode_ros_bag_recording>(EventFileFormat::RosBag, "ROS bag", {".bag"},
+  rows.push_back(read_only<polarity_bytes<decode_ros_bag>>(EventFileFormat::RosBag, "ROS bag", {".bag"},
                                                      "ROS 1's, dvs_msgs/EventArray"));
-  rows.push_back(read_only<decode_mcap_recording>(EventFileFormat::Mcap, "MCAP", {".mcap"},
+  rows.push_back(read_only<polarity_bytes<decode_mcap>>(EventFileFormat::Mcap, "MCAP", {".mcap"},
                                                   "ROS 2's bags since Iron, event_camera_msgs/EventPacket"));
-  rows.push_back(read_only<decode_rosbag2_sqlite_recording>(EventFileFormat::Rosbag2Sqlite, "ROS 2 SQLite bag", {".db3"},
+  rows.push_back(read_only<polarity_bytes<decode_rosbag2_sqlite>>(EventFileFormat::Rosbag2Sqlite, "ROS 2 SQLite bag", {".db3"},
                                                             "ROS 2's bags before Iron"));
   {
     // Read: MATLAB files of event vectors (ASL-DVS; Orchard's TD structs), from a path (matio
     // reads files).
     EventFormatRow r{EventFileFormat::MatEvents, "MATLAB", {".mat"}, "x, y, ts, p vectors or a TD struct"};
-    r.read = path_only<read_mat_recording>;
+    r.read = path_only<polarity_file<read_mat_events>>;
     rows.push_back(std::move(r));
   }
   {
