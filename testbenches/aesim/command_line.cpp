@@ -47,7 +47,7 @@ void add_run(CLI::App& app, int& status) {
 
 void add_recon(CLI::App& app, int& status) {
   auto opt = std::make_shared<ReconOptions>();
-  CLI::App* cmd = app.add_subcommand("recon", "Reconstruct an image from an event file (" + event_extensions() + ")");
+  CLI::App* cmd = app.add_subcommand("recon", "Reconstruct an image from an event file (" + event_inputs() + ")");
   cmd->add_option("EVENTS", opt->events, "Event file")->required();
   auto* window = cmd->add_option("--window", opt->window, "Use the events within this time of the first, e.g. 100ms");
   cmd->add_option("--events", opt->count, "Use the first N events")->excludes(window);
@@ -63,7 +63,7 @@ void add_info(CLI::App& app, int& status) {
   auto path = std::make_shared<std::string>();
   auto layout = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("info", "Counts, time span, rate and per-tile breakdown of an event file");
-  cmd->add_option("EVENTS", *path, "Event file (" + event_extensions() + ")")->required();
+  cmd->add_option("EVENTS", *path, "Event file (" + event_inputs() + ")")->required();
   cmd->add_option("--layout", *layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");
   cmd->callback([path, layout, &status] { status = info_command(*path, *layout); });
 }
@@ -177,7 +177,7 @@ void add_emulate(CLI::App& app, int& status) {
 void add_classify(CLI::App& app, int& status) {
   auto opt = std::make_shared<ClassifyOptions>();
   CLI::App* cmd = app.add_subcommand("classify", "Recognise the subject of an event file with the paper's rank-weighted templates");
-  cmd->add_option("EVENTS", opt->events, "Event file (" + event_extensions() + ")")->required();
+  cmd->add_option("EVENTS", opt->events, "Event file (" + event_inputs() + ")")->required();
   cmd->add_option("--templates", opt->templates, "Folder of binary .pgm templates (default scenes/templates/letters)");
   cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT: needed for a CSV, which records none");
   cmd->add_option("--layout", opt->layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");

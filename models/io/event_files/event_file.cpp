@@ -289,7 +289,7 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
     } catch (const InputError&) {
       const std::string hint =
           file_extension(path) == ".zstd" ? ": a file compressed whole: uncompress it with `zstd -d`" : "";
-      throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_extensions(), hint));
+      throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_inputs(), hint));
     }
     rec = row->read(path, layout);
   }

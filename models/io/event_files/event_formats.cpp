@@ -218,6 +218,8 @@ std::string event_extensions(bool writable) {
   return listed(first);
 }
 
+std::string event_inputs() { return event_extensions() + "; or a ROS 2 bag's folder"; }
+
 std::string event_formats_help() {
   std::vector<std::string> parts;
   for (const EventFormatRow& row : event_formats()) {
