@@ -454,12 +454,37 @@ TEST_F(HostileInputTest, StandardOutputAsAnOutputHoldsOnlyTheData) {
     EXPECT_NE(o.err.find("aesim run: sensor aloha"), std::string::npos) << name << ": " << o.err;
     EXPECT_NE(o.err.find(std::string("wrote ") + name), std::string::npos) << o.err;
   }
+  // '-', as Unix tools take it, alone or after '=': standard output under its own name.
+  for (const char* option : {"--csv -", "--csv=-"}) {
+    const Outcome o = bounded(fmt::format("run --duration 50ms {}", option));
+    EXPECT_EQ(o.status, 0) << option << ": " << o.err;
+    EXPECT_EQ(o.out, expected) << option;
+    EXPECT_NE(o.err.find("aesim run: sensor aloha"), std::string::npos) << option << ": " << o.err;
+    EXPECT_FALSE(fs::exists(dir_ / "-")) << option;
+  }
+  // An event file with no extension is AEDAT 2.0, on standard output as in a file.
+  ASSERT_EQ(bounded("run --duration 50ms --out events").status, 0);
+  const Outcome aedat = bounded("run --duration 50ms --out -");
+  EXPECT_EQ(aedat.status, 0) << aedat.err;
+  EXPECT_EQ(aedat.out, slurp(dir_ / "events"));
+  EXPECT_EQ(aedat.out.rfind("#!AER-DAT2.0\r\n", 0), 0u);
   const Outcome piped = bounded("run --duration 50ms --csv /dev/stdout 2>report.txt | cat");
   EXPECT_EQ(piped.out, expected);
   // A file the command writes by name still gets its report on stdout.
   const Outcome named = bounded("run --duration 50ms --csv again.csv");
   EXPECT_NE(named.out.find("aesim run: sensor aloha"), std::string::npos) << named.out;
   EXPECT_EQ(slurp(dir_ / "again.csv"), expected);
+}
+
+// Two outputs into one stream would interleave into neither format: refused before the run,
+// under any of the stream's names; /dev/null, which keeps nothing, takes any number.
+TEST_F(HostileInputTest, TwoOutputsIntoOneStreamAreRefused) {
+  expect_refused("run --duration 50ms --out - --summary -", "--out and --summary both write into '/dev/stdout'");
+  expect_refused("run --duration 50ms --csv /dev/stdout --truth /dev/fd/1", "--csv and --truth both write into");
+  ASSERT_EQ(::mkfifo((dir_ / "pipe").c_str(), 0644), 0);
+  expect_refused("run --duration 50ms --csv pipe --truth pipe", "--csv and --truth both write into 'pipe'");
+  const Outcome to_null = bounded("run --duration 50ms --out /dev/null --csv /dev/null --summary /dev/null");
+  EXPECT_EQ(to_null.status, 0) << to_null.err;
 }
 
 // Inputs that are not files say what they are; a name with a newline stays on one line.

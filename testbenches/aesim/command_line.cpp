@@ -14,6 +14,13 @@
 namespace aesim {
 namespace {
 
+// A file output named '-' is the standard output, as Unix tools take it (the same as /dev/stdout:
+// written through, the report moved to stderr, the format that of a name without an extension).
+CLI::Option* file_output(CLI::App* cmd, const std::string& name, std::string& path, const std::string& help) {
+  return cmd->add_option(name, path, help + " ('-': standard output)")
+      ->transform([](std::string value) { return value == "-" ? std::string("/dev/stdout") : value; });
+}
+
 void add_run(CLI::App& app, int& status) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand(
@@ -25,7 +32,7 @@ void add_run(CLI::App& app, int& status) {
   cmd->add_option("--duration", opt->duration, "Simulated time, e.g. 2s or 500ms (same as --set sim.duration=)");
   cmd->add_option("--set", opt->sets, "Override a parameter: section.key=value with SI units, e.g. pixel.c_int=50fF")
       ->allow_extra_args(false);
-  cmd->add_option("--out", opt->out, "Event file, its type by extension: " + event_formats_help());
+  file_output(cmd, "--out", opt->out, "Event file, its type by extension (none: AEDAT 2.0): " + event_formats_help());
   cmd->add_option("--aedat-layout", opt->aedat_layout,
                   "Address words of an AEDAT 2.0 --out: aesim (default), dvs128 or davis (jAER's layouts, y = 0 at the "
                   "bottom, polarity ON for a normal event and OFF for a ghost)");
@@ -33,13 +40,13 @@ void add_run(CLI::App& app, int& status) {
       ->capture_default_str();
   cmd->add_option("--raw-encoding", opt->raw_encoding, "Words of a Prophesee .raw --out: evt2 or evt3")
       ->capture_default_str();
-  cmd->add_option("--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
+  file_output(cmd, "--csv", opt->csv, "Events as CSV (t_us,x,y,tile,flags)");
   cmd->add_option("--recon", opt->recon, "Histogram reconstruction image (.png or .pgm)");
-  cmd->add_option("--vcd", opt->vcd, "Bus wires of every tile as a VCD file (needs sim.fidelity=cycle or auto)");
+  file_output(cmd, "--vcd", opt->vcd, "Bus wires of every tile as a VCD file (needs sim.fidelity=cycle or auto)");
   cmd->add_option("--vcd-from", opt->vcd_from, "Start of the VCD window, e.g. 100ms")->capture_default_str();
   cmd->add_option("--vcd-to", opt->vcd_to, "End of the VCD window (default: end of the run)");
-  cmd->add_option("--truth", opt->truth, "Ground truth CSV: every fired event, its fate, delivery time and latency");
-  cmd->add_option("--summary", opt->summary, "Summary JSON");
+  file_output(cmd, "--truth", opt->truth, "Ground truth CSV: every fired event, its fate, delivery time and latency");
+  file_output(cmd, "--summary", opt->summary, "Summary JSON");
   cmd->add_option("--max-events", opt->max_events,
                   "The most work the run may ask for, in fired events (default 1e8; same as --set sim.max_events=)");
   cmd->callback([opt, &status] { status = run_command(*opt); });
@@ -161,8 +168,8 @@ void add_emulate(CLI::App& app, int& status) {
   cmd->add_option("--chaos-out", opt->chaos_out, "Probability that an event leaves the queue")->capture_default_str();
   cmd->add_option("--seed", opt->seed, "Seed of the chaos draws")->capture_default_str();
   cmd->add_option("--queue", opt->queue, "The event queue as text, one 'x y' per line in queue order");
-  cmd->add_option("--out", opt->out,
-                  "Events with synthetic timestamps, by extension: " + event_formats_help());
+  file_output(cmd, "--out", opt->out,
+              "Events with synthetic timestamps, by extension (none: AEDAT 2.0): " + event_formats_help());
   cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4, zstd or none")
       ->capture_default_str();
   cmd->add_option("--raw-encoding", opt->raw_encoding, "Words of a Prophesee .raw --out: evt2 or evt3")

@@ -18,7 +18,7 @@ void report_beside_standard_output(int argc, char** argv) {
     const std::string arg = argv[i];
     const std::size_t equals = arg.rfind("--", 0) == 0 ? arg.find('=') : std::string::npos;
     const std::string value = equals == std::string::npos ? arg : arg.substr(equals + 1);
-    if (!value.empty() && descriptor_named(value) == STDOUT_FILENO) report = stderr;
+    if (value == "-" || (!value.empty() && descriptor_named(value) == STDOUT_FILENO)) report = stderr;
   }
 }
 

@@ -9,7 +9,7 @@ namespace aesim {
 std::FILE* report_stream();
 
 // Sends the report to standard error when any of the arguments is a name for standard output
-// (/dev/stdout, /dev/fd/1, /proc/self/fd/1, alone or after `--option=`). Called before the command
+// (/dev/stdout, /dev/fd/1, /proc/self/fd/1, or '-', alone or after `--option=`). Called before the command
 // runs, so that the whole report goes to one place.
 void report_beside_standard_output(int argc, char** argv);
 

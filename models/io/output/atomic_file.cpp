@@ -1,6 +1,7 @@
 #include "aesim/output/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -38,6 +39,12 @@ bool write_through(const std::string& path) {
   return f == "/dev" || f == "/proc" || f.rfind("/proc/", 0) == 0;
 }
 
+// The same file by its device and inode (std::filesystem::equivalent refuses FIFOs and devices).
+bool same_inode(const std::string& a, const std::string& b) {
+  struct stat sa {}, sb {};
+  return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
 // The file a link names (an output through a link replaces the file, not the link).
 std::string resolved(const std::string& path) {
   std::error_code ec;
@@ -51,6 +58,14 @@ bool same_file(const std::string& a, const std::string& b) {
   std::error_code ec;
   if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
   return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
+}
+
+// Two names of one stream written through: the same descriptor of this process (/dev/stdout and
+// /dev/fd/1, wherever it leads), or the same FIFO or device other than /dev/null, which keeps nothing.
+bool same_stream(const std::string& a, const std::string& b) {
+  const int fa = descriptor_named(a);
+  if (fa >= 0 && fa == descriptor_named(b)) return true;
+  return same_inode(a, b) && !same_inode(a, "/dev/null");
 }
 
 }  // namespace
@@ -87,6 +102,13 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const std::vecto
       // Written as it is: it must exist and be writable; nothing is made beside it.
       if (::access(o.path.c_str(), W_OK) != 0) {
         throw InputError(fmt::format("{} '{}': cannot write: {}", o.option, o.path, std::strerror(errno)));
+      }
+      // Two outputs into one stream or FIFO would interleave into neither format; a device that
+      // keeps nothing (/dev/null) may take any number.
+      for (std::size_t j = 0; j < i; ++j) {
+        if (!outputs[j].path.empty() && same_stream(o.path, outputs[j].path)) {
+          throw InputError(fmt::format("{} and {} both write into '{}'", outputs[j].option, o.option, o.path));
+        }
       }
       continue;
     }
