@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 #include <random>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -26,6 +27,7 @@
 #include "aesim/event_files/events_csv.hpp"
 #include "aesim/array/address_map.hpp"
 #include "aesim/events/event_merger.hpp"
+#include "aesim/events/event_stream.hpp"
 #include "aesim/events/latency_recorder.hpp"
 #include "aesim/events/timestamps.hpp"
 #include "aesim/scene/photocurrents.hpp"
@@ -653,6 +655,61 @@ TEST(ThreadPlacement, AStartedThreadMayRunOnEveryCpuOnceItRuns) {
   t.join();
   ASSERT_EQ(sched_setaffinity(0, sizeof allowed, &allowed), 0);
   EXPECT_EQ(ran_on, cpu);
+}
+
+// A collector keeps every record in order whatever the chunks' sizes, across the growth onto huge
+// pages (blocks of 4 MiB and more), the same as one insert of them all.
+TEST(EventCollectorTest, KeepsEveryRecordInOrderAcrossItsGrowthOntoHugePages) {
+  std::vector<AddressEvent> all(600000);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    all[i].t = 1e-6 * static_cast<double>(i);
+    all[i].x = static_cast<std::uint16_t>(i % 1024);
+    all[i].y = static_cast<std::uint16_t>(i / 1024 % 1024);
+    all[i].tile = static_cast<std::uint32_t>(i % 7);
+  }
+  EventCollector collector;
+  std::mt19937 draws(5);
+  for (std::size_t at = 0; at < all.size();) {
+    const std::size_t n = std::min<std::size_t>(all.size() - at, std::uniform_int_distribution<std::size_t>(0, 20000)(draws));
+    collector.events(all.data() + at, n);
+    at += n;
+  }
+  ASSERT_GE(collector.events().capacity() * sizeof(AddressEvent), 4 * kHugePageBytes);
+  ASSERT_EQ(collector.events().size(), all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    ASSERT_EQ(collector.events()[i].t, all[i].t) << i;
+    ASSERT_EQ(collector.events()[i].x, all[i].x) << i;
+    ASSERT_EQ(collector.events()[i].tile, all[i].tile) << i;
+  }
+}
+
+// The mapping that holds a large collector's records is advised onto huge pages: its VmFlags in
+// /proc/self/smaps carry "hg" (MADV_HUGEPAGE), wherever the allocator put the block.
+TEST(EventCollectorTest, ALargeCollectorsRecordsAreAdvisedOntoHugePages) {
+  std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  if (!std::getline(mode, modes) || modes.find("[never]") != std::string::npos) GTEST_SKIP() << "no transparent huge pages here";
+  std::vector<AddressEvent> chunk(100000);
+  EventCollector collector;
+  for (int i = 0; i < 10; ++i) collector.events(chunk.data(), chunk.size());
+  const auto middle = reinterpret_cast<std::uintptr_t>(collector.events().data() + collector.events().size() / 2);
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  bool inside = false, found = false;
+  while (std::getline(smaps, line)) {
+    std::uintptr_t from = 0, to = 0;
+    char dash = 0;
+    std::istringstream range(line);
+    if (line.find("VmFlags:") == 0) {
+      if (inside) {
+        found = true;
+        EXPECT_NE(line.find(" hg"), std::string::npos) << line;
+      }
+      continue;
+    }
+    if (range >> std::hex >> from >> dash >> to && dash == '-' && line.find(':') > line.find(' ')) inside = from <= middle && middle < to;
+  }
+  EXPECT_TRUE(found) << "no mapping holds the records";
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "aesim/containers/huge_page_growth.hpp"
 #include "aesim/events/address_event.hpp"
 #include "aesim/events/truth_record.hpp"
 
@@ -24,11 +25,12 @@ class EventStream {
 };
 
 // An EventStream that keeps everything: for runs whose records are analysed after the run
-// (compare, tests) rather than written as they come.
+// (compare, tests, the Python module) rather than written as they come. Its blocks of records go
+// on huge pages (append_on_huge_pages).
 class EventCollector : public EventStream {
  public:
-  void events(const AddressEvent* first, std::size_t count) override { events_.insert(events_.end(), first, first + count); }
-  void truth(const TruthRecord* first, std::size_t count) override { truth_.insert(truth_.end(), first, first + count); }
+  void events(const AddressEvent* first, std::size_t count) override { append_on_huge_pages(events_, first, count); }
+  void truth(const TruthRecord* first, std::size_t count) override { append_on_huge_pages(truth_, first, count); }
   const std::vector<AddressEvent>& events() const { return events_; }
   const std::vector<TruthRecord>& truth() const { return truth_; }
 
