@@ -13,6 +13,9 @@ std::FILE* report = nullptr;
 
 std::FILE* report_stream() { return report ? report : stdout; }
 
+// Read from the arguments as given, not from the parsed options: every command's every output
+// counts, the image, sweep and verify outputs that are not '-'-aware included, and the decision is
+// made before any command can print.
 void report_beside_standard_output(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

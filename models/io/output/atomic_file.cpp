@@ -56,7 +56,7 @@ std::string resolved(const std::string& path) {
 // The same file, whether or not it exists yet (links and relative spellings resolved).
 bool same_file(const std::string& a, const std::string& b) {
   std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return same_inode(a, b);
   return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
 }
 
@@ -65,7 +65,7 @@ bool same_file(const std::string& a, const std::string& b) {
 bool same_stream(const std::string& a, const std::string& b) {
   const int fa = descriptor_named(a);
   if (fa >= 0 && fa == descriptor_named(b)) return true;
-  return same_inode(a, b) && !same_inode(a, "/dev/null");
+  return same_file(a, b) && !same_inode(a, "/dev/null");
 }
 
 }  // namespace
