@@ -10,7 +10,6 @@ usage: rtl_mutants.py RECEIVER SOURCE_DIR OUT_DIR
 """
 import glob
 import os
-import shutil
 import sys
 
 RECEIVERS = {
@@ -89,6 +88,14 @@ RECEIVERS = {
 }
 
 
+def write_if_changed(path, text):
+    # CMake runs this at every configure: a file rewritten as it was would rebuild every mutant.
+    if os.path.exists(path) and open(path).read() == text:
+        return
+    with open(path, "w") as f:
+        f.write(text)
+
+
 def main():
     if len(sys.argv) != 4 or sys.argv[1] not in RECEIVERS:
         sys.exit(__doc__)
@@ -98,15 +105,16 @@ def main():
     for name, (target, edits) in mutants.items():
         folder = os.path.join(out, name)
         os.makedirs(folder, exist_ok=True)
-        for f in [os.path.join(source_dir, s) for s in sources] + descriptions:
-            shutil.copy(f, os.path.join(folder, os.path.basename(f)))
-        path = os.path.join(folder, target)
-        text = open(path).read()
+        texts = {os.path.basename(f): open(f).read()
+                 for f in [os.path.join(source_dir, s) for s in sources] + descriptions}
+        text = texts[os.path.basename(target)]
         for before, after in edits:
             if before not in text:
                 sys.exit(f"rtl_mutants.py: mutant {name}: '{before}' not found in {target}")
             text = text.replace(before, after)
-        open(path, "w").write(text)
+        texts[os.path.basename(target)] = text
+        for base, content in texts.items():
+            write_if_changed(os.path.join(folder, base), content)
 
 
 if __name__ == "__main__":
