@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include <fmt/format.h>
 
@@ -193,6 +195,19 @@ IsolatedWork fork_isolated(const std::function<void(int fd)>& work) {
   ::close(ends[1]);
   remember_child(pid);
   return {pid, ends[0]};
+}
+
+void limit_memory_growth(std::uint64_t bytes) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmData:", 0) != 0) continue;
+    const std::uint64_t mapped = std::strtoull(line.c_str() + 7, nullptr, 10) * 1024;  // kB
+    if (mapped == 0) return;
+    const rlimit limit{static_cast<rlim_t>(mapped + bytes), static_cast<rlim_t>(mapped + bytes)};
+    ::setrlimit(RLIMIT_DATA, &limit);
+    return;
+  }
 }
 
 int run_child(const std::string& program, const std::vector<std::string>& args, const ChildOutput& output) {

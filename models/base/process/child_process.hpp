@@ -1,6 +1,7 @@
 #pragma once
 #include <sys/types.h>
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -50,6 +51,12 @@ struct IsolatedWork {
   int fd = -1;
 };
 IsolatedWork fork_isolated(const std::function<void(int fd)>& work);
+
+// Lets this process map at most `bytes` more memory than it has mapped now (RLIMIT_DATA, which
+// counts the heap and every private writable mapping): a forked copy about to read a hostile file,
+// whose library may allocate, and fill, whatever size a corrupt header claims, then fails that
+// allocation instead of taking the machine's memory. Does nothing where the kernel cannot say.
+void limit_memory_growth(std::uint64_t bytes);
 
 // Sends `sig` to every child spawn_child started that no wait has reaped yet: a signal handler
 // calls it (it is async-signal-safe), so that aesim stopped by a signal leaves no compiler or

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
+#include <filesystem>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -128,7 +129,16 @@ bool receive_recording(int fd, PolarityRecording& rec, std::string& error) {
 
 PolarityRecording read_in_forked_copy(const std::string& path, const char* library,
                                       const std::function<PolarityRecording()>& read) {
-  const IsolatedWork reader = fork_isolated([&](int fd) { send_recording(fd, path, read); });
+  // A real recording needs memory in proportion to its size (a compressed column of 8-byte
+  // numbers, decompressed, then the events made of it: tens of bytes per byte read); a corrupt
+  // header can claim any size (a 142-byte .mat made matio fill 1 GB).
+  std::error_code ec;
+  const std::uint64_t file_bytes = std::filesystem::file_size(path, ec);
+  const std::uint64_t budget = (std::uint64_t(256) << 20) + 64 * (ec ? 0 : file_bytes);
+  const IsolatedWork reader = fork_isolated([&](int fd) {
+    limit_memory_growth(budget);
+    send_recording(fd, path, read);
+  });
   PolarityRecording rec;
   std::string error;
   const bool complete = receive_recording(reader.fd, rec, error);
