@@ -713,6 +713,35 @@ TEST(PhotoScene, MalformedAndOversizedFilesAreOneLineErrors) {
   expect_refused([&] { decode_jpeg(encode_jpeg(8, 8, 4, JCS_CMYK, cmyk), "cmyk.jpg"); }, "CMYK");
 }
 
+// An APNG (the PNG extension browsers play) declares its frames in an acTL chunk between IHDR and
+// the first IDAT; decoders that do not know it show the default image alone. A scene of several
+// frames is refused rather than simulated as its first; an APNG of one frame is that image.
+TEST(PhotoScene, AnAnimatedPngIsRefusedRatherThanReadAsItsFirstFrame) {
+  PngSpec s;
+  s.width = 2;
+  s.height = 2;
+  s.bytes = {10, 128, 200, 255};
+  const std::string still = encode_png(s);
+  ASSERT_EQ(still.compare(12, 4, "IHDR"), 0);
+  const auto with_actl = [&still](unsigned frames) {
+    std::string chunk = std::string("\0\0\0\x08", 4) + "acTL";
+    for (const unsigned v : {frames, 0u}) {
+      for (int b = 0; b < 4; ++b) chunk += static_cast<char>(v >> (24 - 8 * b));
+    }
+    const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(chunk.data() + 4), 12);
+    for (int b = 0; b < 4; ++b) chunk += static_cast<char>(crc >> (24 - 8 * b));
+    return still.substr(0, 33) + chunk + still.substr(33);  // after the signature and IHDR
+  };
+  expect_refused([&] { decode_png(with_actl(3), "anim.png"); },
+                 "anim.png': an animated PNG of 3 frames, of which aesim would read only the first");
+  const Image one = decode_png(with_actl(1), "one_frame.png");
+  ASSERT_EQ(one.pixels.size(), 4u);
+  EXPECT_NEAR(one.pixels[0], kCode10, 1e-9);
+  EXPECT_NEAR(one.pixels[1], kCode128, 1e-9);
+  EXPECT_NEAR(one.pixels[2], kCode200, 1e-9);
+  EXPECT_DOUBLE_EQ(one.pixels[3], 1.0);
+}
+
 // A picture larger than aesim holds (a 45-61 MP camera's, a 200 MP phone's) is averaged over k x k
 // blocks in linear light as it is decoded, k the least that brings it within 2^24 pixels.
 TEST(PhotoScene, PicturesLargerThanAnArrayAreAveragedDownInLinearLight) {

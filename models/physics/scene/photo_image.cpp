@@ -2,9 +2,11 @@
 
 #include <csetjmp>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -108,6 +110,28 @@ void jpeg_message(j_common_ptr cinfo, int level) {
   }
 }
 
+std::uint32_t big_endian_32(const std::string& data, std::size_t at) {
+  const auto byte = [&](std::size_t k) { return static_cast<std::uint32_t>(static_cast<unsigned char>(data[at + k])); };
+  return byte(0) << 24 | byte(1) << 16 | byte(2) << 8 | byte(3);
+}
+
+// The frame count an animated PNG (APNG) declares in its acTL chunk, which comes before the first
+// IDAT; 0 for a still PNG. libpng reads an APNG's default image alone, as any PNG decoder that
+// does not know APNG shows it; a moving scene shown as its first frame would be a still scene.
+std::uint32_t apng_frames(const std::string& data) {
+  std::size_t at = 8;
+  while (at + 12 <= data.size()) {
+    const std::uint32_t length = big_endian_32(data, at);
+    const std::string type = data.substr(at + 4, 4);
+    if (type == "IDAT" || type == "IEND") return 0;
+    if (type == "acTL") return length >= 8 && at + 16 <= data.size() ? big_endian_32(data, at + 8) : 0;
+    // A chunk running past the end: libpng names the fault.
+    if (length > data.size() - at - 12) return 0;
+    at += 12 + length;
+  }
+  return 0;
+}
+
 }  // namespace
 
 double srgb_to_linear(double code) {
@@ -117,6 +141,11 @@ double srgb_to_linear(double code) {
 Image decode_png(const std::string& data, const std::string& path) {
   if (data.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(data.data()), 0, 8) != 0) {
     throw InputError(fmt::format("scene file '{}': not a PNG (no PNG signature)", path));
+  }
+  if (const std::uint32_t frames = apng_frames(data); frames > 1) {
+    throw InputError(fmt::format("scene file '{}': an animated PNG of {} frames, of which aesim would read only the first: "
+                                 "give its frames as numbered PNGs in a folder (or a multi-page TIFF, a Y4M video)",
+                                 path, frames));
   }
   PngSource src{&data, 0, {}};
   // Everything that owns memory is made before setjmp, so a longjmp out of libpng skips no
