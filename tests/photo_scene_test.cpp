@@ -401,6 +401,20 @@ TEST_F(TiffScenes, IntegersAreLinearOverFullScaleFloatsAsTheyAreColourIsRec709Lu
   EXPECT_DOUBLE_EQ(img.pixels[0], 0.25);
   EXPECT_DOUBLE_EQ(img.pixels[1], 20.0);  // brighter than full scale, as in a PFM
 
+  // IEEE half floats (binary16, by hand: 0x3400 = 2^-2, 0x4d00 = 1.25 x 2^4 = 20, 0x0001 = 2^-24,
+  // the least subnormal, 0x7bff = 65504, the largest), as an HDR photo tool writes 16-bit floats.
+  TiffSpec half_float = grey;
+  half_float.width = 4;
+  half_float.bps = 16;
+  half_float.format = SAMPLEFORMAT_IEEEFP;
+  half_float.samples = bytes_of(std::vector<std::uint16_t>{0x3400, 0x4d00, 0x0001, 0x7bff});
+  img = decode_tiff(encode_tiff(half_float, dir_), "f16.tif");
+  ASSERT_EQ(img.pixels.size(), 4u);
+  EXPECT_DOUBLE_EQ(img.pixels[0], 0.25);
+  EXPECT_DOUBLE_EQ(img.pixels[1], 20.0);
+  EXPECT_DOUBLE_EQ(img.pixels[2], std::ldexp(1.0, -24));
+  EXPECT_DOUBLE_EQ(img.pixels[3], 65504.0);
+
   TiffSpec rgba;
   rgba.width = 3;
   rgba.spp = 4;  // alpha carries no light
@@ -578,6 +592,11 @@ TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {
   negative.format = SAMPLEFORMAT_IEEEFP;
   negative.samples = bytes_of(std::vector<float>{1.0f, -1.0f});
   expect_refused([&] { decode_tiff(encode_tiff(negative, dir_), "neg.tif"); }, "pixel (1, 0)");
+  TiffSpec half_infinity;  // 0x7c00: a half's infinity
+  half_infinity.bps = 16;
+  half_infinity.format = SAMPLEFORMAT_IEEEFP;
+  half_infinity.samples = bytes_of(std::vector<std::uint16_t>{0x3c00, 0x7c00});
+  expect_refused([&] { decode_tiff(encode_tiff(half_infinity, dir_), "inf16.tif"); }, "pixel (1, 0) is inf");
   TiffSpec good;
   good.width = 40;
   good.height = 20;

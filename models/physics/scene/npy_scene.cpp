@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include <fmt/format.h>
+#include <half.h>
 
 #include "aesim/errors/input_error.hpp"
 #include "aesim/files/input_file.hpp"
@@ -63,14 +64,11 @@ NpySceneLayout layout_of(const NpyHeader& header, const std::string& path) {
   return l;
 }
 
-// Half-precision bits as a double (IEEE 754 binary16: 1 sign, 5 exponent, 10 fraction bits).
-double half_to_double(std::uint16_t h) {
-  const int exponent = (h >> 10) & 0x1f;
-  const double fraction = h & 0x3ff;
-  const double magnitude = exponent == 0    ? std::ldexp(fraction, -24)
-                           : exponent == 31 ? (fraction == 0 ? INFINITY : NAN)
-                                            : std::ldexp(1024 + fraction, exponent - 25);
-  return (h & 0x8000) ? -magnitude : magnitude;
+// Half-precision bits (IEEE 754 binary16) as a double, decoded by OpenEXR's Imath.
+double half_to_double(std::uint16_t bits) {
+  half h;
+  h.setBits(bits);
+  return static_cast<float>(h);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <half.h>
 #include <tiffio.h>
 
 #include "aesim/errors/input_error.hpp"
@@ -78,6 +79,14 @@ struct Layout {
 // One sample as a value of full scale.
 double sample_value(const unsigned char* p, const Layout& l) {
   if (l.format == SAMPLEFORMAT_IEEEFP) {
+    if (l.bps == 16) {
+      // IEEE half (an HDR photo tool's 16-bit float), decoded by OpenEXR's Imath.
+      std::uint16_t bits;
+      std::memcpy(&bits, p, sizeof bits);
+      half h;
+      h.setBits(bits);
+      return static_cast<float>(h);
+    }
     if (l.bps == 32) {
       float f;
       std::memcpy(&f, p, sizeof f);
@@ -184,9 +193,9 @@ Image decode_tiff_from(TiffSource& src, const std::string& path, std::size_t pag
   // row at a time; their samples are unpacked to a byte each as they are read.
   const bool packed = l.bps == 1 || l.bps == 2 || l.bps == 4;
   const bool integer = l.format == SAMPLEFORMAT_UINT && (packed || l.bps == 8 || l.bps == 16 || l.bps == 32);
-  const bool floating = l.format == SAMPLEFORMAT_IEEEFP && (l.bps == 32 || l.bps == 64) && !palette;
+  const bool floating = l.format == SAMPLEFORMAT_IEEEFP && (l.bps == 16 || l.bps == 32 || l.bps == 64) && !palette;
   if (!integer && !floating) {
-    fail(fmt::format("{}-bit {} samples (aesim reads unsigned 1, 2, 4, 8, 16 or 32 bits, or 32- or 64-bit floats)", l.bps,
+    fail(fmt::format("{}-bit {} samples (aesim reads unsigned 1, 2, 4, 8, 16 or 32 bits, or 16-, 32- or 64-bit floats)", l.bps,
                      l.format == SAMPLEFORMAT_INT      ? "signed"
                      : l.format == SAMPLEFORMAT_IEEEFP ? "float"
                      : l.format == SAMPLEFORMAT_UINT   ? "unsigned"
