@@ -41,7 +41,11 @@ TEST_F(Y4mTest, MalformedVideosAreInputErrors) {
       {"bad frame size", "YUV4MPEG2 W0 H2\nFRAME\n"},
       {"truncated", "YUV4MPEG2 W4 H2 Cmono\nFRAME\nabc"},
       {"missing FRAME", "YUV4MPEG2 W1 H1 Cmono\nFRAMX\nz"},
-      {"unsupported colour space C420p10 (8-bit 420, 422, 444 or mono; write 8-bit grey with ffmpeg", "YUV4MPEG2 W1 H1 C420p10\nFRAME\n"},
+      {"unsupported colour space C420p20 (aesim reads 420, 422, 444 and mono, 8-bit or 9 to 16 bits", "YUV4MPEG2 W1 H1 C420p20\nFRAME\n"},
+      {"unsupported colour space C420p (", "YUV4MPEG2 W1 H1 C420p\nFRAME\n"},
+      {"unsupported colour space Cmono8 (", "YUV4MPEG2 W1 H1 Cmono8\nFRAME\n"},
+      {"unsupported colour space C411 (", "YUV4MPEG2 W1 H1 C411\nFRAME\n"},
+      {"frame 0: truncated", "YUV4MPEG2 W2 H1 Cmono10\nFRAME\nabc"},  // 2 samples of 2 bytes
       {"malformed header", "YUV4MPEG2 Wx H1\n"},
       {"no frames", "YUV4MPEG2 W1 H1 Cmono\n"},
   };
@@ -92,6 +96,44 @@ TEST_F(Y4mTest, LumaLevelsAreLightThroughBt709sTransferFunctionInverted) {
     EXPECT_NEAR(y4m_light(data, layout, 0).pixels[3], c.light, 1e-12) << c.code << c.extra;
     // The emulator's grey levels stay the codes.
     EXPECT_DOUBLE_EQ(y4m_luma_codes(data, layout, 0).pixels[3], c.code / 255.0);
+  }
+}
+
+// 9- to 16-bit video as ffmpeg writes it (C420p10, Cmono16, ...: two bytes a sample, little-endian;
+// the chroma planes' bytes doubled too). By hand: video levels scale with the depth, black 16 x
+// 2^(bits - 8) and white 235 x 2^(bits - 8) (BT.2020's 64 and 940 at 10 bits); full range 0 to
+// 2^bits - 1; then BT.709's transfer function inverted, as at 8 bits.
+TEST_F(Y4mTest, DeepVideoIsReadAtItsOwnDepth) {
+  const auto little_endian = [](const std::vector<int>& codes) {
+    std::string out;
+    for (const int c : codes) out += std::string{static_cast<char>(c & 0xFF), static_cast<char>(c >> 8)};
+    return out;
+  };
+  const struct {
+    std::string header;
+    std::vector<int> codes;
+    std::size_t chroma_bytes;
+    std::vector<double> light;
+    double most;
+  } cases[] = {
+      // 10-bit video levels: below black, black, (502 - 64) / 876 = 0.5, white, above white.
+      {"W5 H1 C444p10", {0, 64, 502, 940, 1023}, 2 * 5 * 2, {0, 0, 0.25958940050628576, 1, 1}, 1023},
+      // The same level at 12 bits ((2008 - 256) / 3504 = 0.5), chroma planes of 3x1.
+      {"W5 H1 C420p12", {256, 2008, 3760, 4095, 0}, 2 * 3 * 2, {0, 0.25958940050628576, 1, 1, 0}, 4095},
+      // 16-bit grey, full range: 32768 / 65535 is a level of 0.5000076.
+      {"W3 H1 Cmono16 XCOLORRANGE=FULL", {0, 32768, 65535}, 0, {0, 0.2595967481434192, 1}, 65535},
+  };
+  for (const auto& c : cases) {
+    std::string v = "YUV4MPEG2 " + c.header + " F25:1\n";
+    for (int f = 0; f < 2; ++f) v += "FRAME\n" + little_endian(c.codes) + std::string(c.chroma_bytes, '\x02');
+    const Y4mLayout layout = parse_y4m(v, "deep.y4m");
+    ASSERT_EQ(layout.luma.size(), 2u) << c.header;
+    for (std::size_t i = 0; i < c.codes.size(); ++i) {
+      EXPECT_NEAR(y4m_light(v, layout, 1).pixels[i], c.light[i], 1e-12) << c.header << " code " << c.codes[i];
+      EXPECT_DOUBLE_EQ(y4m_luma_codes(v, layout, 1).pixels[i], c.codes[i] / c.most) << c.header;
+    }
+    // A frame short of one sample's second byte is truncated.
+    EXPECT_THROW(parse_y4m(v.substr(0, v.size() - 1), "cut.y4m"), InputError) << c.header;
   }
 }
 

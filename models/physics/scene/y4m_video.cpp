@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -22,16 +23,38 @@ constexpr std::size_t kMostHeaderBytes = 4096;
   throw InputError(fmt::format("video '{}': {}", path, why));
 }
 
-// Bytes of a frame's two chroma planes, which the scene does not use.
-std::size_t chroma_bytes(const std::string& chroma, std::size_t width, std::size_t height, const std::string& path) {
+// A colour space tag (C420jpeg, C444p10, Cmono16, ...): the bytes of a frame's planes after luma,
+// which the scene does not use, and the samples' bits. ffmpeg writes 9- to 16-bit video (a
+// camera's 10-bit, often HDR, clip) as C420p10, C444p12, Cmono16 and the like, two bytes a
+// sample, little-endian; C444alpha is 8-bit 4:4:4 with an alpha plane.
+struct ColourSpace {
+  std::size_t other_planes = 0;  // in samples
+  int bits = 8;
+};
+
+ColourSpace colour_space(const std::string& chroma, std::size_t width, std::size_t height, const std::string& path) {
   const std::size_t cw = (width + 1) / 2, ch = (height + 1) / 2;
-  if (chroma == "420" || chroma == "420jpeg" || chroma == "420paldv" || chroma == "420mpeg2") return 2 * cw * ch;
-  if (chroma == "422") return 2 * cw * height;
-  if (chroma == "444") return 2 * width * height;
-  if (chroma == "mono") return 0;
-  // ffmpeg writes 9- to 16-bit video as C420p10, Cmono16, ...: a camera's 10-bit (often HDR) clip.
-  fail(path, fmt::format("unsupported colour space C{} (8-bit 420, 422, 444 or mono; write 8-bit grey with "
-                         "ffmpeg -i CLIP -pix_fmt gray CLIP.y4m)",
+  if (chroma == "420jpeg" || chroma == "420paldv" || chroma == "420mpeg2") return {2 * cw * ch, 8};
+  if (chroma == "444alpha") return {3 * width * height, 8};
+  // The sampling, then the depth: "420", "420p10", "mono", "mono16".
+  const bool mono = chroma.rfind("mono", 0) == 0;
+  const std::size_t cut = std::min<std::size_t>(mono ? 4 : 3, chroma.size());
+  const std::string sampling = chroma.substr(0, cut);
+  std::string depth = chroma.substr(cut);
+  if (!mono && !depth.empty()) depth = depth[0] == 'p' && depth.size() > 1 ? depth.substr(1) : "?";
+  int bits = depth.empty() ? 8 : 0;
+  if (depth.size() == 1 || depth.size() == 2) {
+    if (depth.find_first_not_of("0123456789") == std::string::npos) bits = std::stoi(depth);
+    if (bits < 9 || bits > 16) bits = 0;
+  }
+  if (bits != 0) {
+    if (sampling == "420") return {2 * cw * ch, bits};
+    if (sampling == "422") return {2 * cw * height, bits};
+    if (sampling == "444") return {2 * width * height, bits};
+    if (sampling == "mono") return {0, bits};
+  }
+  fail(path, fmt::format("unsupported colour space C{} (aesim reads 420, 422, 444 and mono, 8-bit or 9 to 16 bits as "
+                         "C420p10, Cmono16; write grey with ffmpeg -i CLIP -pix_fmt gray16le CLIP.y4m)",
                          chroma));
 }
 
@@ -41,7 +64,7 @@ double bt709_to_linear(double v) { return v < 0.081 ? v / 4.5 : std::pow((v + 0.
 
 struct HeaderFields {
   Y4mLayout layout;
-  std::size_t chroma = 0;  // bytes of a frame's chroma planes
+  std::size_t chroma = 0;  // bytes of a frame's planes after luma
 };
 
 HeaderFields header_fields(const std::string& line, const std::string& path) {
@@ -76,7 +99,9 @@ HeaderFields header_fields(const std::string& line, const std::string& path) {
   }
   h.layout.width = static_cast<int>(width);
   h.layout.height = static_cast<int>(height);
-  h.chroma = chroma_bytes(chroma, static_cast<std::size_t>(width), static_cast<std::size_t>(height), path);
+  const ColourSpace space = colour_space(chroma, static_cast<std::size_t>(width), static_cast<std::size_t>(height), path);
+  h.layout.bits = space.bits;
+  h.chroma = space.other_planes * h.layout.sample_bytes();
   return h;
 }
 
@@ -105,7 +130,8 @@ Y4mLayout parse_y4m(const std::string& data, const std::string& path) {
   if (data.rfind("YUV4MPEG2 ", 0) != 0 || eol == std::string::npos) fail(path, "not a YUV4MPEG2 (Y4M) file");
   HeaderFields h = header_fields(data.substr(0, eol), path);
   Y4mLayout& layout = h.layout;
-  const std::size_t luma = static_cast<std::size_t>(layout.width) * static_cast<std::size_t>(layout.height);
+  const std::size_t luma =
+      static_cast<std::size_t>(layout.width) * static_cast<std::size_t>(layout.height) * layout.sample_bytes();
   std::size_t pos = eol + 1;
   while (pos < data.size()) {
     const std::size_t k = layout.luma.size();
@@ -122,22 +148,45 @@ Y4mLayout parse_y4m(const std::string& data, const std::string& path) {
   return layout;
 }
 
-Image y4m_luma_codes(const std::string& data, const Y4mLayout& layout, std::size_t k) {
-  Image img = frame_image(layout, k, "y4m_luma_codes");
-  const auto* codes = reinterpret_cast<const unsigned char*>(data.data() + layout.luma[k]);
-  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = codes[i] / 255.0;
+namespace {
+
+// Frame k's luma samples through `value`, a table of every code's value (codes above the
+// depth's largest, which only a malformed file holds, taken as the largest).
+Image luma_through(const std::string& data, const Y4mLayout& layout, std::size_t k, const std::vector<double>& value,
+                   const char* what) {
+  Image img = frame_image(layout, k, what);
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data() + layout.luma[k]);
+  if (layout.bits == 8) {
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = value[bytes[i]];
+  } else {
+    const std::size_t most = value.size() - 1;
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+      const std::size_t code = bytes[2 * i] | static_cast<std::size_t>(bytes[2 * i + 1]) << 8;
+      img.pixels[i] = value[std::min(code, most)];
+    }
+  }
   return img;
 }
 
+}  // namespace
+
+Image y4m_luma_codes(const std::string& data, const Y4mLayout& layout, std::size_t k) {
+  const std::size_t most = (std::size_t(1) << layout.bits) - 1;
+  std::vector<double> value(most + 1);
+  for (std::size_t c = 0; c <= most; ++c) value[c] = static_cast<double>(c) / static_cast<double>(most);
+  return luma_through(data, layout, k, value, "y4m_luma_codes");
+}
+
 Image y4m_light(const std::string& data, const Y4mLayout& layout, std::size_t k) {
-  Image img = frame_image(layout, k, "y4m_light");
-  // One decode a code, as a table.
-  const double black = layout.full_range ? 0 : 16, white = layout.full_range ? 255 : 235;
-  double light[256];
-  for (int c = 0; c < 256; ++c) light[c] = bt709_to_linear(std::clamp((c - black) / (white - black), 0.0, 1.0));
-  const auto* codes = reinterpret_cast<const unsigned char*>(data.data() + layout.luma[k]);
-  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = light[codes[i]];
-  return img;
+  // Video levels scale with the depth (BT.709 and BT.2020: black 64 and white 940 at 10 bits).
+  const std::size_t most = (std::size_t(1) << layout.bits) - 1;
+  const double scale = std::ldexp(1.0, layout.bits - 8);
+  const double black = layout.full_range ? 0 : 16 * scale, white = layout.full_range ? static_cast<double>(most) : 235 * scale;
+  std::vector<double> light(most + 1);
+  for (std::size_t c = 0; c <= most; ++c) {
+    light[c] = bt709_to_linear(std::clamp((static_cast<double>(c) - black) / (white - black), 0.0, 1.0));
+  }
+  return luma_through(data, layout, k, light, "y4m_light");
 }
 
 Y4mFile open_y4m(const std::string& path) {
