@@ -236,6 +236,33 @@ TEST(TransactionScoreboard, DropsNeedAStalledOutputAndAnExactCount) {
   EXPECT_EQ(h.sb.first_failure()->check, "lost");
 }
 
+// An 8-bit drop counter after 300 drops reads 44 if it wraps (300 - 256) and 255 if it stops at
+// its largest value; both are correct hardware. 43 or 254 is a miscount, named with both readings.
+TEST(TransactionScoreboard, ANarrowDropCounterMayWrapOrSaturate) {
+  for (const std::uint64_t counted : {44u, 255u, 43u, 254u}) {
+    History h(description(), true);
+    h.transaction(0x001);
+    h.offer(0x001, 0);
+    h.s.ready = false;
+    h.edge();
+    for (std::uint64_t i = 0; i < 300; ++i) h.transaction(0x002 + i % 7);
+    h.s.overflow = counted;
+    h.s.ready = true;
+    h.edge();  // 0x001 taken
+    h.idle_output();
+    h.edge();
+    h.sb.finish_case(h.k, h.k * kPeriod);
+    if (counted == 44 || counted == 255) {
+      EXPECT_EQ(h.sb.failures(), 0u) << counted << ": " << h.sb.first_failure()->check;
+    } else {
+      ASSERT_EQ(h.sb.failures(), 1u) << counted;
+      EXPECT_EQ(h.sb.first_failure()->check, "overflow_count");
+      EXPECT_EQ(h.sb.first_failure()->expected, "300 drops counted (modulo 2^8 as the port is wide, or 255 held at its largest)");
+      EXPECT_EQ(h.sb.first_failure()->observed, std::to_string(counted));
+    }
+  }
+}
+
 // docs/reference.md section 6, timing around a reset: the lower latency bound counts from Req rising, the upper
 // from the later of Req rising and the reset's release (here edge 5, after reset on edges 1..4).
 TEST(TransactionScoreboard, AReqHeldThroughResetIsTimedFromItsRiseAndFromTheRelease) {

@@ -58,6 +58,30 @@ std::vector<VerifyCase> directed_cases(const ReceiverDescription& d) {
   VerifyCase& full = add("full_output", many, 400 * handshake);
   full.queued_senders = true;
   full.stalls.push_back({5, 5 + 200 * handshake});
+
+  // The output filled with its pointers at many offsets: k transactions taken first (a FIFO's
+  // pointers moved on, past their first wrap once k reaches its depth), then 70 against a consumer
+  // that takes nothing, then drained; k from 1 to 9 and either side of 16, 32 and 64. A FIFO whose
+  // fullness is told from its pointers wrongly (a difference taken wider than the pointers) is
+  // full only before they first wrap, which a fill from reset (full_output) never reaches.
+  constexpr std::uint32_t kFill = 70;
+  std::vector<Firing> offsets;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> fills;
+  std::uint64_t edge = 10;
+  std::uint32_t n = 0;
+  for (const std::uint32_t k : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 15u, 16u, 17u, 31u, 32u, 33u, 63u, 64u, 65u}) {
+    for (std::uint32_t i = 0; i < k; ++i, ++n) offsets.push_back({at(edge, 0.3) + i, (n * 0x59u + 7u) & 0x3FFu});
+    edge += k * handshake + 4;
+    const std::uint64_t stall_from = edge;
+    edge += 2;  // the consumer stops before the fill comes
+    for (std::uint32_t i = 0; i < kFill; ++i, ++n) offsets.push_back({at(edge, 0.3) + i, (n * 0x59u + 7u) & 0x3FFu});
+    edge += kFill * handshake;
+    fills.push_back({stall_from, edge});
+    edge += kFill * handshake + 4;  // drained
+  }
+  VerifyCase& wrapped = add("full_at_pointer_offsets", std::move(offsets), edge);
+  wrapped.queued_senders = true;
+  wrapped.stalls = std::move(fills);
   return cases;
 }
 
