@@ -205,28 +205,28 @@ TEST(TransactionScoreboard, CollisionsFollowTheDeclaredPolicy) {
   }
 }
 
+// Transactions while the output is stalled with a beat (0x001): each of the `dropped` after it
+// is dropped, and the overflow counter reads `counted` when the beat is taken.
+std::unique_ptr<History> drops_while_stalled(std::uint64_t dropped, std::uint64_t counted) {
+  auto h = std::make_unique<History>(description(), true);
+  h->transaction(0x001);
+  h->offer(0x001, 0);
+  h->s.ready = false;
+  h->edge();
+  for (std::uint64_t i = 0; i < dropped; ++i) h->transaction(0x002 + i % 7);
+  h->s.overflow = counted;
+  h->s.ready = true;
+  h->edge();  // 0x001 taken
+  h->idle_output();
+  h->edge();
+  h->sb.finish_case(h->k, h->k * kPeriod);
+  return h;
+}
+
 TEST(TransactionScoreboard, DropsNeedAStalledOutputAndAnExactCount) {
-  // Two transactions while the output is stalled with a beat; the second is dropped. The
-  // overflow counter must say 1.
-  for (std::uint64_t counted : {1u, 0u}) {
-    History h(description(), true);
-    h.transaction(0x001);
-    h.offer(0x001, 0);
-    h.s.ready = false;
-    h.edge();
-    h.transaction(0x002);
-    h.s.overflow = counted;
-    h.s.ready = true;
-    h.edge();  // 0x001 taken
-    h.idle_output();
-    h.edge();
-    h.sb.finish_case(h.k, h.k * kPeriod);
-    if (counted == 1) {
-      EXPECT_EQ(h.sb.failures(), 0u) << h.sb.first_failure()->check;
-    } else {
-      EXPECT_EQ(h.sb.first_failure()->check, "overflow_count");
-    }
-  }
+  // One dropped: the overflow counter must say 1.
+  EXPECT_EQ(drops_while_stalled(1, 1)->sb.failures(), 0u);
+  EXPECT_EQ(drops_while_stalled(1, 0)->sb.first_failure()->check, "overflow_count");
   // Without a stall, a missing beat is a loss whatever the counter says.
   History h(description(), true);
   h.transaction(0x001);
@@ -239,27 +239,13 @@ TEST(TransactionScoreboard, DropsNeedAStalledOutputAndAnExactCount) {
 // An 8-bit drop counter after 300 drops reads 44 if it wraps (300 - 256) and 255 if it stops at
 // its largest value; both are correct hardware. 43 or 254 is a miscount, named with both readings.
 TEST(TransactionScoreboard, ANarrowDropCounterMayWrapOrSaturate) {
-  for (const std::uint64_t counted : {44u, 255u, 43u, 254u}) {
-    History h(description(), true);
-    h.transaction(0x001);
-    h.offer(0x001, 0);
-    h.s.ready = false;
-    h.edge();
-    for (std::uint64_t i = 0; i < 300; ++i) h.transaction(0x002 + i % 7);
-    h.s.overflow = counted;
-    h.s.ready = true;
-    h.edge();  // 0x001 taken
-    h.idle_output();
-    h.edge();
-    h.sb.finish_case(h.k, h.k * kPeriod);
-    if (counted == 44 || counted == 255) {
-      EXPECT_EQ(h.sb.failures(), 0u) << counted << ": " << h.sb.first_failure()->check;
-    } else {
-      ASSERT_EQ(h.sb.failures(), 1u) << counted;
-      EXPECT_EQ(h.sb.first_failure()->check, "overflow_count");
-      EXPECT_EQ(h.sb.first_failure()->expected, "300 drops counted (modulo 2^8 as the port is wide, or 255 held at its largest)");
-      EXPECT_EQ(h.sb.first_failure()->observed, std::to_string(counted));
-    }
+  for (const std::uint64_t counted : {44u, 255u}) EXPECT_EQ(drops_while_stalled(300, counted)->sb.failures(), 0u) << counted;
+  for (const std::uint64_t counted : {43u, 254u}) {
+    const auto h = drops_while_stalled(300, counted);
+    ASSERT_EQ(h->sb.failures(), 1u) << counted;
+    EXPECT_EQ(h->sb.first_failure()->check, "overflow_count");
+    EXPECT_EQ(h->sb.first_failure()->expected, "300 drops counted (modulo 2^8 as the port is wide, or 255 held at its largest)");
+    EXPECT_EQ(h->sb.first_failure()->observed, std::to_string(counted));
   }
 }
 
