@@ -24,6 +24,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/events/event_stream.hpp"
 #include "aesim/events/timestamps.hpp"
+#include "aesim/limits/limits.hpp"
 #include "aesim/output/temp_files.hpp"
 #include "aesim/process/interrupt.hpp"
 #include "aesim/scene/npy_scene.hpp"
@@ -114,10 +115,11 @@ std::string as_path(const py::handle& h) { return py::str(py::module_::import("o
 // (array_full_scale: 8- and 16-bit integer codes, floats as they are). Linear light.
 Image image_from_array(const py::handle& object, const char* what) {
   py::array a = py::array::ensure(object);
-  if (!a) throw InputError(fmt::format("{}: expected a path or a 2-D NumPy array", what));
+  if (!a) throw InputError(fmt::format("{}: expected a path or a 2-D or 3-D NumPy array", what));
   if (a.ndim() != 2) {
-    throw InputError(fmt::format("{}: expected a 2-D array (rows, columns), got {} dimension{}", what, a.ndim(),
-                                 a.ndim() == 1 ? "" : "s"));
+    throw InputError(fmt::format("{}: expected a 2-D array (rows, columns) or a 3-D one (frames, rows, columns), got {} "
+                                 "dimension{}",
+                                 what, a.ndim(), a.ndim() == 1 ? "" : "s"));
   }
   const long rows = static_cast<long>(a.shape(0)), cols = static_cast<long>(a.shape(1));
   if (rows < 1 || cols < 1 || static_cast<long long>(rows) * cols > (1LL << 24)) {
@@ -173,13 +175,22 @@ void put(char* at, std::size_t offset, T value) {
 
 py::object py_run(const std::string& sensor, const py::object& scene, const py::object& duration, const py::object& set,
                bool truth, const py::object& max_events) {
-  // A path is read as the program reads it; an array is the scene's one frame, as it is.
+  // A path is read as the program reads it. A 2-D array is the scene's one frame, as it is; a 3-D
+  // array (frames, rows, columns) a moving scene shown at scene.frame_rate, as a 3-D .npy file is.
   RunSpec spec;
   spec.sensor = sensor;
   if (!scene.is_none() && is_path(scene)) {
     spec.scene = as_path(scene);
   } else if (!scene.is_none()) {
-    spec.frames.push_back(image_from_array(scene, "scene"));
+    const py::array a = py::array::ensure(scene);
+    if (a && a.ndim() == 3) {
+      if (a.shape(0) < 1 || static_cast<std::size_t>(a.shape(0)) > kMaxSceneFrames) {
+        throw InputError(fmt::format("scene: an array of {} frames; aesim takes 1 to {}", a.shape(0), kMaxSceneFrames));
+      }
+      for (py::ssize_t k = 0; k < a.shape(0); ++k) spec.frames.push_back(image_from_array(a[py::int_(k)], "scene"));
+    } else {
+      spec.frames.push_back(image_from_array(scene, "scene"));
+    }
   }
   const std::string duration_text = duration.is_none() ? "" : std::string(py::str(duration));
   const std::string max_text = max_events.is_none() ? "" : std::string(py::str(max_events));
@@ -376,7 +387,8 @@ PYBIND11_MODULE(aesim, m) {
   m.def("run", &py_run, py::arg("sensor") = "aloha", py::arg("scene") = py::none(), py::arg("duration") = py::none(),
         py::arg("set") = py::none(), py::arg("truth") = false, py::arg("max_events") = py::none(),
         "Simulate the imager as `aesim run` does. scene: a path (image, frame folder) or a 2-D array of linear "
-        "light (8/16-bit codes over full scale, or floats as fractions of it). Returns an object with `events` "
+        "light (8/16-bit codes over full scale, or floats as fractions of it), or a 3-D one (frames, rows, columns) "
+        "shown at scene.frame_rate. Returns an object with `events` "
         "(structured array: t s, x, y, tile, flags), `summary` (dict) and `truth` (structured array, or None).");
   m.def("emulate", &py_emulate, py::arg("input"), py::arg("f_max") = 20.0, py::arg("behaviour") = "intensity",
         py::arg("spread") = "even", py::arg("threshold") = 0.0, py::arg("clip") = "0,255", py::arg("size") = py::none(),

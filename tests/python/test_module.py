@@ -104,6 +104,9 @@ def test_an_array_saved_by_numpy_is_the_same_scene_as_the_array(tmp_path):
     assert not np.array_equal(moving.events, still.events)
     first_frame = moving.events[moving.events["t"] < 1 / 30]
     assert np.array_equal(first_frame, still.events[still.events["t"] < 1 / 30])
+    # The same 3-D array given as it is: the same moving scene, event for event.
+    in_memory = aesim.run(scene=np.load(tmp_path / "stack.npy"), duration="100ms", set={**settings, "scene.frame_rate": 30})
+    assert np.array_equal(in_memory.events, moving.events)
 
 
 @pytest.mark.parametrize("kwargs,option", [
@@ -124,7 +127,8 @@ def test_bad_input_raises_value_error_with_the_programs_message(kwargs, option, 
 
 
 def test_bad_arrays_are_value_errors():
-    for bad, words in [(np.zeros((2, 2, 2, 2)), "2-D"), (np.array([[1.0, -1.0]]), "not negative"),
+    for bad, words in [(np.zeros((2, 2, 2, 2)), "2-D"), (np.zeros((0, 2, 2)), "of 0 frames"),
+                       (np.array([[[1.0]], [[-1.0]]]), "not negative"), (np.array([[1.0, -1.0]]), "not negative"),
                        (np.array([[np.nan]]), "finite"), (np.zeros((0, 3)), "of 0 rows and 3 columns"),
                        (np.zeros((4, 4), np.int64), "8 or 16 bit")]:
         with pytest.raises(ValueError, match=words):
