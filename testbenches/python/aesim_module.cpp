@@ -141,6 +141,21 @@ Image image_from_array(const py::handle& object, const char* what) {
   return img;
 }
 
+// A 2-D array as one frame, a 3-D array (frames, rows, columns) as a sequence of them.
+std::vector<Image> frames_from_array(const py::handle& object, const char* what) {
+  const py::array a = py::array::ensure(object);
+  std::vector<Image> frames;
+  if (a && a.ndim() == 3) {
+    if (a.shape(0) < 1 || static_cast<std::size_t>(a.shape(0)) > kMaxSceneFrames) {
+      throw InputError(fmt::format("{}: an array of {} frames; aesim takes 1 to {}", what, a.shape(0), kMaxSceneFrames));
+    }
+    for (py::ssize_t k = 0; k < a.shape(0); ++k) frames.push_back(image_from_array(a[py::int_(k)], what));
+  } else {
+    frames.push_back(image_from_array(object, what));
+  }
+  return frames;
+}
+
 std::vector<std::string> settings_text(const py::object& set) {
   std::vector<std::string> out;
   if (set.is_none()) return out;
@@ -182,15 +197,7 @@ py::object py_run(const std::string& sensor, const py::object& scene, const py::
   if (!scene.is_none() && is_path(scene)) {
     spec.scene = as_path(scene);
   } else if (!scene.is_none()) {
-    const py::array a = py::array::ensure(scene);
-    if (a && a.ndim() == 3) {
-      if (a.shape(0) < 1 || static_cast<std::size_t>(a.shape(0)) > kMaxSceneFrames) {
-        throw InputError(fmt::format("scene: an array of {} frames; aesim takes 1 to {}", a.shape(0), kMaxSceneFrames));
-      }
-      for (py::ssize_t k = 0; k < a.shape(0); ++k) spec.frames.push_back(image_from_array(a[py::int_(k)], "scene"));
-    } else {
-      spec.frames.push_back(image_from_array(scene, "scene"));
-    }
+    spec.frames = frames_from_array(scene, "scene");
   }
   const std::string duration_text = duration.is_none() ? "" : std::string(py::str(duration));
   const std::string max_text = max_events.is_none() ? "" : std::string(py::str(max_events));
@@ -261,14 +268,8 @@ py::array py_emulate(const py::object& input, double f_max, const std::string& b
   if (is_path(input)) {
     opt.input = as_path(input);
   } else {
-    // A 2-D array is one frame; a 3-D array (frames, rows, columns) a sequence. Grey levels as
-    // the emulator's own files hold them: 8-bit codes or fractions of full scale.
-    py::array a = py::array::ensure(input);
-    if (a && a.ndim() == 3) {
-      for (py::ssize_t k = 0; k < a.shape(0); ++k) frames.push_back(image_from_array(a[py::int_(k)], "input"));
-    } else {
-      frames.push_back(image_from_array(input, "input"));
-    }
+    // Grey levels as the emulator's own files hold them: 8-bit codes or fractions of full scale.
+    frames = frames_from_array(input, "input");
   }
   const EmulatedRun result = without_gil([&] { return emulate_frames(opt, std::move(frames)); });
   const py::dtype type = packed_dtype({{"t", "<f8"}, {"x", "<u2"}, {"y", "<u2"}, {"frame", "<u4"}});

@@ -133,6 +133,9 @@ def test_bad_arrays_are_value_errors():
                        (np.zeros((4, 4), np.int64), "8 or 16 bit")]:
         with pytest.raises(ValueError, match=words):
             aesim.run(scene=bad, duration="10ms")
+    # The emulator takes its frames from an array by the same rule.
+    with pytest.raises(ValueError, match="input: an array of 0 frames"):
+        aesim.emulate(np.zeros((0, 4, 4)))
 
 
 def test_emulate_and_classify_mirror_the_commands(tmp_path):

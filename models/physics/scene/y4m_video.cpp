@@ -150,43 +150,50 @@ Y4mLayout parse_y4m(const std::string& data, const std::string& path) {
 
 namespace {
 
-// Frame k's luma samples through `value`, a table of every code's value (codes above the
-// depth's largest, which only a malformed file holds, taken as the largest).
-Image luma_through(const std::string& data, const Y4mLayout& layout, std::size_t k, const std::vector<double>& value,
-                   const char* what) {
+// Frame k's luma codes, each through `value` (codes above the depth's largest, which only a
+// malformed file holds, are taken as the largest).
+template <typename Value>
+Image luma_through(const std::string& data, const Y4mLayout& layout, std::size_t k, const char* what, Value value) {
   Image img = frame_image(layout, k, what);
   const auto* bytes = reinterpret_cast<const unsigned char*>(data.data() + layout.luma[k]);
-  if (layout.bits == 8) {
-    for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = value[bytes[i]];
-  } else {
-    const std::size_t most = value.size() - 1;
-    for (std::size_t i = 0; i < img.pixels.size(); ++i) {
-      const std::size_t code = bytes[2 * i] | static_cast<std::size_t>(bytes[2 * i + 1]) << 8;
-      img.pixels[i] = value[std::min(code, most)];
-    }
+  const std::size_t most = (std::size_t(1) << layout.bits) - 1;
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+    const std::size_t code = layout.bits == 8 ? bytes[i] : bytes[2 * i] | static_cast<std::size_t>(bytes[2 * i + 1]) << 8;
+    img.pixels[i] = value(std::min(code, most));
   }
   return img;
+}
+
+// Every code's light at a depth and range, made once for the frames that follow (a 16-bit
+// video's table is 65,536 decodes, more than a small frame's pixels).
+const std::vector<double>& light_table(int bits, bool full_range) {
+  thread_local int table_bits = 0;
+  thread_local bool table_full_range = false;
+  thread_local std::vector<double> light;
+  if (bits == table_bits && full_range == table_full_range) return light;
+  // Video levels scale with the depth (BT.709 and BT.2020: black 64 and white 940 at 10 bits).
+  const std::size_t most = (std::size_t(1) << bits) - 1;
+  const double scale = std::ldexp(1.0, bits - 8);
+  const double black = full_range ? 0 : 16 * scale, white = full_range ? static_cast<double>(most) : 235 * scale;
+  light.resize(most + 1);
+  for (std::size_t c = 0; c <= most; ++c) {
+    light[c] = bt709_to_linear(std::clamp((static_cast<double>(c) - black) / (white - black), 0.0, 1.0));
+  }
+  table_bits = bits;
+  table_full_range = full_range;
+  return light;
 }
 
 }  // namespace
 
 Image y4m_luma_codes(const std::string& data, const Y4mLayout& layout, std::size_t k) {
-  const std::size_t most = (std::size_t(1) << layout.bits) - 1;
-  std::vector<double> value(most + 1);
-  for (std::size_t c = 0; c <= most; ++c) value[c] = static_cast<double>(c) / static_cast<double>(most);
-  return luma_through(data, layout, k, value, "y4m_luma_codes");
+  const double most = std::ldexp(1.0, layout.bits) - 1;
+  return luma_through(data, layout, k, "y4m_luma_codes", [most](std::size_t code) { return static_cast<double>(code) / most; });
 }
 
 Image y4m_light(const std::string& data, const Y4mLayout& layout, std::size_t k) {
-  // Video levels scale with the depth (BT.709 and BT.2020: black 64 and white 940 at 10 bits).
-  const std::size_t most = (std::size_t(1) << layout.bits) - 1;
-  const double scale = std::ldexp(1.0, layout.bits - 8);
-  const double black = layout.full_range ? 0 : 16 * scale, white = layout.full_range ? static_cast<double>(most) : 235 * scale;
-  std::vector<double> light(most + 1);
-  for (std::size_t c = 0; c <= most; ++c) {
-    light[c] = bt709_to_linear(std::clamp((static_cast<double>(c) - black) / (white - black), 0.0, 1.0));
-  }
-  return luma_through(data, layout, k, light, "y4m_light");
+  const std::vector<double>& light = light_table(layout.bits, layout.full_range);
+  return luma_through(data, layout, k, "y4m_light", [&light](std::size_t code) { return light[code]; });
 }
 
 Y4mFile open_y4m(const std::string& path) {

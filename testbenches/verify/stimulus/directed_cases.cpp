@@ -69,12 +69,16 @@ std::vector<VerifyCase> directed_cases(const ReceiverDescription& d) {
   std::vector<std::pair<std::uint64_t, std::uint64_t>> fills;
   std::uint64_t edge = 10;
   std::uint32_t n = 0;
+  // `count` firings queued at `edge`, each with the next address.
+  const auto queue = [&](std::uint32_t count) {
+    for (std::uint32_t i = 0; i < count; ++i, ++n) offsets.push_back({at(edge, 0.3) + i, (n * 0x59u + 7u) & 0x3FFu});
+  };
   for (const std::uint32_t k : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 15u, 16u, 17u, 31u, 32u, 33u, 63u, 64u, 65u}) {
-    for (std::uint32_t i = 0; i < k; ++i, ++n) offsets.push_back({at(edge, 0.3) + i, (n * 0x59u + 7u) & 0x3FFu});
+    queue(k);
     edge += k * handshake + 4;
     const std::uint64_t stall_from = edge;
     edge += 2;  // the consumer stops before the fill comes
-    for (std::uint32_t i = 0; i < kFill; ++i, ++n) offsets.push_back({at(edge, 0.3) + i, (n * 0x59u + 7u) & 0x3FFu});
+    queue(kFill);
     edge += kFill * handshake;
     fills.push_back({stall_from, edge});
     edge += kFill * handshake + 4;  // drained
