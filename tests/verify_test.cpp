@@ -226,6 +226,61 @@ TEST_F(VerifyTest, AFifoFullOnlyBeforeItsPointersWrapIsCaughtAndANarrowDropCount
   EXPECT_NE((slip.out + slip.err).find("in case 'full_at_pointer_offsets'"), std::string::npos) << slip.out << slip.err;
 }
 
+// A receiver whose valid is a data-ready flag held for the whole handshake (tests/rtl/
+// level_valid_receiver): described with `beat = "rise"` it passes in simulation, in the proof and
+// in its exported testbench under Icarus; described as a one-cycle valid, each word is counted
+// once an edge it is held (beats no transaction gave); a copy whose flag never falls gives only
+// its first word, and fails for the words it lost. With a ready port "rise" is refused.
+TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
+  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/level_valid_receiver";
+  const Outcome o = verify("'" + dir + "/lvr.toml' --formal --export-tb tb");
+  expect_pass(o, report(), 12);
+  for (const auto& v : report()["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  const std::string description = slurp(dir + "/lvr.toml");
+  const std::string rise = "valid = { port = \"word_ready\", beat = \"rise\" }";
+  ASSERT_NE(description.find(rise), std::string::npos);
+  std::string level = description;
+  level.replace(level.find(rise), rise.size(), "valid = \"word_ready\"");
+  write("lvr.v", slurp(dir + "/lvr.v"));
+  write("level.toml", level);
+  const Outcome high = verify("level.toml --formal --out high");
+  EXPECT_EQ(high.status, 1) << high.err;
+  const nlohmann::json h = report("high");
+  EXPECT_EQ(h["first_failure"]["check"], "beat") << h["first_failure"].dump();
+  EXPECT_NE((high.out + high.err).find("expected no beat (no transaction is waiting)"), std::string::npos) << high.out;
+  // Three edges a word (from its capture to Ack's fall) against one transaction each.
+  EXPECT_GT(h["beats_checked"].get<double>(), 2.5 * h["transactions"].get<double>());
+  int invented = 0;
+  for (const auto& v : h["formal"]) {
+    if (v["property"] != "no_invented_beat") continue;
+    EXPECT_EQ(v["verdict"], "failed") << v.dump();
+    ++invented;
+  }
+  EXPECT_EQ(invented, 1);
+
+  std::string rtl = slurp(dir + "/lvr.v");
+  const std::string falls = "        ack        <= 1'b0;\n        word_ready <= 1'b0;\n";
+  ASSERT_NE(rtl.find(falls), std::string::npos);
+  rtl.replace(rtl.find(falls), falls.size(), "        ack        <= 1'b0;\n");
+  write("lvr.v", rtl);
+  write("lvr.toml", description);
+  const Outcome held = verify("lvr.toml --out held");
+  EXPECT_EQ(held.status, 1) << held.err;
+  EXPECT_EQ(report("held")["first_failure"]["check"], "lost") << report("held")["first_failure"].dump();
+  EXPECT_LT(report("held")["beats_checked"].get<double>(), 100);
+
+  std::string with_ready = description;
+  with_ready.replace(with_ready.find("out_addr = "), 0, "ready = \"rdy\"\n");
+  write("ready.toml", with_ready);
+  const Outcome refused = verify("ready.toml --out ready");
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("ports.valid.beat: \"rise\" is for an output without back-pressure"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir_ / "ready"));
+}
+
 // A design without a reset (`reset = "none"`): its registers' initial values are its reset
 // state. Every case starts from them, the case that resets mid-run is left out and said so, and
 // Ack must be low before the first edge, in simulation and in the proof; a copy that starts with
@@ -503,6 +558,10 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
       {variant("wrong_way.toml", "ack = \"bus_ack\"", "ack = \"bus_collide\""), "bus_collide"},
       {variant("no_role.toml", "valid = \"out_valid\"\n", ""), "ports.valid"},
       {variant("bad_policy.toml", "full = \"drop\"", "full = \"spill\""), "behaviour.full"},
+      {variant("bad_beat.toml", "valid = \"out_valid\"", "valid = { port = \"out_valid\", beat = \"edge\" }"),
+       "ports.valid.beat: must be \"high\""},
+      {variant("valid_active.toml", "valid = \"out_valid\"", "valid = { port = \"out_valid\", active = \"low\" }"),
+       "ports.valid.active: unknown key (port, beat)"},
       {variant("no_source.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"missing.v\"]"), "missing.v"},
       {(write("rx.vhd", "entity rx is end rx;\n"),
         variant("vhdl.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\", \"rx.vhd\"]")),

@@ -230,9 +230,26 @@ ReceiverDescription read_receiver_description(const std::string& path) {
                   "flags, overflow_count)");
     }
     std::string text;
-    if (value.is_table()) {
+    if (value.is_table() && role == "valid") {
+      // { port = "data_ready", beat = "rise" }: a level held for each word.
+      for (const auto& [k, v] : value.as_table()) {
+        if (k != "port" && k != "beat") r.fail(key + "." + k, "unknown key (port, beat)");
+        (void)v;
+      }
+      text = r.string_of(r.need(value, "port", key + ".port"), key + ".port");
+      if (const TomlValue* beat = r.find(value, "beat")) {
+        const std::string b = r.string_of(*beat, key + ".beat");
+        if (b != "high" && b != "rise") {
+          r.fail(key + ".beat", "must be \"high\" (a beat at every edge valid is high) or \"rise\" (at the edge it "
+                                "rises: a level held for each word)");
+        }
+        d.valid_beat_on_rise = b == "rise";
+      }
+    } else if (value.is_table()) {
       // { port = "aer_req_n", active = "low" }: the handshake's polarity.
-      if (role != "req" && role != "ack") r.fail(key, "only req and ack take { port, active }; give the port name");
+      if (role != "req" && role != "ack") {
+        r.fail(key, "only req and ack take { port, active } (and valid { port, beat }); give the port name");
+      }
       for (const auto& [k, v] : value.as_table()) {
         if (k != "port" && k != "active") r.fail(key + "." + k, "unknown key (port, active)");
         (void)v;
@@ -250,6 +267,12 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   }
   for (const PortRole& p : port_roles()) {
     if (!p.optional && !d.has(p.name)) r.fail(fmt::format("ports.{}", p.name), "missing");
+  }
+  // With back-pressure a word stays on the output, valid high, until the consumer takes it: a beat
+  // is valid and ready high together, and a level held for each word is what valid already is.
+  if (d.valid_beat_on_rise && d.has("ready")) {
+    r.fail("ports.valid.beat", "\"rise\" is for an output without back-pressure; with a ready port a beat is an edge "
+                               "where valid and ready are both high");
   }
   // A port plays one role, except that slices of it may play several when their bits do not meet.
   std::map<std::string, std::string> used;  // port -> what uses it

@@ -32,6 +32,10 @@ struct ReceiverDescription {
   bool reset_active_high = false;
   bool has_reset() const { return !reset_port.empty(); }
   bool req_active_high = true, ack_active_high = true;
+  // `valid = { port, beat = "rise" }`: valid is a level held for each word (a data-ready flag
+  // that stays up until the handshake ends, say), so a beat is an edge where it is high and was
+  // low at the edge before, not every edge where it is high. Only without a ready port.
+  bool valid_beat_on_rise = false;
   std::map<std::string, PortRef> ports;            // role -> where it is
   std::map<std::string, std::uint64_t> inputs;     // RTL port -> constant value
   Collisions collisions = Collisions::Discard;

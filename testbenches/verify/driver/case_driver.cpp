@@ -139,6 +139,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   const std::uint64_t reset_edges = d.has_reset() ? kResetEdges : 0;
   bool ready = true, reset = d.has_reset(), ack = false, draining = false;
   std::uint64_t acks = 0, reset_from = kNever, quiet = 0;
+  bool valid_was = false;  // valid at the edge before (a beat on its rise: ReceiverDescription)
   std::uint64_t stalls_end = 0;
   for (const auto& s : c.stalls) stalls_end = std::max(stalls_end, s.second);
   const std::uint64_t quiet_needed = 2 * static_cast<std::uint64_t>(d.ack_latency_max) + 8;
@@ -217,7 +218,9 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     s.reset = reset;
     s.ready = ready;
     s.ack = ack;
-    s.valid = ports.valid.read() != 0;
+    const bool valid_now = ports.valid.read() != 0;
+    s.valid = valid_now && !(d.valid_beat_on_rise && valid_was);
+    valid_was = valid_now;
     if (s.valid) {
       s.out_addr = ports.out_addr.read();
       s.timestamp = ports.timestamp.read();

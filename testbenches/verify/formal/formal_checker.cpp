@@ -101,6 +101,13 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   const int aw = role_width(d, ports, "addr"), ow = role_width(d, ports, "out_addr");
   const int tw = d.has("timestamp") ? role_width(d, ports, "timestamp") : 1;
   const int vw = d.has("overflow_count") ? role_width(d, ports, "overflow_count") : 1;
+  // A valid held for each word gives its beat at the edge it rises (ReceiverDescription).
+  const std::string valid_wire =
+      d.valid_beat_on_rise
+          ? fmt::format("  wire valid_level = {};\n  reg valid_was = 0;\n  always @(posedge clk) valid_was <= valid_level;\n"
+                        "  wire valid = valid_level && !valid_was;\n",
+                        valid)
+          : fmt::format("  wire valid = {};\n", valid);
 
   std::map<std::string, std::string> parameters = d.parameters;
   for (const auto& [k, v] : d.formal.parameters) parameters[k] = v;
@@ -188,8 +195,7 @@ module aesim_formal_top #(
   );
 
   wire ack = {ack} == {ack_on};
-  wire valid = {valid_expr};
-  wire [{ow_msb}:0] out_addr = {out_addr};
+{valid_wire}  wire [{ow_msb}:0] out_addr = {out_addr};
   wire [{tw_msb}:0] out_ts = {ts_expr};
   wire out_flag = {flag_expr};
   wire [{vw_msb}:0] ov = {ov_expr};
@@ -304,7 +310,7 @@ module aesim_formal_top #(
                          fmt::arg("reset_done", d.has_reset() ? "past_valid && !in_reset && !free_q" : "!past_valid"), fmt::arg("declarations", wiring.declarations()),
                          fmt::arg("parameter_list", parameter_list.empty() ? "" : "#(" + parameter_list + ") "),
                          fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
-                         fmt::arg("ack_on", level(d.ack_active_high)), fmt::arg("valid_expr", valid),
+                         fmt::arg("ack_on", level(d.ack_active_high)), fmt::arg("valid_wire", valid_wire),
                          fmt::arg("ow_msb", ow - 1), fmt::arg("out_addr", out_addr), fmt::arg("tw_msb", tw - 1),
                          fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "1'b0" : flag + "[0]"),
                          fmt::arg("vw_msb", vw - 1), fmt::arg("ov_expr", ov.empty() ? "1'b0" : ov),
