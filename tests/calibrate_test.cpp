@@ -957,6 +957,71 @@ TEST_F(NgspiceTest, ShellSyntaxInTheDeckPathIsOnlyAName) {
   EXPECT_FALSE(fs::exists(dir_ / "pwned2"));
 }
 
+// A Verilog-A model compiled by OpenVAF (IHP SG13G2's PSP 103 MOS models) is an OSDI library,
+// which ngspice loads with `pre_osdi` before it reads the circuit (its README_OSDI.md): --osdi puts
+// one such line a library in each run's control block, with the library's bytes in the deck's
+// hash. A deck whose devices need a library nobody gave is told to give one; a library given to an
+// ngspice built without OSDI is told that. Either way its log is this calibration's, not an
+// earlier one's.
+TEST_F(NgspiceTest, AVerilogAModelIsGivenWithOsdiAndSaidWhenNgspiceCannotLoadIt) {
+  const std::string library = write("psp.osdi", "not a library");
+  const PixelDeck plain = read_pixel_deck(kIdealDeck, "ideal_pixel", "int");
+  const PixelDeck with = read_pixel_deck(kIdealDeck, "ideal_pixel", "int", {library});
+  ASSERT_EQ(with.osdi.size(), 1u);
+  EXPECT_EQ(with.osdi[0], library);
+  EXPECT_NE(with.hash, plain.hash);
+  EXPECT_EQ(read_pixel_deck(kIdealDeck, "ideal_pixel", "int", {library}).hash, with.hash);
+  TransientRequest request;
+  request.iph = 1e-12;
+  request.t_stop = 1e-3;
+  request.t_max = 1e-6;
+  const std::string bench = testbench_text(with, 3.3, request, "data.txt");
+  const auto control = bench.find(".control\n"), load = bench.find("pre_osdi \"" + library + "\"\n");
+  ASSERT_NE(load, std::string::npos) << bench;
+  EXPECT_LT(control, load);
+  EXPECT_LT(load, bench.find("\ntran "));
+  EXPECT_EQ(testbench_text(plain, 3.3, request, "data.txt").find("osdi"), std::string::npos);
+
+  // An N element (ngspice's letter for OSDI devices) of a model type nothing loaded.
+  std::string deck = slurp(kIdealDeck);
+  deck.replace(deck.find(".ends"), 5, "Nva out gnd gnd gnd vamos w=1u l=1u\n.model vamos psp103va type=1\n.ends");
+  write("va.cir", deck);
+  const std::string args = "calibrate va.cir --subckt ideal_pixel -o va.toml --currents 1pA:10pA --points 3";
+  const Outcome missing = aesim(args);
+  EXPECT_EQ(missing.status, 2) << missing.err;
+  EXPECT_NE(missing.err.find("ngspice does not know the model type of the N element n.xpix.nva; a Verilog-A model "
+                             "compiled by OpenVAF"),
+            std::string::npos)
+      << missing.err;
+  EXPECT_NE(missing.err.find("loads with --osdi FILE.osdi"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(dir_ / "va.toml"));
+  EXPECT_EQ(slurp(dir_ / "va.ngspice.log").find("pre_osdi"), std::string::npos);
+
+  // Whether this ngspice has the osdi command at all, asked of ngspice itself.
+  write("probe.cir", "* osdi?\n.control\nosdi\nquit 0\n.endc\n.end\n");
+  run_child("ngspice", {"-b", "-n", "probe.cir"},
+            {(dir_ / "probe.out").string(), (dir_ / "probe.err").string(), dir_.string()});
+  const bool has_osdi =
+      (slurp(dir_ / "probe.out") + slurp(dir_ / "probe.err")).find("no such command") == std::string::npos;
+  const Outcome given = aesim(args + " --osdi psp.osdi");
+  EXPECT_EQ(given.status, 2) << given.err;
+  EXPECT_EQ(given.err.find("--osdi: this ngspice cannot load OSDI libraries (it has no osdi command") !=
+                std::string::npos,
+            !has_osdi)
+      << given.err;
+  EXPECT_FALSE(fs::exists(dir_ / "va.toml"));
+  // The log is this run's, whose testbench loads the library.
+  EXPECT_NE(slurp(dir_ / "va.ngspice.log").find("pre_osdi \"" + library + "\""), std::string::npos);
+
+  for (const char* bad : {"absent.osdi", "a\"b.osdi"}) {
+    if (std::string(bad) != "absent.osdi") write(bad, "x");
+    const Outcome refused = aesim(args + " --osdi '" + bad + "'");
+    EXPECT_EQ(refused.status, 2) << refused.err;
+    EXPECT_NE(refused.err.find(std::string("--osdi '") + bad + "'"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir_ / "va.toml"));
+  }
+}
+
 TEST_F(NgspiceTest, CtrlCStopsItWithNoPresetAndNoScratchLeft) {
   // Its own TMPDIR, where the command keeps its ngspice files: empty again after the signal.
   fs::create_directories(dir_ / "tmp");

@@ -62,7 +62,7 @@ int calibrate_command(const CalibrateOptions& opt) {
   const std::string chart_data =
       opt.chart.empty() ? std::string() : std::filesystem::path(opt.chart).replace_extension(".csv").string();
   check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {opt.deck, sensor_file(opt.base)});
-  const PixelDeck deck = read_pixel_deck(opt.deck, opt.subckt, opt.probe);
+  const PixelDeck deck = read_pixel_deck(opt.deck, opt.subckt, opt.probe, opt.osdi);
   // Beside the preset: the testbench and ngspice's whole log when ngspice rejects the deck.
   options.failure_log = std::filesystem::path(opt.output).replace_extension(".ngspice.log").string();
 

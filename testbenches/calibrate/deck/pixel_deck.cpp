@@ -237,19 +237,34 @@ StatisticsNote statistics_note(const PixelDeck& deck) {
   return {};
 }
 
-PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node) {
+PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node,
+                          const std::vector<std::string>& osdi) {
   PixelDeck deck;
   const std::string text = read_text(path, "deck");
   std::error_code ec;
   deck.path = fs::absolute(path, ec).lexically_normal().string();
   // The path goes into the testbench as `.include "PATH"`, and ngspice's reader cuts that line at
   // a ';' or a " $" (its comment marks) and has no escape for a quote: measured on ngspice 39.
-  const bool control = std::any_of(deck.path.begin(), deck.path.end(),
-                                   [](char c) { return c == '"' || static_cast<unsigned char>(c) < 0x20; });
-  if (control || deck.path.find(';') != std::string::npos || deck.path.find(" $") != std::string::npos) {
+  // The same for an OSDI library's `pre_osdi "PATH"`.
+  const auto unquotable = [](const std::string& p) {
+    const bool control =
+        std::any_of(p.begin(), p.end(), [](char c) { return c == '"' || static_cast<unsigned char>(c) < 0x20; });
+    return control || p.find(';') != std::string::npos || p.find(" $") != std::string::npos;
+  };
+  if (unquotable(deck.path)) {
     throw InputError(fmt::format("deck '{}': its path has a quote, ';', ' $' or a control character, which ngspice's "
                                  ".include cannot carry; rename or move the deck",
                                  path));
+  }
+  for (const std::string& library : osdi) {
+    require_input_file(library, "--osdi");
+    const std::string absolute = fs::absolute(library, ec).lexically_normal().string();
+    if (unquotable(absolute)) {
+      throw InputError(fmt::format("--osdi '{}': its path has a quote, ';', ' $' or a control character, which "
+                                   "ngspice's pre_osdi cannot carry; rename or move the file",
+                                   library));
+    }
+    deck.osdi.push_back(absolute);
   }
   deck.subckt = subckt;
   deck.given = path;
@@ -284,6 +299,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
     find_statistics(included_lines, inc, deck);
     for (const std::string& next : includes(included_lines, fs::path(inc).parent_path())) pending.push_back(next);
   }
+  for (const std::string& library : deck.osdi) h = fnv1a(read_text(library, "--osdi"), h);
   deck.hash = fmt::format("{:016x}", h);
   if (!found) {
     throw InputError(fmt::format("deck '{}': no subcircuit '{}' (in the deck or the files it includes)", path, subckt));

@@ -30,13 +30,18 @@ struct PixelDeck {
   // every device of the process.
   double device_rating = 0;
   std::string rated_device;
+  // Compiled Verilog-A models (OpenVAF's OSDI libraries, as IHP SG13G2's PSP 103 MOS models are)
+  // that each run loads before ngspice reads the deck (`pre_osdi`): absolute paths, their bytes
+  // in `hash` after the deck's.
+  std::vector<std::string> osdi;
 };
 
 // Reads the deck and finds the subcircuit (in the deck or the files it .include's, one level),
 // checks its three ports and its iph parameter, and looks for `probe_node` inside it. Throws
 // InputError naming the deck and the problem; what only ngspice can judge (syntax, models) is
 // left to the first run.
-PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node);
+PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node,
+                          const std::vector<std::string>& osdi = {});
 
 // What the table's runs make of the deck's statistical models, for the preset's provenance: the
 // switches set to 0 (nominal), or, for a deck that draws at random with no switch and no `mc`

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -99,6 +100,60 @@ std::string first_error(const std::string& log) {
   return in_error ? message : opening;
 }
 
+// The model type ngspice's log says it does not know ("Unknown model type pspnqs103va -
+// ignored"), or empty.
+std::string unknown_model_type(const std::string& log) {
+  static const std::string kUnknown = "unknown model type ";
+  const std::string lower = ascii_lower(log);
+  const auto at = lower.find(kUnknown);
+  if (at == std::string::npos) return "";
+  const auto from = at + kUnknown.size();
+  const auto to = log.find_first_of(" \t\r\n", from);
+  return log.substr(from, to == std::string::npos ? std::string::npos : to - from);
+}
+
+// The element ngspice's log calls an unknown device when it is an N element, the letter of the
+// devices OSDI libraries define ("Error on line: n.xpix.nva out 0 0 0 vamos ... unknown device
+// type"), or empty.
+std::string unknown_osdi_element(const std::string& log) {
+  static const std::string kLine = "error on line:";
+  const std::string lower = ascii_lower(log);
+  const auto at = lower.find(kLine);
+  if (at == std::string::npos || lower.find("unknown device type", at) == std::string::npos) return "";
+  std::istringstream rest(log.substr(at + kLine.size()));
+  std::string element;
+  rest >> element;
+  return !element.empty() && (element[0] == 'n' || element[0] == 'N') ? element : "";
+}
+
+// Why a deck ngspice rejected failed, where the log shows a model it could not load: a library
+// given with --osdi that this ngspice cannot load at all, or a model type (or an N element's
+// device) nothing defined.
+std::string model_failure(const std::string& log, const PixelDeck& deck, const std::string& log_note) {
+  if (!deck.osdi.empty() && ascii_lower(log).find("osdi: no such command") != std::string::npos) {
+    return fmt::format("--osdi: this ngspice cannot load OSDI libraries (it has no osdi command: built without "
+                       "--enable-osdi); use an ngspice built with OSDI{}",
+                       log_note);
+  }
+  std::string type = unknown_model_type(log);
+  if (type.empty()) {
+    const std::string element = unknown_osdi_element(log);
+    if (element.empty()) return "";
+    type = fmt::format("of the N element {}", element);
+  } else {
+    type = fmt::format("'{}'", type);
+  }
+  if (!deck.osdi.empty()) {
+    return fmt::format("deck '{}': ngspice does not know the model type {}, which none of the --osdi libraries "
+                       "defines{}",
+                       deck.given, type, log_note);
+  }
+  return fmt::format("deck '{}': ngspice does not know the model type {}; a Verilog-A model compiled by OpenVAF "
+                     "(as IHP SG13G2's PSP 103 MOS models are) loads with --osdi FILE.osdi, in an ngspice built with "
+                     "OSDI{}",
+                     deck.given, type, log_note);
+}
+
 }  // namespace
 
 SolverSettings solver_settings(std::size_t level, double iph, double vdd) {
@@ -132,6 +187,9 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
     switches += fmt::format(".param {}={}\n", name, r.monte_carlo ? 1 : 0);
   }
   const SolverSettings solver = solver_settings(r.settings, r.iph, vdd);
+  // OSDI libraries load before ngspice reads the circuit (the `pre_` prefix), wherever the block is.
+  std::string osdi;
+  for (const std::string& library : deck.osdi) osdi += fmt::format("pre_osdi \"{}\"\n", library);
   // First settings: Gear integration (the trapezoidal rule rings on the pixel's fast edges and
   // fakes firings at slow ramps), tolerances sized for femtoamps and femtocoulombs (the defaults,
   // 1 pA and 10 fC, are the size of what is measured), and gmin, the conductance ngspice puts
@@ -148,6 +206,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "Vdd vdd 0 {:.12g}\n"
       "Xpix vdd out 0 {} iph={:.12g}{}\n"
       ".control\n"
+      "{}"
       "set num_threads=1\n"
       "tran {:.6g} {:.12g} 0 {:.6g} uic\n"
       "set wr_singlescale\n"
@@ -159,22 +218,27 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       ".end\n",
       deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.path, switches, vdd,
       deck.subckt, r.iph,
-      deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), r.t_max, r.t_stop, r.t_max,
+      deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), osdi, r.t_max, r.t_stop, r.t_max,
       data_path, probe);
 }
 
 namespace {
 
-// Copies the testbench and ngspice's log to `target` for the user, once: the first run that fails
-// there writes it, later ones (other currents, other jobs) leave it. Returns `target` when it now
-// holds a log, empty otherwise.
+// Copies the testbench and ngspice's log to `target` for the user, once a calibration: its first
+// run that fails there writes it (replacing the log of an earlier calibration, which would
+// otherwise be named as this one's), later ones (other currents, other jobs) leave it. Never
+// written through anything but a regular file. Returns `target` when it now holds this
+// calibration's log, empty otherwise.
 std::string keep_failure_log(const std::string& target, const fs::path& cir, const fs::path& log) {
   if (target.empty()) return "";
   static std::mutex once;
+  static std::set<std::string> written;
   const std::lock_guard<std::mutex> lock(once);
+  if (written.count(target)) return target;
   std::error_code ec;
-  if (fs::exists(target, ec)) return fs::is_regular_file(target, ec) ? target : "";
-  std::ofstream out(target);
+  if (fs::exists(target, ec) && !fs::is_regular_file(fs::symlink_status(target, ec))) return "";
+  written.insert(target);
+  std::ofstream out(target, std::ios::trunc);
   out << "* the testbench aesim calibrate ran (" << cir.filename().string() << ")\n"
       << read_scratch_text(cir) << "\n* ngspice's output\n"
       << read_scratch_text(log);
@@ -242,10 +306,13 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
                                  strsignal(*status - 128)));
   }
   if (*status != 0) {
-    std::string error = first_error(read_scratch_text(log));
+    const std::string log_text = read_scratch_text(log);
+    std::string error = first_error(log_text), log_note;
     if (const std::string kept = keep_failure_log(request.failure_log, cir, log); !kept.empty()) {
-      error += fmt::format(" (ngspice's log: {})", kept);
+      log_note = fmt::format(" (ngspice's log: {})", kept);
+      error += log_note;
     }
+    if (const std::string model = model_failure(log_text, deck, log_note); !model.empty()) throw InputError(model);
     if (ascii_lower(error).find("unknown subckt") != std::string::npos) {
       throw InputError(fmt::format("deck '{}': ngspice finds no subcircuit '{}' ({})", deck.given, deck.subckt, error));
     }

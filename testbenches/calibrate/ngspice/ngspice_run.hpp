@@ -38,7 +38,8 @@ struct TransientRequest {
   bool monte_carlo = false;      // sets the deck's `mc` parameter, when it has one
   std::size_t settings = 0;      // solver_settings() level
   // Where the testbench and ngspice's log of a run that rejects the deck are kept for the user
-  // (the first such run's; empty: nowhere). A file already there is left alone.
+  // (the calibration's first such run's, replacing an earlier calibration's; empty: nowhere).
+  // Anything there but a regular file is left alone.
   std::string failure_log{};
   // Asked about once a second while ngspice runs: true stops it (TransientAbandoned), for a run
   // whose answer another run has made known.
