@@ -55,4 +55,12 @@ std::string PortWiring::connections() const {
   return out;
 }
 
+std::string PortWiring::valid_beat(const std::string& name) {
+  const std::string valid = read("valid");
+  if (!d_.valid_beat_on_rise) return fmt::format("  wire {} = {};\n", name, valid);
+  return fmt::format("  wire valid_level = {};\n  reg valid_was = 1'b0;\n  always @(posedge clk) valid_was <= valid_level;\n"
+                     "  wire {} = valid_level && !valid_was;\n",
+                     valid, name);
+}
+
 }  // namespace aesim

@@ -23,6 +23,10 @@ class PortWiring {
   // The wires, one per port, and the instance's port connections.
   std::string declarations() const;
   std::string connections() const;
+  // `wire NAME` for the beats: valid as it is, or, for a valid held for each word
+  // (ReceiverDescription::valid_beat_on_rise), high at the edge it rises only (a register of it
+  // clocked by `clk`).
+  std::string valid_beat(const std::string& name);
 
  private:
   struct Piece {

@@ -94,20 +94,14 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   if (d.has("contention")) wiring.drive("contention", "contention_i");
   if (d.has("ready")) wiring.drive("ready", "ready_i");
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
-  const std::string ack = wiring.read("ack"), valid = wiring.read("valid"), out_addr = wiring.read("out_addr");
+  const std::string ack = wiring.read("ack"), out_addr = wiring.read("out_addr");
   const std::string ts = d.has("timestamp") ? wiring.read("timestamp") : "";
   const std::string flag = d.has("flags") ? wiring.read("flags") : "";
   const std::string ov = d.has("overflow_count") ? wiring.read("overflow_count") : "";
   const int aw = role_width(d, ports, "addr"), ow = role_width(d, ports, "out_addr");
   const int tw = d.has("timestamp") ? role_width(d, ports, "timestamp") : 1;
   const int vw = d.has("overflow_count") ? role_width(d, ports, "overflow_count") : 1;
-  // A valid held for each word gives its beat at the edge it rises (ReceiverDescription).
-  const std::string valid_wire =
-      d.valid_beat_on_rise
-          ? fmt::format("  wire valid_level = {};\n  reg valid_was = 0;\n  always @(posedge clk) valid_was <= valid_level;\n"
-                        "  wire valid = valid_level && !valid_was;\n",
-                        valid)
-          : fmt::format("  wire valid = {};\n", valid);
+  const std::string valid_wire = wiring.valid_beat("valid");
 
   std::map<std::string, std::string> parameters = d.parameters;
   for (const auto& [k, v] : d.formal.parameters) parameters[k] = v;
