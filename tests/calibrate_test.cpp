@@ -551,6 +551,37 @@ TEST_F(NgspiceTest, ADeckThatDrawsWithoutASwitchIsToldToBeADraw) {
 
 using DeckReadingTest = testing::TempDirTest;
 
+// A PDK's corner library (IHP SG13G2's cornerMOSlv_psp.lib: `.lib mos_tt` includes the nominal
+// models, `.lib mos_tt_stat` the statistical ones beside them): `.lib FILE SECTION` reads that
+// section only, as ngspice does, so another corner's statistics, devices and includes are not the
+// deck's; `.include FILE` reads what lies outside the sections. The file's bytes are hashed once
+// whichever sections are read.
+TEST_F(DeckReadingTest, ALibrarysSectionIsReadAloneAsNgspiceReadsIt) {
+  write("stat.inc", "* statistics\n.param dvth = agauss(0, 0.01, 1)\n.param sw_stat_mismatch = 1\n");
+  write("corners.lib", "* corners\n.lib tt\n.param dvth = 0\n.endl tt\n.lib tt_stat\n.include stat.inc\n"
+                       ".subckt sky130_fd_pr__nfet_01v8 d g s b\n.ends\n.endl\n");
+  const std::string pixel = ".subckt p vdd out gnd params: iph=1p\nI1 vdd out {iph}\n"
+                            "M1 out out gnd gnd sky130_fd_pr__nfet_01v8 w=1u l=1u\n.ends\n";
+  const PixelDeck tt = read_pixel_deck(write("tt.cir", ".lib corners.lib tt\n" + pixel), "p", "int");
+  EXPECT_TRUE(tt.statistical_switches.empty());
+  EXPECT_EQ(tt.statistical_file, "");
+  const PixelDeck stat = read_pixel_deck(write("stat.cir", ".lib corners.lib tt_stat\n" + pixel), "p", "int");
+  EXPECT_EQ(stat.statistical_switches, std::vector<std::string>{"sw_stat_mismatch"});
+  EXPECT_EQ(stat.statistical_file, (dir_ / "stat.inc").string());
+  // Read whole, the file is its lines outside the sections: no statistics either.
+  const PixelDeck whole = read_pixel_deck(write("whole.cir", ".include corners.lib\n" + pixel), "p", "int");
+  EXPECT_TRUE(whole.statistical_switches.empty());
+  EXPECT_EQ(whole.statistical_file, "");
+  // Both sections: the library's bytes once in the hash, so naming a second section of it adds
+  // only the file it includes.
+  const PixelDeck both =
+      read_pixel_deck(write("both.cir", ".lib corners.lib tt\n.lib corners.lib tt_stat\n" + pixel), "p", "int");
+  EXPECT_EQ(both.statistical_switches, std::vector<std::string>{"sw_stat_mismatch"});
+  write("stat.inc", "* statistics, changed\n.param dvth = agauss(0, 0.02, 1)\n.param sw_stat_mismatch = 1\n");
+  EXPECT_EQ(read_pixel_deck(dir_ / "tt.cir", "p", "int").hash, tt.hash);
+  EXPECT_NE(read_pixel_deck(dir_ / "both.cir", "p", "int").hash, both.hash);
+}
+
 // The supply the deck's MOS devices are made for, as SKY130 and GF180 spell it in their model
 // names: the lowest of those its element lines use, never a capacitor's density or a model the
 // PDK's own files define.
@@ -976,7 +1007,7 @@ TEST_F(NgspiceTest, AVerilogAModelIsGivenWithOsdiAndSaidWhenNgspiceCannotLoadIt)
   request.t_stop = 1e-3;
   request.t_max = 1e-6;
   const std::string bench = testbench_text(with, 3.3, request, "data.txt");
-  const auto control = bench.find(".control\n"), load = bench.find("pre_osdi \"" + library + "\"\n");
+  const auto control = bench.find(".control\n"), load = bench.find("pre_osdi '" + library + "'\n");
   ASSERT_NE(load, std::string::npos) << bench;
   EXPECT_LT(control, load);
   EXPECT_LT(load, bench.find("\ntran "));
@@ -1005,15 +1036,16 @@ TEST_F(NgspiceTest, AVerilogAModelIsGivenWithOsdiAndSaidWhenNgspiceCannotLoadIt)
       (slurp(dir_ / "probe.out") + slurp(dir_ / "probe.err")).find("no such command") == std::string::npos;
   const Outcome given = aesim(args + " --osdi psp.osdi");
   EXPECT_EQ(given.status, 2) << given.err;
-  EXPECT_EQ(given.err.find("--osdi: this ngspice cannot load OSDI libraries (it has no osdi command") !=
-                std::string::npos,
-            !has_osdi)
+  // Without OSDI the command is missing; with it, this is no library.
+  EXPECT_NE(given.err.find(has_osdi ? "--osdi: ngspice could not load a library: "
+                                    : "--osdi: this ngspice cannot load OSDI libraries (it has no osdi command"),
+            std::string::npos)
       << given.err;
   EXPECT_FALSE(fs::exists(dir_ / "va.toml"));
   // The log is this run's, whose testbench loads the library.
-  EXPECT_NE(slurp(dir_ / "va.ngspice.log").find("pre_osdi \"" + library + "\""), std::string::npos);
+  EXPECT_NE(slurp(dir_ / "va.ngspice.log").find("pre_osdi '" + library + "'"), std::string::npos);
 
-  for (const char* bad : {"absent.osdi", "a\"b.osdi"}) {
+  for (const char* bad : {"absent.osdi", "a\"b.osdi", "a$HOME.osdi"}) {
     if (std::string(bad) != "absent.osdi") write(bad, "x");
     const Outcome refused = aesim(args + " --osdi '" + bad + "'");
     EXPECT_EQ(refused.status, 2) << refused.err;

@@ -72,10 +72,16 @@ std::vector<std::string> tokens(const std::string& line) {
   return out;
 }
 
-// The .include'd files of a deck, resolved against its folder as ngspice does (a `.lib NAME` of
+// A file a deck reads: all of it (`.include FILE`), or one section of it (`.lib FILE SECTION`).
+struct Included {
+  std::string path;
+  std::string section;  // lower case; empty for the whole file
+};
+
+// The files a deck's lines read, resolved against its folder as ngspice does (a `.lib NAME` of
 // one word opens a section of the file it is in, not a file).
-std::vector<std::string> includes(const std::vector<std::string>& lines, const fs::path& folder) {
-  std::vector<std::string> out;
+std::vector<Included> includes(const std::vector<std::string>& lines, const fs::path& folder) {
+  std::vector<Included> out;
   for (const std::string& line : lines) {
     const std::vector<std::string> t = tokens(line);
     const std::string keyword = t.empty() ? "" : ascii_lower(t[0]);
@@ -84,7 +90,32 @@ std::vector<std::string> includes(const std::vector<std::string>& lines, const f
     std::string name = t[1];
     if (name.size() >= 2 && (name.front() == '"' || name.front() == '\'')) name = name.substr(1, name.size() - 2);
     const fs::path p = fs::path(name).is_absolute() ? fs::path(name) : folder / name;
-    out.push_back(p.string());
+    out.push_back({p.string(), keyword == ".lib" ? ascii_lower(t[2]) : ""});
+  }
+  return out;
+}
+
+// The lines of a file ngspice reads for `section`: those between `.lib SECTION` and its `.endl`;
+// for the whole file (no section), those outside every section, which ngspice reads only when
+// another line names them. So the includes, devices and statistics of a PDK's other corners (its
+// `mos_tt_stat` beside the `mos_tt` a deck names) are not taken for the deck's.
+std::vector<std::string> section_lines(const std::vector<std::string>& lines, const std::string& section) {
+  std::vector<std::string> out;
+  std::string open;  // the section the line is in, lower case; empty outside sections
+  bool inside = false;
+  for (const std::string& line : lines) {
+    const std::vector<std::string> t = tokens(line);
+    const std::string keyword = t.empty() ? "" : ascii_lower(t[0]);
+    if (keyword == ".lib" && t.size() == 2) {
+      inside = true;
+      open = ascii_lower(t[1]);
+      continue;
+    }
+    if (keyword == ".endl") {
+      inside = false;
+      continue;
+    }
+    if (section.empty() ? !inside : (inside && open == section)) out.push_back(line);
   }
   return out;
 }
@@ -245,11 +276,18 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   deck.path = fs::absolute(path, ec).lexically_normal().string();
   // The path goes into the testbench as `.include "PATH"`, and ngspice's reader cuts that line at
   // a ';' or a " $" (its comment marks) and has no escape for a quote: measured on ngspice 39.
-  // The same for an OSDI library's `pre_osdi "PATH"`.
   const auto unquotable = [](const std::string& p) {
     const bool control =
         std::any_of(p.begin(), p.end(), [](char c) { return c == '"' || static_cast<unsigned char>(c) < 0x20; });
     return control || p.find(';') != std::string::npos || p.find(" $") != std::string::npos;
+  };
+  // An OSDI library's goes into a control line, `pre_osdi 'PATH'`: ngspice 46 keeps a double quote
+  // as part of the name, keeps blanks inside single quotes, and replaces $NAME with a variable
+  // even there.
+  const auto unquotable_command = [](const std::string& p) {
+    return std::any_of(p.begin(), p.end(), [](char c) {
+      return c == '\'' || c == '"' || c == '$' || c == ';' || c == '\\' || static_cast<unsigned char>(c) < 0x20;
+    });
   };
   if (unquotable(deck.path)) {
     throw InputError(fmt::format("deck '{}': its path has a quote, ';', ' $' or a control character, which ngspice's "
@@ -259,9 +297,9 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   for (const std::string& library : osdi) {
     require_input_file(library, "--osdi");
     const std::string absolute = fs::absolute(library, ec).lexically_normal().string();
-    if (unquotable(absolute)) {
-      throw InputError(fmt::format("--osdi '{}': its path has a quote, ';', ' $' or a control character, which "
-                                   "ngspice's pre_osdi cannot carry; rename or move the file",
+    if (unquotable_command(absolute)) {
+      throw InputError(fmt::format("--osdi '{}': its path has a quote, '$', ';', a backslash or a control character, "
+                                   "which ngspice's pre_osdi cannot carry; rename or move the file",
                                    library));
     }
     deck.osdi.push_back(absolute);
@@ -274,13 +312,14 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   std::optional<Subcircuit> found = find_subckt(lines, subckt);
   find_statistics(lines, path, deck);
   find_ratings(lines, deck);
-  // Every file the deck includes, and those they include (a PDK's .lib files nest), once each.
-  std::vector<std::string> pending = includes(lines, fs::path(deck.path).parent_path());
-  std::vector<std::string> seen;
+  // Every file (or section of one) the deck reads, and those they read (a PDK's .lib files nest),
+  // once each; a file's bytes are hashed once, and searched for commands whole.
+  std::vector<Included> pending = includes(lines, fs::path(deck.path).parent_path());
+  std::vector<std::string> seen, hashed;
   while (!pending.empty()) {
-    const std::string inc = pending.front();
+    const std::string inc = pending.front().path, section = pending.front().section;
     pending.erase(pending.begin());
-    const std::string key = fs::weakly_canonical(inc, ec).string();
+    const std::string file_key = fs::weakly_canonical(inc, ec).string(), key = file_key + "\n" + section;
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
     seen.push_back(key);
     if (seen.size() > 4096) throw InputError(fmt::format("deck '{}' includes more than 4096 files", path));
@@ -289,15 +328,18 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
       continue;  // missing: ngspice names it on the first run
     }
     const std::string included = read_text(inc, "included file");
-    refuse_commands(included, inc);
-    h = fnv1a(included, h);
-    const std::vector<std::string> included_lines = logical_lines(included);
+    if (std::find(hashed.begin(), hashed.end(), file_key) == hashed.end()) {
+      hashed.push_back(file_key);
+      refuse_commands(included, inc);
+      h = fnv1a(included, h);
+    }
+    const std::vector<std::string> included_lines = section_lines(logical_lines(included), section);
     if (!found) {
       found = find_subckt(included_lines, subckt);
       if (found) find_ratings(included_lines, deck);
     }
     find_statistics(included_lines, inc, deck);
-    for (const std::string& next : includes(included_lines, fs::path(inc).parent_path())) pending.push_back(next);
+    for (const Included& next : includes(included_lines, fs::path(inc).parent_path())) pending.push_back(next);
   }
   for (const std::string& library : deck.osdi) h = fnv1a(read_text(library, "--osdi"), h);
   deck.hash = fmt::format("{:016x}", h);

@@ -112,15 +112,19 @@ std::string unknown_model_type(const std::string& log) {
   return log.substr(from, to == std::string::npos ? std::string::npos : to - from);
 }
 
-// The element ngspice's log calls an unknown device when it is an N element, the letter of the
-// devices OSDI libraries define ("Error on line: n.xpix.nva out 0 0 0 vamos ... unknown device
-// type"), or empty.
+// The element ngspice's log says it cannot build when it is an N element, the letter of the
+// devices OSDI libraries define, or empty: ngspice 39 without OSDI, "Error on line: n.xpix.nva
+// out 0 0 0 vamos ... unknown device type"; ngspice 46 with it, "Error on line 18 or its
+// substitute: n.xpix.nva ... Unable to find definition of model xpix:vamos".
 std::string unknown_osdi_element(const std::string& log) {
-  static const std::string kLine = "error on line:";
   const std::string lower = ascii_lower(log);
-  const auto at = lower.find(kLine);
-  if (at == std::string::npos || lower.find("unknown device type", at) == std::string::npos) return "";
-  std::istringstream rest(log.substr(at + kLine.size()));
+  const auto at = lower.find("error on line");
+  const auto colon = at == std::string::npos ? at : lower.find(':', at);
+  if (colon == std::string::npos || (lower.find("unknown device type", colon) == std::string::npos &&
+                                     lower.find("unable to find definition of model", colon) == std::string::npos)) {
+    return "";
+  }
+  std::istringstream rest(log.substr(colon + 1));
   std::string element;
   rest >> element;
   return !element.empty() && (element[0] == 'n' || element[0] == 'N') ? element : "";
@@ -134,6 +138,17 @@ std::string model_failure(const std::string& log, const PixelDeck& deck, const s
     return fmt::format("--osdi: this ngspice cannot load OSDI libraries (it has no osdi command: built without "
                        "--enable-osdi); use an ngspice built with OSDI{}",
                        log_note);
+  }
+  // ngspice 46: 'Error opening osdi lib "PATH": No such file or directory!' (or the loader's own
+  // complaint), then 'Error: Library PATH couldn't be loaded!'.
+  if (!deck.osdi.empty()) {
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);) {
+      const std::string lower = ascii_lower(line);
+      if (lower.find("osdi lib") != std::string::npos || lower.find("couldn't be loaded") != std::string::npos) {
+        return fmt::format("--osdi: ngspice could not load a library: {}{}", trim(line), log_note);
+      }
+    }
   }
   std::string type = unknown_model_type(log);
   if (type.empty()) {
@@ -189,7 +204,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
   const SolverSettings solver = solver_settings(r.settings, r.iph, vdd);
   // OSDI libraries load before ngspice reads the circuit (the `pre_` prefix), wherever the block is.
   std::string osdi;
-  for (const std::string& library : deck.osdi) osdi += fmt::format("pre_osdi \"{}\"\n", library);
+  for (const std::string& library : deck.osdi) osdi += fmt::format("pre_osdi '{}'\n", library);
   // First settings: Gear integration (the trapezoidal rule rings on the pixel's fast edges and
   // fakes firings at slow ramps), tolerances sized for femtoamps and femtocoulombs (the defaults,
   // 1 pA and 10 fC, are the size of what is measured), and gmin, the conductance ngspice puts
