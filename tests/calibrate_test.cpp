@@ -1045,6 +1045,16 @@ TEST_F(NgspiceTest, AVerilogAModelIsGivenWithOsdiAndSaidWhenNgspiceCannotLoadIt)
   // The log is this run's, whose testbench loads the library.
   EXPECT_NE(slurp(dir_ / "va.ngspice.log").find("pre_osdi '" + library + "'"), std::string::npos);
 
+  // A deck that loads its library itself, as a PDK's examples do, is told to give it with --osdi.
+  write("loads.cir", "* loads its library\n.control\npre_osdi psp.osdi\n.endc\n" + deck);
+  const Outcome loads = aesim("calibrate loads.cir --subckt ideal_pixel -o loads.toml");
+  EXPECT_EQ(loads.status, 2) << loads.err;
+  EXPECT_NE(loads.err.find("'loads.cir' line 2: a .control block that loads an OSDI library (pre_osdi psp.osdi); aesim "
+                           "calibrate runs the circuit of a deck only: remove the block and give the library with --osdi"),
+            std::string::npos)
+      << loads.err;
+  EXPECT_FALSE(fs::exists(dir_ / "loads.toml"));
+
   for (const char* bad : {"absent.osdi", "a\"b.osdi", "a$HOME.osdi"}) {
     if (std::string(bad) != "absent.osdi") write(bad, "x");
     const Outcome refused = aesim(args + " --osdi '" + bad + "'");

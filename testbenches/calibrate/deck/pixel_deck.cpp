@@ -126,15 +126,30 @@ std::vector<std::string> section_lines(const std::vector<std::string>& lines, co
 void refuse_commands(const std::string& text, const std::string& file) {
   std::istringstream in(text);
   std::string line;
+  int block = 0;  // the line of the block's opening, 0 outside one
+  std::string keyword_of_block;
   for (int n = 1; std::getline(in, line); ++n) {
     const std::vector<std::string> t = tokens(line);
     if (t.empty()) continue;
     const std::string keyword = ascii_lower(t[0]);
-    if (keyword == ".control" || keyword == ".exec") {
-      throw InputError(fmt::format("'{}' line {}: a {} block, whose commands ngspice would run (shell commands among "
-                                   "them); aesim calibrate runs the circuit of a deck only: remove the block",
-                                   file, n, keyword));
+    if (block == 0 && (keyword == ".control" || keyword == ".exec")) {
+      block = n;
+      keyword_of_block = keyword;
+      continue;
     }
+    if (block == 0) continue;
+    // A block that loads OSDI libraries (as a PDK's examples do) has a way aesim runs itself.
+    if (keyword == "osdi" || keyword == "pre_osdi") {
+      throw InputError(fmt::format("'{}' line {}: a {} block that loads an OSDI library ({} {}); aesim calibrate runs "
+                                   "the circuit of a deck only: remove the block and give the library with --osdi",
+                                   file, block, keyword_of_block, t[0], t.size() > 1 ? t[1] : std::string()));
+    }
+    if (keyword == ".endc") break;
+  }
+  if (block != 0) {
+    throw InputError(fmt::format("'{}' line {}: a {} block, whose commands ngspice would run (shell commands among "
+                                 "them); aesim calibrate runs the circuit of a deck only: remove the block",
+                                 file, block, keyword_of_block));
   }
 }
 
