@@ -68,6 +68,48 @@ TEST(Imager, RunsInTheCallersKernelWithTheCycleRungsEvents) {
   EXPECT_DOUBLE_EQ(imager.tick(), 1e-6);
 }
 
+// A caller's sc_main may set its own time resolution before the Imager is made: at 1 ns, which
+// holds the receiver clock's 200 ns period, the run gives the events of simulate() at SystemC's
+// default 1 ps (in a context of its own), event for event on this scene.
+TEST(Imager, AtANanosecondResolutionTheClockHoldsAndTheEventsAreTheSame) {
+  sc_core::sc_set_time_resolution(1, sc_core::SC_NS);
+  ImagerSpec spec;
+  spec.scene = kScene;
+  spec.settings = {{"sim.duration", "300ms"}, {"bus.t_event", "2us"}, {"receiver.clock", "5MHz"}};
+  const SimulationResult reference = reference_run(spec, "cycle");
+  Imager imager("imager", spec);
+  sc_core::sc_start();
+  const std::vector<AddressEvent>& events = imager.events();
+  ASSERT_EQ(events.size(), reference.log.events().size());
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const AddressEvent& a = events[i];
+    const AddressEvent& b = reference.log.events()[i];
+    ASSERT_TRUE(a.t == b.t && a.x == b.x && a.y == b.y && a.tile == b.tile && a.flags == b.flags) << "event " << i;
+  }
+}
+
+// A resolution that cannot hold the clock's period as whole steps would move its edges (33 MHz,
+// 30,303 ps, at 1 ns) or stop it (a period under two steps: the bus divided by a zero period):
+// refused when the Imager is made, naming the resolution, the period and what to set.
+TEST(Imager, ATimeResolutionThatCannotHoldTheClockIsRefusedWhenItIsMade) {
+  sc_core::sc_set_time_resolution(1, sc_core::SC_NS);
+  ImagerSpec spec;
+  spec.settings = {{"sim.duration", "1ms"}, {"receiver.clock", "33MHz"}};
+  try {
+    Imager imager("a", spec);
+    ADD_FAILURE() << "a 30303 ps clock made at a 1 ns resolution";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("SystemC's time resolution, 1 ns, cannot hold the receiver clock's period "
+                                         "(30303 ps at receiver.clock 3.3e+07 Hz)"),
+              std::string::npos)
+        << e.what();
+  }
+  spec.settings = {{"sim.duration", "1ms"}, {"receiver.clock", "1GHz"}};  // one step a period
+  EXPECT_THROW(Imager("b", spec), InputError);
+  spec.settings = {{"sim.duration", "1ms"}, {"receiver.clock", "500MHz"}};  // two
+  EXPECT_NO_THROW(Imager("c", spec));
+}
+
 // What `aesim run` warns of reaches the caller as SystemC reports: a calibrated preset whose range
 // the scene's light leaves gives one SC_REPORT_WARNING per module, with the program's words, under
 // the module's id; the caller's handler (here: keep it, print nothing) decides.

@@ -5,11 +5,27 @@
 
 #include <fmt/format.h>
 
+#include "aesim/errors/input_error.hpp"
+
 namespace aesim {
 
+long long receiver_clock_period_ps(const ReceiverParams& receiver) {
+  return std::max<long long>(1, std::llround(1e12 / receiver.clock));
+}
+
 sc_core::sc_time receiver_clock_period(const ReceiverParams& receiver) {
-  return sc_core::sc_time(static_cast<double>(std::max<long long>(1, std::llround(1e12 / receiver.clock))),
-                          sc_core::SC_PS);
+  return sc_core::sc_time(static_cast<double>(receiver_clock_period_ps(receiver)), sc_core::SC_PS);
+}
+
+void check_time_resolution(const ReceiverParams& receiver) {
+  const double resolution_ps = sc_core::sc_get_time_resolution().to_seconds() * 1e12;
+  const long long period_ps = receiver_clock_period_ps(receiver);
+  const double steps = static_cast<double>(period_ps) / resolution_ps, whole = std::round(steps);
+  if (whole >= 2 && std::abs(steps - whole) < 1e-9 * whole) return;  // the resolution in seconds is a double
+  throw InputError(fmt::format("SystemC's time resolution, {}, cannot hold the receiver clock's period ({} ps at "
+                               "receiver.clock {:g} Hz) as a whole number of its steps: set a finer one before the "
+                               "model is made (sc_core::sc_set_time_resolution(1, sc_core::SC_PS), SystemC's default)",
+                               sc_core::sc_get_time_resolution().to_string(), period_ps, receiver.clock));
 }
 
 CycleTile::CycleTile(const sc_core::sc_module_name& name, std::uint32_t tile, const AddressMap& map,

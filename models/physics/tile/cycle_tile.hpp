@@ -77,7 +77,12 @@ class CycleTile : public sc_core::sc_module {
 };
 
 // The receiver clock's period: a whole number of picoseconds, so edges fall exactly on SystemC's
-// time grid.
+// time grid (at its default resolution, 1 ps; check_time_resolution() says whether another holds it).
+long long receiver_clock_period_ps(const ReceiverParams& receiver);
 sc_core::sc_time receiver_clock_period(const ReceiverParams& receiver);
+// Throws InputError when SystemC's time resolution (a caller's sc_main may have set its own before
+// the model was made) cannot hold the receiver clock's period as a whole number of its steps, two
+// at least: the clock would run at another rate, or not at all.
+void check_time_resolution(const ReceiverParams& receiver);
 
 }  // namespace aesim

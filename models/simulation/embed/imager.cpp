@@ -9,6 +9,7 @@
 #include "aesim/rungs/run_budget.hpp"
 #include "aesim/scene/calibrated_range.hpp"
 #include "aesim/scene/photocurrents.hpp"
+#include "aesim/tile/cycle_tile.hpp"
 
 namespace aesim {
 
@@ -40,6 +41,7 @@ Imager::Imager(const sc_core::sc_module_name& name, const ImagerSpec& spec) : sc
   SpecInputs in = spec_inputs(spec, Fidelity::Cycle, "an Imager is the cycle fidelity (use simulate() for the others)",
                               "aesim/Imager");
   check_work(in.config, in.photocurrents, Fidelity::Cycle);
+  check_time_resolution(in.config.receiver);
   const AddressMap map(in.config.array);
   for (const std::uint32_t t : spec.outside_receivers) {
     if (t >= static_cast<std::uint32_t>(map.tiles())) {
