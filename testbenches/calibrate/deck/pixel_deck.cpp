@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -328,9 +329,11 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   find_statistics(lines, path, deck);
   find_ratings(lines, deck);
   // Every file (or section of one) the deck reads, and those they read (a PDK's .lib files nest),
-  // once each; a file's bytes are hashed once, and searched for commands whole.
+  // once each; a file is read, hashed and searched for commands once, whole, however many of its
+  // sections are named.
   std::vector<Included> pending = includes(lines, fs::path(deck.path).parent_path());
-  std::vector<std::string> seen, hashed;
+  std::vector<std::string> seen;
+  std::map<std::string, std::vector<std::string>> lines_of;  // each file read, by its canonical path
   while (!pending.empty()) {
     const std::string inc = pending.front().path, section = pending.front().section;
     pending.erase(pending.begin());
@@ -342,13 +345,14 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
       if (fs::exists(inc, ec) || fs::is_symlink(inc, ec)) throw InputError(fmt::format("file '{}' included by the deck: {}", inc, not_a_file(inc)));
       continue;  // missing: ngspice names it on the first run
     }
-    const std::string included = read_text(inc, "included file");
-    if (std::find(hashed.begin(), hashed.end(), file_key) == hashed.end()) {
-      hashed.push_back(file_key);
+    auto file = lines_of.find(file_key);
+    if (file == lines_of.end()) {
+      const std::string included = read_text(inc, "included file");
       refuse_commands(included, inc);
       h = fnv1a(included, h);
+      file = lines_of.emplace(file_key, logical_lines(included)).first;
     }
-    const std::vector<std::string> included_lines = section_lines(logical_lines(included), section);
+    const std::vector<std::string> included_lines = section_lines(file->second, section);
     if (!found) {
       found = find_subckt(included_lines, subckt);
       if (found) find_ratings(included_lines, deck);
