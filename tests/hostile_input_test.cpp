@@ -25,16 +25,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/sanitized_build.hpp"
 #include "support/temp_dir_test.hpp"
 
-// GCC says so with a macro, clang through __has_feature.
-#if defined(__SANITIZE_ADDRESS__)
-#define AESIM_TEST_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define AESIM_TEST_UNDER_ASAN 1
-#endif
-#endif
 
 namespace aesim {
 namespace {
@@ -53,11 +46,8 @@ class HostileInputTest : public testing::TempDirTest {
  protected:
   // Runs aesim under a time limit (and a memory limit where the build allows one).
   Outcome bounded(const std::string& args, int seconds = 60) {
-#ifdef AESIM_TEST_UNDER_ASAN
-    const std::string limit;  // ASan reserves terabytes of address space up front
-#else
-    const std::string limit = "ulimit -v 4000000 && ";
-#endif
+    // ASan reserves terabytes of address space up front.
+    const std::string limit = testing::kUnderAddressSanitizer ? "" : "ulimit -v 4000000 && ";
     return aesim(args, limit + "timeout " + std::to_string(seconds) + " ");
   }
 
