@@ -89,11 +89,14 @@ RECEIVERS = {
 
 
 def write_if_changed(path, text):
-    # CMake runs this at every configure: a file rewritten as it was would rebuild every mutant.
+    # CMake runs this at every configure of every preset, which share the folder: a file rewritten
+    # as it was would rebuild every mutant, and one half-written could be read by another preset.
     if os.path.exists(path) and open(path).read() == text:
         return
-    with open(path, "w") as f:
+    temp = f"{path}.tmp.{os.getpid()}"
+    with open(temp, "w") as f:
         f.write(text)
+    os.replace(temp, path)
 
 
 def main():
