@@ -283,6 +283,62 @@ TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
   EXPECT_FALSE(fs::exists(dir_ / "ready"));
 }
 
+// An address port wider than the output's address (spio's AER-to-SpiNNaker mapper takes 16 bits
+// and its packet's slice gives 10): the proof drives the addresses both carry, as the bus and the
+// simulation do, so a solver's address in the extra bits is no counterexample; a wrong slice
+// still fails in both.
+TEST_F(VerifyTest, AnAddressPortWiderThanTheOutputIsCheckedOnTheAddressesBothCarry) {
+  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/level_valid_receiver";
+  write("lvr.v", slurp(dir + "/lvr.v"));
+  std::string wide = slurp(dir + "/lvr.toml");
+  const std::string sources = "sources = [\"lvr.v\"]\n", out = "out_addr = \"word\"\n";
+  ASSERT_NE(wide.find(sources), std::string::npos);
+  ASSERT_NE(wide.find(out), std::string::npos);
+  wide.replace(wide.find(sources), sources.size(), sources + "parameters = { AW = 16 }\n");
+  std::string wrong = wide;
+  wide.replace(wide.find(out), out.size(), "out_addr = \"word[9:0]\"\n");
+  wrong.replace(wrong.find(out), out.size(), "out_addr = \"word[10:1]\"\n");
+  write("wide.toml", wide);
+  write("wrong.toml", wrong);
+  const Outcome o = verify("wide.toml --plan quick --formal --out wide");
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  const nlohmann::json r = report("wide");
+  int order = 0;
+  for (const auto& v : r["formal"]) {
+    EXPECT_EQ(v["verdict"], "proved") << v.dump();
+    order += v["property"] == "beat_in_order";
+  }
+  EXPECT_EQ(order, 1);
+  const Outcome bad = verify("wrong.toml --plan quick --formal --out wrong");
+  EXPECT_EQ(bad.status, 1) << bad.err;
+  const nlohmann::json w = report("wrong");
+  EXPECT_EQ(w["first_failure"]["check"], "beat") << w["first_failure"].dump();
+  bool order_failed = false;
+  for (const auto& v : w["formal"]) order_failed |= v["property"] == "beat_in_order" && v["verdict"] == "failed";
+  EXPECT_TRUE(order_failed) << w["formal"].dump();
+}
+
+// A block whose Req its top synchronises (spio's mapper behind its top's spio_spinnaker_link_sync)
+// is described with synchroniser_flops = 0: the proof checks no synchroniser and says so.
+TEST_F(VerifyTest, ASynchroniserOutsideTheDesignIsSaidAndNotChecked) {
+  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/level_valid_receiver";
+  write("lvr.v", slurp(dir + "/lvr.v"));
+  std::string outside = slurp(dir + "/lvr.toml");
+  const std::string latency = "ack_latency_cycles = [3, 3]\n";
+  ASSERT_NE(outside.find(latency), std::string::npos);
+  outside.replace(outside.find(latency), latency.size(), latency + "synchroniser_flops = 0\n");
+  write("outside.toml", outside);
+  const Outcome o = verify("outside.toml --plan quick --formal --out outside");
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  const nlohmann::json r = report("outside");
+  for (const auto& v : r["formal"]) EXPECT_NE(v["property"], "req_synchronised") << v.dump();
+  EXPECT_EQ(r["formal"].size(), 9u);
+  EXPECT_NE(o.out.find("formal: 9 properties: 9 proved"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("formal note: Req is synchronised outside the design (behaviour.synchroniser_flops = 0)"),
+            std::string::npos)
+      << o.out;
+}
+
 // A design without a reset (`reset = "none"`): its registers' initial values are its reset
 // state. Every case starts from them, the case that resets mid-run is left out and said so, and
 // Ack must be low before the first edge, in simulation and in the proof; a copy that starts with
@@ -565,6 +621,8 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
       {variant("valid_active.toml", "valid = \"out_valid\"", "valid = { port = \"out_valid\", active = \"low\" }"),
        "ports.valid.active: unknown key (port, beat)"},
       {variant("no_source.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"missing.v\"]"), "missing.v"},
+      {variant("flops.toml", "ack_latency_cycles = [5, 5]", "ack_latency_cycles = [5, 5]\nsynchroniser_flops = 9"),
+       "behaviour.synchroniser_flops: expected the flops Req passes before any logic reads it, 0"},
       {(write("rx.vhd", "entity rx is end rx;\n"),
         variant("vhdl.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\", \"rx.vhd\"]")),
        "'" + (dir_ / "rx.vhd").string() + "' is VHDL"},

@@ -160,6 +160,7 @@ int verify_command(const VerifyCommandOptions& opt) {
     std::fprintf(report_stream(), "formal: %zu properties: %d proved, %d bounded to %d steps, %d failed (%.1f s%s)\n", formal->verdicts.size(),
                 count["proved"], count["bounded"], formal->depth, count["failed"], formal->seconds,
                 formal->cached ? ", cached" : "");
+    for (const std::string& note : formal->notes) std::fprintf(report_stream(), "formal note: %s\n", note.c_str());
     for (const FormalVerdict& v : formal->verdicts) {
       if (v.verdict == "failed") {
         std::fprintf(report_stream(), "formal failure: %s (%s)%s%s\n", v.property.c_str(), v.text.c_str(), v.detail.empty() ? "" : ": ",

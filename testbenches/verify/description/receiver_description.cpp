@@ -336,8 +336,9 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   d.ack_latency_min = static_cast<int>(l[0].as_integer());
   d.ack_latency_max = static_cast<int>(l[1].as_integer());
   if (const TomlValue* flops = r.find(behaviour, "synchroniser_flops")) {
-    if (!flops->is_integer() || flops->as_integer() < 1 || flops->as_integer() > 8) {
-      r.fail("behaviour.synchroniser_flops", "expected the flops Req passes before any logic reads it, 1 to 8");
+    if (!flops->is_integer() || flops->as_integer() < 0 || flops->as_integer() > 8) {
+      r.fail("behaviour.synchroniser_flops",
+             "expected the flops Req passes before any logic reads it, 0 (synchronised outside the design) to 8");
     }
     d.synchroniser_flops = static_cast<int>(flops->as_integer());
   }

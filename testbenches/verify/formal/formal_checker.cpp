@@ -90,7 +90,13 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
     wiring.drive(PortRef{d.reset_port}, fmt::format("(in_reset ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
   }
   wiring.drive("req", fmt::format("(req_i ? {} : {})", level(d.req_active_high), inverse(d.req_active_high)));
-  wiring.drive("addr", "addr_i");
+  // The addresses the receiver both takes and gives: of an input port wider than the output (a
+  // 16-bit AER input whose low 10 bits come out in a packet's slice) the extra bits are held at
+  // zero, as the narrower bus driving it holds them (the simulation drives bus-width addresses);
+  // a solver's address there could never come out.
+  const int addr_port_width = role_width(d, ports, "addr"), ow = role_width(d, ports, "out_addr");
+  const int aw = std::min(addr_port_width, ow);
+  wiring.drive("addr", aw < addr_port_width ? fmt::format("{{{}'d0, addr_i}}", addr_port_width - aw) : "addr_i");
   if (d.has("contention")) wiring.drive("contention", "contention_i");
   if (d.has("ready")) wiring.drive("ready", "ready_i");
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
@@ -98,7 +104,6 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   const std::string ts = d.has("timestamp") ? wiring.read("timestamp") : "";
   const std::string flag = d.has("flags") ? wiring.read("flags") : "";
   const std::string ov = d.has("overflow_count") ? wiring.read("overflow_count") : "";
-  const int aw = role_width(d, ports, "addr"), ow = role_width(d, ports, "out_addr");
   const int tw = d.has("timestamp") ? role_width(d, ports, "timestamp") : 1;
   const int vw = d.has("overflow_count") ? role_width(d, ports, "overflow_count") : 1;
   const std::string valid_wire = wiring.valid_beat("valid");

@@ -371,7 +371,7 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   const fs::path& work = scratch.path();
 
   // Everything the verdicts follow from: the description, the sources, the tools, the rule.
-  std::string key = fmt::format("aesim-formal-v4\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
+  std::string key = fmt::format("aesim-formal-v5\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
   if (stamp) key += fmt::format("stamp {} {}\n", stamp->from_ack, stamp->offset);
   key += read_scratch_text(d.file);
   for (const std::string& s : d.sources) key += s + "\n" + read_scratch_text(s);
@@ -426,7 +426,9 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   } catch (const InputError& e) {
     throw InputError(std::string("--formal (with [formal] parameters): ") + e.what());
   }
-  {
+  // A block whose Req its own top synchronises (spio's mapper behind spio_spinnaker_link_sync)
+  // has no synchroniser of its own to check.
+  if (d.synchroniser_flops > 0) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string violation =
         synchroniser_path_violation(netlist_text, d.top, d.ref("req"), d.synchroniser_flops, d.formal.unsynchronised_outputs);
@@ -439,9 +441,12 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   result.depth = checker.depth;
   result.depth_reason = checker.depth_reason;
   result.notes = checker.notes;
+  if (d.synchroniser_flops == 0) {
+    result.notes.push_back("Req is synchronised outside the design (behaviour.synchroniser_flops = 0): no synchroniser is checked");
+  }
   if (options.progress) {
     std::fprintf(stderr, "aesim verify --formal: %zu properties: an unbounded proof (pdr) where ABC finds one in %.0f s, else a bounded check to %d steps (%s)\n",
-                 checker.properties.size() + 1, options.property_seconds, result.depth, result.depth_reason.c_str());
+                 checker.properties.size() + result.verdicts.size(), options.property_seconds, result.depth, result.depth_reason.c_str());
   }
   write_scratch_text(work / "aesim_formal.sv", checker.source);
   write_scratch_text(work / "aesim_formal.ys", yosys_script(d, checker.properties));
