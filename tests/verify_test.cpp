@@ -597,6 +597,61 @@ TEST_F(VerifyTest, ExportedTestbenchPassesInIcarusOnTheGoodDesignsAndFailsOnAMut
   }
 }
 
+// A design without a reset whose next state is an `always @*` block: Verilator's two-state run
+// passes, and so does the exported testbench in Icarus as Verilog-2005; as SystemVerilog, Icarus
+// runs no process at time 0, so the state and Ack go unknown (x) at the first edge. The testbench
+// says so, not that Ack rose (an edge from 0 to x is no rise).
+TEST_F(VerifyTest, ExportedTestbenchTellsAnUnknownAckFromARise) {
+  write("xrx.v", R"(module xrx (input clk, input req, input [9:0] addr, output ack, output valid, output [9:0] out_addr);
+  reg m = 1'b0, s = 1'b0;
+  reg [1:0] state = 2'd0;
+  reg [1:0] next;
+  reg [9:0] word = 10'd0;
+  always @* begin
+    next = state;
+    case (state)
+      2'd0: if (s) next = 2'd1;
+      2'd1: next = 2'd2;
+      2'd2: if (!s) next = 2'd0;
+      default: next = 2'd0;
+    endcase
+  end
+  always @(posedge clk) begin
+    m <= req;
+    s <= m;
+    if (state == 2'd0 && s) word <= addr;
+    state <= next;
+  end
+  assign ack = state[1];
+  assign valid = state == 2'd1;
+  assign out_addr = word;
+endmodule
+)");
+  write("xrx.toml", R"(top = "xrx"
+sources = ["xrx.v"]
+clock = "50MHz"
+reset = "none"
+[ports]
+clk = "clk"
+req = "req"
+ack = "ack"
+addr = "addr"
+valid = "valid"
+out_addr = "out_addr"
+[behaviour]
+collisions = "pass"
+ack_latency_cycles = [3, 4]
+)");
+  const Outcome o = verify("xrx.toml --plan quick --export-tb tb");
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  const std::string tb = (dir_ / "tb").string();
+  EXPECT_EQ(last_line(tb, "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  EXPECT_EQ(last_line(tb, "iverilog -g2012 -o sim -c tb_files.f && vvp -n sim").rfind("FAIL", 0), 0u);
+  const std::string output = slurp(fs::path(tb) / "run.txt");
+  EXPECT_NE(output.find("Ack is unknown (x) at 20000 ps"), std::string::npos) << output;
+  EXPECT_EQ(output.find("Ack rose"), std::string::npos) << output;
+}
+
 TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
   const std::string good = slurp(kSecond + "/ae_rx_alt.toml");
   auto variant = [&](const std::string& name, const std::string& from, const std::string& to) {

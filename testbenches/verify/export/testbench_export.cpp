@@ -143,9 +143,18 @@ module tb;
       taken = taken + 1;
     end
   end
+  // A 4-state simulator can see Ack unknown (x) where aesim's two-state run cannot: an edge from 0
+  // to x is no rise, and an x outside reset is told as such.
   always @(posedge ack) begin
-    if (!req) begin
+    if (ack === 1'b1 && !req) begin
       if (errors == 0) $display("Ack rose with Req low at %0t ps", $time);
+      errors = errors + 1;
+    end
+  end
+  always @(ack) begin
+    if (ack !== 1'b0 && ack !== 1'b1 && !rst) begin
+      if (errors == 0)
+        $display("Ack is unknown (x) at %0t ps: the design leaves it unset in 4-state simulation: no reset, or a combinational block that has not run since time 0", $time);
       errors = errors + 1;
     end
   end
