@@ -100,7 +100,11 @@ void add_verify(CLI::App& app, int& status) {
   cmd->add_option("--out", opt->out, "Folder for verify.json (and failure.vcd)")->capture_default_str();
   cmd->add_option("--export-tb", opt->export_tb, "Folder for a self-checking Verilog testbench of a scene run");
   cmd->add_flag("--formal", opt->formal,
-                "Also prove the description's properties with yosys and z3 (bounded check, then k-induction)");
+                "Also prove the description's properties with yosys and ABC (an unbounded proof, else a bounded check)");
+  cmd->add_option("--formal-seconds", opt->formal_seconds,
+                  "Time each property's proof, then its bounded check, may take before it is stopped")
+      ->check(CLI::Range(1, 3600))
+      ->capture_default_str();
   cmd->add_flag("--allow-system-tasks", opt->allow_system_tasks,
                 "Let the RTL call $system (it runs shell commands on this machine); refused otherwise");
   cmd->callback([opt, &status] { status = verify_command(*opt); });

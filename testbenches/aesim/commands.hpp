@@ -92,6 +92,7 @@ struct VerifyCommandOptions {
   std::uint64_t seed = 1;
   bool allow_system_tasks = false;
   bool formal = false;
+  int formal_seconds = 20;  // each property's proof or bounded check
 };
 
 struct CalibrateOptions {

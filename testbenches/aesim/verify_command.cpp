@@ -70,6 +70,7 @@ int verify_command(const VerifyCommandOptions& opt) {
   if (opt.formal || plan.formal) {
     FormalOptions fo;
     fo.cache_dir = build_options.cache_dir;
+    fo.property_seconds = opt.formal_seconds;
     try {
       formal = run_formal(d, result.stamp_edge, fo);
     } catch (const InputError& e) {

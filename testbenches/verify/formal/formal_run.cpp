@@ -364,6 +364,7 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   }
   FormalResult result;
   result.solver = "ABC (pdr, bmc3)";
+  result.property_seconds = options.property_seconds;
   const fs::path cache = options.cache_dir;
   std::error_code ec;
   fs::create_directories(cache, ec);

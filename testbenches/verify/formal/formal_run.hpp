@@ -27,6 +27,7 @@ struct FormalResult {
   std::vector<std::string> notes;
   bool cached = false;
   double seconds = 0;
+  double property_seconds = 0;  // each property's budget (FormalOptions)
   // The first failed property's counterexample: its VCD (yosys-smtbmc's), and its inputs per step
   // for the simulation driver.
   std::string counterexample_vcd;

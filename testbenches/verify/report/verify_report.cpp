@@ -54,6 +54,7 @@ void add_formal_report(nlohmann::json& report, const FormalResult& formal, const
   report["formal_run"] = {{"depth", formal.depth},
                           {"depth_reason", formal.depth_reason},
                           {"solver", formal.solver},
+                          {"property_seconds", formal.property_seconds},
                           {"cached", formal.cached},
                           {"seconds", formal.seconds},
                           {"notes", formal.notes},
