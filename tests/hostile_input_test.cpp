@@ -28,7 +28,6 @@
 #include "support/sanitized_build.hpp"
 #include "support/temp_dir_test.hpp"
 
-
 namespace aesim {
 namespace {
 namespace fs = std::filesystem;
