@@ -32,6 +32,21 @@ class VerifyTest : public testing::TempDirTest {
   nlohmann::json report(const std::string& out = "out/verify") const {
     return nlohmann::json::parse(slurp(dir_ / out / "verify.json"));
   }
+  // The level-valid receiver's RTL copied into the test's folder; its description's text.
+  std::string level_valid_receiver() {
+    const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/level_valid_receiver";
+    write("lvr.v", slurp(dir + "/lvr.v"));
+    return slurp(dir + "/lvr.toml");
+  }
+  // `text` with its first `from` replaced by `to`; a failure of the test when it has none.
+  static std::string edited(std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    if (at == std::string::npos) {
+      ADD_FAILURE() << "no '" << from << "' in:\n" << text;
+      return text;
+    }
+    return text.replace(at, from.size(), to);
+  }
   // Runs a program with its arguments in `folder` (a shell only for the redirection; every
   // argument is a path the test made) and returns its last output line.
   std::string last_line(const std::string& folder, const std::string& command) const {
@@ -288,18 +303,10 @@ TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
 // simulation do, so a solver's address in the extra bits is no counterexample; a wrong slice
 // still fails in both.
 TEST_F(VerifyTest, AnAddressPortWiderThanTheOutputIsCheckedOnTheAddressesBothCarry) {
-  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/level_valid_receiver";
-  write("lvr.v", slurp(dir + "/lvr.v"));
-  std::string wide = slurp(dir + "/lvr.toml");
-  const std::string sources = "sources = [\"lvr.v\"]\n", out = "out_addr = \"word\"\n";
-  ASSERT_NE(wide.find(sources), std::string::npos);
-  ASSERT_NE(wide.find(out), std::string::npos);
-  wide.replace(wide.find(sources), sources.size(), sources + "parameters = { AW = 16 }\n");
-  std::string wrong = wide;
-  wide.replace(wide.find(out), out.size(), "out_addr = \"word[9:0]\"\n");
-  wrong.replace(wrong.find(out), out.size(), "out_addr = \"word[10:1]\"\n");
-  write("wide.toml", wide);
-  write("wrong.toml", wrong);
+  const std::string wide = edited(level_valid_receiver(), "sources = [\"lvr.v\"]\n",
+                                  "sources = [\"lvr.v\"]\nparameters = { AW = 16 }\n");
+  write("wide.toml", edited(wide, "out_addr = \"word\"\n", "out_addr = \"word[9:0]\"\n"));
+  write("wrong.toml", edited(wide, "out_addr = \"word\"\n", "out_addr = \"word[10:1]\"\n"));
   const Outcome o = verify("wide.toml --plan quick --formal --out wide");
   ASSERT_EQ(o.status, 0) << o.out << o.err;
   const nlohmann::json r = report("wide");
@@ -321,13 +328,8 @@ TEST_F(VerifyTest, AnAddressPortWiderThanTheOutputIsCheckedOnTheAddressesBothCar
 // A block whose Req its top synchronises (spio's mapper behind its top's spio_spinnaker_link_sync)
 // is described with synchroniser_flops = 0: the proof checks no synchroniser and says so.
 TEST_F(VerifyTest, ASynchroniserOutsideTheDesignIsSaidAndNotChecked) {
-  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/level_valid_receiver";
-  write("lvr.v", slurp(dir + "/lvr.v"));
-  std::string outside = slurp(dir + "/lvr.toml");
-  const std::string latency = "ack_latency_cycles = [3, 3]\n";
-  ASSERT_NE(outside.find(latency), std::string::npos);
-  outside.replace(outside.find(latency), latency.size(), latency + "synchroniser_flops = 0\n");
-  write("outside.toml", outside);
+  write("outside.toml", edited(level_valid_receiver(), "ack_latency_cycles = [3, 3]\n",
+                               "ack_latency_cycles = [3, 3]\nsynchroniser_flops = 0\n"));
   const Outcome o = verify("outside.toml --plan quick --formal --out outside");
   ASSERT_EQ(o.status, 0) << o.out << o.err;
   const nlohmann::json r = report("outside");
