@@ -21,7 +21,7 @@ class OutputError : public std::runtime_error {
 // A signal asked a cooperative command to stop; exit status 128 + signal.
 class Interrupted : public std::runtime_error {
  public:
-  explicit Interrupted(int signal) : std::runtime_error("interrupted"), signal(signal) {}
+  explicit Interrupted(int signal_number) : std::runtime_error("interrupted"), signal(signal_number) {}
   int signal;
 };
 
