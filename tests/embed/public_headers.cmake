@@ -64,8 +64,12 @@ add_library(public_headers OBJECT \${HEADER_SOURCES})
 target_link_libraries(public_headers PRIVATE aesim::aesim)
 set_target_properties(public_headers PROPERTIES NO_SYSTEM_FROM_IMPORTED ON)
 target_compile_options(public_headers PRIVATE -fsyntax-only -Wall -Wextra -Wpedantic -Wshadow -Woverloaded-virtual
+                                              -Wconversion -Wsign-conversion -Wold-style-cast -Wnon-virtual-dtor
+                                              -Wcast-align -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough
                                               -Werror)
 ")
+# The warnings are those a strict project turns on (conversions and signs, C casts, a virtual
+# class without a virtual destructor), since a header's warning is the including project's error.
 # A user's project may build with GCC or clang, whose warnings differ (clang's: a virtual overridden
 # without `override`, one hidden by an overload): warning-free under both, as errors. Each header
 # alone under GCC; under clang the umbrella, whose closure is every installed header (checked above):

@@ -11,7 +11,9 @@ struct Image {
   int height = 0;
   std::vector<double> pixels;
 
-  double at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  double at(int x, int y) const {
+    return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+  }
 };
 
 // Rec. 709 / sRGB luminance of linear red, green and blue: what every colour scene is reduced to.
