@@ -193,14 +193,16 @@ int sc_main(int argc, char* argv[]) {
     }
     std::printf("%s,%s,%s,%u,%.6g,%.6g,%.6g,%llu,%.6g,%zu,%s,%llu,%llu,%.6g\n", o.sign.c_str(), o.fidelity.c_str(),
                 o.cpu.approximately_timed ? "approximate" : "loose", o.fifo, o.cpu.clock_hz, o.cpu.cycles_per_template,
-                duration, static_cast<unsigned long long>(delivered), delivered / duration, decisions.size(), first_fields,
+                duration, static_cast<unsigned long long>(delivered), static_cast<double>(delivered) / duration,
+                decisions.size(), first_fields,
                 static_cast<unsigned long long>(cpu.events_read()), static_cast<unsigned long long>(fifo->overflows()),
                 cpu.busy_s() / duration);
     std::fprintf(stderr,
                  "sensor_node: %s at the %s fidelity, %.3g s: %llu events delivered (%.4g/s); FIFO of %u, processor at "
                  "%.4g MHz (%s timed)\n",
-                 o.sign.c_str(), o.fidelity.c_str(), duration, static_cast<unsigned long long>(delivered), delivered / duration,
-                 o.fifo, o.cpu.clock_hz / 1e6, o.cpu.approximately_timed ? "approximately" : "loosely");
+                 o.sign.c_str(), o.fidelity.c_str(), duration, static_cast<unsigned long long>(delivered),
+                 static_cast<double>(delivered) / duration, o.fifo, o.cpu.clock_hz / 1e6,
+                 o.cpu.approximately_timed ? "approximately" : "loosely");
     if (decisions.empty()) {
       std::fprintf(stderr, "  no decision within the scene\n");
     } else {
