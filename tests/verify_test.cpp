@@ -106,20 +106,11 @@ TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {
 // glitch's address. That is allowed (a glitch breaks the bus protocol, not the receiver's); the
 // filtered receiver ignores it. Both then deliver the next event.
 TEST_F(VerifyTest, AReceiverWithoutAGlitchFilterMayAnswerTheGlitch) {
-  std::string rtl = slurp(kSecond + "/ae_rx_alt.v");
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"wire seen_high = sync[2] & held;", "wire seen_high = sync[2];"},
-        {"wire seen_low = ~sync[2] & ~held;", "wire seen_low = ~sync[2];"}}) {
-    const auto at = rtl.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    rtl.replace(at, from.size(), to);
-  }
-  write("ae_rx_alt.v", rtl);
-  std::string description = slurp(kSecond + "/ae_rx_alt.toml");
-  const auto at = description.find("ack_latency_cycles = [5, 5]");
-  ASSERT_NE(at, std::string::npos);
-  description.replace(at, 27, "ack_latency_cycles = [4, 4]");
-  write("rx.toml", description);
+  const std::string unheld = edited(slurp(kSecond + "/ae_rx_alt.v"), "wire seen_high = sync[2] & held;",
+                                    "wire seen_high = sync[2];");
+  write("ae_rx_alt.v", edited(unheld, "wire seen_low = ~sync[2] & ~held;", "wire seen_low = ~sync[2];"));
+  write("rx.toml", edited(slurp(kSecond + "/ae_rx_alt.toml"), "ack_latency_cycles = [5, 5]",
+                          "ack_latency_cycles = [4, 4]"));
   const Outcome o = verify("rx.toml --out unfiltered");
   ASSERT_EQ(o.status, 0) << o.out << o.err;
   ASSERT_EQ(verify(kSecond + "/ae_rx_alt.toml --out filtered").status, 0);
@@ -213,11 +204,7 @@ TEST_F(VerifyTest, AFifoFullOnlyBeforeItsPointersWrapIsCaughtAndANarrowDropCount
   expect_pass(saturates, report("saturating"));
 
   // A counter that stops one short of its largest value neither wraps nor saturates.
-  std::string rtl = slurp(dir + "/arx.sv");
-  const std::string stop = "dropped_o == 8'hFF";
-  ASSERT_NE(rtl.find(stop), std::string::npos);
-  rtl.replace(rtl.find(stop), stop.size(), "dropped_o == 8'hFE");
-  write("arx.sv", rtl);
+  write("arx.sv", edited(slurp(dir + "/arx.sv"), "dropped_o == 8'hFF", "dropped_o == 8'hFE"));
   const Outcome short_counter = verify("saturating.toml --out short");
   EXPECT_EQ(short_counter.status, 1) << short_counter.err;
   EXPECT_EQ(report("short")["first_failure"]["check"], "overflow_count");
@@ -225,11 +212,9 @@ TEST_F(VerifyTest, AFifoFullOnlyBeforeItsPointersWrapIsCaughtAndANarrowDropCount
             std::string::npos)
       << short_counter.out << short_counter.err;
 
-  rtl = slurp(dir + "/arx.sv");
-  const std::string full = "wire full = wr[DEPTH_LOG] != rd[DEPTH_LOG] && wr[DEPTH_LOG-1:0] == rd[DEPTH_LOG-1:0];";
-  ASSERT_NE(rtl.find(full), std::string::npos);
-  rtl.replace(rtl.find(full), full.size(), "wire full = (wr - rd) == (1 << DEPTH_LOG);");
-  write("arx.sv", rtl);
+  write("arx.sv", edited(slurp(dir + "/arx.sv"),
+                         "wire full = wr[DEPTH_LOG] != rd[DEPTH_LOG] && wr[DEPTH_LOG-1:0] == rd[DEPTH_LOG-1:0];",
+                         "wire full = (wr - rd) == (1 << DEPTH_LOG);"));
   write("arx.toml", description);
   const Outcome slip = verify("arx.toml --out slip");
   EXPECT_EQ(slip.status, 1) << slip.err;
@@ -256,12 +241,9 @@ TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
   EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
 
   const std::string description = slurp(dir + "/lvr.toml");
-  const std::string rise = "valid = { port = \"word_ready\", beat = \"rise\" }";
-  ASSERT_NE(description.find(rise), std::string::npos);
-  std::string level = description;
-  level.replace(level.find(rise), rise.size(), "valid = \"word_ready\"");
   write("lvr.v", slurp(dir + "/lvr.v"));
-  write("level.toml", level);
+  write("level.toml",
+        edited(description, "valid = { port = \"word_ready\", beat = \"rise\" }", "valid = \"word_ready\""));
   const Outcome high = verify("level.toml --formal --out high");
   EXPECT_EQ(high.status, 1) << high.err;
   const nlohmann::json h = report("high");
@@ -277,11 +259,8 @@ TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
   }
   EXPECT_EQ(invented, 1);
 
-  std::string rtl = slurp(dir + "/lvr.v");
-  const std::string falls = "        ack        <= 1'b0;\n        word_ready <= 1'b0;\n";
-  ASSERT_NE(rtl.find(falls), std::string::npos);
-  rtl.replace(rtl.find(falls), falls.size(), "        ack        <= 1'b0;\n");
-  write("lvr.v", rtl);
+  write("lvr.v", edited(slurp(dir + "/lvr.v"), "        ack        <= 1'b0;\n        word_ready <= 1'b0;\n",
+                        "        ack        <= 1'b0;\n"));
   write("lvr.toml", description);
   const Outcome held = verify("lvr.toml --out held");
   EXPECT_EQ(held.status, 1) << held.err;
@@ -357,11 +336,8 @@ TEST_F(VerifyTest, AReceiverWithoutAResetStartsFromItsInitialValues) {
   ASSERT_TRUE(good["formal"].is_array());
   for (const auto& v : good["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
 
-  std::string rtl = slurp(dir + "/noreset_rx.v");
-  const std::string low = "output reg        ack = 1'b0,";
-  ASSERT_NE(rtl.find(low), std::string::npos);
-  rtl.replace(rtl.find(low), low.size(), "output reg        ack = 1'b1,");
-  write("noreset_rx.v", rtl);
+  write("noreset_rx.v",
+        edited(slurp(dir + "/noreset_rx.v"), "output reg        ack = 1'b0,", "output reg        ack = 1'b1,"));
   write("noreset_rx.toml", slurp(dir + "/noreset_rx.toml"));
   const Outcome bad = verify("noreset_rx.toml --formal --out high");
   EXPECT_EQ(bad.status, 1) << bad.err;
@@ -389,11 +365,7 @@ TEST_F(VerifyTest, TheRtlsOwnVerdictsCountAndItRunsNoCommand) {
   auto variant = [&](const std::string& folder, const std::string& from, const std::string& to) {
     fs::create_directories(dir_ / folder);
     for (const char* f : {"pkt_rx_pkg.sv", "pkt_rx.toml"}) fs::copy_file(kThird + "/" + f, dir_ / folder / f);
-    std::string rtl = slurp(kThird + "/pkt_rx.sv");
-    const auto at = rtl.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    rtl.replace(at, from.size(), to);
-    write(folder + "/pkt_rx.sv", rtl);
+    write(folder + "/pkt_rx.sv", edited(slurp(kThird + "/pkt_rx.sv"), from, to));
     return (dir_ / folder / "pkt_rx.toml").string();
   };
   const std::string anchor = "  assign pkt_valid = offer && !col_q;";
@@ -505,10 +477,8 @@ TEST_F(VerifyTest, FormalCatchesTheStaleStampAndTheFirstFlopDecision) {
 TEST_F(VerifyTest, FormalOnRtlYosysCannotReadIsOneLineAndThePlanMayAskForIt) {
   fs::create_directories(dir_ / "imported");
   for (const char* f : {"pkt_rx_pkg.sv", "pkt_rx.toml"}) fs::copy_file(kThird + "/" + f, dir_ / "imported" / f);
-  std::string rtl = slurp(kThird + "/pkt_rx.sv");
-  const std::string from = "module pkt_rx #(";
-  rtl.replace(rtl.find(from), from.size(), "import pkt_rx_pkg::*;\nmodule pkt_rx #(");
-  write("imported/pkt_rx.sv", rtl);
+  write("imported/pkt_rx.sv",
+        edited(slurp(kThird + "/pkt_rx.sv"), "module pkt_rx #(", "import pkt_rx_pkg::*;\nmodule pkt_rx #("));
   write("formal_plan.toml", "formal = true\ndirected = [\"single_event\"]\n");
   const Outcome o = verify((dir_ / "imported/pkt_rx.toml").string() + " --plan formal_plan.toml --out imported_out");
   EXPECT_EQ(o.status, 2) << o.err;
@@ -663,12 +633,8 @@ ack_latency_cycles = [3, 4]
 TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
   const std::string good = slurp(kSecond + "/ae_rx_alt.toml");
   auto variant = [&](const std::string& name, const std::string& from, const std::string& to) {
-    std::string text = good;
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
     fs::copy_file(kSecond + "/ae_rx_alt.v", dir_ / "ae_rx_alt.v", fs::copy_options::overwrite_existing);
-    return write(name, text);
+    return write(name, edited(good, from, to));
   };
   struct Bad {
     std::string file, needle;
