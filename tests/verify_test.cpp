@@ -424,9 +424,13 @@ TEST_F(VerifyTest, FormalProvesTheHandshakeOfEveryReceiver) {
   // The third receiver, with no FIFO, has every property proved, its stamps and beats included.
   const nlohmann::json third = report("formal0");
   for (const auto& v : third["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
-  // A second run is the cache's.
+  // A second run is the cache's, and so is a copy of the receiver's folder elsewhere: the proofs
+  // follow the files, not where they lie.
   ASSERT_EQ(verify(kThird + "/pkt_rx.toml --formal --out formal_again").status, 0);
   EXPECT_EQ(report("formal_again")["formal_run"]["cached"], true);
+  fs::copy(kThird, dir_ / "copied");
+  ASSERT_EQ(verify("copied/pkt_rx.toml --formal --plan quick --out formal_copied").status, 0);
+  EXPECT_EQ(report("formal_copied")["formal_run"]["cached"], true);
 }
 
 // The stale-stamp and first-flop mutants fail the proof as they fail the simulation: the property,

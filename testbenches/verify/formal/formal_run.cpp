@@ -371,18 +371,24 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   const ScratchFolder scratch(cache / fmt::format("tmp-formal.{}", ::getpid()));
   const fs::path& work = scratch.path();
 
-  // Everything the verdicts follow from: the description, the sources, the tools, the rule.
-  std::string key = fmt::format("aesim-formal-v5\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
+  // Everything the verdicts follow from: the description, the sources, the tools, the rule. The
+  // files by their place beside the description, not by where the folder lies: the verdicts and
+  // counterexamples hold no path, so a receiver's folder copied or moved (a clone elsewhere, a
+  // test's scratch copy) keeps its proofs.
+  std::string key = fmt::format("aesim-formal-v6\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
   if (stamp) key += fmt::format("stamp {} {}\n", stamp->from_ack, stamp->offset);
   key += read_scratch_text(d.file);
-  for (const std::string& s : d.sources) key += s + "\n" + read_scratch_text(s);
+  const fs::path home = fs::absolute(d.file).parent_path();
+  const auto placed = [&home](const fs::path& f) { return fs::absolute(f).lexically_relative(home).string(); };
+  for (const std::string& s : d.sources) key += placed(s) + "\n" + read_scratch_text(s);
   for (const std::string& dir : d.include_dirs) {
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
       if (e.is_regular_file()) files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
-    for (const fs::path& f : files) key += f.string() + "\n" + read_scratch_text(f);
+    key += "include " + placed(dir) + "\n";
+    for (const fs::path& f : files) key += placed(f) + "\n" + read_scratch_text(f);
   }
   const fs::path entry = cache / ("formal-" + content_hash_hex(key));
   if (fs::is_regular_file(entry / "result.json")) {
