@@ -68,6 +68,8 @@ class ReferenceClockDomain : public sc_core::sc_module {
   // Req as the next edge sees it: low once Ack has risen, though the bus lets go only in the
   // delta cycle after this activation.
   bool req() const { return !released_ && s_.req.read(); }
+  // The timestamp counter at edge k_: k_ / prescale, within ts_width bits.
+  std::uint64_t stamp_at_edge();
 
   ReceiverSignals& s_;
   Clock clock_;
@@ -85,6 +87,8 @@ class ReferenceClockDomain : public sc_core::sc_module {
   bool released_ = false;  // Ack rose at the edge this activation wrote: the bus releases the wires
   bool stepped_ahead_ = false;  // edge k_ is stepped; its outputs are driven when the kernel reaches it
   std::uint64_t k_ = 0;  // the rising edge the clock waits for: at k_ * period
+  // k_ / prescale and its remainder at edge stamp_edge_, counted on from edge to edge.
+  std::uint64_t stamp_edge_ = 0, stamp_quotient_ = 0, stamp_remainder_ = 0;
   std::uint64_t edges_ = 0;
 };
 
