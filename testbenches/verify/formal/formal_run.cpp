@@ -371,25 +371,34 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   const ScratchFolder scratch(cache / fmt::format("tmp-formal.{}", ::getpid()));
   const fs::path& work = scratch.path();
 
-  // Everything the verdicts follow from: the description, the sources, the tools, the rule. The
-  // files by their place beside the description, not by where the folder lies: the verdicts and
-  // counterexamples hold no path, so a receiver's folder copied or moved (a clone elsewhere, a
-  // test's scratch copy) keeps its proofs.
+  // Everything the verdicts follow from: the description, the sources and what they may include
+  // (every file of an include folder; the Verilog files beside each source, which `include`
+  // finds there), the tools, the rule. The files by their place beside the description, not by
+  // where the folder lies: the verdicts and counterexamples hold no path, so a receiver's folder
+  // copied or moved (a clone elsewhere, a test's scratch copy) keeps its proofs.
   std::string key = fmt::format("aesim-formal-v6\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
   if (stamp) key += fmt::format("stamp {} {}\n", stamp->from_ack, stamp->offset);
   key += read_scratch_text(d.file);
   const fs::path home = fs::absolute(d.file).parent_path();
   const auto placed = [&home](const fs::path& f) { return fs::absolute(f).lexically_relative(home).string(); };
-  for (const std::string& s : d.sources) key += placed(s) + "\n" + read_scratch_text(s);
-  for (const std::string& dir : d.include_dirs) {
+  const auto add_folder = [&](const fs::path& dir, bool verilog_only) {
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
-      if (e.is_regular_file()) files.push_back(e.path());
+      const std::string ext = e.path().extension().string();
+      const bool verilog = ext == ".v" || ext == ".sv" || ext == ".vh" || ext == ".svh" || ext == ".inc";
+      if (e.is_regular_file() && (verilog || !verilog_only)) files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
-    key += "include " + placed(dir) + "\n";
+    key += "folder " + placed(dir) + "\n";
     for (const fs::path& f : files) key += placed(f) + "\n" + read_scratch_text(f);
+  };
+  std::set<fs::path> beside;
+  for (const std::string& s : d.sources) {
+    key += placed(s) + "\n" + read_scratch_text(s);
+    beside.insert(fs::absolute(s).parent_path());
   }
+  for (const fs::path& dir : beside) add_folder(dir, true);
+  for (const std::string& dir : d.include_dirs) add_folder(dir, false);
   const fs::path entry = cache / ("formal-" + content_hash_hex(key));
   if (fs::is_regular_file(entry / "result.json")) {
     const nlohmann::json j = nlohmann::json::parse(read_scratch_text(entry / "result.json"));
