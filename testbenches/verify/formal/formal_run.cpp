@@ -321,9 +321,16 @@ std::vector<RtlPort> netlist_ports(const nlohmann::json& netlist, const std::str
   return ports;
 }
 
+// yosys reading, preparing and replaying the RTL is given at least this long, whatever the budget a
+// property's proof has: its time follows the design and the machine's load, not the proof's (with
+// `--formal-seconds 5`, reading the third receiver ran past 5 s on a loaded 2-core machine, and
+// the run ended as if the RTL were bad). The limit only catches a yosys that runs away.
+constexpr double kYosysLeastSeconds = 120;
+
 // Runs yosys on a script in the scratch folder; RTL it cannot take is an InputError naming its first
 // error.
-void run_yosys(const fs::path& work, const std::string& script_name, const ReceiverDescription& d, double seconds) {
+void run_yosys(const fs::path& work, const std::string& script_name, const ReceiverDescription& d, double budget) {
+  const double seconds = std::max(budget, kYosysLeastSeconds);
   const std::string log = script_name + ".log";
   const pid_t pid = spawn_child("yosys", {"-q", "-l", log, "-s", script_name},
                                 {(work / (script_name + ".out")).string(), (work / (script_name + ".out")).string(), work.string()});
@@ -536,7 +543,7 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
     write_scratch_text(work / "replay.ys", replay_script(d, checker.properties[i].id, base));
     const pid_t replay = spawn_child("yosys", {"-q", "-s", "replay.ys"},
                                      {(work / "replay.log").string(), (work / "replay.log").string(), work.string()});
-    const std::optional<int> replayed = wait_child_for(replay, options.property_seconds);
+    const std::optional<int> replayed = wait_child_for(replay, std::max(options.property_seconds, kYosysLeastSeconds));
     if (replayed && fs::is_regular_file(work / (base + ".vcd"))) result.counterexample_vcd = read_scratch_text(work / (base + ".vcd"));
     break;
   }
