@@ -12,6 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "aesim/errors/input_error.hpp"
+#include "description/rtl_folder_key.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {
@@ -643,6 +645,10 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
   struct Bad {
     std::string file, needle;
   };
+  // An include folder holding more than a build may read: a sparse file, so nothing is written.
+  fs::create_directories(dir_ / "huge");
+  std::ofstream(dir_ / "huge" / "dump.bin").close();
+  fs::resize_file(dir_ / "huge" / "dump.bin", std::uintmax_t(300) << 20);
   const Bad bad[] = {
       {variant("no_port.toml", "req = \"bus_req\"", "req = \"bus_request\""), "bus_request"},
       {variant("narrow.toml", "AW = 12", "AW = 8"), "bus_addr"},
@@ -659,6 +665,8 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
       {(write("rx.vhd", "entity rx is end rx;\n"),
         variant("vhdl.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\", \"rx.vhd\"]")),
        "'" + (dir_ / "rx.vhd").string() + "' is VHDL"},
+      {variant("huge.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\"]\ninclude_dirs = [\"huge\"]"),
+       "include_dirs: '" + (dir_ / "huge").string() + "' holds over 256 MiB"},
       {variant("shell.toml", "top = \"ae_rx_alt\"", "top = \"x; rm -rf /\""), "top"},
       {write("empty.toml", ""), "top"},
       {(dir_ / "absent.toml").string(), "absent.toml"},
@@ -680,6 +688,37 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
     const Outcome budget = verify(kSecond + "/ae_rx_alt.toml --formal --formal-seconds " + seconds);
     EXPECT_EQ(budget.status, 2) << seconds;
     EXPECT_NE(budget.err.find("--formal-seconds"), std::string::npos) << budget.err;
+  }
+}
+
+// A folder the RTL's build may read goes into the caches' keys whole: each file by its place and its
+// text, only the Verilog ones from a source's folder, and nothing past 256 MiB.
+TEST_F(VerifyTest, AFoldersFilesChangeTheKeyAndAHugeFolderIsRefusedUnread) {
+  const auto key = [this](RtlFolderFiles which) {
+    std::string k;
+    add_rtl_folder_to_key(k, dir_ / "rtl", which, [this](const fs::path& f) { return f.lexically_relative(dir_).string(); },
+                          "sources");
+    return k;
+  };
+  fs::create_directories(dir_ / "rtl");
+  write("rtl/a.vh", "`define W 4\n");
+  write("rtl/notes.txt", "x");
+  const std::string verilog = key(RtlFolderFiles::VerilogOnly), all = key(RtlFolderFiles::All);
+  EXPECT_EQ(verilog, "folder rtl\nrtl/a.vh\n`define W 4\n\n");
+  EXPECT_EQ(all, "folder rtl\nrtl/a.vh\n`define W 4\n\nrtl/notes.txt\nx\n");
+  write("rtl/notes.txt", "y");
+  EXPECT_EQ(key(RtlFolderFiles::VerilogOnly), verilog);
+  EXPECT_NE(key(RtlFolderFiles::All), all);
+  write("rtl/a.vh", "`define W 5\n");
+  EXPECT_NE(key(RtlFolderFiles::VerilogOnly), verilog);
+  std::ofstream(dir_ / "rtl" / "z.sv").close();
+  fs::resize_file(dir_ / "rtl" / "z.sv", std::uintmax_t(257) << 20);
+  try {
+    key(RtlFolderFiles::VerilogOnly);
+    ADD_FAILURE() << "a 257 MiB folder was hashed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sources: '" + (dir_ / "rtl").string() + "' holds over 256 MiB"), std::string::npos)
+        << e.what();
   }
 }
 

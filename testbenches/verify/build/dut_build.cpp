@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "build/dut_glue.hpp"
+#include "description/rtl_folder_key.hpp"
 #include "aesim/errors/input_error.hpp"
 #include "aesim/files/content_hash.hpp"
 #include "aesim/files/scratch_folder.hpp"
@@ -217,20 +218,7 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
   for (const std::string& arg : verilator_args(d, "", trace)) all += arg + " ";
   for (const std::string& s : d.sources) all += "source " + s + "\n" + read_scratch_text(s) + "\n";
   for (const std::string& dir : d.include_dirs) {
-    std::vector<fs::path> files;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
-      if (e.is_regular_file()) files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    all += "include " + dir + "\n";
-    for (const fs::path& f : files) {
-      // Every file of an include folder is hashed (Verilator may read any of them).
-      if (all.size() + fs::file_size(f, ec) > (256u << 20)) {
-        throw InputError(fmt::format("include_dirs: '{}' holds over 256 MiB; point it at the RTL's include files only", dir));
-      }
-      all += f.string() + "\n" + read_scratch_text(f) + "\n";
-    }
+    add_rtl_folder_to_key(all, dir, RtlFolderFiles::All, [](const fs::path& f) { return f.string(); }, "include_dirs");
   }
   for (const auto& [k, v] : d.defines) all += "define " + k + "=" + v + "\n";
   for (const auto& [k, v] : d.parameters) all += "parameter " + k + "=" + v + "\n";

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "description/rtl_folder_key.hpp"
 #include "driver/bound_ports.hpp"
 #include "aesim/errors/input_error.hpp"
 #include "aesim/files/content_hash.hpp"
@@ -388,24 +389,13 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   key += read_scratch_text(d.file);
   const fs::path home = fs::absolute(d.file).parent_path();
   const auto placed = [&home](const fs::path& f) { return fs::absolute(f).lexically_relative(home).string(); };
-  const auto add_folder = [&](const fs::path& dir, bool verilog_only) {
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
-      const std::string ext = e.path().extension().string();
-      const bool verilog = ext == ".v" || ext == ".sv" || ext == ".vh" || ext == ".svh" || ext == ".inc";
-      if (e.is_regular_file() && (verilog || !verilog_only)) files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    key += "folder " + placed(dir) + "\n";
-    for (const fs::path& f : files) key += placed(f) + "\n" + read_scratch_text(f);
-  };
   std::set<fs::path> beside;
   for (const std::string& s : d.sources) {
     key += placed(s) + "\n" + read_scratch_text(s);
     beside.insert(fs::absolute(s).parent_path());
   }
-  for (const fs::path& dir : beside) add_folder(dir, true);
-  for (const std::string& dir : d.include_dirs) add_folder(dir, false);
+  for (const fs::path& dir : beside) add_rtl_folder_to_key(key, dir, RtlFolderFiles::VerilogOnly, placed, "sources");
+  for (const std::string& dir : d.include_dirs) add_rtl_folder_to_key(key, dir, RtlFolderFiles::All, placed, "include_dirs");
   const fs::path entry = cache / ("formal-" + content_hash_hex(key));
   if (fs::is_regular_file(entry / "result.json")) {
     const nlohmann::json j = nlohmann::json::parse(read_scratch_text(entry / "result.json"));
