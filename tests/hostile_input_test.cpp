@@ -361,7 +361,8 @@ TEST_F(HostileInputTest, AFullDiskIsReportedWithItsReasonAndLeavesNothing) {
     GTEST_SKIP() << "cannot mount a small tmpfs here (" << std::strerror(errno) << "): needs root";
   }
   // Every event file's writer, and the CSV: the system's reason, the file the user named, nothing left.
-  for (const std::string out : {"--csv small/e.csv", "--out small/e.h5", "--out small/e.npy", "--out small/e.aedat4"}) {
+  for (const std::string out : {"--csv small/e.csv", "--out small/e.h5", "--out small/e.npy", "--out small/e.aedat4",
+                                 "--out small/e.aedat", "--out small/e.raw", "--out small/e.dat"}) {
     const Outcome o = bounded("run --duration 2s " + out + " --summary small/s.json");
     const std::set<std::string> left = [&] {
       std::set<std::string> names;
