@@ -15,6 +15,7 @@
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_formats.hpp"
 #include "support/recorded_events.hpp"
+#include "support/temp_dir_test.hpp"
 
 namespace aesim {
 namespace {
@@ -145,6 +146,61 @@ TEST(NpzEvents, ArraysOfTheirOwnAreReadWithTheirStampsUnit) {
   EXPECT_NE(rec.read_as[0].find("stamps in seconds: they have fractions"), std::string::npos) << rec.read_as[0];
 }
 
+// EVIMO's layouts, as its ground-truth-format page describes them and pydvs's evimo-gen.py writes
+// them: rows of (t in seconds, x, y, p) as float32, in an archive with the index of the events
+// every `discretization` seconds (EVIMO, EVIMO2v1); or three arrays in a sequence's folder
+// (EVIMO2v2, below).
+std::string evimo_rows(bool fortran) {
+  const float rows[3][4] = {{0.25f, 3, 4, 1}, {0.5f, 5, 6, 0}, {0.125f, 7, 8, 1}};
+  std::string data;
+  for (int c = 0; c < (fortran ? 4 : 1); ++c) {
+    for (const auto& row : rows) {
+      if (fortran) {
+        data += float_bytes(row[c]);
+      } else {
+        for (const float v : row) data += float_bytes(v);
+      }
+    }
+  }
+  std::string text = npy("'<f4'", "(3, 4)", data);
+  if (fortran) text.replace(text.find("False"), 5, "True ");
+  return text;
+}
+
+TEST(NpzEvents, EvimosArchiveAndSequenceFolderAreReadAsTheirPagesLayThemOut) {
+  for (const bool fortran : {false, true}) {
+    SCOPED_TRACE(fortran);
+    const EventRecording rec = read_npz(zip({{"events", evimo_rows(fortran), true},
+                                             {"index", npy("'<u4'", "(1,)", little<std::uint32_t>(0))},
+                                             {"discretization", npy("'<f8'", "()", float_bytes(0.01))},
+                                             {"classical", npy("'|O'", "()", "pickled")}}));
+    expect_events(rec, {{125000, 7, 8, true}, {250000, 3, 4, true}, {500000, 5, 6, false}});
+    ASSERT_EQ(rec.read_as.size(), 1u);
+    EXPECT_NE(rec.read_as[0].find("EVIMO's events array, its columns t (seconds), x, y, p"), std::string::npos);
+    EXPECT_TRUE(noted(rec, "the array classical"));
+  }
+  // The same rows without EVIMO's index name no columns: refused, naming what the archive holds.
+  testing::expect_refused_saying([] { read_npz(zip({{"events", evimo_rows(false)}, {"K", npy("'<f8'", "()", float_bytes(1.0))}})); },
+                                 "the archive holds events, K");
+
+}
+
+using EvimoFolder = testing::TempDirTest;
+
+TEST_F(EvimoFolder, ItsThreeArraysAreReadAsTheEvents) {
+  write("dataset_events_t.npy", npy("'<f4'", "(3,)", float_bytes(0.25f) + float_bytes(0.5f) + float_bytes(0.125f)));
+  write("dataset_events_xy.npy", npy("'<u2'", "(3, 2)", little<std::uint16_t>(3) + little<std::uint16_t>(4) + little<std::uint16_t>(5) +
+                                                            little<std::uint16_t>(6) + little<std::uint16_t>(7) + little<std::uint16_t>(8)));
+  const std::string folder = dir_.string();
+  testing::expect_refused_saying([&] { load_events(folder); }, "without dataset_events_p.npy");
+  write("dataset_events_p.npy", npy("'|u1'", "(3,)", std::string("\x01\x00\x01", 3)));
+  const EventRecording rec = load_events(folder);
+  expect_events(rec, {{125000, 7, 8, true}, {250000, 3, 4, true}, {500000, 5, 6, false}});
+  EXPECT_NE(rec.read_as.at(0).find("an EVIMO2 sequence's folder"), std::string::npos);
+  write("dataset_events_p.npy", npy("'|u1'", "(2,)", std::string("\x01\x00", 2)));
+  testing::expect_refused_saying([&] { load_events(folder); }, "hold 3, 3, 3 and 2 numbers");
+}
+
 TEST(NpzEvents, MalformedArchivesAndOnesWithoutEventsAreOneLineErrors) {
   const auto refused = [](const std::string& bytes, const std::string& words) {
     testing::expect_refused_saying([&] { read_npz(bytes); }, words);
@@ -158,7 +214,8 @@ TEST(NpzEvents, MalformedArchivesAndOnesWithoutEventsAreOneLineErrors) {
   std::string flipped = good;
   flipped[120] = static_cast<char>(flipped[120] ^ 0x55);
   refused(flipped, "event_data.npy");
-  refused(zip({{"frame", npy("'|u1'", "(4,)", "abcd")}}), "no events (a structured array of x, y, t, p, or arrays x, y, t and p; the archive holds frame)");
+  refused(zip({{"frame", npy("'|u1'", "(4,)", "abcd")}}), "no events (a structured array of x, y, t, p, arrays x, y, t and p, or EVIMO's events of N x 4 beside its "
+                                                      "index and discretization; the archive holds frame)");
   refused(zip({{"events", npy("'<f8'", "(1, 4)", std::string(32, '\0'))}}), "the archive holds events");
   const std::string x = npy("'<u2'", "(2,)", little<std::uint16_t>(1) + little<std::uint16_t>(2));
   refused(zip({{"x", x}, {"y", x}, {"t", x}, {"p", npy("'<u2'", "(1,)", little<std::uint16_t>(1))}}),

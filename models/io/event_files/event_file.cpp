@@ -18,6 +18,7 @@
 #include "aesim/event_files/event_formats.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/events_csv.hpp"
+#include "aesim/event_files/evimo2_folder.hpp"
 #include "aesim/event_files/ros2_bag_folder.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/files/input_path.hpp"
@@ -278,8 +279,9 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
   EventRecording rec;
   std::error_code not_a_folder;
   if (std::filesystem::is_directory(path, not_a_folder)) {
-    // A ROS 2 bag is a folder of its storage files.
-    rec = from_polarity(read_ros2_bag_folder(path), path);
+    // An EVIMO2 sequence keeps its events in three arrays of a folder; a ROS 2 bag is a folder of
+    // its storage files.
+    rec = from_polarity(is_evimo2_folder(path) ? read_evimo2_folder(path) : read_ros2_bag_folder(path), path);
   } else if (is_compressed_ros2_bag_file(path)) {
     rec = from_polarity(read_compressed_ros2_bag_file(path), path);
   } else {

@@ -218,7 +218,7 @@ std::string event_extensions(bool writable) {
   return listed(first);
 }
 
-std::string event_inputs() { return event_extensions() + "; or a ROS 2 bag's folder"; }
+std::string event_inputs() { return event_extensions() + "; or a ROS 2 bag's or an EVIMO2 sequence's folder"; }
 
 std::string event_formats_help() {
   std::vector<std::string> parts;

@@ -62,7 +62,8 @@ const EventFormatRow& writable_event_format(const std::string& path, const std::
 // The extensions as a help text lists them: ".aedat, .aedat4, .npy, .h5 or .csv" (`writable`: only
 // --out's).
 std::string event_extensions(bool writable = false);
-// What a command that reads events takes: every format's first extension, or a ROS 2 bag's folder.
+// What a command that reads events takes: every format's first extension, or a ROS 2 bag's or an EVIMO2
+// sequence's folder.
 std::string event_inputs();
 // The formats as --out's help lists them: ".aedat (AEDAT 2.0, jAER's), .aedat4 (...), ...".
 std::string event_formats_help();

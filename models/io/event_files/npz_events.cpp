@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -14,6 +15,7 @@
 
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/checked_bytes.hpp"
+#include "aesim/event_files/npy_columns.hpp"
 #include "aesim/event_files/npy_events.hpp"
 #include "aesim/files/npy_header.hpp"
 #include "aesim/limits/limits.hpp"
@@ -178,58 +180,6 @@ class NpzArchive {
   std::vector<Member> members_;
 };
 
-// A 1-D array of numbers (N, or N x 1), as doubles (whole numbers past 2^53 are not stamps).
-struct Numbers {
-  std::vector<double> values;
-  bool floating = false;
-};
-
-Numbers numbers(const std::string& npy, const std::string& what) {
-  const NpyHeader h = parse_npy_header(npy, what);
-  const std::string& d = h.descr;
-  const auto fail = [&](const std::string& why) { return InputError(fmt::format("{}: {}", what, why)); };
-  if (d.size() != 3 || (d[0] != '<' && d[0] != '>' && d[0] != '|') || std::string("iufb").find(d[1]) == std::string::npos ||
-      d[2] < '1' || d[2] > '8') {
-    throw fail(fmt::format("its dtype '{}' is not one of integers, floats or bools", d));
-  }
-  const int bytes = d[2] - '0';
-  if ((d[1] == 'f' && bytes != 4 && bytes != 8) || (d[1] != 'f' && bytes != 1 && bytes != 2 && bytes != 4 && bytes != 8)) {
-    throw fail(fmt::format("its dtype '{}' is not one aesim reads", d));
-  }
-  std::uint64_t n = h.shape.empty() ? 1 : h.shape[0];
-  if (h.shape.size() > 2 || (h.shape.size() == 2 && h.shape[1] != 1)) throw fail("it is not one number an event (N or N x 1)");
-  if (n > (npy.size() - h.data_offset) / static_cast<std::uint64_t>(bytes)) throw fail(fmt::format("truncated: {} numbers announced", n));
-  Numbers out;
-  out.floating = d[1] == 'f';
-  out.values.resize(n);
-  const char* p = npy.data() + h.data_offset;
-  for (std::uint64_t i = 0; i < n; ++i, p += bytes) {
-    unsigned char b[8];
-    std::memcpy(b, p, static_cast<std::size_t>(bytes));
-    if (d[0] == '>') std::reverse(b, b + bytes);
-    double v = 0;
-    if (d[1] == 'f') {
-      if (bytes == 4) {
-        float f;
-        std::memcpy(&f, b, 4);
-        v = f;
-      } else {
-        std::memcpy(&v, b, 8);
-      }
-    } else {
-      std::uint64_t raw = 0;
-      std::memcpy(&raw, b, static_cast<std::size_t>(bytes));
-      if (d[1] == 'i' && bytes < 8) {
-        const std::uint64_t sign = std::uint64_t(1) << (8 * bytes - 1);
-        raw = (raw ^ sign) - sign;
-      }
-      v = d[1] == 'u' ? static_cast<double>(raw) : static_cast<double>(static_cast<std::int64_t>(raw));
-    }
-    out.values[i] = v;
-  }
-  return out;
-}
-
 const Member* named(const std::vector<Member>& members, std::initializer_list<const char*> names) {
   for (const char* name : names) {
     const auto it = std::find_if(members.begin(), members.end(), [&](const Member& m) { return m.name == name; });
@@ -273,41 +223,59 @@ PolarityRecording decode_npz(const std::string& data, const std::string& label) 
   const Member* y = named(members, {"y"});
   const Member* t = named(members, {"t", "ts", "timestamp", "timestamps"});
   const Member* p = named(members, {"p", "polarity", "pol", "polarities"});
-  if (x == nullptr || y == nullptr || t == nullptr || p == nullptr) {
-    std::string held;
-    for (const Member& m : members) held += (held.empty() ? "" : ", ") + m.name;
-    throw InputError(fmt::format("event file '{}': no events (a structured array of x, y, t, p, or arrays x, y, t and p; the "
-                                 "archive holds {})",
-                                 label, held.empty() ? "no arrays" : held));
-  }
   const auto column = [&](const Member* m) {
     bounded(*m, header(*m));
-    return numbers(archive.bytes(*m), fmt::format("event file '{}' ({}.npy)", label, m->name));
+    return read_npy_numbers(archive.bytes(*m), fmt::format("event file '{}' ({}.npy)", label, m->name));
   };
-  const Numbers xs = column(x), ys = column(y), ts = column(t), ps = column(p);
-  const std::size_t n = xs.values.size();
-  if (ys.values.size() != n || ts.values.size() != n || ps.values.size() != n) {
-    throw InputError(fmt::format("event file '{}': the arrays {}, {}, {} and {} hold {}, {}, {} and {} numbers", label, x->name,
-                                 y->name, t->name, p->name, n, ys.values.size(), ts.values.size(), ps.values.size()));
-  }
-  if (n > kMaxExpandedEvents) throw InputError(fmt::format("event file '{}': more than the {} events aesim reads", label, kMaxExpandedEvents));
-  // Whole stamps are microseconds; a stamp with a fraction makes them all seconds.
-  const bool seconds = ts.floating && std::any_of(ts.values.begin(), ts.values.end(), [](double v) { return v != std::floor(v); });
-  PolarityRecording rec;
-  rec.events.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double xi = xs.values[i], yi = ys.values[i];
-    if (!(xi >= 0 && yi >= 0 && xi < 4096 && yi < 4096) || xi != std::floor(xi) || yi != std::floor(yi)) {
-      throw InputError(fmt::format("event file '{}': event {} at ({}, {}) is not a pixel of a 4096x4096 array", label, i, xi, yi));
+  // EVIMO's archive (EVIMO and EVIMO2v1, as its ground-truth-format page lays it out): `events`,
+  // N x 4, each row an event's stamp in seconds, x, y and polarity, beside its lookup table of the
+  // events every `discretization` seconds (`index`), which tells the archive apart from an N x 4
+  // array whose columns nobody named (refused below).
+  const auto evimo_events = [&]() -> const Member* {
+    const Member* e = named(members, {"events"});
+    if (e == nullptr || named(members, {"index"}) == nullptr || named(members, {"discretization"}) == nullptr) return nullptr;
+    const NpyHeader h = header(*e);
+    if (h.shape.size() != 2 || h.shape[1] != 4) return nullptr;
+    if (h.shape[0] > kMaxExpandedEvents) {
+      throw InputError(fmt::format("event file '{}': events holds more than the {} events aesim reads from one file", label,
+                                   kMaxExpandedEvents));
     }
-    const double us = seconds ? std::round(ts.values[i] * 1e6) : ts.values[i];
-    if (!(us >= 0 && us < 9e18)) throw InputError(fmt::format("event file '{}': event {} has the stamp {}", label, i, ts.values[i]));
-    rec.events[i] = {static_cast<std::int64_t>(us), static_cast<std::int32_t>(xi), static_cast<std::int32_t>(yi), ps.values[i] > 0};
+    return e;
+  };
+  NpyNumbers xs, ys, ts, ps;
+  std::array<std::string, 4> names;  // x, y, t, p's, for messages
+  std::vector<const Member*> used;
+  bool seconds = false;
+  std::string layout;
+  if (x != nullptr && y != nullptr && t != nullptr && p != nullptr) {
+    xs = column(x), ys = column(y), ts = column(t), ps = column(p);
+    names[0] = x->name, names[1] = y->name, names[2] = t->name, names[3] = p->name;
+    used = {x, y, t, p};
+    // Whole stamps are microseconds; a stamp with a fraction makes them all seconds.
+    seconds = ts.floating && std::any_of(ts.values.begin(), ts.values.end(), [](double v) { return v != std::floor(v); });
+    layout = fmt::format("the arrays {}, {}, {}, {} (stamps in {}, ON where the polarity is above 0)", x->name, y->name, t->name,
+                         p->name, seconds ? "seconds: they have fractions" : "microseconds");
+  } else if (const Member* e = evimo_events(); e != nullptr) {
+    const std::string bytes = archive.bytes(*e);
+    const std::string what = fmt::format("event file '{}' (events.npy)", label);
+    ts = read_npy_numbers(bytes, what, 0, 4), xs = read_npy_numbers(bytes, what, 1, 4), ys = read_npy_numbers(bytes, what, 2, 4),
+    ps = read_npy_numbers(bytes, what, 3, 4);
+    names[0] = "events[:, 1]", names[1] = "events[:, 2]", names[2] = "events[:, 0]", names[3] = "events[:, 3]";
+    used = {e};
+    seconds = true;
+    layout = "EVIMO's events array, its columns t (seconds), x, y, p (ON where the polarity is above 0; EVIMO2's Samsung "
+             "camera's polarity is the other way round)";
+  } else {
+    std::string held;
+    for (const Member& m : members) held += (held.empty() ? "" : ", ") + m.name;
+    throw InputError(fmt::format("event file '{}': no events (a structured array of x, y, t, p, arrays x, y, t and p, or EVIMO's "
+                                 "events of N x 4 beside its index and discretization; the archive holds {})",
+                                 label, held.empty() ? "no arrays" : held));
   }
-  rec.read_as.push_back(fmt::format("the arrays {}, {}, {}, {} (stamps in {}, ON where the polarity is above 0)", x->name, y->name,
-                                    t->name, p->name, seconds ? "seconds: they have fractions" : "microseconds"));
+  PolarityRecording rec = events_from_columns(xs, ys, ts, ps, seconds, names, label);
+  rec.read_as.push_back(layout);
   for (const Member& m : members) {
-    if (&m != x && &m != y && &m != t && &m != p) rec.notes.push_back(fmt::format("the array {}", m.name));
+    if (std::find(used.begin(), used.end(), &m) == used.end()) rec.notes.push_back(fmt::format("the array {}", m.name));
   }
   put_in_time_order(rec);
   return rec;

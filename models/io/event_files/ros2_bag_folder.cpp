@@ -53,7 +53,7 @@ PolarityRecording read_ros2_bag_folder(const std::string& path) {
   if (error) throw InputError(fmt::format("event file '{}': cannot list the folder: {}", path, error.message()));
   if (files.empty()) {
     throw InputError(fmt::format("event file '{}': a folder holding no .mcap or .db3 file (a ROS 2 bag's folder holds one "
-                                 "or more)", path));
+                                 "or more) and no dataset_events_t.npy (an EVIMO2 sequence's)", path));
   }
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) { return split_order(a) < split_order(b); });
   RosEventTopics topics(path);
