@@ -199,6 +199,9 @@ TEST_F(EvimoFolder, ItsThreeArraysAreReadAsTheEvents) {
   EXPECT_NE(rec.read_as.at(0).find("an EVIMO2 sequence's folder"), std::string::npos);
   write("dataset_events_p.npy", npy("'|u1'", "(2,)", std::string("\x01\x00", 2)));
   testing::expect_refused_saying([&] { load_events(folder); }, "hold 3, 3, 3 and 2 numbers");
+  // A header claiming more events than aesim reads is refused before the numbers are taken.
+  write("dataset_events_p.npy", npy("'|u1'", "(300000000,)", ""));
+  testing::expect_refused_saying([&] { load_events(folder); }, "more than the 268435456 events");
 }
 
 TEST(NpzEvents, MalformedArchivesAndOnesWithoutEventsAreOneLineErrors) {

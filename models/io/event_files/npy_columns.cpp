@@ -29,6 +29,8 @@ NpyNumbers read_npy_numbers(const std::string& npy, const std::string& what, std
     throw fail("it is not one number an event (N or N x 1)");
   }
   if (columns > 1 && (h.shape.size() != 2 || h.shape[1] != columns)) throw fail(fmt::format("it is not N x {}", columns));
+  // Before any memory is taken for them: a file of small numbers holds many.
+  if (n > kMaxExpandedEvents) throw fail(fmt::format("more than the {} events aesim reads from one file", kMaxExpandedEvents));
   if (n > (npy.size() - h.data_offset) / static_cast<std::uint64_t>(bytes) / columns) {
     throw fail(fmt::format("truncated: {} x {} numbers announced", n, columns));
   }
