@@ -82,9 +82,10 @@ std::string event_array(const std::vector<BagEvent>& events, std::uint32_t width
   return m.bytes();
 }
 
-std::string event_packet(const std::string& words, bool xcdr2 = false, const std::string& encoding = "evt3") {
+std::string event_packet(const std::string& words, bool xcdr2 = false, const std::string& encoding = "evt3",
+                         std::uint64_t time_base = 0) {
   Cdr m(false, xcdr2);
-  m.header(1700000000).put<std::uint32_t>(8).put<std::uint32_t>(40).put<std::uint64_t>(0).put<std::uint64_t>(0);
+  m.header(1700000000).put<std::uint32_t>(8).put<std::uint32_t>(40).put<std::uint64_t>(0).put<std::uint64_t>(time_base);
   m.text(encoding).put<std::uint8_t>(0).put<std::uint32_t>(static_cast<std::uint32_t>(words.size())).raw(words);
   return m.bytes();
 }
@@ -212,6 +213,42 @@ TEST(Ros2Bags, EventPacketsAreOneStreamAndEveryCdrByteOrderAndAlignmentReads) {
                  "event 0 has a negative timestamp (-1000000 us)");
 }
 
+// event_camera_codecs' encodings of 8-byte events, stamped from their message's time_base (ns) and
+// kept as whole microseconds: "mono" (event_array_msgs' README: bit 63 ON, y in bits 48-62, x in
+// 32-47, the nanoseconds in 0-31), on event_array_msgs/EventArray (EventPacket's fields, told by
+// the name alone); "libcaer" (libcaer's polarity event: x in bits 17-31, y in 2-16, the polarity
+// in bit 1, the valid mark in bit 0; then its 31-bit microseconds, whose fall within a message
+// adds 2^31 us). A topic of "trigger" packets is passed over for the events'. Worked by hand.
+TEST(Ros2Bags, MonoAndLibcaerPacketsAreStampedFromTheirTimeBase) {
+  const auto mono = [](std::uint64_t ns, std::uint64_t x, std::uint64_t y, bool on) {
+    return little<std::uint64_t>((std::uint64_t(on) << 63) | (y << 48) | (x << 32) | ns);
+  };
+  const std::string monos = schema(3, "event_array_msgs/msg/EventArray", "") + channel(9, 3, "/event_camera/events") +
+                            message(9, event_packet(mono(1500, 3, 4, true) + mono(2999, 5, 6, false), false, "mono", 1000000000)) +
+                            message(9, event_packet(mono(0, 7, 2, true), false, "mono", 1000010000));
+  const std::string triggers = channel(10, 3, "/event_camera/aux") + message(10, event_packet(mono(5, 0, 0, true) + mono(9, 0, 0, false), false, "trigger"));
+  const EventRecording m = read_mcap(mcap(monos + triggers));
+  expect_events(m, {{1000001, 3, 4, true}, {1000002, 5, 6, false}, {1000010, 7, 2, true}});
+  EXPECT_TRUE(testing::noted(m, "2 external trigger events of /event_camera/aux"));
+  expect_refused(mcap(schema(3, "event_array_msgs/msg/EventArray", "") + triggers), EventFileFormat::Mcap,
+                 "/event_camera/aux carries external triggers alone");
+
+  const auto libcaer = [](std::uint32_t x, std::uint32_t y, bool on, std::int32_t us) {
+    return little<std::uint32_t>((x << 17) | (y << 2) | (std::uint32_t(on) << 1) | 1u) + little<std::int32_t>(us);
+  };
+  const std::string declared = schema(3, "event_camera_msgs/msg/EventPacket", kEventPacketDefinition) + channel(9, 3, "/events");
+  const EventRecording c = read_mcap(mcap(declared +
+                                          message(9, event_packet(libcaer(10, 1, true, 2147483000) + libcaer(39, 7, false, 100), false,
+                                                                  "libcaer", 5000000000)) +
+                                          message(9, event_packet(libcaer(12, 3, true, 5), false, "libcaer", 2152500000000))));
+  // 5 s + 2,147,483,000 us; then past the fall, 5 s + 2^31 us + 100 us; then the next time_base.
+  expect_events(c, {{2152483000, 10, 1, true}, {2152483748, 39, 7, false}, {2152500005, 12, 3, true}});
+  expect_refused(mcap(declared + message(9, event_packet(libcaer(1, 1, true, -1), false, "libcaer"))), EventFileFormat::Mcap,
+                 "libcaer event 0 stamped -1 us (a negative stamp)");
+  expect_refused(mcap(declared + message(9, event_packet("1234567", false, "mono"))), EventFileFormat::Mcap,
+                 "7 bytes of 'mono' events, not a whole number of 8-byte events");
+}
+
 // An MCAP of ROS 1's profile holds ROS 1's messages (told by the schema's ROS 1 text); rosbag2's
 // message compression makes each message's CDR a zstd frame of its own.
 TEST(Ros2Bags, Ros1MessagesInMcapAndMessagesCompressedOneByOneRead) {
@@ -304,7 +341,7 @@ TEST(Ros2Bags, MalformedMcapFilesAreOneLineErrors) {
   refused(mcap(declared + message(1, event_array({{1, 2, 3, 0, true}}) + std::string(4, '\0'))), "4 bytes after the message's last field");
   refused(mcap(schema(3, "event_camera_msgs/msg/EventPacket", kEventPacketDefinition) + channel(9, 3, "/ev") +
                message(9, event_packet("1234", false, "libcaer_cmp"))),
-          "/ev carries events encoded 'libcaer_cmp' (aesim reads 'evt3' packets)");
+          "/ev carries events encoded 'libcaer_cmp' (aesim reads 'evt3', 'mono' and 'libcaer' packets)");
 }
 
 // rosbag2's SQLite storage as Humble writes it (schema 3: no definitions, so names decide; a

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -170,7 +171,8 @@ RosEventLayout ros_event_layout(std::string_view type, std::string_view definiti
   std::string name(type);
   if (const std::size_t msg = name.find("/msg/"); msg != std::string::npos) name.erase(msg, 4);
   if (name == "dvs_msgs/EventArray" || name == "prophesee_event_msgs/EventArray") return RosEventLayout::EventArray;
-  if (name == "event_camera_msgs/EventPacket") return RosEventLayout::EventPacket;
+  // event_array_msgs/EventArray is EventPacket's predecessor, field for field (metavision_ros_driver).
+  if (name == "event_camera_msgs/EventPacket" || name == "event_array_msgs/EventArray") return RosEventLayout::EventPacket;
   return RosEventLayout::Other;
 }
 
@@ -240,7 +242,7 @@ void RosEventTopics::message(const std::string& topic, RosEventLayout layout, Ro
 
 void RosEventTopics::packet(EventTopic& topic, RosMessageBytes& m) {
   m.number<std::uint64_t>("seq");
-  m.number<std::uint64_t>("time_base");
+  const auto time_base = m.number<std::uint64_t>("time_base");
   const std::string_view encoding = m.text("the encoding");
   if (topic.messages > 1 && encoding != topic.encoding) {
     m.fail(fmt::format("encoding '{}', where the topic's messages before said '{}'", encoding, topic.encoding));
@@ -248,6 +250,16 @@ void RosEventTopics::packet(EventTopic& topic, RosMessageBytes& m) {
   topic.encoding = std::string(encoding);
   if (m.number<std::uint8_t>("is_bigendian") != 0) m.fail("big-endian words (cameras and aesim are little-endian)");
   const auto n = m.number<std::uint32_t>("the words' length");
+  if (encoding != "evt3") {
+    const std::string_view words = m.take(n, "the camera's words");
+    m.end();
+    if (encoding == "mono" || encoding == "libcaer") {
+      eight_byte_events(topic, m, time_base, words);
+    } else if (encoding == "trigger") {
+      topic.triggers += n / 8;
+    }
+    return;
+  }
   if (topic.stream.size() + n > kMaxEventFileBytes) {
     m.fail(fmt::format("more than the {} bytes of words aesim reads from one file", kMaxEventFileBytes));
   }
@@ -261,12 +273,63 @@ void RosEventTopics::packet(EventTopic& topic, RosMessageBytes& m) {
   m.end();
 }
 
-// An EventPacket topic's words decoded as one stream, as the camera wrote them: EVT 3.0 read by
-// the Prophesee RAW reader (metavision_driver's "evt3"); the stamps the camera's microseconds.
-PolarityRecording RosEventTopics::decode_packets(const std::string& name, const EventTopic& topic) const {
+// event_camera_codecs' encodings of 8-byte events (its mono_decoder.h and libcaer_decoder.h, and
+// event_array_msgs' README for "mono"), each stamped from the message's time_base in nanoseconds:
+//  - "mono" (metavision_ros_driver, event_array_msgs): a little-endian 64-bit word, bit 63 the
+//    polarity (1 ON), bits 48-62 y, 32-47 x, 0-31 the nanoseconds since time_base;
+//  - "libcaer" (libcaer_driver: DVS and DAVIS cameras): libcaer's polarity event, a 32-bit word
+//    (bit 1 the polarity, bits 2-16 y, 17-31 x; bit 0, libcaer's valid mark, not read, as the
+//    codec does not) and the camera's 31-bit microseconds, added to time_base, whose high bits
+//    run on by 2^31 us each time the microseconds fall back within a message.
+// Kept as whole microseconds (the nanoseconds rounded down).
+void RosEventTopics::eight_byte_events(EventTopic& topic, RosMessageBytes& m, std::uint64_t time_base, std::string_view words) {
+  if (words.size() % 8 != 0) m.fail(fmt::format("{} bytes of '{}' events, not a whole number of 8-byte events", words.size(), topic.encoding));
+  event_count_ += words.size() / 8;
+  if (event_count_ > kMaxExpandedEvents) m.fail(fmt::format("more than the {} events aesim reads from one file", kMaxExpandedEvents));
+  const bool mono = topic.encoding == "mono";
+  std::uint64_t high = time_base, last_low = 0;
+  for (std::size_t at = 0; at < words.size(); at += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, words.data() + at, 8);
+    std::uint64_t ns;
+    PolarityEvent e;
+    if (mono) {
+      e.x = static_cast<std::int32_t>((w >> 32) & 0xFFFF);
+      e.y = static_cast<std::int32_t>((w >> 48) & 0x7FFF);
+      e.on = (w >> 63) != 0;
+      ns = (w & 0xFFFFFFFFu);
+    } else {
+      const auto data = static_cast<std::uint32_t>(w);
+      const auto low = static_cast<std::int32_t>(static_cast<std::uint32_t>(w >> 32));
+      if (low < 0) m.fail(fmt::format("libcaer event {} stamped {} us (a negative stamp)", at / 8, low));
+      if (static_cast<std::uint64_t>(low) < last_low) high += (std::uint64_t(1) << 31) * 1000;
+      last_low = static_cast<std::uint64_t>(low);
+      e.x = static_cast<std::int32_t>((data >> 17) & 0x7FFF);
+      e.y = static_cast<std::int32_t>((data >> 2) & 0x7FFF);
+      e.on = ((data >> 1) & 1) != 0;
+      ns = static_cast<std::uint64_t>(low) * 1000;
+    }
+    if (ns > std::numeric_limits<std::uint64_t>::max() - high) m.fail(fmt::format("event {} stamped past 2^64 ns", at / 8));
+    e.t_us = static_cast<std::int64_t>((high + ns) / 1000);
+    topic.events.push_back(e);
+  }
+}
+
+// An EventPacket topic's events: the words of "evt3" decoded as one stream, as the camera wrote
+// them, by the Prophesee RAW reader (metavision_driver's; the stamps the camera's microseconds), or
+// those of "mono" and "libcaer", decoded as they came.
+PolarityRecording RosEventTopics::decode_packets(const std::string& name, EventTopic& topic) const {
+  if (topic.encoding == "mono" || topic.encoding == "libcaer") {
+    PolarityRecording rec;
+    rec.events = std::move(topic.events);
+    rec.read_as.push_back(fmt::format("{}'s '{}' events stamped from each message's time_base (ns), kept as whole microseconds",
+                                      name, topic.encoding));
+    return rec;
+  }
   if (topic.encoding != "evt3") {
-    throw InputError(fmt::format("event file '{}': {} carries events encoded '{}' (aesim reads 'evt3' packets)", label_, name,
-                                 topic.encoding));
+    throw InputError(fmt::format("event file '{}': {} carries events encoded '{}' (aesim reads 'evt3', 'mono' and 'libcaer' "
+                                 "packets)",
+                                 label_, name, topic.encoding));
   }
   return decode_prophesee_raw(topic.stream, fmt::format("{} ({})", label_, name));
 }
@@ -278,8 +341,14 @@ PolarityRecording RosEventTopics::result() {
     throw InputError(fmt::format("event file '{}': no topic of dvs_msgs/EventArray's or event_camera_msgs/EventPacket's layout (the bag holds {})",
                                  label_, held.empty() ? "no messages" : held));
   }
-  // std::map: the first event topic by name.
+  // std::map: the first event topic by name, passing over those of external triggers alone (a
+  // Prophesee camera's "trigger" packets) where another has events.
   auto chosen = events_.begin();
+  while (chosen != events_.end() && chosen->second.encoding == "trigger") ++chosen;
+  if (chosen == events_.end()) {
+    throw InputError(fmt::format("event file '{}': {} carries external triggers alone ('trigger' packets), no pixel's events",
+                                 label_, events_.begin()->first));
+  }
   PolarityRecording rec;
   if (chosen->second.layout == RosEventLayout::EventPacket) {
     rec = decode_packets(chosen->first, chosen->second);
@@ -290,7 +359,11 @@ PolarityRecording RosEventTopics::result() {
   rec.height = static_cast<int>(chosen->second.height);
   for (const auto& [name, topic] : events_) {
     if (name == chosen->first) continue;
-    rec.notes.push_back(fmt::format("{} messages of {} (aesim reads one event topic, {})", topic.messages, name, chosen->first));
+    if (topic.encoding == "trigger") {
+      rec.notes.push_back(fmt::format("{} external trigger events of {}", topic.triggers, name));
+    } else {
+      rec.notes.push_back(fmt::format("{} messages of {} (aesim reads one event topic, {})", topic.messages, name, chosen->first));
+    }
   }
   for (const auto& [topic, o] : others_) {
     if (o.messages > 0) rec.notes.push_back(fmt::format("{} messages of {} ({}, {} bytes)", o.messages, topic, o.type, o.bytes));

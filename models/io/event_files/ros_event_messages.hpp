@@ -25,7 +25,8 @@ class RosMessageBytes;
 // The layout a type carries. ROS 2 gives a type no checksum of its fields, so it is told by its
 // definition where the bag holds one (the .msg text: rosbag2's MCAP schemas, "ros2msg", and a
 // newer .db3's message_definitions; also ROS 1's in an MCAP file), compared field by field, package
-// names aside; and otherwise by its name (dvs_msgs, prophesee_event_msgs, event_camera_msgs).
+// names aside; and otherwise by its name (dvs_msgs, prophesee_event_msgs, event_camera_msgs, and
+// event_array_msgs, whose EventArray is EventPacket's predecessor, field for field).
 RosEventLayout ros_event_layout(std::string_view type, std::string_view definition);
 
 // A bag's topics read message by message: the event topics' messages decoded, the others counted.
@@ -51,13 +52,15 @@ class RosEventTopics {
     std::string encoding, stream;
     std::uint32_t width = 0, height = 0;
     std::uint64_t messages = 0;
+    std::uint64_t triggers = 0;  // the external triggers of a topic of "trigger" packets
   };
   struct OtherTopic {
     std::string type;
     std::uint64_t messages = 0, bytes = 0;
   };
   void packet(EventTopic& topic, RosMessageBytes& m);
-  PolarityRecording decode_packets(const std::string& name, const EventTopic& topic) const;
+  void eight_byte_events(EventTopic& topic, RosMessageBytes& m, std::uint64_t time_base, std::string_view words);
+  PolarityRecording decode_packets(const std::string& name, EventTopic& topic) const;
 
   std::string label_;
   std::map<std::string, EventTopic> events_;
