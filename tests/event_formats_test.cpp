@@ -2,6 +2,7 @@
 // the DSEC layout, each checked at the byte level against its published layout and read back by
 // every command that reads events. (tests/python reads them with NumPy, h5py and FlatBuffers'
 // Python code: readers that are not aesim's.)
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/aedat4.hpp"
 #include "aesim/event_files/aedat_layout.hpp"
+#include "aesim/event_files/ecf_codec.hpp"
 #include "aesim/event_files/event_formats.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/event_files/event_writer.hpp"
@@ -191,7 +193,7 @@ TEST_F(EventFormats, AnH5FileHoldsNoWallClockTimeSoRunsGiveTheSameBytes) {
 // /CD/events, a 1-D compound of x, y (uint16), p (int16), t (int64, us). Written here with HDF5's C
 // API, uncompressed (the ECF codec it is compressed with in Metavision's files is not in Debian);
 // with ECF's filter code on the dataset and no plugin, a one-line error naming the way out.
-TEST_F(EventFormats, MetavisionHdf5CdEventsAreReadAndItsEcfCodecNamedWhenMissing) {
+TEST_F(EventFormats, MetavisionHdf5CdEventsAreReadWithTheirChunksFilteredOrNot) {
   struct Cd {
     std::uint16_t x, y;
     std::int16_t p;
@@ -211,7 +213,8 @@ TEST_F(EventFormats, MetavisionHdf5CdEventsAreReadAndItsEcfCodecNamedWhenMissing
     const hid_t space = H5Screate_simple(1, &n, nullptr);
     const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, 1, &n);
-    // Optional: HDF5 then writes the chunk unfiltered, but the dataset names the filter, as ECF's do.
+    // Optional: this HDF5 (no ECF encoder) then writes the chunk unfiltered, marked so, while the
+    // dataset names the filter, as ECF's do; the chunk is read as stored.
     if (ecf) H5Pset_filter(dcpl, 0x8ECF, H5Z_FLAG_OPTIONAL, 0, nullptr);
     const hid_t d = H5Dcreate2(group, "events", type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, written), 0);
@@ -219,23 +222,132 @@ TEST_F(EventFormats, MetavisionHdf5CdEventsAreReadAndItsEcfCodecNamedWhenMissing
     H5Fclose(file);
     return path;
   };
-  const EventRecording rec = load_events(make("mv.hdf5", false));
-  ASSERT_EQ(rec.events.size(), 3u);
-  for (std::size_t i = 0; i < 3; ++i) {
+  for (const bool ecf : {false, true}) {
+    SCOPED_TRACE(ecf);
+    const EventRecording rec = load_events(make(ecf ? "ecf.hdf5" : "mv.hdf5", ecf));
+    ASSERT_EQ(rec.events.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+      SCOPED_TRACE(i);
+      EXPECT_EQ(rec.events[i].x, written[i].x);
+      EXPECT_EQ(rec.events[i].y, written[i].y);
+      EXPECT_DOUBLE_EQ(rec.events[i].t, static_cast<double>(written[i].t) * 1e-6);
+      EXPECT_EQ(rec.events[i].flags, written[i].p ? kNormalEvent : kOffEvent);
+    }
+    EXPECT_FALSE(rec.size_recorded);
+  }
+}
+
+// A file written by Prophesee's own ECF plugin (scripts/make_ecf_fixture.py: three chunks of 1000
+// events, one in each of ECF's three packings), read with aesim's decoder: every event as the
+// script's formulas give it. A chunk whose block claims more events than ECF allows is one line.
+TEST_F(EventFormats, MetavisionHdf5WithPropheseesEcfIsRead) {
+  const std::string fixture = std::string(AESIM_SOURCE_DIR) + "/tests/fuzz/corpus/h5/metavision_ecf.hdf5";
+  const EventRecording rec = load_events(fixture);
+  ASSERT_EQ(rec.events.size(), 3000u);
+  for (std::int64_t k = 0; k < 3000; ++k) {
+    const std::int64_t c = k / 1000, j = k % 1000;
+    const std::int64_t x = c == 0 ? (j * 101) % 640 : c == 1 ? (j * 131) % 640 : 10 + j % 64;
+    const std::int64_t y = c == 0 ? (j * 37) % 480 : c == 1 ? 100 + j / 50 : 200 + j / 64;
+    const bool on = (c == 2 ? (j / 7) % 2 : j % 2) != 0;
+    const std::int64_t t = 1000 + (k / 20) * 3 + (k / 500) * 100000;
+    const AddressEvent& e = rec.events[static_cast<std::size_t>(k)];
+    ASSERT_TRUE(e.x == x && e.y == y && e.flags == (on ? kNormalEvent : kOffEvent) && std::llround(e.t * 1e6) == t)
+        << "event " << k << ": (" << e.x << ", " << e.y << ") at " << e.t << " s, flags " << int(e.flags);
+  }
+  // The third chunk's block begins with its count word, 1000 << 2 and no packing: 0x00000FA0.
+  std::string bytes = testing::slurp(fixture);
+  const auto at = bytes.find(std::string("\xA0\x0F\x00\x00", 4));
+  ASSERT_NE(at, std::string::npos);
+  const std::uint32_t claim = 70000u << 2;
+  bytes.replace(at, 4, reinterpret_cast<const char*>(&claim), 4);
+  std::ofstream(dir_ / "claims.hdf5", std::ios::binary) << bytes;
+  testing::expect_refused_saying([&] { load_events((dir_ / "claims.hdf5").string()); },
+                                 "cannot read /CD/events: an ECF chunk of events 0 on: the block claims 70000 events");
+}
+
+// ECF blocks laid out by hand from the codec's format (ecf_codec.hpp), through each escape: a step
+// of time in three nibbles, counts past their short fields (stamps, a row, a polarity), masked
+// columns, and both packings; a block cut short or describing more events than it claims throws.
+TEST(EcfBlocks, DecodeAsTheirFormatSays) {
+  const auto u16 = [](unsigned v) { return std::string{static_cast<char>(v & 0xFF), static_cast<char>(v >> 8)}; };
+  const auto u32 = [&](std::uint32_t v) { return u16(v & 0xFFFF) + u16(v >> 16); };
+  const auto u64 = [&](std::uint64_t v) { return u32(static_cast<std::uint32_t>(v)) + u32(static_cast<std::uint32_t>(v >> 32)); };
+  struct Out {
+    unsigned x, y;
+    int p;
+    std::int64_t t;
+  };
+  const auto decode = [](const std::string& block) {
+    std::vector<unsigned char> out(kEcfMostEvents * kEcfEventBytes);
+    const std::size_t n = decode_ecf_block(reinterpret_cast<const unsigned char*>(block.data()), block.size(), out.data()) / kEcfEventBytes;
+    std::vector<Out> events;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint16_t x, y;
+      std::int16_t p;
+      std::int64_t t;
+      std::memcpy(&x, &out[i * 16], 2);
+      std::memcpy(&y, &out[i * 16 + 2], 2);
+      std::memcpy(&p, &out[i * 16 + 4], 2);
+      std::memcpy(&t, &out[i * 16 + 8], 8);
+      events.push_back({x, y, p, t});
+    }
+    return events;
+  };
+  // Masked columns: 20 events. Stamps from 1000: a step of 300 (0x12C: nibbles C, 2, 1, each in a
+  // byte whose step is 15), then 4 events; a step of 2 with 16 events (a count of 15, then 16 bits).
+  const std::string stamps = u64(1000) + "\xFC\xF2\xF1" + std::string("\x04", 1) + "\x2F" + u16(16);
+  const std::string masked = u32(20 << 2) + stamps + u16((7 << 5) | 31) + u16(20) +         // row 7, 20 events
+                             u16((100 << 5) | 0b11111) + u16((200 << 5) | 0b10100) +       // 100-105; 200, 201, 203
+                             u16((300 << 5) | 0b11111) + u16((400 << 5) | 0b11110) +       // 300-305; 400-404
+                             "\xFF" + u16(12) + "\x08";                                    // 12 ON, then 8 OFF
+  const std::vector<Out> m = decode(masked);
+  ASSERT_EQ(m.size(), 20u);
+  const unsigned xs[20] = {100, 101, 102, 103, 104, 105, 200, 201, 203, 300, 301, 302, 303, 304, 305, 400, 401, 402, 403, 404};
+  for (std::size_t i = 0; i < 20; ++i) {
     SCOPED_TRACE(i);
-    EXPECT_EQ(rec.events[i].x, written[i].x);
-    EXPECT_EQ(rec.events[i].y, written[i].y);
-    EXPECT_DOUBLE_EQ(rec.events[i].t, static_cast<double>(written[i].t) * 1e-6);
-    EXPECT_EQ(rec.events[i].flags, written[i].p ? kNormalEvent : kOffEvent);
+    EXPECT_EQ(m[i].x, xs[i]);
+    EXPECT_EQ(m[i].y, 7u);
+    EXPECT_EQ(m[i].p, i < 12 ? 1 : 0);
+    EXPECT_EQ(m[i].t, i < 4 ? 1300 : 1302);
   }
-  EXPECT_FALSE(rec.size_recorded);
-  try {
-    load_events(make("ecf.hdf5", true));
-    ADD_FAILURE() << "read without the ECF codec";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("Prophesee's ECF codec"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("HDF5_PLUGIN_PATH"), std::string::npos) << e.what();
+  // x and p in 12 bits (x << 1 | p), four to three 16-bit words; five events, so two groups.
+  const auto pack12 = [&](const std::array<unsigned, 4>& v) {
+    return u16((v[0] << 4) | (v[1] & 0xF)) + u16(((v[1] >> 4) << 8) | (v[2] & 0xFF)) + u16(((v[2] >> 8) << 12) | v[3]);
+  };
+  const std::vector<Out> b = decode(u32((5 << 2) | 1) + u64(7) + "\x05" + u16((9 << 5) | 5) +
+                                    pack12({(1 << 1) | 1, 2 << 1, (2047 << 1) | 1, 640 << 1}) + pack12({5 << 1, 0, 0, 0}));
+  ASSERT_EQ(b.size(), 5u);
+  const unsigned bx[5] = {1, 2, 2047, 640, 5};
+  const int bp[5] = {1, 0, 1, 0, 0};
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(b[i].x, bx[i]);
+    EXPECT_EQ(b[i].y, 9u);
+    EXPECT_EQ(b[i].p, bp[i]);
+    EXPECT_EQ(b[i].t, 7);
   }
+  // y, x and p in 24 bits (y << 12 | x << 1 | p), four to three 32-bit words.
+  const std::array<std::uint32_t, 4> v = {(479u << 12) | (639u << 1) | 1, (1u << 12) | (2u << 1), (2047u << 12) | 1, 3u << 1};
+  const std::string pack24 =
+      u32((v[0] << 8) | (v[1] & 0xFF)) + u32(((v[1] >> 8) << 16) | (v[2] & 0xFFFF)) + u32(((v[2] >> 16) << 24) | v[3]);
+  const std::vector<Out> a = decode(u32((4 << 2) | 2) + u64(5) + "\x14" + pack24);
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_TRUE(a[0].x == 639 && a[0].y == 479 && a[0].p == 1 && a[0].t == 6);
+  EXPECT_TRUE(a[1].x == 2 && a[1].y == 1 && a[1].p == 0 && a[1].t == 6);
+  EXPECT_TRUE(a[2].x == 0 && a[2].y == 2047 && a[2].p == 1 && a[2].t == 6);
+  EXPECT_TRUE(a[3].x == 3 && a[3].y == 0 && a[3].p == 0 && a[3].t == 6);
+  EXPECT_EQ(decode(u32(0) + u64(9)).size(), 0u);
+  const auto refused = [&](const std::string& block, const std::string& words) {
+    try {
+      decode(block);
+      ADD_FAILURE() << "decoded: " << words;
+    } catch (const EcfError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  refused(masked.substr(0, masked.size() - 1), "the block ends inside its polarities");
+  refused(u32(19 << 2) + masked.substr(4), "stamps for 20 events past the block's 19");
+  refused(u32(70000u << 2), "the block claims 70000 events");
+  refused(u32(1 << 2) + u64(0) + std::string(17, '\xFF'), "a step of time of more than 64 bits");
 }
 
 // Event tables, one row an event, as their writers lay them out: v2e's emulator (`/events`, uint32

@@ -4,6 +4,7 @@
 #include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <hdf5.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/ecf_codec.hpp"
 #include "aesim/event_files/event_stamps.hpp"
 #include "aesim/event_files/forked_reader.hpp"
 #include "aesim/files/input_path.hpp"
@@ -248,6 +250,48 @@ std::string missing_filter(hid_t dcpl) {
 // Prophesee's self-assigned HDF5 filter code of its ECF codec, which Metavision's HDF5 event files use.
 constexpr H5Z_filter_t kEcfFilter = 0x8ECF;
 
+// Why the last ECF chunk this thread decoded was refused, for the read's error.
+thread_local std::string ecf_refusal;
+
+// HDF5's filter callback for ECF, reading only (aesim writes no ECF): each chunk one ECF block,
+// decoded into Metavision's 16-byte events. No exception crosses HDF5's C code: a refused block
+// is 0 bytes, which fails the read.
+std::size_t ecf_filter(unsigned flags, std::size_t, const unsigned[], std::size_t bytes, std::size_t* buffer_bytes, void** buffer) {
+  if ((flags & H5Z_FLAG_REVERSE) == 0) {
+    ecf_refusal = "aesim decodes ECF, it does not encode it";
+    return 0;
+  }
+  try {
+    void* out = std::malloc(kEcfMostEvents * kEcfEventBytes);
+    if (out == nullptr) throw std::bad_alloc();
+    std::size_t made = 0;
+    try {
+      made = decode_ecf_block(static_cast<const unsigned char*>(*buffer), bytes, static_cast<unsigned char*>(out));
+    } catch (...) {
+      std::free(out);
+      throw;
+    }
+    std::free(*buffer);
+    *buffer = out;
+    *buffer_bytes = kEcfMostEvents * kEcfEventBytes;
+    return made;
+  } catch (const std::exception& e) {
+    ecf_refusal = e.what();
+    return 0;
+  }
+}
+
+// ECF's decoder, registered with this process's HDF5 once, so that Metavision's files read without
+// Prophesee's plugin (which, on HDF5_PLUGIN_PATH, this one stands in for).
+void register_ecf_decoder() {
+  static const bool once = [] {
+    static const H5Z_class2_t ecf = {H5Z_CLASS_T_VERS, kEcfFilter, 1, 1, "Prophesee's ECF, decoded by aesim", nullptr, nullptr,
+                                     ecf_filter};
+    return H5Zregister(&ecf) >= 0;
+  }();
+  (void)once;
+}
+
 // A dataset of `n` records, checked against the bytes the file holds before anything is read: its
 // data in the file itself, its filters ones this HDF5 decodes, its claimed length one the file's
 // bytes can hold.
@@ -261,12 +305,6 @@ void check_stored(hid_t d, hid_t stored, hsize_t n, const char* name, const std:
   }
   if (dcpl.ok()) {
     const std::string filter = missing_filter(dcpl.get());
-    if (filter.rfind(fmt::format("filter {} ", static_cast<int>(kEcfFilter)), 0) == 0) {
-      throw InputError(fmt::format("event file '{}': {} is compressed with Prophesee's ECF codec, which this HDF5 cannot "
-                                   "decode (put Prophesee's hdf5_ecf plugin on HDF5_PLUGIN_PATH, or convert the file "
-                                   "to .raw or .dat with Metavision)",
-                                   path, name));
-    }
     if (!filter.empty()) {
       throw InputError(fmt::format("event file '{}': {} is compressed with HDF5 {}, which this HDF5 cannot decode "
                                    "(install its plugin, or write the file without it)",
@@ -333,6 +371,19 @@ PolarityRecording read_metavision_cd(hid_t file, const std::string& path, std::u
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space.get(), &n, nullptr);
   check_stored(d.get(), stored.get(), n, name, path, file_bytes);
+  ecf_refusal.clear();
+  // ECF's decoder gives Metavision's 16-byte events, which the chunk's type must lay out so.
+  Handle dcpl(H5Dget_create_plist(d.get()));
+  unsigned flags = 0;
+  std::size_t values = 0;
+  if (dcpl.ok() && H5Pget_filter_by_id2(dcpl.get(), kEcfFilter, &flags, &values, nullptr, 0, nullptr, nullptr) >= 0) {
+    const auto at = [&](const char* member) { return H5Tget_member_offset(stored.get(), static_cast<unsigned>(H5Tget_member_index(stored.get(), member))); };
+    if (H5Tget_size(stored.get()) != kEcfEventBytes || at("x") != 0 || at("y") != 2 || at("p") != 4 || at("t") != 8) {
+      throw InputError(fmt::format("event file '{}': {} is compressed with ECF, whose events are Metavision's 16 bytes (x, y, p "
+                                   "and t at 0, 2, 4 and 8), but its type lays out {} bytes otherwise",
+                                   path, name, H5Tget_size(stored.get())));
+    }
+  }
   // HDF5 converts each field, found by its name, to the memory's.
   struct Cd {
     std::int64_t x, y, p, t;
@@ -351,7 +402,8 @@ PolarityRecording read_metavision_cd(hid_t file, const std::string& path, std::u
     Handle memory(H5Screate_simple(1, &count, nullptr));
     if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &from, nullptr, &count, nullptr) < 0 ||
         H5Dread(d.get(), memory_type.get(), memory.get(), file_space.get(), H5P_DEFAULT, block.data()) < 0) {
-      throw InputError(fmt::format("event file '{}': cannot read {}", path, name));
+      throw InputError(fmt::format("event file '{}': cannot read {}{}", path, name,
+                                   ecf_refusal.empty() ? "" : ": an ECF chunk of events " + std::to_string(from) + " on: " + ecf_refusal));
     }
     for (hsize_t j = 0; j < count; ++j) {
       const Cd& e = block[j];
@@ -517,6 +569,7 @@ herr_t collect_event_group(hid_t, const char* name, const H5O_info_t* info, void
 
 PolarityRecording read_in_this_process(const std::string& path) {
   quiet_hdf5();
+  register_ecf_decoder();
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.ok()) throw InputError(fmt::format("event file '{}': HDF5 cannot open it", path));
   std::error_code ec;
