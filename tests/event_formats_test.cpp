@@ -254,6 +254,9 @@ TEST_F(EventFormats, MetavisionHdf5WithPropheseesEcfIsRead) {
     ASSERT_TRUE(e.x == x && e.y == y && e.flags == (on ? kNormalEvent : kOffEvent) && std::llround(e.t * 1e6) == t)
         << "event " << k << ": (" << e.x << ", " << e.y << ") at " << e.t << " s, flags " << int(e.flags);
   }
+  // jAER's chips are for AEDAT 2.0 alone.
+  testing::expect_refused_saying([&] { load_events(fixture, std::nullopt, "dvs128"); },
+                                 "--layout: jAER's layouts are for AEDAT 2.0 files; this one is HDF5");
   // The third chunk's block begins with its count word, 1000 << 2 and no packing: 0x00000FA0.
   std::string bytes = testing::slurp(fixture);
   const auto at = bytes.find(std::string("\xA0\x0F\x00\x00", 4));

@@ -197,6 +197,8 @@ TEST_F(EvimoFolder, ItsThreeArraysAreReadAsTheEvents) {
   const EventRecording rec = load_events(folder);
   expect_events(rec, {{125000, 7, 8, true}, {250000, 3, 4, true}, {500000, 5, 6, false}});
   EXPECT_NE(rec.read_as.at(0).find("an EVIMO2 sequence's folder"), std::string::npos);
+  testing::expect_refused_saying([&] { load_events(folder, std::nullopt, "davis346"); },
+                                 "--layout: jAER's layouts are for AEDAT 2.0 files; this one is an EVIMO2 sequence's folder");
   write("dataset_events_p.npy", npy("'|u1'", "(2,)", std::string("\x01\x00", 2)));
   testing::expect_refused_saying([&] { load_events(folder); }, "hold 3, 3, 3 and 2 numbers");
   // A header claiming more events than aesim reads is refused before the numbers are taken.

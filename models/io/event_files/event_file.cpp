@@ -278,11 +278,18 @@ std::string read_event_file_bytes(const std::string& path) { return read_whole(p
 EventRecording load_events(const std::string& path, const std::optional<ArraySize>& size, const std::string& layout) {
   EventRecording rec;
   std::error_code not_a_folder;
+  // jAER's chips name an AEDAT 2.0 file's address layout (Prophesee's .dat and jAER's older .dat
+  // are told apart by their first line, where the reader refuses it for Prophesee's).
+  const auto no_layout = [&layout](const std::string& what) {
+    if (!layout.empty()) throw InputError(fmt::format("--layout: jAER's layouts are for AEDAT 2.0 files; this one is {}", what));
+  };
   if (std::filesystem::is_directory(path, not_a_folder)) {
+    no_layout(is_evimo2_folder(path) ? "an EVIMO2 sequence's folder" : "a ROS 2 bag's folder");
     // An EVIMO2 sequence keeps its events in three arrays of a folder; a ROS 2 bag is a folder of
     // its storage files.
     rec = from_polarity(is_evimo2_folder(path) ? read_evimo2_folder(path) : read_ros2_bag_folder(path), path);
   } else if (is_compressed_ros2_bag_file(path)) {
+    no_layout("a ROS 2 bag's file");
     rec = from_polarity(read_compressed_ros2_bag_file(path), path);
   } else {
     const EventFormatRow* row = nullptr;
@@ -293,6 +300,7 @@ EventRecording load_events(const std::string& path, const std::optional<ArraySiz
           file_extension(path) == ".zstd" ? ": a file compressed whole: uncompress it with `zstd -d`" : "";
       throw InputError(fmt::format("event file '{}': unsupported format (use {}){}", path, event_inputs(), hint));
     }
+    if (row->format != EventFileFormat::Aedat2 && row->format != EventFileFormat::PropheseeDat) no_layout(row->name);
     rec = row->read(path, layout);
   }
   if (!size) return rec;
