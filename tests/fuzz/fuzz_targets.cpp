@@ -16,6 +16,7 @@
 #include "aesim/scene/scene.hpp"
 #include "aesim/scene/y4m_video.hpp"
 #include "aesim/event_files/dsec_h5.hpp"
+#include "aesim/event_files/ecf_codec.hpp"
 #include "aesim/event_files/event_file.hpp"
 #include "aesim/scene/netpbm.hpp"
 #include "aesim/scene/exr_image.hpp"
@@ -88,6 +89,17 @@ int dataset_files(const std::uint8_t* data, std::size_t size) {
                                               EventFileFormat::Mcap,       EventFileFormat::Rosbag2Sqlite, EventFileFormat::Npz};
   const EventFileFormat format = kByRemainder[data[0] % 6];
   return expect_result_or_input_error([&] { decode_events(bytes(data + 1, size - 1), "fuzz.dataset", format); });
+}
+
+// One ECF block, as HDF5 hands the decoder a chunk (outside HDF5, so that every input reaches it):
+// the events or the decoder's refusal.
+int ecf(const std::uint8_t* data, std::size_t size) {
+  std::vector<unsigned char> out(kEcfMostEvents * kEcfEventBytes);
+  try {
+    decode_ecf_block(data, size, out.data());
+  } catch (const EcfError&) {
+  }
+  return 0;
 }
 
 int aedat(const std::uint8_t* data, std::size_t size) {

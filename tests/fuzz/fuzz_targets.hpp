@@ -19,6 +19,7 @@ int npy(const std::uint8_t* data, std::size_t size);           // NumPy .npy eve
 int prophesee_raw(const std::uint8_t* data, std::size_t size); // Prophesee RAW recordings (EVT 2.0, 2.1, 3.0)
 int dataset_files(const std::uint8_t* data, std::size_t size); // text, N-MNIST .bin, ROS 1 and 2 bags, .npz
 int h5(const std::uint8_t* data, std::size_t size);            // DSEC HDF5 event files (through libhdf5)
+int ecf(const std::uint8_t* data, std::size_t size);           // Metavision HDF5 chunks: aesim's ECF decoder
 int mat(const std::uint8_t* data, std::size_t size);           // MATLAB files of events (through matio)
 int set_values(const std::uint8_t* data, std::size_t size);    // --set key=value lines with units
 int sensor_toml(const std::uint8_t* data, std::size_t size);   // sensor presets and scene.toml
@@ -38,6 +39,6 @@ inline constexpr Target kTargets[] = {{"netpbm", netpbm},         {"y4m", y4m},
                                       {"aedat4", aedat4},         {"npy", npy},
                                       {"exr", exr},               {"h5", h5},
                                       {"prophesee_raw", prophesee_raw}, {"dataset_files", dataset_files},
-                                      {"mat", mat}};
+                                      {"mat", mat},               {"ecf", ecf}};
 
 }  // namespace aesim::fuzz
