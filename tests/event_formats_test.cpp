@@ -265,7 +265,7 @@ TEST_F(EventFormats, MetavisionHdf5WithPropheseesEcfIsRead) {
   bytes.replace(at, 4, reinterpret_cast<const char*>(&claim), 4);
   std::ofstream(dir_ / "claims.hdf5", std::ios::binary) << bytes;
   testing::expect_refused_saying([&] { load_events((dir_ / "claims.hdf5").string()); },
-                                 "cannot read /CD/events: an ECF chunk of events 0 on: the block claims 70000 events");
+                                 "cannot read /CD/events: in the chunk from event 0, ECF block, byte 4: the block claims 70000 events");
 }
 
 // ECF blocks laid out by hand from the codec's format (ecf_codec.hpp), through each escape: a step
@@ -347,7 +347,7 @@ TEST(EcfBlocks, DecodeAsTheirFormatSays) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }
   };
-  refused(masked.substr(0, masked.size() - 1), "the block ends inside its polarities");
+  refused(masked.substr(0, masked.size() - 1), "ECF block, byte " + std::to_string(masked.size() - 1) + ": its polarities of 1 bytes runs past the end");
   refused(u32(19 << 2) + masked.substr(4), "stamps for 20 events past the block's 19");
   refused(u32(70000u << 2), "the block claims 70000 events");
   refused(u32(1 << 2) + u64(0) + std::string(17, '\xFF'), "a step of time of more than 64 bits");

@@ -403,7 +403,7 @@ PolarityRecording read_metavision_cd(hid_t file, const std::string& path, std::u
     if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &from, nullptr, &count, nullptr) < 0 ||
         H5Dread(d.get(), memory_type.get(), memory.get(), file_space.get(), H5P_DEFAULT, block.data()) < 0) {
       throw InputError(fmt::format("event file '{}': cannot read {}{}", path, name,
-                                   ecf_refusal.empty() ? "" : ": an ECF chunk of events " + std::to_string(from) + " on: " + ecf_refusal));
+                                   ecf_refusal.empty() ? "" : ": in the chunk from event " + std::to_string(from) + ", " + ecf_refusal));
     }
     for (hsize_t j = 0; j < count; ++j) {
       const Cd& e = block[j];

@@ -6,72 +6,51 @@
 
 #include <fmt/format.h>
 
+#include "aesim/event_files/checked_bytes.hpp"
+
 namespace aesim {
 namespace {
 
-// Little-endian reads within [at, end), each checked.
-class BlockBytes {
- public:
-  BlockBytes(const unsigned char* at, std::size_t bytes) : at_(at), end_(at + bytes), begin_(at) {}
-  template <typename T>
-  T next(const char* what) {
-    if (static_cast<std::size_t>(end_ - at_) < sizeof(T)) {
-      throw EcfError(fmt::format("the block ends inside {} (byte {} of {})", what, at_ - begin_, end_ - begin_));
-    }
-    T v = 0;
-    for (std::size_t k = 0; k < sizeof(T); ++k) v = static_cast<T>(v | (static_cast<T>(at_[k]) << (8 * k)));
-    at_ += sizeof(T);
-    return v;
-  }
-  std::uint8_t peek(const char* what) const {
-    if (at_ == end_) throw EcfError(fmt::format("the block ends inside {}", what));
-    return *at_;
-  }
-
- private:
-  const unsigned char* at_;
-  const unsigned char* end_;
-  const unsigned char* begin_;
-};
+[[noreturn]] void refuse_block(const std::string& message) { throw EcfError(message); }
 
 // `count` copies of `v` from `i` on, within the block's `n` events.
 template <typename T>
-void fill(std::vector<T>& column, std::size_t& i, std::size_t count, T v, std::size_t n, const char* what) {
-  if (count > n - i) throw EcfError(fmt::format("{} for {} events past the block's {}", what, i + count, n));
+void fill(std::vector<T>& column, std::size_t& i, std::size_t count, T v, std::size_t n, const char* what, const CheckedBytes& b) {
+  if (count > n - i) b.fail(fmt::format("{} for {} events past the block's {}", what, i + count, n));
   for (std::size_t k = 0; k < count; ++k) column[i++] = v;
 }
 
 }  // namespace
 
 std::size_t decode_ecf_block(const unsigned char* in, std::size_t bytes, unsigned char* out) {
-  BlockBytes b(in, bytes);
-  const auto head = b.next<std::uint32_t>("its count");
+  CheckedBytes b(std::string_view(reinterpret_cast<const char*>(in), bytes), "ECF block", refuse_block);
+  const auto head = b.number<std::uint32_t>("its count");
   const std::size_t n = head >> 2;
   const bool all_packed = (head >> 1) & 1, x_and_p_packed = head & 1;
-  if (n > kEcfMostEvents) throw EcfError(fmt::format("the block claims {} events (ECF's blocks hold at most {})", n, kEcfMostEvents));
+  if (n > kEcfMostEvents) b.fail(fmt::format("the block claims {} events (ECF's blocks hold at most {})", n, kEcfMostEvents));
   std::vector<std::uint64_t> ts(n);
   std::vector<std::uint16_t> ys(n), xs(n);
   std::vector<std::uint8_t> ps(n);
 
-  std::uint64_t t = b.next<std::uint64_t>("its first stamp");
+  std::uint64_t t = b.number<std::uint64_t>("its first stamp");
   for (std::size_t i = 0; i < n;) {
-    std::uint8_t v = b.peek("its stamps");
+    std::uint8_t v = b.peek<std::uint8_t>("its stamps");
     unsigned step = v >> 4, count = v & 0xF;
     if (step != 0xF) {
-      b.next<std::uint8_t>("its stamps");
+      b.number<std::uint8_t>("its stamps");
       t += step;
-      if (count == 0xF) count = b.next<std::uint16_t>("a stamp's count");
-      fill(ts, i, count, t, n, "stamps");
+      if (count == 0xF) count = b.number<std::uint16_t>("a stamp's count");
+      fill(ts, i, count, t, n, "stamps", b);
       continue;
     }
     // A longer step, a nibble a byte, least significant first, up to the byte that ends it
     // (read again as a step of its own).
     std::uint64_t longer = 0;
     for (unsigned k = 0; step == 0xF; ++k) {
-      if (k == 16) throw EcfError("a step of time of more than 64 bits");
+      if (k == 16) b.fail("a step of time of more than 64 bits");
       longer |= std::uint64_t(count) << (4 * k);
-      b.next<std::uint8_t>("its stamps");
-      v = b.peek("a step of time");
+      b.number<std::uint8_t>("its stamps");
+      v = b.peek<std::uint8_t>("a step of time");
       step = v >> 4;
       count = v & 0xF;
     }
@@ -80,8 +59,8 @@ std::size_t decode_ecf_block(const unsigned char* in, std::size_t bytes, unsigne
 
   if (all_packed) {
     for (std::size_t i = 0; i < n; i += 4) {
-      const std::uint32_t w0 = b.next<std::uint32_t>("packed events"), w1 = b.next<std::uint32_t>("packed events"),
-                          w2 = b.next<std::uint32_t>("packed events");
+      const std::uint32_t w0 = b.number<std::uint32_t>("packed events"), w1 = b.number<std::uint32_t>("packed events"),
+                          w2 = b.number<std::uint32_t>("packed events");
       const std::array<std::uint32_t, 4> v = {w0 >> 8, (w0 & 0xFF) | ((w1 >> 16) << 8), (w1 & 0xFFFF) | ((w2 >> 24) << 16),
                                               w2 & 0xFFFFFF};
       for (std::size_t k = 0; k < 4 && i + k < n; ++k) {
@@ -92,15 +71,15 @@ std::size_t decode_ecf_block(const unsigned char* in, std::size_t bytes, unsigne
     }
   } else {
     for (std::size_t i = 0; i < n;) {
-      const auto w = b.next<std::uint16_t>("its rows");
+      const auto w = b.number<std::uint16_t>("its rows");
       std::size_t count = w & 0x1F;
-      if (count == 0x1F) count = b.next<std::uint16_t>("a row's count");
-      fill(ys, i, count, static_cast<std::uint16_t>(w >> 5), n, "rows");
+      if (count == 0x1F) count = b.number<std::uint16_t>("a row's count");
+      fill(ys, i, count, static_cast<std::uint16_t>(w >> 5), n, "rows", b);
     }
     if (x_and_p_packed) {
       for (std::size_t i = 0; i < n; i += 4) {
-        const std::uint16_t w0 = b.next<std::uint16_t>("packed columns"), w1 = b.next<std::uint16_t>("packed columns"),
-                            w2 = b.next<std::uint16_t>("packed columns");
+        const std::uint16_t w0 = b.number<std::uint16_t>("packed columns"), w1 = b.number<std::uint16_t>("packed columns"),
+                            w2 = b.number<std::uint16_t>("packed columns");
         const std::array<unsigned, 4> v = {static_cast<unsigned>(w0 >> 4), (w0 & 0xFu) | ((w1 >> 8u) << 4),
                                            (w1 & 0xFFu) | ((w2 >> 12u) << 8), w2 & 0xFFFu};
         for (std::size_t k = 0; k < 4 && i + k < n; ++k) {
@@ -110,20 +89,20 @@ std::size_t decode_ecf_block(const unsigned char* in, std::size_t bytes, unsigne
       }
     } else {
       for (std::size_t i = 0; i < n;) {
-        const auto w = b.next<std::uint16_t>("its columns");
+        const auto w = b.number<std::uint16_t>("its columns");
         const auto x = static_cast<std::uint16_t>(w >> 5);
         xs[i++] = x;
         for (unsigned k = 0; k < 5; ++k) {
           if ((w & (1u << (4 - k))) == 0) continue;
-          if (i == n) throw EcfError(fmt::format("columns for more than the block's {} events", n));
+          if (i == n) b.fail(fmt::format("columns for more than the block's {} events", n));
           xs[i++] = static_cast<std::uint16_t>(x + k + 1);
         }
       }
       for (std::size_t i = 0; i < n;) {
-        const auto v = b.next<std::uint8_t>("its polarities");
+        const auto v = b.number<std::uint8_t>("its polarities");
         std::size_t count = v & 0x7F;
-        if (count == 0x7F) count = b.next<std::uint16_t>("a polarity's count");
-        fill(ps, i, count, static_cast<std::uint8_t>(v >> 7), n, "polarities");
+        if (count == 0x7F) count = b.number<std::uint16_t>("a polarity's count");
+        fill(ps, i, count, static_cast<std::uint8_t>(v >> 7), n, "polarities", b);
       }
     }
   }
