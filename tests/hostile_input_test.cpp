@@ -378,6 +378,43 @@ TEST_F(HostileInputTest, AFullDiskIsReportedWithItsReasonAndLeavesNothing) {
   ::umount((dir_ / "small").c_str());
 }
 
+// Event files reserve disk space ahead of their writes (SpaceAhead). On a disk with room for the
+// run's outputs but not for the reservation, the run completes and leaves only its bytes; on one
+// that fills after a reservation or where none could be made, the run fails as on any full disk.
+TEST_F(HostileInputTest, SpaceReservedAheadNeitherFailsARunThatFitsNorHidesAFullDisk) {
+  const fs::path small = dir_ / "small";
+  fs::create_directory(small);
+  const auto run = [&](const std::string& format, int seconds) {
+    return bounded(fmt::format("run --scene {}/uniform.pgm --duration {}s --summary small/s.json --out small/e.{}", kScenes,
+                               seconds, format));
+  };
+  // Uniform light writes 0.43 MB a second of .npy, 0.27 MB of AEDAT 2.0 or DAT.
+  for (const auto& [format, filling] : {std::pair<std::string, int>{"npy", 60}, {"aedat", 100}, {"dat", 100}}) {
+    // 20 s: a 5 to 9 MB file, which reserves 17 MiB past its first megabyte.
+    if (::mount("tmpfs", small.c_str(), "tmpfs", 0, "size=24m") != 0) {
+      GTEST_SKIP() << "cannot mount a small tmpfs here (" << std::strerror(errno) << "): needs root";
+    }
+    const Outcome fits = run(format, 20);
+    EXPECT_EQ(fits.status, 0) << format << ": " << fits.err;
+    struct stat st {};
+    ASSERT_EQ(::stat((small / ("e." + format)).c_str(), &st), 0) << format;
+    EXPECT_GT(st.st_size, 5000000) << format;
+    EXPECT_LT(static_cast<std::uint64_t>(st.st_blocks) * 512, static_cast<std::uint64_t>(st.st_size) + 65536)
+        << format << ": reserved space left past the end";
+    ::umount(small.c_str());
+    // 3 MiB: the file passes its first megabyte, cannot reserve, then fills the disk. 20 MiB: it
+    // reserves once, then fills the disk with a file of over 25 MB.
+    for (const auto& [size, seconds] : {std::pair<std::string, int>{"size=3m", 20}, {"size=20m", filling}}) {
+      ASSERT_EQ(::mount("tmpfs", small.c_str(), "tmpfs", 0, size.c_str()), 0);
+      const Outcome full = run(format, seconds);
+      EXPECT_EQ(full.status, 1) << format << " " << size << ": " << full.err;
+      EXPECT_NE(full.err.find("No space left on device"), std::string::npos) << full.err;
+      EXPECT_TRUE(fs::is_empty(small)) << format << " " << size << ": left " << fs::directory_iterator(small)->path();
+      ::umount(small.c_str());
+    }
+  }
+}
+
 // An output that is a device or a FIFO is written through, never replaced: /dev/null stays the
 // machine's /dev/null, a FIFO's reader gets the events, a FIFO with no reader is refused.
 TEST_F(HostileInputTest, OutputsThatAreDevicesOrFifosAreWrittenThroughNeverReplaced) {

@@ -220,6 +220,8 @@ void AedatWriter::flush() {
 void AedatWriter::finish() {
   flush();
   writes_.drain();
+  // Ends the file's writes now (an output file gives back the space it reserved ahead of them).
+  out_.flush();
 }
 
 AedatFile read_aedat(const std::string& path) {

@@ -332,6 +332,8 @@ void Aedat4Writer::finish() {
   write_packet();
   if (packets_->worker) packets_->worker->drain();
   write_data_table();
+  // Ends the file's writes now (an output file gives back the space it reserved ahead of them).
+  out_.flush();
 }
 
 // DV's FileDataTable after the last packet, compressed as the packets are, and the header's

@@ -1,6 +1,9 @@
 #include "aesim/event_files/npy_events.hpp"
 
 #include <algorithm>
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -54,22 +57,27 @@ namespace {
 // opened with O_TRUNC, even empty, ext4 marks it as one being replaced and on close writes all of
 // it out to the disk, in the closing thread (auto_da_alloc), where without it the system writes
 // it back later on its own. Any other file is truncated as usual.
-std::ios::openmode npy_open_mode(const std::string& path) {
+int open_npy(const std::string& path) {
   std::error_code ec;
   const bool empty = std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 && !ec;
-  return std::ios::binary | std::ios::out | (empty ? std::ios::in : std::ios::trunc);
+  return ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (empty ? 0 : O_TRUNC), 0644);
 }
 
 }  // namespace
 
-NpyWriter::NpyWriter(const std::string& path, double tick) : out_(path, npy_open_mode(path)), path_(path), stamps_(tick) {
-  if (!out_) throw OutputError(write_failure(path));
+NpyWriter::NpyWriter(const std::string& path, double tick) : fd_(open_npy(path)), path_(path), stamps_(tick) {
+  if (fd_ < 0) throw OutputError(write_failure(path));
   const std::string text = header_text(0);
-  out_.write(kNpyMagic, 6);
   const char version[4] = {1, 0, static_cast<char>(text.size() & 0xff), static_cast<char>(text.size() >> 8)};
-  out_.write(version, 4);
-  out_.write(text.data(), static_cast<std::streamsize>(text.size()));
   buffer_.reserve(kNpyBufferBytes + kNpyRecordBytes);  // fit rounds up: one record past the mark at most
+  buffer_.resize(kNpyHeaderBytes);
+  std::memcpy(buffer_.data(), kNpyMagic, 6);
+  std::memcpy(buffer_.data() + 6, version, 4);
+  std::memcpy(buffer_.data() + 10, text.data(), text.size());
+}
+
+NpyWriter::~NpyWriter() {
+  if (fd_ >= 0) ::close(fd_);
 }
 
 void NpyWriter::events(const AddressEvent* first, std::size_t count) {
@@ -98,23 +106,36 @@ void NpyWriter::events(const AddressEvent* first, std::size_t count) {
   count_ += count;
 }
 
+void NpyWriter::write_at(const char* data, std::size_t n, std::uint64_t offset) {
+  while (n > 0) {
+    const ssize_t wrote = ::pwrite(fd_, data, n, static_cast<off_t>(offset));
+    if (wrote < 0 && errno == EINTR) continue;
+    // Reported at once, while errno still holds the system's reason.
+    if (wrote <= 0) {
+      if (wrote == 0) errno = EIO;
+      throw OutputError(write_failure(path_));
+    }
+    data += wrote;
+    n -= static_cast<std::size_t>(wrote);
+    offset += static_cast<std::uint64_t>(wrote);
+  }
+}
+
 void NpyWriter::flush() {
-  // Checked at once, while errno still holds the system's reason.
-  errno = 0;
-  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-  if (!buffer_.empty()) out_.flush();
-  if (!out_) throw OutputError(write_failure(path_));
+  space_.before_writing_to(fd_, written_ + buffer_.size());
+  write_at(buffer_.data(), buffer_.size(), written_);
+  written_ += buffer_.size();
   buffer_.clear();
 }
 
 void NpyWriter::finish() {
   flush();
-  out_.seekp(10);
   const std::string text = header_text(count_);
-  errno = 0;
-  out_.write(text.data(), static_cast<std::streamsize>(text.size()));
-  out_.close();
-  if (!out_) throw OutputError(write_failure(path_));
+  write_at(text.data(), text.size(), 10);
+  space_.release(fd_);
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) throw OutputError(write_failure(path_));
 }
 
 PolarityRecording decode_npy(const std::string& data, const std::string& label) {

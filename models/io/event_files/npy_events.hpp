@@ -1,5 +1,5 @@
 #pragma once
-#include <fstream>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -7,6 +7,7 @@
 #include "aesim/event_files/aedat4.hpp"
 #include "aesim/event_files/event_stamps.hpp"
 #include "aesim/event_files/event_writer.hpp"
+#include "aesim/output/space_ahead.hpp"
 
 namespace aesim {
 
@@ -17,15 +18,22 @@ namespace aesim {
 class NpyWriter : public EventFileWriter {
  public:
   NpyWriter(const std::string& path, double tick);
+  ~NpyWriter() override;
+  NpyWriter(const NpyWriter&) = delete;
+  NpyWriter& operator=(const NpyWriter&) = delete;
   void events(const AddressEvent* first, std::size_t count) override;
   void finish() override;
 
  private:
   void flush();
-  std::ofstream out_;
+  // All of `n` bytes at `offset`, or OutputError with the system's reason.
+  void write_at(const char* data, std::size_t n, std::uint64_t offset);
+  int fd_;
   std::string path_;
   MicrosecondStamps stamps_;
   std::uint64_t count_ = 0;
+  std::uint64_t written_ = 0;  // bytes of the file written
+  SpaceAhead space_;
   // Grown by each batch's records and written over at once: no zeros written first.
   UninitializedGrowthVector<char> buffer_;
 };

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -13,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/output/space_ahead.hpp"
 #include "aesim/output/temp_files.hpp"
 
 namespace aesim {
@@ -140,7 +142,8 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const std::vecto
 
 // A file writer over a descriptor, with its own buffer of kFileBufferBytes, that keeps the reason of
 // its first failed write (std::ofstream loses errno): a full disk is reported as "No space left on
-// device". A block at least as large as the buffer goes to the system as it is, not copied.
+// device". A block at least as large as the buffer goes to the system as it is, not copied. A
+// temporary reserves its disk space ahead of its writes (SpaceAhead), given back at each flush.
 class OutputFiles::FileBuffer : public std::streambuf {
  public:
   // `seekable` false for an output written through: its offset may be shared with whoever opened
@@ -170,7 +173,11 @@ class OutputFiles::FileBuffer : public std::streambuf {
     }
     return traits_type::not_eof(ch);
   }
-  int sync() override { return drain() ? 0 : -1; }
+  int sync() override {
+    const bool ok = drain();
+    if (seekable_) space_.release(fd_);
+    return ok ? 0 : -1;
+  }
   std::streamsize xsputn(const char* s, std::streamsize n) override {
     if (n < static_cast<std::streamsize>(buffer_.size())) return std::streambuf::xsputn(s, n);
     if (!drain() || !write_all(s, static_cast<std::size_t>(n))) return 0;
@@ -182,7 +189,9 @@ class OutputFiles::FileBuffer : public std::streambuf {
     if (!seekable_ || !drain()) return pos_type(off_type(-1));
     const int whence = dir == std::ios_base::beg ? SEEK_SET : dir == std::ios_base::cur ? SEEK_CUR : SEEK_END;
     const off_t at = ::lseek(fd_, static_cast<off_t>(off), whence);
-    return at < 0 ? pos_type(off_type(-1)) : pos_type(static_cast<off_type>(at));
+    if (at < 0) return pos_type(off_type(-1));
+    offset_ = static_cast<std::uint64_t>(at);
+    return pos_type(static_cast<off_type>(at));
   }
   pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
     return seekoff(off_type(pos), std::ios_base::beg, which);
@@ -190,6 +199,7 @@ class OutputFiles::FileBuffer : public std::streambuf {
 
  private:
   bool write_all(const char* p, std::size_t n) {
+    if (seekable_ && n > 0) space_.before_writing_to(fd_, offset_ + n);
     while (n > 0 && error_ == 0) {
       const ssize_t wrote = ::write(fd_, p, n);
       if (wrote < 0 && errno == EINTR) continue;
@@ -198,6 +208,7 @@ class OutputFiles::FileBuffer : public std::streambuf {
       } else {
         p += wrote;
         n -= static_cast<std::size_t>(wrote);
+        offset_ += static_cast<std::uint64_t>(wrote);
       }
     }
     return error_ == 0;
@@ -216,6 +227,8 @@ class OutputFiles::FileBuffer : public std::streambuf {
   bool seekable_;
   int error_ = 0;
   std::vector<char> buffer_;
+  std::uint64_t offset_ = 0;  // where the descriptor writes next (a temporary: opened empty, its own)
+  SpaceAhead space_;
 };
 
 OutputFiles::OutputFiles() = default;
