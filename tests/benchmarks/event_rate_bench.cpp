@@ -2,6 +2,9 @@
 // QCIF (176x144) array; the cycle fidelity on the same letter with the reference receiver and
 // with the Verilated RTL; and the cost per receiver clock cycle of each receiver with the clock
 // never stopped. All side by side in one run, so the ratios hold on a noisy machine.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <benchmark/benchmark.h>
 #include <lz4frame.h>
 #include <systemc>
@@ -20,6 +23,7 @@
 #include "aesim/event_files/aedat.hpp"
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/output/atomic_file.hpp"
+#include "aesim/output/space_ahead.hpp"
 #include "aesim/pixel/integrate_fire.hpp"
 #include "aesim/pixel/pixel_draws.hpp"
 #include "aesim/random/gamma_draw.hpp"
@@ -241,6 +245,39 @@ void BM_Lz4Probe(benchmark::State& state) {
   state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
 }
 
+// The system's part of writing a file, as the .npy writer hands it over: the 66 MB the bright
+// QCIF's 20 s make as .npy, a megabyte a write, to a new file, with disk space reserved ahead of
+// the writes (SpaceAhead, as every event file does) or without. Counted in the same events as the
+// QCIF benchmarks, so that the rate sets a ceiling beside theirs.
+void BM_FileWriteProbe(benchmark::State& state) {
+  const bool reserve = state.range(0) != 0;
+  constexpr std::size_t kEvents = 5'080'000, kRecordBytes = 13, kWrite = std::size_t(1) << 20;
+  const std::string path = (std::filesystem::temp_directory_path() / "aesim_bench_write_probe").string();
+  const std::vector<char> block(kWrite, '\x5a');
+  double events = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::filesystem::remove(path);
+    state.ResumeTiming();
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) {
+      state.SkipWithError("cannot make the probe's file");
+      break;
+    }
+    SpaceAhead space;
+    for (std::uint64_t at = 0; at < kEvents * kRecordBytes; at += kWrite) {
+      const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(kWrite, kEvents * kRecordBytes - at));
+      if (reserve) space.before_writing_to(fd, at + n);
+      if (::write(fd, block.data(), n) != static_cast<ssize_t>(n)) state.SkipWithError("a write failed");
+    }
+    space.release(fd);
+    ::close(fd);
+    events += static_cast<double>(kEvents);
+  }
+  std::filesystem::remove(path);
+  state.counters["events_per_s"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+}
+
 // The merge of the bright QCIF's tiles' streams (its 5 M delivered events in 20 windows, as the
 // event log hands them over) by the run's own EventMerger into a stream that keeps nothing, and
 // the probe of the least work a merge must do (merge_probe.hpp) on the same windows.
@@ -450,6 +487,7 @@ BENCHMARK_CAPTURE(BM_QcifWritten, raw, "e.raw", 1)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, dat, "e.dat", 1)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifWritten, aedat_2_threads, "e2.aedat", 2)->Apply(qcif);
 BENCHMARK(BM_Lz4Probe)->Apply(qcif);
+BENCHMARK(BM_FileWriteProbe)->Arg(0)->Arg(1)->Apply(qcif);
 BENCHMARK(BM_QcifMerge)->Apply(qcif);
 BENCHMARK(BM_MergeProbe)->Apply(qcif);
 BENCHMARK_CAPTURE(BM_QcifBright, summary_2_threads, 2, false, false)->Apply(qcif);
