@@ -351,6 +351,63 @@ TEST_F(VerifyTest, AReceiverWithoutAResetStartsFromItsInitialValues) {
       << bad.out;
 }
 
+// A receiver written in VHDL (tests/rtl/vhdl_receiver: the fourth receiver's logic, upper-case
+// names, generics, a package in a file of its own) is synthesised to Verilog by GHDL and verified
+// like any other: it passes, with its generics applied (DEPTH_LOG = 3: the full-output case takes
+// the 8 words such a FIFO holds), its description's names matched whatever their case, and its
+// exported testbench passes under Icarus on the Verilog GHDL made. A copy with Ack one edge early
+// fails; VHDL GHDL cannot read, and [formal] parameters, are one-line errors.
+TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
+  const std::string src = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/vhdl_receiver";
+  for (const char* f : {"arx_pkg.vhd", "varx.vhd"}) write(f, slurp(src + "/" + f));
+  const std::string description = slurp(src + "/varx.toml");
+  write("varx.toml", description);
+  const Outcome o = verify("varx.toml --export-tb tb");
+  const nlohmann::json r = report();
+  expect_pass(o, r, 15);
+  for (const auto& c : r["cases"]) {
+    if (c["name"] == "full_output") EXPECT_EQ(c["beats_checked"], 8) << c.dump();
+  }
+  const std::string tb = (dir_ / "tb").string();
+  EXPECT_EQ(last_line(tb, "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  std::string lower_case = description;
+  for (const char* name : {"VARX", "RST_N", "CLK", "AER_REQ", "AER_ACK", "AER_ADDR", "AER_COLL", "M_VALID", "M_READY",
+                           "M_DATA", "DROPPED"}) {
+    std::string l = name;
+    for (char& ch : l) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    for (auto at = lower_case.find("\"" + std::string(name)); at != std::string::npos; at = lower_case.find("\"" + std::string(name))) {
+      lower_case.replace(at + 1, l.size(), l);
+    }
+  }
+  write("lower.toml", lower_case);
+  const Outcome lower = verify("lower.toml --out lower");
+  expect_pass(lower, report("lower"), 15);
+
+  fs::create_directories(dir_ / "early");
+  write("early/arx_pkg.vhd", slurp(src + "/arx_pkg.vhd"));
+  write("early/varx.vhd", edited(slurp(src + "/varx.vhd"), "      ack_q <= s2;", "      ack_q <= s1;"));
+  write("early/varx.toml", description);
+  const Outcome early = verify("early/varx.toml --out early_out");
+  EXPECT_EQ(early.status, 1) << early.err;
+  EXPECT_EQ(report("early_out")["first_failure"]["check"], "ack_rise_latency");
+
+  fs::create_directories(dir_ / "broken");
+  write("broken/arx_pkg.vhd", slurp(src + "/arx_pkg.vhd"));
+  write("broken/varx.vhd", edited(slurp(src + "/varx.vhd"), "      now   <= now + 1;", "      now   <= now + ;"));
+  write("broken/varx.toml", description);
+  const Outcome broken = verify("broken/varx.toml --out broken_out");
+  EXPECT_EQ(broken.status, 2) << broken.err;
+  EXPECT_NE(broken.err.find("aesim: receiver VHDL does not synthesise: "), std::string::npos) << broken.err;
+  EXPECT_NE(broken.err.find("varx.vhd:"), std::string::npos) << broken.err;
+  EXPECT_EQ(std::count(broken.err.begin(), broken.err.end(), '\n'), 1) << broken.err;
+
+  write("formal.toml", description + "\n[formal]\nparameters = { DEPTH_LOG = 1 }\n");
+  const Outcome formal = verify("formal.toml --out formal_out");
+  EXPECT_EQ(formal.status, 2) << formal.err;
+  EXPECT_NE(formal.err.find("[formal] parameters: a VHDL design's generics are set once"), std::string::npos) << formal.err;
+}
+
 // The design's own verdicts: a $fatal fails the run with the RTL's message, file and line; a
 // $finish ends the case and is reported; $system and DPI imports are refused before anything runs.
 TEST_F(VerifyTest, TheRtlsOwnVerdictsCountAndItRunsNoCommand) {
@@ -664,7 +721,7 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
        "behaviour.synchroniser_flops: expected the flops Req passes before any logic reads it, 0"},
       {(write("rx.vhd", "entity rx is end rx;\n"),
         variant("vhdl.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\", \"rx.vhd\"]")),
-       "'" + (dir_ / "rx.vhd").string() + "' is VHDL"},
+       "sources mix VHDL and Verilog"},
       {variant("huge.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\"]\ninclude_dirs = [\"huge\"]"),
        "include_dirs: '" + (dir_ / "huge").string() + "' holds over 256 MiB"},
       {variant("shell.toml", "top = \"ae_rx_alt\"", "top = \"x; rm -rf /\""), "top"},

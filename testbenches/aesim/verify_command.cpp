@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "build/dut_build.hpp"
+#include "build/vhdl_conversion.hpp"
 #include "commands.hpp"
 #include "description/receiver_description.hpp"
 #include "driver/bound_ports.hpp"
@@ -24,13 +25,15 @@ namespace aesim {
 
 int verify_command(const VerifyCommandOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
-  const ReceiverDescription d = read_receiver_description(opt.description);
+  const ReceiverDescription written = read_receiver_description(opt.description);
   const std::string report_path = opt.out + "/verify.json", vcd_path = opt.out + "/failure.vcd";
   std::vector<OutputPath> outputs = {{"--out", report_path}};
   if (!opt.export_tb.empty()) outputs.push_back({"--export-tb", opt.export_tb + "/tb.v"});
-  std::vector<std::string> inputs = d.sources;
-  inputs.push_back(d.file);
+  std::vector<std::string> inputs = written.sources;
+  inputs.push_back(written.file);
   check_output_paths(outputs, inputs);
+  // From here on a VHDL design is the Verilog GHDL makes of it.
+  const ReceiverDescription d = with_vhdl_as_verilog(written, default_cache_dir());
 
   const VerificationPlan plan = make_plan(opt.plan);
   std::vector<std::string> notes;

@@ -177,15 +177,6 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   }
   d.top = r.identifier(r.string_of(r.need(root, "top", "top"), "top"), "top");
   d.sources = r.paths("sources", false, true);
-  for (std::size_t i = 0; i < d.sources.size(); ++i) {
-    const std::string ext = file_extension(d.sources[i]);
-    if (ext == ".vhd" || ext == ".vhdl") {
-      r.fail(fmt::format("sources[{}]", i),
-             fmt::format("'{}' is VHDL; aesim verify builds Verilog and SystemVerilog (Verilator and yosys): convert it "
-                         "first, e.g. with GHDL's synthesis to Verilog (ghdl --synth --out=verilog)",
-                         d.sources[i]));
-    }
-  }
   d.include_dirs = r.paths("include_dirs", true, false);
   for (const char* table : {"defines", "parameters"}) {
     const TomlValue* t = r.find(root, table);

@@ -1,0 +1,164 @@
+#include "build/vhdl_conversion.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "aesim/errors/input_error.hpp"
+#include "aesim/files/content_hash.hpp"
+#include "aesim/files/scratch_folder.hpp"
+#include "aesim/files/scratch_text.hpp"
+#include "aesim/process/child_process.hpp"
+
+namespace aesim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// A generic's value for GHDL's -g option: a description's string literal ("abc") without its
+// quotes; a number or an identifier as it is.
+std::string generic_value(const std::string& literal) {
+  if (literal.size() >= 2 && literal.front() == '"' && literal.back() == '"') return literal.substr(1, literal.size() - 2);
+  return literal;
+}
+
+// The first line of GHDL's log that reports an error (file:line:col: message), else its first line.
+std::string first_error(const std::string& log) {
+  std::size_t at = 0;
+  std::string first;
+  while (at < log.size()) {
+    const std::size_t end = std::min(log.find('\n', at), log.size());
+    const std::string line = log.substr(at, end - at);
+    if (first.empty() && !line.empty()) first = line;
+    if (line.find("error") != std::string::npos || line.find(": cannot") != std::string::npos) return line;
+    at = end + 1;
+  }
+  return first.empty() ? "ghdl failed (see its log)" : first;
+}
+
+// The standards GHDL is asked to read the sources in, in turn: VHDL-2008 with Synopsys's
+// arithmetic packages (std_logic_arith, std_logic_unsigned), which older designs use; then
+// VHDL-93 with the same, for the few that 2008 no longer reads (a name that became reserved).
+const std::vector<std::vector<std::string>>& standards() {
+  static const std::vector<std::vector<std::string>> s = {{"--std=08", "-fsynopsys"}, {"--std=93c", "--ieee=synopsys"}};
+  return s;
+}
+
+}  // namespace
+
+bool is_vhdl_source(const std::string& path) {
+  const std::string ext = lower(fs::path(path).extension().string());
+  return ext == ".vhd" || ext == ".vhdl";
+}
+
+ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std::string& cache_dir) {
+  const auto vhdl = static_cast<std::size_t>(std::count_if(d.sources.begin(), d.sources.end(), is_vhdl_source));
+  if (vhdl == 0) return d;
+  const std::string where = fmt::format("receiver description '{}'", d.file);
+  if (vhdl != d.sources.size()) {
+    throw InputError(fmt::format("{}: sources mix VHDL and Verilog; aesim verify converts a design that is all VHDL "
+                                 "(its top an entity), or takes one that is all Verilog or SystemVerilog",
+                                 where));
+  }
+  if (!d.formal.parameters.empty()) {
+    throw InputError(fmt::format("{}: [formal] parameters: a VHDL design's generics are set once, in `parameters`, "
+                                 "for the simulation and the proof alike",
+                                 where));
+  }
+  if (!d.defines.empty() || !d.include_dirs.empty()) {
+    throw InputError(fmt::format("{}: `defines` and `include_dirs` are Verilog's; VHDL takes none", where));
+  }
+  if (!program_available("ghdl")) {
+    throw InputError(fmt::format("{}: its sources are VHDL, which aesim verify converts to Verilog with GHDL; GHDL is "
+                                 "not installed (apt-get install ghdl)",
+                                 where));
+  }
+  const fs::path cache = cache_dir;
+  std::error_code ec;
+  fs::create_directories(cache, ec);
+  if (ec) throw InputError(fmt::format("cache folder '{}': {}", cache.string(), ec.message()));
+  const ScratchFolder scratch(cache / fmt::format("tmp-vhdl.{}", ::getpid()));
+  const fs::path& work = scratch.path();
+
+  run_child("ghdl", {"--version"}, {(work / "version.txt").string(), (work / "version.txt").string()});
+  const std::string version = read_scratch_text(work / "version.txt");
+  std::string key = "aesim-vhdl-v1\n" + version.substr(0, version.find('\n')) + "\ntop " + d.top + "\n";
+  for (const auto& [k, v] : d.parameters) key += "generic " + k + "=" + v + "\n";
+  for (const std::string& s : d.sources) key += "source " + s + "\n" + read_scratch_text(s) + "\n";
+  const fs::path entry = cache / ("vhdl-" + content_hash_hex(key));
+  const fs::path converted = entry / "receiver.v";
+
+  if (!fs::is_regular_file(converted)) {
+    std::string log;
+    bool made = false;
+    for (const std::vector<std::string>& standard : standards()) {
+      // GHDL analyses into a work library in the folder it runs in: a fresh one each try.
+      const fs::path run = work / ("run" + standard.front().substr(6));
+      fs::create_directories(run);
+      std::vector<std::string> args = {"--synth", "--out=verilog", "--no-formal"};
+      args.insert(args.end(), standard.begin(), standard.end());
+      for (const auto& [k, v] : d.parameters) args.push_back("-g" + k + "=" + generic_value(v));
+      args.insert(args.end(), d.sources.begin(), d.sources.end());
+      args.push_back("-e");
+      args.push_back(d.top);
+      const fs::path out = run / "out.v", err = run / "ghdl.log";
+      const int status = run_child("ghdl", args, {out.string(), err.string(), run.string()});
+      if (status == 0 && fs::file_size(out, ec) > 0) {
+        fs::create_directories(work / "entry");
+        fs::rename(out, work / "entry" / converted.filename());
+        fs::rename(err, work / "entry" / "ghdl.log");
+        made = true;
+        break;
+      }
+      if (log.empty()) log = read_scratch_text(err);
+    }
+    if (!made) {
+      const fs::path kept = cache / fmt::format("vhdl-failed-{}.log", lower(d.top));
+      write_scratch_text(kept, log);
+      throw InputError(fmt::format("receiver VHDL does not synthesise: {} (GHDL's log: {})", first_error(log), kept.string()));
+    }
+    fs::rename(work / "entry", entry, ec);
+    if (ec && !fs::is_regular_file(converted)) {
+      throw InputError(fmt::format("cache folder '{}': {}", cache.string(), ec.message()));
+    }
+  }
+
+  // GHDL keeps each name as the VHDL declares it, and VHDL does not tell case apart: the
+  // description's names are matched to the module's whatever their case.
+  const std::string verilog = read_scratch_text(converted);
+  std::map<std::string, std::string> declared;
+  static const std::regex port_or_module(R"((?:^module|\b(?:input|output|inout))\s+(?:\[[^\]]*\]\s*)?([A-Za-z_][A-Za-z0-9_$]*))");
+  const std::string header = verilog.substr(0, verilog.find(");"));
+  for (auto it = std::sregex_iterator(header.begin(), header.end(), port_or_module); it != std::sregex_iterator(); ++it) {
+    declared.emplace(lower((*it)[1].str()), (*it)[1].str());
+  }
+  const auto as_declared = [&](const std::string& name) {
+    const auto found = declared.find(lower(name));
+    return found == declared.end() ? name : found->second;
+  };
+  ReceiverDescription v = d;
+  v.top = as_declared(d.top);
+  v.sources = {converted.string()};
+  v.parameters.clear();
+  for (auto& [role, ref] : v.ports) ref.port = as_declared(ref.port);
+  if (v.has_reset()) v.reset_port = as_declared(v.reset_port);
+  v.inputs.clear();
+  for (const auto& [port, value] : d.inputs) v.inputs[as_declared(port)] = value;
+  v.formal.inputs.clear();
+  for (const auto& [port, value] : d.formal.inputs) v.formal.inputs[as_declared(port)] = value;
+  for (std::string& out : v.formal.unsynchronised_outputs) out = as_declared(out);
+  return v;
+}
+
+}  // namespace aesim
