@@ -352,8 +352,8 @@ TEST_F(VerifyTest, AReceiverWithoutAResetStartsFromItsInitialValues) {
 }
 
 // A receiver written in VHDL (tests/rtl/vhdl_receiver: the fourth receiver's logic, upper-case
-// names, generics, a package in a file of its own) is synthesised to Verilog by GHDL and verified
-// like any other: it passes, with its generics applied (DEPTH_LOG = 3: the full-output case takes
+// names, generics, a package in a file of its own, signals named as Verilog's reserved words) is
+// synthesised to Verilog by GHDL and verified like any other: it passes, with its generics applied (DEPTH_LOG = 3: the full-output case takes
 // the 8 words such a FIFO holds), its description's names matched whatever their case, and its
 // exported testbench passes under Icarus on the Verilog GHDL made. A copy with Ack one edge early
 // fails; VHDL GHDL cannot read, and [formal] parameters, are one-line errors.
@@ -370,6 +370,15 @@ TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   }
   const std::string tb = (dir_ / "tb").string();
   EXPECT_EQ(last_line(tb, "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  // The VHDL's signals `config` and `table`, reserved words in Verilog, as escaped identifiers.
+  std::istringstream files(slurp(fs::path(tb) / "tb_files.f"));
+  std::string converted;
+  for (std::string line; std::getline(files, line);) {
+    if (line.size() > 2 && line.compare(line.size() - 2, 2, ".v") == 0 && line.find("receiver.v") != std::string::npos) converted = line;
+  }
+  const std::string verilog = slurp(converted);
+  EXPECT_NE(verilog.find("\\config "), std::string::npos) << converted;
+  EXPECT_NE(verilog.find("\\table "), std::string::npos) << converted;
 
   std::string lower_case = description;
   for (const char* name : {"VARX", "RST_N", "CLK", "AER_REQ", "AER_ACK", "AER_ADDR", "AER_COLL", "M_VALID", "M_READY",

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <regex>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -55,6 +56,84 @@ const std::vector<std::vector<std::string>>& standards() {
   return s;
 }
 
+// Verilog's and SystemVerilog's reserved words (IEEE 1364-2005 and 1800-2017, Annex B) that
+// GHDL's netlists never use as keywords (those it may write, such as `signed`, `integer`,
+// `function` or `for`, are left out, as are the ones it does write): a VHDL name that is one of them (a signal called
+// `config`, `table` or `type`) GHDL writes as it is, which Verilator, yosys and Icarus refuse.
+const std::set<std::string>& reserved_elsewhere() {
+  static const std::set<std::string> words = {
+      "accept_on", "alias", "always_comb", "always_ff", "always_latch", "and", "assert", "assume", "automatic",
+      "before", "bind", "bins", "binsof", "bit", "break", "buf", "bufif0", "bufif1", "byte", "cell", "chandle",
+      "checker", "class", "clocking", "cmos", "config", "const", "constraint", "context", "continue", "cover",
+      "covergroup", "coverpoint", "cross", "deassign", "defparam", "design", "disable", "dist", "do", "edge",
+      "endchecker", "endclass", "endclocking", "endconfig", "endgroup", "endinterface", "endpackage",
+      "endprimitive", "endprogram", "endproperty", "endsequence", "endspecify", "endtable", "endtask", "enum",
+      "event", "eventually", "expect", "export", "extends", "extern", "final", "first_match", "force", "foreach",
+      "forever", "fork", "forkjoin", "global", "highz0", "highz1", "ignore_bins", "illegal_bins", "implements",
+      "implies", "import", "incdir", "include", "inside", "instance", "int", "interconnect", "interface",
+      "intersect", "join", "join_any", "join_none", "large", "let", "liblist", "library", "local", "logic",
+      "longint", "macromodule", "matches", "medium", "modport", "nand", "nettype", "new", "nexttime", "nmos",
+      "nor", "noshowcancelled", "not", "notif0", "notif1", "null", "package", "packed", "pmos", "program",
+      "property", "protected", "pull0", "pull1", "pulldown", "pullup", "pulsestyle_ondetect", "pulsestyle_onevent",
+      "pure", "rand", "randc", "randcase", "randsequence", "rcmos", "real", "realtime", "ref", "reject_on",
+      "release", "repeat", "restrict", "return", "rnmos", "rpmos", "rtran", "rtranif0", "rtranif1", "s_always",
+      "s_eventually", "s_nexttime", "s_until", "s_until_with", "scalared", "sequence", "shortint", "shortreal",
+      "showcancelled", "small", "soft", "solve", "specify", "specparam", "static", "string", "strong", "strong0",
+      "strong1", "struct", "super", "supply0", "supply1", "sync_accept_on", "sync_reject_on", "table", "tagged",
+      "task", "this", "throughout", "time", "timeprecision", "timeunit", "tran", "tranif0", "tranif1", "tri",
+      "tri0", "tri1", "triand", "trior", "trireg", "type", "typedef", "union", "unique", "unique0", "until",
+      "until_with", "untyped", "use", "uwire", "var", "vectored", "virtual", "void", "wait", "wait_order", "wand",
+      "weak", "weak0", "weak1", "while", "wildcard", "with", "within", "wor", "xnor", "xor", "casex", "casez",
+      "primitive"};
+  return words;
+}
+
+// GHDL's Verilog with every name that is a reserved word elsewhere written as an escaped
+// identifier (`\config `), which every Verilog reader takes as a plain name. Comments, strings,
+// system functions ($unsigned) and the letters of based numbers (8'b0110) are left as they are.
+std::string escape_reserved_names(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + text.size() / 64);
+  const auto ident_start = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+  const auto ident_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '$'; };
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == '/' && i + 1 < text.size() && (text[i + 1] == '*' || text[i + 1] == '/')) {
+      const std::size_t end = text[i + 1] == '*' ? text.find("*/", i + 2) : text.find('\n', i + 2);
+      const std::size_t stop = end == std::string::npos ? text.size() : end + (text[i + 1] == '*' ? 2 : 0);
+      out.append(text, i, stop - i);
+      i = stop;
+    } else if (c == '"' || c == '\\') {
+      // A string to its closing quote, or an escaped identifier to the white space that ends it.
+      std::size_t stop = i + 1;
+      while (stop < text.size() && (c == '"' ? text[stop] != '"' : !std::isspace(static_cast<unsigned char>(text[stop])))) {
+        stop += c == '"' && text[stop] == '\\' ? 2 : 1;
+      }
+      stop = std::min(text.size(), stop + (c == '"' ? 1 : 0));
+      out.append(text, i, stop - i);
+      i = stop;
+    } else if (c == '$' || c == '\'' || std::isdigit(static_cast<unsigned char>(c))) {
+      // A system function's name, or a number with its base and digits.
+      std::size_t stop = i + 1;
+      if (c == '\'' && stop < text.size() && (text[stop] == 's' || text[stop] == 'S')) ++stop;
+      while (stop < text.size() && ident_char(text[stop])) ++stop;
+      out.append(text, i, stop - i);
+      i = stop;
+    } else if (ident_start(c)) {
+      std::size_t stop = i + 1;
+      while (stop < text.size() && ident_char(text[stop])) ++stop;
+      const std::string name = text.substr(i, stop - i);
+      out += reserved_elsewhere().count(name) ? "\\" + name + " " : name;
+      i = stop;
+    } else {
+      out += c;
+      ++i;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool is_vhdl_source(const std::string& path) {
@@ -93,7 +172,7 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
 
   run_child("ghdl", {"--version"}, {(work / "version.txt").string(), (work / "version.txt").string()});
   const std::string version = read_scratch_text(work / "version.txt");
-  std::string key = "aesim-vhdl-v1\n" + version.substr(0, version.find('\n')) + "\ntop " + d.top + "\n";
+  std::string key = "aesim-vhdl-v2\n" + version.substr(0, version.find('\n')) + "\ntop " + d.top + "\n";
   for (const auto& [k, v] : d.parameters) key += "generic " + k + "=" + v + "\n";
   for (const std::string& s : d.sources) key += "source " + s + "\n" + read_scratch_text(s) + "\n";
   const fs::path entry = cache / ("vhdl-" + content_hash_hex(key));
@@ -116,7 +195,7 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
       const int status = run_child("ghdl", args, {out.string(), err.string(), run.string()});
       if (status == 0 && fs::file_size(out, ec) > 0) {
         fs::create_directories(work / "entry");
-        fs::rename(out, work / "entry" / converted.filename());
+        write_scratch_text(work / "entry" / converted.filename(), escape_reserved_names(read_scratch_text(out)));
         fs::rename(err, work / "entry" / "ghdl.log");
         made = true;
         break;

@@ -1,5 +1,6 @@
 -- The fourth receiver of the tests (tests/rtl/fourth_receiver/arx.sv) as a VHDL team would write
--- it: upper-case names, generics, a package, an active-low asynchronous reset, two flops on Req, a
+-- it: upper-case names, generics, a package, signals named as Verilog's reserved words (which the
+-- conversion to Verilog must escape), an active-low asynchronous reset, two flops on Req, a
 -- registered Ack that follows them, the address captured on the synchronised Req's rise into a
 -- FIFO of 2**DEPTH_LOG words that drops when full (Ack still given) and counts the drops in 8
 -- bits, wrapping or, with SATURATE, held at 255; contention discards; the stamp, a free-running
@@ -30,7 +31,9 @@ end entity;
 
 architecture rtl of VARX is
   type mem_t is array (0 to 2 ** DEPTH_LOG - 1) of word_t;
-  signal mem                  : mem_t;
+  -- `table` and `config` are plain names in VHDL and reserved words in Verilog.
+  signal table                : mem_t;
+  signal config               : std_logic_vector(1 downto 0);
   signal s1, s2, s2_q, ack_q  : std_logic;
   signal now                  : unsigned(STAMP_BITS - 1 downto 0);
   -- One bit wider than an index: equal indices with the top bits apart is full.
@@ -40,7 +43,8 @@ architecture rtl of VARX is
 begin
   full    <= '1' when wr(DEPTH_LOG) /= rd(DEPTH_LOG) and wr(DEPTH_LOG - 1 downto 0) = rd(DEPTH_LOG - 1 downto 0) else '0';
   empty   <= '1' when wr = rd else '0';
-  capture <= s2 and not s2_q and not AER_COLL;
+  config  <= s2 & s2_q;
+  capture <= '1' when config = "10" and AER_COLL = '0' else '0';
 
   control : process (CLK, RST_N)
   begin
@@ -72,7 +76,7 @@ begin
   begin
     if rising_edge(CLK) then
       if capture = '1' and full = '0' then
-        mem(to_integer(wr(DEPTH_LOG - 1 downto 0))) <= std_logic_vector(now) & "000000" & AER_ADDR;
+        table(to_integer(wr(DEPTH_LOG - 1 downto 0))) <= std_logic_vector(now) & "000000" & AER_ADDR;
       end if;
     end if;
   end process;
@@ -90,6 +94,6 @@ begin
 
   AER_ACK <= ack_q;
   M_VALID <= not empty;
-  M_DATA  <= mem(to_integer(rd(DEPTH_LOG - 1 downto 0)));
+  M_DATA  <= table(to_integer(rd(DEPTH_LOG - 1 downto 0)));
   DROPPED <= std_logic_vector(drops);
 end architecture;
