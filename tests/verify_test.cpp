@@ -356,7 +356,7 @@ TEST_F(VerifyTest, AReceiverWithoutAResetStartsFromItsInitialValues) {
 // synthesised to Verilog by GHDL and verified like any other: it passes, with its generics applied (DEPTH_LOG = 3: the full-output case takes
 // the 8 words such a FIFO holds), its description's names matched whatever their case, and its
 // exported testbench passes under Icarus on the Verilog GHDL made. A copy with Ack one edge early
-// fails; VHDL GHDL cannot read, and [formal] parameters, are one-line errors.
+// fails; VHDL GHDL cannot read, [formal] parameters, and no GHDL on PATH are one-line errors.
 TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   const std::string src = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/vhdl_receiver";
   for (const char* f : {"arx_pkg.vhd", "varx.vhd"}) write(f, slurp(src + "/" + f));
@@ -410,6 +410,11 @@ TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   EXPECT_NE(broken.err.find("aesim: receiver VHDL does not synthesise: "), std::string::npos) << broken.err;
   EXPECT_NE(broken.err.find("varx.vhd:"), std::string::npos) << broken.err;
   EXPECT_EQ(std::count(broken.err.begin(), broken.err.end(), '\n'), 1) << broken.err;
+
+  // Without GHDL on PATH: said so, with the package that brings it.
+  const Outcome no_ghdl = aesim("verify varx.toml --out no_ghdl", "PATH=/nonexistent AESIM_CACHE_DIR='" AESIM_VERIFY_CACHE "' ");
+  EXPECT_EQ(no_ghdl.status, 2) << no_ghdl.err;
+  EXPECT_NE(no_ghdl.err.find("GHDL is not installed (apt-get install ghdl)"), std::string::npos) << no_ghdl.err;
 
   write("formal.toml", description + "\n[formal]\nparameters = { DEPTH_LOG = 1 }\n");
   const Outcome formal = verify("formal.toml --out formal_out");
