@@ -6,8 +6,10 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -34,19 +36,29 @@ std::string generic_value(const std::string& literal) {
   return literal;
 }
 
-// The first line of GHDL's log that reports an error (file:line:col: message), else its first line.
+// What went wrong, from GHDL's log: its own report of an internal failure (the exception it
+// raised), else its first line that reports an error (file:line:col: message), else its first line.
 std::string first_error(const std::string& log) {
-  std::size_t at = 0;
-  std::string first;
-  while (at < log.size()) {
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at < log.size();) {
     const std::size_t end = std::min(log.find('\n', at), log.size());
-    const std::string line = log.substr(at, end - at);
-    if (first.empty() && !line.empty()) first = line;
-    if (line.find("error") != std::string::npos || line.find(": cannot") != std::string::npos) return line;
+    if (end > at) lines.push_back(log.substr(at, end - at));
     at = end + 1;
   }
-  return first.empty() ? "ghdl failed (see its log)" : first;
+  if (log.find("GHDL Bug occurred") != std::string::npos) {
+    for (const std::string& line : lines) {
+      if (line.rfind("raised ", 0) == 0) return "GHDL failed inside (" + line + ")";
+    }
+    return "GHDL failed inside";
+  }
+  for (const std::string& line : lines) {
+    if (line.find("error") != std::string::npos || line.find(": cannot") != std::string::npos) return line;
+  }
+  return lines.empty() ? "ghdl failed (see its log)" : lines.front();
 }
+
+// GHDL is given this long for one attempt: it only catches a synthesis that runs away.
+constexpr double kGhdlSeconds = 600;
 
 // The standards GHDL is asked to read the sources in, in turn: VHDL-2008 with Synopsys's
 // arithmetic packages (std_logic_arith, std_logic_unsigned), which older designs use; then
@@ -192,7 +204,10 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
       args.push_back("-e");
       args.push_back(d.top);
       const fs::path out = run / "out.v", err = run / "ghdl.log";
-      const int status = run_child("ghdl", args, {out.string(), err.string(), run.string()});
+      const pid_t pid = spawn_child("ghdl", args, {out.string(), err.string(), run.string()});
+      const std::optional<int> ended = wait_child_for(pid, kGhdlSeconds);
+      if (!ended) throw InputError(fmt::format("receiver VHDL: GHDL's synthesis ran past {:.0f} s", kGhdlSeconds));
+      const int status = *ended;
       if (status == 0 && fs::file_size(out, ec) > 0) {
         fs::create_directories(work / "entry");
         write_scratch_text(work / "entry" / converted.filename(), escape_reserved_names(read_scratch_text(out)));
