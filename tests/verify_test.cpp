@@ -88,6 +88,25 @@ TEST_F(VerifyTest, BundledReceiverPassesThroughItsOwnDescriptionInBothPolicies) 
             report("hold")["transactions"].get<double>() - report("hold")["beats_checked"].get<double>());
 }
 
+// An input the description leaves alone is held at 0, and the run says which: the bundled
+// receiver's external stamp input, unused while its own counter stamps, passes and is named.
+TEST_F(VerifyTest, InputsTheDescriptionLeavesAloneAreNamedAsHeldAtZero) {
+  std::string description = edited(slurp(kRtl + "/aer_receiver.toml"), "ts_i = 0\n", "");
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) {
+    description = edited(description, "\"" + std::string(f) + "\"", "\"" + kRtl + "/" + f + "\"");
+  }
+  write("no_ts.toml", description);
+  const Outcome o = verify("no_ts.toml");
+  expect_pass(o, report());
+  EXPECT_NE(o.err.find("aesim verify: input ts_i held at 0 throughout (no role, not in [inputs])"), std::string::npos) << o.err;
+  const nlohmann::json notes = report()["notes"];
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const nlohmann::json& n) {
+    return n.get<std::string>().find("input ts_i held at 0") != std::string::npos;
+  })) << notes.dump();
+  // Named in [inputs], it is not.
+  EXPECT_EQ(verify(kRtl + "/aer_receiver.toml --out named").err.find("held at 0"), std::string::npos);
+}
+
 TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {
   const Outcome o = verify(kSecond + "/ae_rx_alt.toml");
   expect_pass(o, report());

@@ -55,6 +55,11 @@ int verify_command(const VerifyCommandOptions& opt) {
   const DutBuild build = build_dut(d, build_options);
   check_ports(d, build.ports, kVerifyBusBits);
   const DutLibrary library(build.library);
+  if (const std::vector<std::string> held = inputs_held_at_zero(d, build.ports); !held.empty()) {
+    std::string names;
+    for (const std::string& h : held) names += (names.empty() ? "" : ", ") + h;
+    notes.push_back(fmt::format("input{} {} held at 0 throughout (no role, not in [inputs])", held.size() > 1 ? "s" : "", names));
+  }
 
   std::fprintf(stderr, "aesim verify: %s (%s), plan %s, %zu cases, seed %llu\n", d.top.c_str(),
                build.cached ? "cached model" : fmt::format("built in {:.1f} s", build.seconds).c_str(),

@@ -1,5 +1,7 @@
 #include "driver/bound_ports.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
@@ -71,6 +73,16 @@ void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports
       port_error(d, "inputs." + name, fmt::format("{} does not fit the {} bits of port {}", value, p.width, name));
     }
   }
+}
+
+std::vector<std::string> inputs_held_at_zero(const ReceiverDescription& d, const std::vector<RtlPort>& ports) {
+  std::vector<std::string> held;
+  for (const RtlPort& p : ports) {
+    if (!p.input || p.name == d.reset_port || d.inputs.count(p.name)) continue;
+    const bool has_role = std::any_of(d.ports.begin(), d.ports.end(), [&](const auto& role) { return role.second.port == p.name; });
+    if (!has_role) held.push_back(p.name);
+  }
+  return held;
 }
 
 BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std::vector<RtlPort>& ports) {

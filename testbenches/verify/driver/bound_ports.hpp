@@ -13,6 +13,10 @@ namespace aesim {
 // the bus's address bits; the declared timestamp bits; [inputs] values that fit). InputError
 // naming the port otherwise.
 void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports, int bus_bits);
+// The RTL's inputs the description leaves alone (no role, not the reset, not in [inputs]): aesim
+// holds them at 0 throughout, which a second clock or an enable left out of the description
+// would make look like a receiver that never answers. In the order the RTL declares them.
+std::vector<std::string> inputs_held_at_zero(const ReceiverDescription& d, const std::vector<RtlPort>& ports);
 
 // The width of a role's bits (its slice, or its whole port).
 int role_width(const ReceiverDescription& d, const std::vector<RtlPort>& ports, const std::string& role);
