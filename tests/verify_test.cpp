@@ -378,7 +378,7 @@ TEST_F(VerifyTest, AReceiverWithoutAResetStartsFromItsInitialValues) {
 // fails; VHDL GHDL cannot read, [formal] parameters, and no GHDL on PATH are one-line errors.
 TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   const std::string src = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/vhdl_receiver";
-  for (const char* f : {"arx_pkg.vhd", "varx.vhd"}) write(f, slurp(src + "/" + f));
+  for (const char* f : {"arx_pkg.vhd", "req_sync.vhd", "varx.vhd"}) write(f, slurp(src + "/" + f));
   const std::string description = slurp(src + "/varx.toml");
   write("varx.toml", description);
   const Outcome o = verify("varx.toml --export-tb tb");
@@ -415,12 +415,12 @@ TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   // A copy of the receiver in `folder` with one line of its VHDL changed, verified.
   const auto variant = [&](const std::string& folder, const std::string& from, const std::string& to) {
     fs::create_directories(dir_ / folder);
-    write(folder + "/arx_pkg.vhd", slurp(src + "/arx_pkg.vhd"));
+    for (const char* f : {"arx_pkg.vhd", "req_sync.vhd"}) write(folder + "/" + f, slurp(src + "/" + f));
     write(folder + "/varx.vhd", edited(slurp(src + "/varx.vhd"), from, to));
     write(folder + "/varx.toml", description);
     return verify(folder + "/varx.toml --out " + folder + "_out");
   };
-  const Outcome early = variant("early", "      ack_q <= s2;", "      ack_q <= s1;");
+  const Outcome early = variant("early", "  AER_ACK <= ack_q;", "  AER_ACK <= s2;");
   EXPECT_EQ(early.status, 1) << early.err;
   EXPECT_EQ(report("early_out")["first_failure"]["check"], "ack_rise_latency");
 

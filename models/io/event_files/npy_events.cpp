@@ -1,9 +1,9 @@
 #include "aesim/event_files/npy_events.hpp"
 
-#include <algorithm>
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>

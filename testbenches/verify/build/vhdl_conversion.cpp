@@ -230,12 +230,21 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
 
   // GHDL keeps each name as the VHDL declares it, and VHDL does not tell case apart: the
   // description's names are matched to the module's whatever their case.
+  // The top's header is the module of that name (GHDL writes the entities it instantiates as
+  // modules of their own, before it), up to the end of its port list.
   const std::string verilog = read_scratch_text(converted);
   std::map<std::string, std::string> declared;
-  static const std::regex port_or_module(R"((?:^module|\b(?:input|output|inout))\s+(?:\[[^\]]*\]\s*)?([A-Za-z_][A-Za-z0-9_$]*))");
-  const std::string header = verilog.substr(0, verilog.find(");"));
-  for (auto it = std::sregex_iterator(header.begin(), header.end(), port_or_module); it != std::sregex_iterator(); ++it) {
-    declared.emplace(lower((*it)[1].str()), (*it)[1].str());
+  static const std::regex module_name(R"((?:^|\n)module\s+([A-Za-z_][A-Za-z0-9_$]*))");
+  static const std::regex port_name(R"(\b(?:input|output|inout)\s+(?:\[[^\]]*\]\s*)?([A-Za-z_][A-Za-z0-9_$]*))");
+  for (auto m = std::sregex_iterator(verilog.begin(), verilog.end(), module_name); m != std::sregex_iterator(); ++m) {
+    if (lower((*m)[1].str()) != lower(d.top)) continue;
+    declared.emplace(lower(d.top), (*m)[1].str());
+    const auto from = static_cast<std::size_t>(m->position(1));
+    const std::string header = verilog.substr(from, verilog.find(");", from) - from);
+    for (auto p = std::sregex_iterator(header.begin(), header.end(), port_name); p != std::sregex_iterator(); ++p) {
+      declared.emplace(lower((*p)[1].str()), (*p)[1].str());
+    }
+    break;
   }
   const auto as_declared = [&](const std::string& name) {
     const auto found = declared.find(lower(name));

@@ -1,10 +1,11 @@
 -- The fourth receiver of the tests (tests/rtl/fourth_receiver/arx.sv) as a VHDL team would write
 -- it: upper-case names, generics, a package, signals named as Verilog's reserved words (which the
--- conversion to Verilog must escape), an active-low asynchronous reset, two flops on Req, a
--- registered Ack that follows them, the address captured on the synchronised Req's rise into a
--- FIFO of 2**DEPTH_LOG words that drops when full (Ack still given) and counts the drops in 8
--- bits, wrapping or, with SATURATE, held at 255; contention discards; the stamp, a free-running
--- count of edges, taken at capture and packed with the address into one output word.
+-- conversion to Verilog must escape), an active-low asynchronous reset, two flops on Req (an
+-- entity of their own, req_sync.vhd), a registered Ack that follows them, the address captured on
+-- the synchronised Req's rise into a FIFO of 2**DEPTH_LOG words that drops when full (Ack still
+-- given) and counts the drops in 8 bits, wrapping or, with SATURATE, held at 255; contention
+-- discards; the stamp, a free-running count of edges, taken at capture and packed with the address
+-- into one output word.
 library ieee;
 use ieee.std_logic_1164.all;
 use ieee.numeric_std.all;
@@ -34,13 +35,15 @@ architecture rtl of VARX is
   -- `table` and `config` are plain names in VHDL and reserved words in Verilog.
   signal table                : mem_t;
   signal config               : std_logic_vector(1 downto 0);
-  signal s1, s2, s2_q, ack_q  : std_logic;
+  signal s2, s2_q, ack_q      : std_logic;
   signal now                  : unsigned(STAMP_BITS - 1 downto 0);
   -- One bit wider than an index: equal indices with the top bits apart is full.
   signal wr, rd               : unsigned(DEPTH_LOG downto 0);
   signal drops                : unsigned(7 downto 0);
   signal full, empty, capture : std_logic;
 begin
+  sync : entity work.REQ_SYNC port map (CLK => CLK, RST_N => RST_N, D => AER_REQ, Q => s2);
+
   full    <= '1' when wr(DEPTH_LOG) /= rd(DEPTH_LOG) and wr(DEPTH_LOG - 1 downto 0) = rd(DEPTH_LOG - 1 downto 0) else '0';
   empty   <= '1' when wr = rd else '0';
   config  <= s2 & s2_q;
@@ -49,16 +52,12 @@ begin
   control : process (CLK, RST_N)
   begin
     if RST_N = '0' then
-      s1    <= '0';
-      s2    <= '0';
       s2_q  <= '0';
       ack_q <= '0';
       now   <= (others => '0');
       wr    <= (others => '0');
       drops <= (others => '0');
     elsif rising_edge(CLK) then
-      s1    <= AER_REQ;
-      s2    <= s1;
       s2_q  <= s2;
       ack_q <= s2;
       now   <= now + 1;
