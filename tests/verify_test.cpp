@@ -375,7 +375,9 @@ TEST_F(VerifyTest, AReceiverWithoutAResetStartsFromItsInitialValues) {
 // synthesised to Verilog by GHDL and verified like any other: it passes, with its generics applied (DEPTH_LOG = 3: the full-output case takes
 // the 8 words such a FIFO holds), its description's names matched whatever their case, and its
 // exported testbench passes under Icarus on the Verilog GHDL made. A copy with Ack one edge early
-// fails; VHDL GHDL cannot read, [formal] parameters, and no GHDL on PATH are one-line errors.
+// fails; VHDL GHDL cannot read, [formal] parameters, and no GHDL on PATH are one-line errors. Under
+// a Verilog top, the VHDL entity it instantiates is converted and the pair passes; a VHDL top with
+// Verilog beside it is refused.
 TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   const std::string src = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/vhdl_receiver";
   for (const char* f : {"arx_pkg.vhd", "req_sync.vhd", "varx.vhd"}) write(f, slurp(src + "/" + f));
@@ -429,6 +431,22 @@ TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   EXPECT_NE(broken.err.find("aesim: receiver VHDL does not synthesise: "), std::string::npos) << broken.err;
   EXPECT_NE(broken.err.find("varx.vhd:"), std::string::npos) << broken.err;
   EXPECT_EQ(std::count(broken.err.begin(), broken.err.end(), '\n'), 1) << broken.err;
+
+  // Under a Verilog top: the entity it instantiates converted at its generics' defaults (a
+  // 4-word FIFO: the full-output case takes 4 words), the Verilog built beside it.
+  for (const char* f : {"mixed_top.v", "mixed_top.toml"}) write(f, slurp(src + "/" + f));
+  const Outcome mixed = verify("mixed_top.toml --out mixed --export-tb mixed_tb");
+  const nlohmann::json m = report("mixed");
+  expect_pass(mixed, m, 15);
+  for (const auto& c : m["cases"]) {
+    if (c["name"] == "full_output") EXPECT_EQ(c["beats_checked"], 4) << c.dump();
+  }
+  EXPECT_EQ(last_line((dir_ / "mixed_tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  // A VHDL top with Verilog beside it: GHDL cannot take the Verilog.
+  write("vhdl_top.toml", edited(slurp(src + "/mixed_top.toml"), "top = \"mixed_top\"", "top = \"VARX\""));
+  const Outcome vhdl_top = verify("vhdl_top.toml --out vhdl_top");
+  EXPECT_EQ(vhdl_top.status, 2) << vhdl_top.err;
+  EXPECT_NE(vhdl_top.err.find("the top 'VARX' is a VHDL entity and other sources are Verilog"), std::string::npos) << vhdl_top.err;
 
   // Without GHDL on PATH: said so, with the package that brings it.
   const Outcome no_ghdl = aesim("verify varx.toml --out no_ghdl", "PATH=/nonexistent AESIM_CACHE_DIR='" AESIM_VERIFY_CACHE "' ");
@@ -754,7 +772,7 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
        "behaviour.synchroniser_flops: expected the flops Req passes before any logic reads it, 0"},
       {(write("rx.vhd", "entity rx is end rx;\n"),
         variant("vhdl.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\", \"rx.vhd\"]")),
-       "sources mix VHDL and Verilog"},
+       "no Verilog source instantiates any of the VHDL entities (1 declared)"},
       {variant("huge.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"ae_rx_alt.v\"]\ninclude_dirs = [\"huge\"]"),
        "include_dirs: '" + (dir_ / "huge").string() + "' holds over 256 MiB"},
       {variant("shell.toml", "top = \"ae_rx_alt\"", "top = \"x; rm -rf /\""), "top"},

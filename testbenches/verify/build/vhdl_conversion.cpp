@@ -9,6 +9,7 @@
 #include <optional>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
@@ -146,6 +147,70 @@ std::string escape_reserved_names(const std::string& text) {
   return out;
 }
 
+// GHDL's Verilog for one entity, its generics set: tried in each standard in turn, each in a
+// fresh folder under `work` (GHDL analyses into a work library where it runs). Throws InputError
+// with the first attempt's first error, its log kept beside the cache's entries.
+std::string synthesise(const std::string& entity, const std::map<std::string, std::string>& generics,
+                       const std::vector<std::string>& sources, const fs::path& work, const fs::path& cache) {
+  std::string log;
+  for (const std::vector<std::string>& standard : standards()) {
+    const fs::path run = work / (lower(entity) + "-" + standard.front().substr(6));
+    fs::create_directories(run);
+    std::vector<std::string> args = {"--synth", "--out=verilog", "--no-formal"};
+    args.insert(args.end(), standard.begin(), standard.end());
+    for (const auto& [k, v] : generics) args.push_back("-g" + k + "=" + generic_value(v));
+    args.insert(args.end(), sources.begin(), sources.end());
+    args.push_back("-e");
+    args.push_back(entity);
+    const fs::path out = run / "out.v", err = run / "ghdl.log";
+    const pid_t pid = spawn_child("ghdl", args, {out.string(), err.string(), run.string()});
+    const std::optional<int> ended = wait_child_for(pid, kGhdlSeconds);
+    if (!ended) throw InputError(fmt::format("receiver VHDL: GHDL's synthesis ran past {:.0f} s", kGhdlSeconds));
+    std::error_code ec;
+    if (*ended == 0 && fs::file_size(out, ec) > 0) return read_scratch_text(out);
+    if (log.empty()) log = read_scratch_text(err);
+  }
+  const fs::path kept = cache / fmt::format("vhdl-failed-{}.log", lower(entity));
+  write_scratch_text(kept, log);
+  throw InputError(fmt::format("receiver VHDL does not synthesise: {} (GHDL's log: {})", first_error(log), kept.string()));
+}
+
+// Modules of several GHDL outputs as one file, each module once (entities under two of the
+// converted ones come out in both).
+std::string joined_modules(const std::vector<std::string>& outputs) {
+  std::set<std::string> seen;
+  std::string joined;
+  for (const std::string& text : outputs) {
+    std::istringstream lines(text);
+    std::string line, block, name;
+    while (std::getline(lines, line)) {
+      if (line.rfind("module ", 0) == 0) {
+        name = line.substr(7, line.find_first_of(" (", 7) - 7);
+        block.clear();
+      }
+      block += line + "\n";
+      if (line == "endmodule") {
+        if (seen.insert(name).second) joined += block;
+        block.clear();
+      }
+    }
+  }
+  return joined;
+}
+
+// The entities the VHDL sources declare, as they spell them.
+std::vector<std::string> declared_entities(const std::vector<std::string>& sources) {
+  static const std::regex entity(R"((?:^|\n)\s*entity\s+([A-Za-z][A-Za-z0-9_]*)\s+is\b)", std::regex::icase);
+  std::vector<std::string> names;
+  for (const std::string& s : sources) {
+    const std::string text = read_scratch_text(s);
+    for (auto m = std::sregex_iterator(text.begin(), text.end(), entity); m != std::sregex_iterator(); ++m) {
+      names.push_back((*m)[1].str());
+    }
+  }
+  return names;
+}
+
 }  // namespace
 
 bool is_vhdl_source(const std::string& path) {
@@ -154,27 +219,50 @@ bool is_vhdl_source(const std::string& path) {
 }
 
 ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std::string& cache_dir) {
-  const auto vhdl = static_cast<std::size_t>(std::count_if(d.sources.begin(), d.sources.end(), is_vhdl_source));
-  if (vhdl == 0) return d;
+  std::vector<std::string> vhdl, verilog;
+  for (const std::string& s : d.sources) (is_vhdl_source(s) ? vhdl : verilog).push_back(s);
+  if (vhdl.empty()) return d;
   const std::string where = fmt::format("receiver description '{}'", d.file);
-  if (vhdl != d.sources.size()) {
-    throw InputError(fmt::format("{}: sources mix VHDL and Verilog; aesim verify converts a design that is all VHDL "
-                                 "(its top an entity), or takes one that is all Verilog or SystemVerilog",
-                                 where));
-  }
-  if (!d.formal.parameters.empty()) {
-    throw InputError(fmt::format("{}: [formal] parameters: a VHDL design's generics are set once, in `parameters`, "
-                                 "for the simulation and the proof alike",
-                                 where));
-  }
-  if (!d.defines.empty() || !d.include_dirs.empty()) {
-    throw InputError(fmt::format("{}: `defines` and `include_dirs` are Verilog's; VHDL takes none", where));
-  }
   if (!program_available("ghdl")) {
     throw InputError(fmt::format("{}: its sources are VHDL, which aesim verify converts to Verilog with GHDL; GHDL is "
                                  "not installed (apt-get install ghdl)",
                                  where));
   }
+  const bool mixed = !verilog.empty();
+  // All VHDL: the top entity, its generics from `parameters`. Mixed: a Verilog top, and each VHDL
+  // entity the Verilog sources name, at its generics' defaults (GHDL fixes them; the Verilog's
+  // parameters are its own).
+  std::vector<std::string> entities;
+  std::map<std::string, std::string> generics;
+  if (!mixed) {
+    if (!d.formal.parameters.empty()) {
+      throw InputError(fmt::format("{}: [formal] parameters: a VHDL design's generics are set once, in `parameters`, "
+                                   "for the simulation and the proof alike",
+                                   where));
+    }
+    if (!d.defines.empty() || !d.include_dirs.empty()) {
+      throw InputError(fmt::format("{}: `defines` and `include_dirs` are Verilog's; VHDL takes none", where));
+    }
+    entities = {d.top};
+    generics = d.parameters;
+  } else {
+    const std::vector<std::string> declared = declared_entities(vhdl);
+    std::string verilog_text;
+    for (const std::string& s : verilog) verilog_text += read_scratch_text(s) + "\n";
+    for (const std::string& e : declared) {
+      if (lower(e) == lower(d.top)) {
+        throw InputError(fmt::format("{}: the top '{}' is a VHDL entity and other sources are Verilog; GHDL's synthesis "
+                                     "takes no Verilog, so the top of a mixed design must be the Verilog one",
+                                     where, e));
+      }
+      if (std::regex_search(verilog_text, std::regex("\\b" + e + "\\b"))) entities.push_back(e);
+    }
+    if (entities.empty()) {
+      throw InputError(fmt::format("{}: no Verilog source instantiates any of the VHDL entities ({} declared)", where,
+                                   declared.size()));
+    }
+  }
+
   const fs::path cache = cache_dir;
   std::error_code ec;
   fs::create_directories(cache, ec);
@@ -184,63 +272,43 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
 
   run_child("ghdl", {"--version"}, {(work / "version.txt").string(), (work / "version.txt").string()});
   const std::string version = read_scratch_text(work / "version.txt");
-  std::string key = "aesim-vhdl-v2\n" + version.substr(0, version.find('\n')) + "\ntop " + d.top + "\n";
-  for (const auto& [k, v] : d.parameters) key += "generic " + k + "=" + v + "\n";
-  for (const std::string& s : d.sources) key += "source " + s + "\n" + read_scratch_text(s) + "\n";
+  std::string key = "aesim-vhdl-v3\n" + version.substr(0, version.find('\n')) + "\n";
+  for (const std::string& e : entities) key += "entity " + e + "\n";
+  for (const auto& [k, v] : generics) key += "generic " + k + "=" + v + "\n";
+  for (const std::string& s : vhdl) key += "source " + s + "\n" + read_scratch_text(s) + "\n";
   const fs::path entry = cache / ("vhdl-" + content_hash_hex(key));
   const fs::path converted = entry / "receiver.v";
 
   if (!fs::is_regular_file(converted)) {
-    std::string log;
-    bool made = false;
-    for (const std::vector<std::string>& standard : standards()) {
-      // GHDL analyses into a work library in the folder it runs in: a fresh one each try.
-      const fs::path run = work / ("run" + standard.front().substr(6));
-      fs::create_directories(run);
-      std::vector<std::string> args = {"--synth", "--out=verilog", "--no-formal"};
-      args.insert(args.end(), standard.begin(), standard.end());
-      for (const auto& [k, v] : d.parameters) args.push_back("-g" + k + "=" + generic_value(v));
-      args.insert(args.end(), d.sources.begin(), d.sources.end());
-      args.push_back("-e");
-      args.push_back(d.top);
-      const fs::path out = run / "out.v", err = run / "ghdl.log";
-      const pid_t pid = spawn_child("ghdl", args, {out.string(), err.string(), run.string()});
-      const std::optional<int> ended = wait_child_for(pid, kGhdlSeconds);
-      if (!ended) throw InputError(fmt::format("receiver VHDL: GHDL's synthesis ran past {:.0f} s", kGhdlSeconds));
-      const int status = *ended;
-      if (status == 0 && fs::file_size(out, ec) > 0) {
-        fs::create_directories(work / "entry");
-        write_scratch_text(work / "entry" / converted.filename(), escape_reserved_names(read_scratch_text(out)));
-        fs::rename(err, work / "entry" / "ghdl.log");
-        made = true;
-        break;
-      }
-      if (log.empty()) log = read_scratch_text(err);
-    }
-    if (!made) {
-      const fs::path kept = cache / fmt::format("vhdl-failed-{}.log", lower(d.top));
-      write_scratch_text(kept, log);
-      throw InputError(fmt::format("receiver VHDL does not synthesise: {} (GHDL's log: {})", first_error(log), kept.string()));
-    }
+    std::vector<std::string> outputs;
+    for (const std::string& e : entities) outputs.push_back(synthesise(e, generics, vhdl, work, cache));
+    fs::create_directories(work / "entry");
+    write_scratch_text(work / "entry" / converted.filename(), escape_reserved_names(joined_modules(outputs)));
     fs::rename(work / "entry", entry, ec);
     if (ec && !fs::is_regular_file(converted)) {
       throw InputError(fmt::format("cache folder '{}': {}", cache.string(), ec.message()));
     }
+  }
+  if (mixed) {
+    ReceiverDescription v = d;
+    v.sources = verilog;
+    v.sources.push_back(converted.string());
+    return v;
   }
 
   // GHDL keeps each name as the VHDL declares it, and VHDL does not tell case apart: the
   // description's names are matched to the module's whatever their case.
   // The top's header is the module of that name (GHDL writes the entities it instantiates as
   // modules of their own, before it), up to the end of its port list.
-  const std::string verilog = read_scratch_text(converted);
+  const std::string netlist = read_scratch_text(converted);
   std::map<std::string, std::string> declared;
   static const std::regex module_name(R"((?:^|\n)module\s+([A-Za-z_][A-Za-z0-9_$]*))");
   static const std::regex port_name(R"(\b(?:input|output|inout)\s+(?:\[[^\]]*\]\s*)?([A-Za-z_][A-Za-z0-9_$]*))");
-  for (auto m = std::sregex_iterator(verilog.begin(), verilog.end(), module_name); m != std::sregex_iterator(); ++m) {
+  for (auto m = std::sregex_iterator(netlist.begin(), netlist.end(), module_name); m != std::sregex_iterator(); ++m) {
     if (lower((*m)[1].str()) != lower(d.top)) continue;
     declared.emplace(lower(d.top), (*m)[1].str());
     const auto from = static_cast<std::size_t>(m->position(1));
-    const std::string header = verilog.substr(from, verilog.find(");", from) - from);
+    const std::string header = netlist.substr(from, netlist.find(");", from) - from);
     for (auto p = std::sregex_iterator(header.begin(), header.end(), port_name); p != std::sregex_iterator(); ++p) {
       declared.emplace(lower((*p)[1].str()), (*p)[1].str());
     }
