@@ -442,6 +442,13 @@ TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
     if (c["name"] == "full_output") EXPECT_EQ(c["beats_checked"], 4) << c.dump();
   }
   EXPECT_EQ(last_line((dir_ / "mixed_tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  // The Verilog setting the entity's generics, which GHDL fixes at their defaults.
+  fs::create_directories(dir_ / "overrides");
+  for (const char* f : {"arx_pkg.vhd", "req_sync.vhd", "varx.vhd", "mixed_top.toml"}) write(std::string("overrides/") + f, slurp(src + "/" + f));
+  write("overrides/mixed_top.v", edited(slurp(src + "/mixed_top.v"), "  VARX rx (", "  VARX #(.DEPTH_LOG(3)) rx ("));
+  const Outcome overrides = verify("overrides/mixed_top.toml --out overrides_out");
+  EXPECT_EQ(overrides.status, 2) << overrides.err;
+  EXPECT_NE(overrides.err.find("the Verilog sets parameters on the VHDL entity VARX"), std::string::npos) << overrides.err;
   // A VHDL top with Verilog beside it: GHDL cannot take the Verilog.
   write("vhdl_top.toml", edited(slurp(src + "/mixed_top.toml"), "top = \"mixed_top\"", "top = \"VARX\""));
   const Outcome vhdl_top = verify("vhdl_top.toml --out vhdl_top");

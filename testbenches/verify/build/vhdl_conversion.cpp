@@ -255,7 +255,15 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
                                      "takes no Verilog, so the top of a mixed design must be the Verilog one",
                                      where, e));
       }
-      if (std::regex_search(verilog_text, std::regex("\\b" + e + "\\b"))) entities.push_back(e);
+      if (!std::regex_search(verilog_text, std::regex("\\b" + e + "\\b"))) continue;
+      // An instance that sets parameters would find none on the module GHDL writes.
+      if (std::regex_search(verilog_text, std::regex("\\b" + e + "\\s*#\\s*\\("))) {
+        throw InputError(fmt::format("{}: the Verilog sets parameters on the VHDL entity {} (#(...)); GHDL fixes a "
+                                     "converted entity's generics at their defaults: set them there, or describe the "
+                                     "design as all VHDL with `parameters`",
+                                     where, e));
+      }
+      entities.push_back(e);
     }
     if (entities.empty()) {
       throw InputError(fmt::format("{}: no Verilog source instantiates any of the VHDL entities ({} declared)", where,
