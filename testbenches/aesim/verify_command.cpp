@@ -55,6 +55,7 @@ int verify_command(const VerifyCommandOptions& opt) {
   const DutBuild build = build_dut(d, build_options);
   check_ports(d, build.ports, kVerifyBusBits);
   const DutLibrary library(build.library);
+  if (d.sources != written.sources) notes.push_back("the VHDL as GHDL synthesised it: " + d.sources.back());
   if (const std::vector<std::string> held = inputs_held_at_zero(d, build.ports); !held.empty()) {
     std::string names;
     for (const std::string& h : held) names += (names.empty() ? "" : ", ") + h;
