@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "build/dut_glue.hpp"
+#include "build/tool_output.hpp"
 #include "description/rtl_folder_key.hpp"
 #include "aesim/errors/input_error.hpp"
 #include "aesim/files/content_hash.hpp"
@@ -30,16 +31,6 @@ namespace {
 namespace fs = std::filesystem;
 
 // A tool's output captured through a file (no shell, no pipe to drain).
-std::string tool_output(const std::string& program, const std::vector<std::string>& args, const fs::path& scratch) {
-  const fs::path out = scratch / "tool_output.txt";
-  if (run_child(program, args, {out.string(), out.string()}) != 0) {
-    throw InputError(fmt::format("'{} {}' failed: {}", program, args.empty() ? "" : args[0], read_scratch_text(out)));
-  }
-  std::string text = read_scratch_text(out);
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  return text;
-}
-
 // "%Error: /x/rx.v:12:5: syntax error ..." -> "rx.v:12: syntax error ...".
 std::string first_error(const std::string& log, const std::string& tool) {
   std::istringstream lines(log);

@@ -14,21 +14,18 @@
 
 #include <fmt/format.h>
 
+#include "build/tool_output.hpp"
 #include "aesim/errors/input_error.hpp"
 #include "aesim/files/content_hash.hpp"
 #include "aesim/files/scratch_folder.hpp"
 #include "aesim/files/scratch_text.hpp"
 #include "aesim/process/child_process.hpp"
+#include "aesim/text/ascii_case.hpp"
 
 namespace aesim {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 // A generic's value for GHDL's -g option: a description's string literal ("abc") without its
 // quotes; a number or an identifier as it is.
@@ -154,7 +151,7 @@ std::string synthesise(const std::string& entity, const std::map<std::string, st
                        const std::vector<std::string>& sources, const fs::path& work, const fs::path& cache) {
   std::string log;
   for (const std::vector<std::string>& standard : standards()) {
-    const fs::path run = work / (lower(entity) + "-" + standard.front().substr(6));
+    const fs::path run = work / (ascii_lower(entity) + "-" + standard.front().substr(6));
     fs::create_directories(run);
     std::vector<std::string> args = {"--synth", "--out=verilog", "--no-formal"};
     args.insert(args.end(), standard.begin(), standard.end());
@@ -170,7 +167,7 @@ std::string synthesise(const std::string& entity, const std::map<std::string, st
     if (*ended == 0 && fs::file_size(out, ec) > 0) return read_scratch_text(out);
     if (log.empty()) log = read_scratch_text(err);
   }
-  const fs::path kept = cache / fmt::format("vhdl-failed-{}.log", lower(entity));
+  const fs::path kept = cache / fmt::format("vhdl-failed-{}.log", ascii_lower(entity));
   write_scratch_text(kept, log);
   throw InputError(fmt::format("receiver VHDL does not synthesise: {} (GHDL's log: {})", first_error(log), kept.string()));
 }
@@ -214,7 +211,7 @@ std::vector<std::string> declared_entities(const std::vector<std::string>& sourc
 }  // namespace
 
 bool is_vhdl_source(const std::string& path) {
-  const std::string ext = lower(fs::path(path).extension().string());
+  const std::string ext = ascii_lower(fs::path(path).extension().string());
   return ext == ".vhd" || ext == ".vhdl";
 }
 
@@ -250,7 +247,7 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
     std::string verilog_text;
     for (const std::string& s : verilog) verilog_text += read_scratch_text(s) + "\n";
     for (const std::string& e : declared) {
-      if (lower(e) == lower(d.top)) {
+      if (ascii_lower(e) == ascii_lower(d.top)) {
         throw InputError(fmt::format("{}: the top '{}' is a VHDL entity and other sources are Verilog; GHDL's synthesis "
                                      "takes no Verilog, so the top of a mixed design must be the Verilog one",
                                      where, e));
@@ -278,9 +275,7 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   const ScratchFolder scratch(cache / fmt::format("tmp-vhdl.{}", ::getpid()));
   const fs::path& work = scratch.path();
 
-  run_child("ghdl", {"--version"}, {(work / "version.txt").string(), (work / "version.txt").string()});
-  const std::string version = read_scratch_text(work / "version.txt");
-  std::string key = "aesim-vhdl-v3\n" + version.substr(0, version.find('\n')) + "\n";
+  std::string key = "aesim-vhdl-v3\n" + tool_output("ghdl", {"--version"}, work) + "\n";
   for (const std::string& e : entities) key += "entity " + e + "\n";
   for (const auto& [k, v] : generics) key += "generic " + k + "=" + v + "\n";
   for (const std::string& s : vhdl) key += "source " + s + "\n" + read_scratch_text(s) + "\n";
@@ -313,17 +308,17 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   static const std::regex module_name(R"((?:^|\n)module\s+([A-Za-z_][A-Za-z0-9_$]*))");
   static const std::regex port_name(R"(\b(?:input|output|inout)\s+(?:\[[^\]]*\]\s*)?([A-Za-z_][A-Za-z0-9_$]*))");
   for (auto m = std::sregex_iterator(netlist.begin(), netlist.end(), module_name); m != std::sregex_iterator(); ++m) {
-    if (lower((*m)[1].str()) != lower(d.top)) continue;
-    declared.emplace(lower(d.top), (*m)[1].str());
+    if (ascii_lower((*m)[1].str()) != ascii_lower(d.top)) continue;
+    declared.emplace(ascii_lower(d.top), (*m)[1].str());
     const auto from = static_cast<std::size_t>(m->position(1));
     const std::string header = netlist.substr(from, netlist.find(");", from) - from);
     for (auto p = std::sregex_iterator(header.begin(), header.end(), port_name); p != std::sregex_iterator(); ++p) {
-      declared.emplace(lower((*p)[1].str()), (*p)[1].str());
+      declared.emplace(ascii_lower((*p)[1].str()), (*p)[1].str());
     }
     break;
   }
   const auto as_declared = [&](const std::string& name) {
-    const auto found = declared.find(lower(name));
+    const auto found = declared.find(ascii_lower(name));
     return found == declared.end() ? name : found->second;
   };
   ReceiverDescription v = d;

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "build/tool_output.hpp"
 #include "description/rtl_folder_key.hpp"
 #include "driver/bound_ports.hpp"
 #include "aesim/errors/input_error.hpp"
@@ -47,13 +48,6 @@ std::string yosys_first_error(const std::string& log) {
     }
   }
   return "yosys failed (see its log)";
-}
-
-std::string tool_version(const std::string& program, const std::vector<std::string>& args, const fs::path& scratch) {
-  const fs::path out = scratch / "version.txt";
-  run_child(program, args, {out.string(), out.string()});
-  std::string text = read_scratch_text(out);
-  return text.substr(0, text.find('\n'));
 }
 
 std::string read_sources(const ReceiverDescription& d, bool checker = true) {
@@ -384,7 +378,7 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   // finds there), the tools, the rule. The files by their place beside the description, not by
   // where the folder lies: the verdicts and counterexamples hold no path, so a receiver's folder
   // copied or moved (a clone elsewhere, a test's scratch copy) keeps its proofs.
-  std::string key = fmt::format("aesim-formal-v6\n{}\nseconds {}\n", tool_version("yosys", {"-V"}, work), options.property_seconds);
+  std::string key = fmt::format("aesim-formal-v6\n{}\nseconds {}\n", tool_output("yosys", {"-V"}, work), options.property_seconds);
   if (stamp) key += fmt::format("stamp {} {}\n", stamp->from_ack, stamp->offset);
   key += read_scratch_text(d.file);
   const fs::path home = fs::absolute(d.file).parent_path();
