@@ -91,7 +91,7 @@ void add_sweep(CLI::App& app, int& status) {
 void add_verify(CLI::App& app, int& status) {
   auto opt = std::make_shared<VerifyCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "verify", "Verify a receiver RTL against its description (a TOML file): Verilated at run time (cached), driven "
+      "verify", "Verify a receiver RTL against its description (a TOML file): Verilated at run time (VHDL synthesised to Verilog by GHDL first; cached), driven "
                 "by directed protocol cases and scene runs, checked transaction by transaction");
   cmd->add_option("RECEIVER", opt->description, "Receiver description, e.g. rtl/aer_receiver.toml")->required();
   cmd->add_option("--plan", opt->plan, "quick (seconds), full (millions of transactions) or a plan file")
