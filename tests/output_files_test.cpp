@@ -1,18 +1,28 @@
-// Disk space reserved ahead of an output's writes (SpaceAhead), by OutputFiles' temporaries and the
-// .npy writer: the reservation lies past the file's end while it grows, and none is left once the
-// file is written; the bytes are the bytes written either way.
+// How outputs reach their descriptors. Disk space reserved ahead of an output's writes
+// (SpaceAhead), by OutputFiles' temporaries and the .npy writer: the reservation lies past the
+// file's end while it grows, and none is left once the file is written; the bytes are the bytes
+// written either way. The writes every output goes through (descriptor_io): all the bytes, in
+// order, through signals and short writes, and the system's reason when they cannot go.
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
+#include <chrono>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "aesim/event_files/npy_events.hpp"
+#include "aesim/files/descriptor_io.hpp"
 #include "aesim/output/atomic_file.hpp"
 #include "aesim/output/space_ahead.hpp"
 #include "support/temp_dir_test.hpp"
@@ -145,6 +155,85 @@ TEST_F(OutputFilesTest, TheNpyWriterLeavesNoReservationBehind) {
   EXPECT_EQ(y, last % 144);
   EXPECT_EQ(t, static_cast<std::int64_t>(last));
   EXPECT_EQ(r[12], 1);
+}
+
+std::atomic<int> alarms{0};
+void count_alarm(int) { alarms.fetch_add(1); }
+
+// A run's SIGINT handler is installed without SA_RESTART, so a write blocked on a slow reader
+// returns EINTR (nothing written yet) or a short count (some written). A pipe whose reader starts
+// late holds a writer blocked while a 2 ms timer interrupts it, dozens of times, both ways.
+TEST(DescriptorIoTest, AWriteGoesOnThroughSignalsAndShortWritesWithEveryByteInOrder) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  std::vector<char> sent(std::size_t(4) << 20);
+  for (std::size_t i = 0; i < sent.size(); ++i) sent[i] = static_cast<char>((i * 2654435761u) >> 13);
+  // The reader blocks the timer's signal, so that every one lands on the writer.
+  sigset_t alarm_only, before;
+  sigemptyset(&alarm_only);
+  sigaddset(&alarm_only, SIGALRM);
+  ASSERT_EQ(::pthread_sigmask(SIG_BLOCK, &alarm_only, &before), 0);
+  std::vector<char> got;
+  std::thread reader([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(40));
+    // Then slowly, a pause every 256 KiB, so that the writer blocks again and again.
+    char chunk[4096];
+    std::size_t chunks = 0;
+    for (ssize_t n; (n = read_fully(fds[0], chunk, sizeof chunk)) > 0;) {
+      got.insert(got.end(), chunk, chunk + n);
+      if (++chunks % 64 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    }
+  });
+  ASSERT_EQ(::pthread_sigmask(SIG_SETMASK, &before, nullptr), 0);
+  struct sigaction action {}, old_action {};
+  action.sa_handler = count_alarm;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  ASSERT_EQ(::sigaction(SIGALRM, &action, &old_action), 0);
+  const itimerval every_2ms{{0, 2000}, {0, 2000}}, off{};
+  alarms = 0;
+  ASSERT_EQ(::setitimer(ITIMER_REAL, &every_2ms, nullptr), 0);
+  const int error = write_fully(fds[1], sent.data(), sent.size());
+  ::setitimer(ITIMER_REAL, &off, nullptr);
+  ::sigaction(SIGALRM, &old_action, nullptr);
+  ::close(fds[1]);
+  reader.join();
+  ::close(fds[0]);
+  EXPECT_EQ(error, 0) << std::strerror(error);
+  EXPECT_GT(alarms.load(), 5);
+  ASSERT_EQ(got.size(), sent.size());
+  EXPECT_TRUE(got == sent);
+}
+
+TEST_F(OutputFilesTest, AWriteAtAnOffsetLeavesThePositionAndAReadStopsAtTheEnd) {
+  const std::string path = (dir_ / "positions").string();
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  ASSERT_GE(fd, 0);
+  EXPECT_EQ(write_fully(fd, "abc", 3), 0);
+  EXPECT_EQ(write_fully_at(fd, "XY", 2, 10), 0);
+  EXPECT_EQ(write_fully(fd, "d", 1), 0);
+  ASSERT_EQ(::lseek(fd, 0, SEEK_SET), 0);
+  char back[100];
+  EXPECT_EQ(read_fully(fd, back, sizeof back), 12);
+  EXPECT_EQ(std::string(back, 12), std::string("abcd\0\0\0\0\0\0XY", 12));
+  EXPECT_EQ(read_fully(fd, back, sizeof back), 0);
+  ::close(fd);
+}
+
+TEST(DescriptorIoTest, AWriteThatCannotGoReturnsTheSystemsReason) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  ::close(fds[0]);
+  struct sigaction ignore {}, old_action {};
+  ignore.sa_handler = SIG_IGN;
+  ASSERT_EQ(::sigaction(SIGPIPE, &ignore, &old_action), 0);
+  EXPECT_EQ(write_fully(fds[1], "x", 1), EPIPE);
+  ::sigaction(SIGPIPE, &old_action, nullptr);
+  ::close(fds[1]);
+  EXPECT_EQ(write_fully(fds[1], "x", 1), EBADF);
+  char c;
+  EXPECT_EQ(read_fully(fds[1], &c, 1), -1);
+  EXPECT_EQ(errno, EBADF);
 }
 
 }  // namespace

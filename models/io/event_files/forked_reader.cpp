@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -11,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/descriptor_io.hpp"
 #include "aesim/process/child_process.hpp"
 
 namespace aesim {
@@ -18,14 +18,7 @@ namespace {
 
 // The isolated reader's answer on its pipe: a byte, 0 then the recording or 1 then an error.
 void write_all(int fd, const void* data, std::size_t size) {
-  const char* p = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::write(fd, p, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw std::runtime_error("pipe closed");
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
+  if (write_fully(fd, data, size) != 0) throw std::runtime_error("pipe closed");
 }
 void write_text(int fd, const std::string& text) {
   const std::uint32_t n = static_cast<std::uint32_t>(text.size());
@@ -66,15 +59,7 @@ void send_recording(int fd, const std::string& path, const std::function<Polarit
 }
 
 bool read_all(int fd, void* data, std::size_t size) {
-  char* p = static_cast<char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::read(fd, p, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
+  return read_fully(fd, data, size) == static_cast<ssize_t>(size);
 }
 bool read_text(int fd, std::string& text) {
   std::uint32_t n = 0;

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/descriptor_io.hpp"
 #include "aesim/files/npy_header.hpp"
 #include "aesim/output/temp_files.hpp"
 #include "aesim/event_files/event_stamps.hpp"
@@ -107,17 +108,9 @@ void NpyWriter::events(const AddressEvent* first, std::size_t count) {
 }
 
 void NpyWriter::write_at(const char* data, std::size_t n, std::uint64_t offset) {
-  while (n > 0) {
-    const ssize_t wrote = ::pwrite(fd_, data, n, static_cast<off_t>(offset));
-    if (wrote < 0 && errno == EINTR) continue;
-    // Reported at once, while errno still holds the system's reason.
-    if (wrote <= 0) {
-      if (wrote == 0) errno = EIO;
-      throw OutputError(write_failure(path_));
-    }
-    data += wrote;
-    n -= static_cast<std::size_t>(wrote);
-    offset += static_cast<std::uint64_t>(wrote);
+  if (const int error = write_fully_at(fd_, data, n, offset)) {
+    errno = error;
+    throw OutputError(write_failure(path_));
   }
 }
 

@@ -244,7 +244,7 @@ PolarityRecording decode_npz(const std::string& data, const std::string& label) 
   };
   NpyNumbers xs, ys, ts, ps;
   std::array<std::string, 4> names;  // x, y, t, p's, for messages
-  std::vector<const Member*> used;
+  std::array<const Member*, 4> used{};  // the arrays read; the rest null
   bool seconds = false;
   std::string layout;
   if (x != nullptr && y != nullptr && t != nullptr && p != nullptr) {

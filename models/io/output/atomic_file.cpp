@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/descriptor_io.hpp"
 #include "aesim/output/space_ahead.hpp"
 #include "aesim/output/temp_files.hpp"
 
@@ -199,18 +200,10 @@ class OutputFiles::FileBuffer : public std::streambuf {
 
  private:
   bool write_all(const char* p, std::size_t n) {
-    if (seekable_ && n > 0) space_.before_writing_to(fd_, offset_ + n);
-    while (n > 0 && error_ == 0) {
-      const ssize_t wrote = ::write(fd_, p, n);
-      if (wrote < 0 && errno == EINTR) continue;
-      if (wrote <= 0) {
-        error_ = wrote < 0 ? errno : EIO;
-      } else {
-        p += wrote;
-        n -= static_cast<std::size_t>(wrote);
-        offset_ += static_cast<std::uint64_t>(wrote);
-      }
-    }
+    if (error_ != 0 || n == 0) return error_ == 0;
+    if (seekable_) space_.before_writing_to(fd_, offset_ + n);
+    error_ = write_fully(fd_, p, n);
+    offset_ += n;
     return error_ == 0;
   }
   bool drain() {
@@ -352,12 +345,13 @@ void OutputFiles::commit() {
     FileBuffer out(open_through(f->target), false);
     std::ostream stream(&out);
     char chunk[1 << 16];
-    for (ssize_t n; (n = ::read(in, chunk, sizeof chunk)) != 0;) {
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) break;
-      stream.write(chunk, n);
-    }
+    ssize_t n = 0;
+    while ((n = read_fully(in, chunk, sizeof chunk)) > 0) stream.write(chunk, n);
+    const int read_error = n < 0 ? errno : 0;
     ::close(in);
+    if (read_error != 0) {
+      throw OutputError(fmt::format("reading the temporary for '{}': {}", f->target, std::strerror(read_error)));
+    }
     if (!out.close()) throw OutputError(fmt::format("writing '{}' failed: {}", f->target, std::strerror(out.error())));
   }
   // Keep what the targets held, so that a failed rename can put every one of them back.
