@@ -107,6 +107,62 @@ TEST_F(VerifyTest, InputsTheDescriptionLeavesAloneAreNamedAsHeldAtZero) {
   EXPECT_EQ(verify(kRtl + "/aer_receiver.toml --out named").err.find("held at 0"), std::string::npos);
 }
 
+// Verilator spells some legal Verilog names otherwise in C++ (a double underscore, a '$', a C++
+// keyword, an escaped identifier): the description names the ports as the Verilog does, and an
+// escaped name that no role takes is left alone.
+TEST_F(VerifyTest, PortsVerilatorRenamesInCppAreNamedAsTheVerilogNamesThem) {
+  write("odd_names.v", R"(module odd_names (
+    input  wire        clk__i, rst_ni, req$i,
+    input  wire [15:0] addr_i,
+    input  wire        contention_i, evt_ready_i, \mode.select ,
+    output wire        switch, evt_valid_o, evt_flags_o,
+    output wire [31:0] evt_ts_o,
+    output wire [15:0] evt_addr_o,
+    output wire [6:0]  \fifo.count );
+  aer_receiver #(.ADDR_WIDTH(16), .TS_WIDTH(32), .DEPTH(64), .PRESCALE_WIDTH(24)) rx (
+      .clk_i(clk__i), .rst_ni(rst_ni), .req_i(req$i), .addr_i(addr_i), .contention_i(contention_i),
+      .ack_o(switch), .prescale_i(24'd50), .fifo_limit_i(7'd64), .discard_collisions_i(1'b1),
+      .ts_external_i(\mode.select ), .ts_i(32'd0), .evt_valid_o(evt_valid_o), .evt_ready_i(evt_ready_i),
+      .evt_ts_o(evt_ts_o), .evt_addr_o(evt_addr_o), .evt_flags_o(evt_flags_o),
+      .events_o(), .collisions_o(), .overflows_o(), .fifo_count_o(\fifo.count ), .idle_o());
+endmodule
+)");
+  std::string description = "top = \"odd_names\"\nsources = [\"odd_names.v\"";
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) {
+    description += ", \"" + kRtl + "/" + f + "\"";
+  }
+  description += R"(]
+clock = "50MHz"
+reset = { port = "rst_ni", active = "low" }
+[ports]
+clk = "clk__i"
+req = "req$i"
+ack = "switch"
+addr = "addr_i"
+contention = "contention_i"
+valid = "evt_valid_o"
+ready = "evt_ready_i"
+out_addr = "evt_addr_o"
+timestamp = "evt_ts_o"
+flags = "evt_flags_o"
+[behaviour]
+collisions = "discard"
+full = "drop"
+timestamp_tick = "1us"
+timestamp_bits = 32
+ack_latency_cycles = [4, 4]
+)";
+  write("odd_names.toml", description);
+  const Outcome o = verify("odd_names.toml");
+  expect_pass(o, report());
+  EXPECT_NE(o.err.find("input mode.select held at 0"), std::string::npos) << o.err;
+  // A name that starts with '$' is a system task's, not a port's.
+  write("dollar.toml", edited(description, "req = \"req$i\"", "req = \"$req\""));
+  const Outcome bad = verify("dollar.toml --out bad");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("ports.req: '$req' is not a plain Verilog identifier"), std::string::npos) << bad.err;
+}
+
 TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {
   const Outcome o = verify(kSecond + "/ae_rx_alt.toml");
   expect_pass(o, report());
@@ -241,7 +297,9 @@ TEST_F(VerifyTest, AFifoFullOnlyBeforeItsPointersWrapIsCaughtAndANarrowDropCount
   EXPECT_EQ(slip.status, 1) << slip.err;
   const nlohmann::json r = report("slip");
   for (const auto& c : r["cases"]) {
-    if (c["name"] != "full_at_pointer_offsets") EXPECT_EQ(c["failures"], 0) << c.dump();
+    if (c["name"] != "full_at_pointer_offsets") {
+      EXPECT_EQ(c["failures"], 0) << c.dump();
+    }
   }
   EXPECT_EQ(r["first_failure"]["check"], "stalled_output") << r["first_failure"].dump();
   EXPECT_NE((slip.out + slip.err).find("in case 'full_at_pointer_offsets'"), std::string::npos) << slip.out << slip.err;
@@ -388,7 +446,9 @@ TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   expect_pass(o, r, 15);
   EXPECT_NE(o.err.find("aesim verify: the VHDL as GHDL synthesised it: "), std::string::npos) << o.err;
   for (const auto& c : r["cases"]) {
-    if (c["name"] == "full_output") EXPECT_EQ(c["beats_checked"], 8) << c.dump();
+    if (c["name"] == "full_output") {
+      EXPECT_EQ(c["beats_checked"], 8) << c.dump();
+    }
   }
   const std::string tb = (dir_ / "tb").string();
   EXPECT_EQ(last_line(tb, "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
@@ -440,7 +500,9 @@ TEST_F(VerifyTest, AReceiverInVhdlIsSynthesisedByGhdlAndVerified) {
   const nlohmann::json m = report("mixed");
   expect_pass(mixed, m, 15);
   for (const auto& c : m["cases"]) {
-    if (c["name"] == "full_output") EXPECT_EQ(c["beats_checked"], 4) << c.dump();
+    if (c["name"] == "full_output") {
+      EXPECT_EQ(c["beats_checked"], 4) << c.dump();
+    }
   }
   EXPECT_EQ(last_line((dir_ / "mixed_tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
   // The Verilog setting the entity's generics, which GHDL fixes at their defaults.

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -166,10 +167,19 @@ int verify_command(const VerifyCommandOptions& opt) {
   if (!result.rtl_output.empty()) std::fprintf(report_stream(), "the RTL's own output: %s\n", rtl_log.c_str());
   if (formal) {
     std::map<std::string, int> count;
-    for (const FormalVerdict& v : formal->verdicts) ++count[v.verdict];
-    std::fprintf(report_stream(), "formal: %zu properties: %d proved, %d bounded to %d steps, %d failed (%.1f s%s)\n", formal->verdicts.size(),
-                count["proved"], count["bounded"], formal->depth, count["failed"], formal->seconds,
-                formal->cached ? ", cached" : "");
+    // A bounded check its time limit stopped reaches fewer steps than the depth set.
+    int shallowest = formal->depth, deepest = 0;
+    for (const FormalVerdict& v : formal->verdicts) {
+      ++count[v.verdict];
+      if (v.verdict != "bounded") continue;
+      shallowest = std::min(shallowest, v.depth);
+      deepest = std::max(deepest, v.depth);
+    }
+    const std::string reach = shallowest == formal->depth ? fmt::format("to {} steps", formal->depth)
+                              : shallowest == deepest    ? fmt::format("to {} of {} steps", shallowest, formal->depth)
+                                                          : fmt::format("to {}-{} of {} steps", shallowest, deepest, formal->depth);
+    std::fprintf(report_stream(), "formal: %zu properties: %d proved, %d bounded %s, %d failed (%.1f s%s)\n", formal->verdicts.size(),
+                count["proved"], count["bounded"], reach.c_str(), count["failed"], formal->seconds, formal->cached ? ", cached" : "");
     for (const std::string& note : formal->notes) std::fprintf(report_stream(), "formal note: %s\n", note.c_str());
     for (const FormalVerdict& v : formal->verdicts) {
       if (v.verdict == "failed") {

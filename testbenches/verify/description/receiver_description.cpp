@@ -80,12 +80,13 @@ class Reader {
     if (out.size() > 1000) fail(key, "more than 1000 entries");
     return out;
   }
-  // Verilog identifiers only: these names reach Verilator's command line and the exported
-  // testbench, so nothing else may pass.
+  // Verilog's simple identifiers only (a letter or '_', then letters, digits, '_' and '$'): these
+  // names reach Verilator's command line, yosys's scripts and the exported testbench, so nothing
+  // else may pass.
   std::string identifier(const std::string& text, const std::string& label) const {
     const bool ok = !text.empty() && text.size() <= 128 && !std::isdigit(static_cast<unsigned char>(text[0])) &&
-                    std::all_of(text.begin(), text.end(), [](char c) {
-                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    text[0] != '$' && std::all_of(text.begin(), text.end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '$';
                     });
     if (!ok) fail(label, fmt::format("'{}' is not a plain Verilog identifier", text));
     return text;
