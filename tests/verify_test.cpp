@@ -163,6 +163,75 @@ ack_latency_cycles = [4, 4]
   EXPECT_NE(bad.err.find("ports.req: '$req' is not a plain Verilog identifier"), std::string::npos) << bad.err;
 }
 
+// An output to an FX2-style slave FIFO: a word written at an edge where the active-low strobe is
+// low and the active-high full flag is not up, and a bus whose contention line is active low.
+// Described with those polarities it passes, here and in the exported testbench; described as
+// active high, each of the three fails.
+TEST_F(VerifyTest, ValidReadyAndContentionTakeTheLevelTheyAreActiveAt) {
+  write("fx2_top.v", R"(module fx2_top (
+    input  wire        clk, rst_n, req, contention_n,
+    input  wire [15:0] addr,
+    output wire        ack, slwr_n, flag,
+    input  wire        full,
+    output wire [31:0] stamp,
+    output wire [15:0] fd);
+  wire valid;
+  aer_receiver #(.ADDR_WIDTH(16), .TS_WIDTH(32), .DEPTH(8), .PRESCALE_WIDTH(24)) rx (
+      .clk_i(clk), .rst_ni(rst_n), .req_i(req), .addr_i(addr), .contention_i(!contention_n),
+      .ack_o(ack), .prescale_i(24'd50), .fifo_limit_i(4'd8), .discard_collisions_i(1'b1),
+      .ts_external_i(1'b0), .ts_i(32'd0), .evt_valid_o(valid), .evt_ready_i(!full),
+      .evt_ts_o(stamp), .evt_addr_o(fd), .evt_flags_o(flag),
+      .events_o(), .collisions_o(), .overflows_o(), .fifo_count_o(), .idle_o());
+  assign slwr_n = !valid;
+endmodule
+)");
+  std::string description = "top = \"fx2_top\"\nsources = [\"fx2_top.v\"";
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) {
+    description += ", \"" + kRtl + "/" + f + "\"";
+  }
+  description += R"(]
+clock = "50MHz"
+reset = { port = "rst_n", active = "low" }
+[ports]
+clk = "clk"
+req = "req"
+ack = "ack"
+addr = "addr"
+contention = { port = "contention_n", active = "low" }
+valid = { port = "slwr_n", active = "low" }
+ready = { port = "full", active = "low" }
+out_addr = "fd"
+timestamp = "stamp"
+flags = "flag"
+[behaviour]
+collisions = "discard"
+full = "drop"
+timestamp_tick = "1us"
+timestamp_bits = 32
+ack_latency_cycles = [4, 4]
+)";
+  write("fx2.toml", description);
+  const Outcome o = verify("fx2.toml --export-tb tb");
+  expect_pass(o, report());
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  const std::map<std::string, std::string> active_high = {
+      {"valid", "valid = \"slwr_n\""}, {"ready", "ready = \"full\""}, {"contention", "contention = \"contention_n\""}};
+  for (const auto& [role, plain] : active_high) {
+    const std::string line = role == "valid"   ? "valid = { port = \"slwr_n\", active = \"low\" }"
+                             : role == "ready" ? "ready = { port = \"full\", active = \"low\" }"
+                                               : "contention = { port = \"contention_n\", active = \"low\" }";
+    write(role + ".toml", edited(description, line, plain));
+    const Outcome wrong = verify(role + ".toml --out " + role);
+    EXPECT_EQ(wrong.status, 1) << role << ": " << wrong.err;
+  }
+  // Only the one-bit roles have a level.
+  write("addr.toml", edited(description, "addr = \"addr\"", "addr = { port = \"addr\", active = \"low\" }"));
+  const Outcome bad = verify("addr.toml --out addr");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("ports.addr: only req, ack, valid, ready and contention take { port, active }"), std::string::npos)
+      << bad.err;
+}
+
 TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {
   const Outcome o = verify(kSecond + "/ae_rx_alt.toml");
   expect_pass(o, report());
@@ -835,8 +904,8 @@ TEST_F(VerifyTest, BadDescriptionsAreOneLineExitTwoAndWriteNothing) {
       {variant("bad_policy.toml", "full = \"drop\"", "full = \"spill\""), "behaviour.full"},
       {variant("bad_beat.toml", "valid = \"out_valid\"", "valid = { port = \"out_valid\", beat = \"edge\" }"),
        "ports.valid.beat: must be \"high\""},
-      {variant("valid_active.toml", "valid = \"out_valid\"", "valid = { port = \"out_valid\", active = \"low\" }"),
-       "ports.valid.active: unknown key (port, beat)"},
+      {variant("valid_edge.toml", "valid = \"out_valid\"", "valid = { port = \"out_valid\", edge = \"rise\" }"),
+       "ports.valid.edge: unknown key (port, active, beat)"},
       {variant("no_source.toml", "sources = [\"ae_rx_alt.v\"]", "sources = [\"missing.v\"]"), "missing.v"},
       {variant("flops.toml", "ack_latency_cycles = [5, 5]", "ack_latency_cycles = [5, 5]\nsynchroniser_flops = 9"),
        "behaviour.synchroniser_flops: expected the flops Req passes before any logic reads it, 0"},

@@ -49,7 +49,7 @@ void BM_PlainEvalLoop(benchmark::State& state) {
   ports.set_reset(true);
   dut.eval();
   ports.set_reset(false);
-  ports.ready.write(1);
+  ports.set_ready(true);
   constexpr int kCycles = 1000000;
   for (auto _ : state) {
     for (int i = 0; i < kCycles; ++i) {

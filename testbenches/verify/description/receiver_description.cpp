@@ -222,13 +222,28 @@ ReceiverDescription read_receiver_description(const std::string& path) {
                   "flags, overflow_count)");
     }
     std::string text;
-    if (value.is_table() && role == "valid") {
-      // { port = "data_ready", beat = "rise" }: a level held for each word.
+    if (value.is_table()) {
+      // { port = "aer_req_n", active = "low" }: a one-bit role's polarity (an FX2 FIFO's write
+      // strobe, SLWR#, is a valid active low); valid also takes { port = "data_ready", beat =
+      // "rise" }: a level held for each word.
+      const bool one_bit = role == "req" || role == "ack" || role == "valid" || role == "ready" || role == "contention";
+      if (!one_bit) {
+        r.fail(key, "only req, ack, valid, ready and contention take { port, active } (and valid { port, beat }); "
+                    "give the port name");
+      }
+      const char* keys = role == "valid" ? "port, active, beat" : "port, active";
       for (const auto& [k, v] : value.as_table()) {
-        if (k != "port" && k != "beat") r.fail(key + "." + k, "unknown key (port, beat)");
+        if (k != "port" && k != "active" && !(k == "beat" && role == "valid")) {
+          r.fail(key + "." + k, fmt::format("unknown key ({})", keys));
+        }
         (void)v;
       }
       text = r.string_of(r.need(value, "port", key + ".port"), key + ".port");
+      if (const TomlValue* active = r.find(value, "active")) {
+        const std::string a = r.string_of(*active, key + ".active");
+        if (a != "low" && a != "high") r.fail(key + ".active", "must be \"low\" or \"high\"");
+        if (a == "low") d.active_low.insert(role);
+      }
       if (const TomlValue* beat = r.find(value, "beat")) {
         const std::string b = r.string_of(*beat, key + ".beat");
         if (b != "high" && b != "rise") {
@@ -236,21 +251,6 @@ ReceiverDescription read_receiver_description(const std::string& path) {
                                 "rises: a level held for each word)");
         }
         d.valid_beat_on_rise = b == "rise";
-      }
-    } else if (value.is_table()) {
-      // { port = "aer_req_n", active = "low" }: the handshake's polarity.
-      if (role != "req" && role != "ack") {
-        r.fail(key, "only req and ack take { port, active } (and valid { port, beat }); give the port name");
-      }
-      for (const auto& [k, v] : value.as_table()) {
-        if (k != "port" && k != "active") r.fail(key + "." + k, "unknown key (port, active)");
-        (void)v;
-      }
-      text = r.string_of(r.need(value, "port", key + ".port"), key + ".port");
-      if (const TomlValue* active = r.find(value, "active")) {
-        const std::string a = r.string_of(*active, key + ".active");
-        if (a != "low" && a != "high") r.fail(key + ".active", "must be \"low\" or \"high\"");
-        (role == "req" ? d.req_active_high : d.ack_active_high) = a == "high";
       }
     } else {
       text = r.string_of(value, key);

@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,10 @@ struct ReceiverDescription {
   std::string reset_port;  // empty for a design without a reset (`reset = "none"`)
   bool reset_active_high = false;
   bool has_reset() const { return !reset_port.empty(); }
-  bool req_active_high = true, ack_active_high = true;
+  // The one-bit roles at their active level: high, unless the description says
+  // `{ port = "...", active = "low" }` (req, ack, valid, ready, contention).
+  std::set<std::string> active_low;
+  bool active_high(const std::string& role) const { return active_low.count(role) == 0; }
   // `valid = { port, beat = "rise" }`: valid is a level held for each word (a data-ready flag
   // that stays up until the handshake ends, say), so a beat is an edge where it is high and was
   // low at the edge before, not every edge where it is high. Only without a ready port.

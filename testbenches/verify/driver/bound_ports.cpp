@@ -103,8 +103,11 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   b.overflow = role("overflow_count");
   if (d.has_reset()) b.reset = bind(dut, *find_port(ports, d.reset_port), PortRef{d.reset_port});
   b.reset_active_high = d.reset_active_high;
-  b.req_active_high = d.req_active_high;
-  b.ack_active_high = d.ack_active_high;
+  b.req_active_high = d.active_high("req");
+  b.ack_active_high = d.active_high("ack");
+  b.valid_active_high = d.active_high("valid");
+  b.ready_active_high = d.active_high("ready");
+  b.contention_active_high = d.active_high("contention");
   for (const auto& [name, value] : d.inputs) bind(dut, *find_port(ports, name), PortRef{name}).write(value);
   return b;
 }

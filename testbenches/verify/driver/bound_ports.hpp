@@ -21,15 +21,19 @@ std::vector<std::string> inputs_held_at_zero(const ReceiverDescription& d, const
 // The width of a role's bits (its slice, or its whole port).
 int role_width(const ReceiverDescription& d, const std::vector<RtlPort>& ports, const std::string& role);
 
-// A live model's ports by role, with the handshake's polarity applied: aesim reasons in "Req
-// raised" and "Ack raised" whatever levels the RTL uses for them. Unbound roles (no ready, no
-// timestamp, ...) read as 0 and ignore writes.
+// A live model's ports by role, with each one-bit role's polarity applied: aesim reasons in "Req
+// raised", "valid raised" and so on whatever levels the RTL uses for them. Unbound roles (no
+// ready, no timestamp, ...) ignore writes.
 struct BoundPorts {
   PortAccess clk, reset, req, ack, addr, contention, valid, ready, out_addr, timestamp, flags, overflow;
-  bool reset_active_high = false, req_active_high = true, ack_active_high = true;
+  bool reset_active_high = false, req_active_high = true, ack_active_high = true, valid_active_high = true,
+       ready_active_high = true, contention_active_high = true;
   void set_reset(bool active) const { reset.write(active == reset_active_high ? 1 : 0); }
   void set_req(bool raised) const { req.write(raised == req_active_high ? 1 : 0); }
+  void set_contention(bool raised) const { contention.write(raised == contention_active_high ? 1 : 0); }
+  void set_ready(bool raised) const { ready.write(raised == ready_active_high ? 1 : 0); }
   bool ack_raised() const { return (ack.read() != 0) == ack_active_high; }
+  bool valid_raised() const { return (valid.read() != 0) == valid_active_high; }
 };
 
 // Binds the roles and sets the [inputs] constants.

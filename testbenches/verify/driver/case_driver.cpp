@@ -80,7 +80,7 @@ class BusSide {
     contention_ = contention;
     ports_.set_req(req);
     ports_.addr.write(addr);
-    ports_.contention.write(contention);
+    ports_.set_contention(contention);
     if (sb_) sb_->wires(t, edges_done, req, addr, contention);
     record(t);
   }
@@ -177,7 +177,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     if (ready_k == ready && reset_k == reset) return;
     ready = ready_k;
     reset = reset_k;
-    ports.ready.write(ready);
+    ports.set_ready(ready);
     ports.set_reset(reset);
     bus.record_controls((k - 1) * period + half / 2, ready, reset);
   };
@@ -185,13 +185,13 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   ports.clk.write(0);
   ports.set_req(false);
   ports.addr.write(0);
-  ports.contention.write(0);
-  ports.ready.write(1);
+  ports.set_contention(false);
+  ports.set_ready(true);
   ports.set_reset(reset);
   bus.record_controls(0, true, reset);
   if (!c.replay.empty()) {
     ready = c.replay[0].ready;
-    ports.ready.write(ready);
+    ports.set_ready(ready);
     bus.record_controls(half / 2, ready, reset);
     bus.force(c.replay[0].req, c.replay[0].addr, c.replay[0].contention, half / 2, 0);
   }
@@ -218,7 +218,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     s.reset = reset;
     s.ready = ready;
     s.ack = ack;
-    const bool valid_now = ports.valid.read() != 0;
+    const bool valid_now = ports.valid_raised();
     s.valid = valid_now && !(d.valid_beat_on_rise && valid_was);
     valid_was = valid_now;
     if (s.valid) {

@@ -55,8 +55,17 @@ std::string PortWiring::connections() const {
   return out;
 }
 
+void PortWiring::drive_raised(const std::string& role, const std::string& expr) {
+  drive(role, d_.active_high(role) ? expr : "!" + expr);
+}
+
+std::string PortWiring::read_raised(const std::string& role) {
+  const std::string bit = read(role);
+  return d_.active_high(role) ? bit : "!" + bit;
+}
+
 std::string PortWiring::valid_beat(const std::string& name) {
-  const std::string valid = read("valid");
+  const std::string valid = read_raised("valid");
   if (!d_.valid_beat_on_rise) return fmt::format("  wire {} = {};\n", name, valid);
   return fmt::format("  wire valid_level = {};\n  reg valid_was = 1'b0;\n  always @(posedge clk) valid_was <= valid_level;\n"
                      "  wire {} = valid_level && !valid_was;\n",

@@ -48,10 +48,10 @@ void write_testbench(const std::string& dir, const ReceiverDescription& d, const
   if (d.has_reset()) {
     wiring.drive(PortRef{d.reset_port}, fmt::format("(rst ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
   }
-  wiring.drive("req", fmt::format("(req ? {} : {})", level(d.req_active_high), inverse(d.req_active_high)));
+  wiring.drive_raised("req", "req");
   wiring.drive("addr", "addr");
-  if (d.has("contention")) wiring.drive("contention", "contention");
-  if (d.has("ready")) wiring.drive("ready", "ready");
+  if (d.has("contention")) wiring.drive_raised("contention", "contention");
+  if (d.has("ready")) wiring.drive_raised("ready", "ready");
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
   const std::string ack = wiring.read("ack"), out_addr = wiring.read("out_addr");
   const std::string stamp = d.has("timestamp") ? wiring.read("timestamp") : "";
@@ -173,7 +173,7 @@ endmodule
                     fmt::arg("defines", defines), fmt::arg("half", period / 2), fmt::arg("end_ps", run.end_ps),
                     fmt::arg("n_inputs", run.waveform.size()), fmt::arg("aw_msb", aw - 1), fmt::arg("aw", aw),
                     fmt::arg("declarations", wiring.declarations()), fmt::arg("ack", ack),
-                    fmt::arg("ack_on", level(d.ack_active_high)), fmt::arg("valid_wire", valid_wire),
+                    fmt::arg("ack_on", level(d.active_high("ack"))), fmt::arg("valid_wire", valid_wire),
                     fmt::arg("out_addr", out_addr), fmt::arg("stamp_wire", stamp.empty() ? "64'd0" : stamp),
                     fmt::arg("flag_bit", flag_bit),
                     fmt::arg("flag_wire", flag.empty() ? "" : fmt::format("  wire [63:0] flag_bits = {};\n", flag)),

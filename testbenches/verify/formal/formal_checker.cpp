@@ -89,7 +89,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   if (d.has_reset()) {
     wiring.drive(PortRef{d.reset_port}, fmt::format("(in_reset ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
   }
-  wiring.drive("req", fmt::format("(req_i ? {} : {})", level(d.req_active_high), inverse(d.req_active_high)));
+  wiring.drive_raised("req", "req_i");
   // The addresses the receiver both takes and gives: of an input port wider than the output (a
   // 16-bit AER input whose low 10 bits come out in a packet's slice) the extra bits are held at
   // zero, as the narrower bus driving it holds them (the simulation drives bus-width addresses);
@@ -97,8 +97,8 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   const int addr_port_width = role_width(d, ports, "addr"), ow = role_width(d, ports, "out_addr");
   const int aw = std::min(addr_port_width, ow);
   wiring.drive("addr", aw < addr_port_width ? fmt::format("{{{}'d0, addr_i}}", addr_port_width - aw) : "addr_i");
-  if (d.has("contention")) wiring.drive("contention", "contention_i");
-  if (d.has("ready")) wiring.drive("ready", "ready_i");
+  if (d.has("contention")) wiring.drive_raised("contention", "contention_i");
+  if (d.has("ready")) wiring.drive_raised("ready", "ready_i");
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
   const std::string ack = wiring.read("ack"), out_addr = wiring.read("out_addr");
   const std::string ts = d.has("timestamp") ? wiring.read("timestamp") : "";
@@ -309,7 +309,7 @@ module aesim_formal_top #(
                          fmt::arg("reset_done", d.has_reset() ? "past_valid && !in_reset && !free_q" : "!past_valid"), fmt::arg("declarations", wiring.declarations()),
                          fmt::arg("parameter_list", parameter_list.empty() ? "" : "#(" + parameter_list + ") "),
                          fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
-                         fmt::arg("ack_on", level(d.ack_active_high)), fmt::arg("valid_wire", valid_wire),
+                         fmt::arg("ack_on", level(d.active_high("ack"))), fmt::arg("valid_wire", valid_wire),
                          fmt::arg("ow_msb", ow - 1), fmt::arg("out_addr", out_addr), fmt::arg("tw_msb", tw - 1),
                          fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "1'b0" : flag + "[0]"),
                          fmt::arg("vw_msb", vw - 1), fmt::arg("ov_expr", ov.empty() ? "1'b0" : ov),
