@@ -204,10 +204,22 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     if (!reset.is_table()) {
       r.fail("reset", "expected { port = \"...\", active = \"low\" or \"high\" }, or \"none\" for a design without one");
     }
+    for (const auto& [k, v] : reset.as_table()) {
+      if (k != "port" && k != "active" && k != "release_cycles") r.fail("reset." + k, "unknown key (port, active, release_cycles)");
+      (void)v;
+    }
     d.reset_port = r.identifier(r.string_of(r.need(reset, "port", "reset.port"), "reset.port"), "reset.port");
     const std::string active = r.string_of(r.need(reset, "active", "reset.active"), "reset.active");
     if (active != "low" && active != "high") r.fail("reset.active", "must be \"low\" or \"high\"");
     d.reset_active_high = active == "high";
+    if (const TomlValue* release = r.find(reset, "release_cycles")) {
+      if (!release->is_integer() || release->as_integer() < 0 || release->as_integer() > kMaxResetReleaseCycles) {
+        r.fail("reset.release_cycles", fmt::format("expected an integer from 0 to {} (the edges the design's own reset "
+                                                   "synchroniser holds it in reset past the release)",
+                                                   kMaxResetReleaseCycles));
+      }
+      d.reset_release_cycles = static_cast<int>(release->as_integer());
+    }
   }
 
   const TomlValue& ports = r.need(root, "ports", "ports");

@@ -16,6 +16,9 @@ struct PortRef {
   std::string text() const;  // as the description wrote it
 };
 
+// The most edges a description may say its design stays in reset past the release.
+inline constexpr int kMaxResetReleaseCycles = 64;
+
 // A team's receiver RTL as its description file (docs/reference.md section 6) says: how to build it, which of
 // its ports plays which role, and what it promises. Paths are absolute (relative ones in the file
 // are taken from the file's folder).
@@ -31,6 +34,9 @@ struct ReceiverDescription {
   double clock_hz = 0;
   std::string reset_port;  // empty for a design without a reset (`reset = "none"`)
   bool reset_active_high = false;
+  // Edges the design stays in reset after aesim releases it (`reset = { ..., release_cycles = N }`:
+  // a reset synchroniser of N flops inside the top): latency bounds and stamps count from there.
+  int reset_release_cycles = 0;
   bool has_reset() const { return !reset_port.empty(); }
   // The one-bit roles at their active level: high, unless the description says
   // `{ port = "...", active = "low" }` (req, ack, valid, ready, contention).

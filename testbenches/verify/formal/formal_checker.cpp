@@ -76,8 +76,10 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   // Deep enough for the FIFO to fill and drain, a tick to pass, and the handshakes around them.
   const int handshake = 2 * lmax + 2;
   const int tick = d.has("timestamp") ? static_cast<int>(std::min<std::uint64_t>(d.timestamp_cycles, 4000)) : 0;
-  c.depth = reset_steps + 2 + (d.formal.fifo_words + 2) * handshake + tick;
-  c.depth_reason = fmt::format("{} reset steps + 2 + ({} FIFO words + 2) x {} edges a handshake{}", reset_steps,
+  const int settle = reset_steps + d.reset_release_cycles;
+  c.depth = settle + 2 + (d.formal.fifo_words + 2) * handshake + tick;
+  c.depth_reason = fmt::format("{} reset steps{} + 2 + ({} FIFO words + 2) x {} edges a handshake{}", reset_steps,
+                               d.reset_release_cycles ? fmt::format(" + {} release edges", d.reset_release_cycles) : "",
                                d.formal.fifo_words, handshake, tick ? fmt::format(" + a tick of {} edges", tick) : "");
   if (d.formal.depth) {
     c.depth = *d.formal.depth;
@@ -136,7 +138,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   reg [{tw_msb}:0] tk_hist [0:{hist_last}];
   integer h;
   always @(posedge clk) begin
-    if (in_reset) begin
+    if (settling) begin
       tk <= 0;
       div <= 0;
     end else if (div == {dw}'d{tick_last}) begin
@@ -184,9 +186,12 @@ module aesim_formal_top #(
     input wire ready_i,
     input wire pick_i
 );
-  reg [3:0] rst_cnt = 0;
-  wire in_reset = rst_cnt < 4'd{reset_steps};
-  always @(posedge clk) if (in_reset) rst_cnt <= rst_cnt + 1'b1;
+  reg [7:0] rst_cnt = 0;
+  wire in_reset = rst_cnt < 8'd{reset_steps};
+  // The design's own reset synchroniser holds it {release} edges past the release: the checker
+  // sends nothing and counts nothing until then.
+  wire settling = rst_cnt < 8'd{settled_step};
+  always @(posedge clk) if (settling) rst_cnt <= rst_cnt + 1'b1;
 
 {declarations}
   {top} {parameter_list}dut (
@@ -204,12 +209,12 @@ module aesim_formal_top #(
   // Req rises to the step Ack is seen high; closing from the step Req falls to the step Ack is low.
   reg past_valid = 0, free_q = 0, req_q = 0, ack_q = 0, open_q = 0, closing_q = 0, col_q = 0;
   reg [{aw_msb}:0] addr_q = 0;
-  wire rise = !in_reset && req_i && !req_q;
+  wire rise = !settling && req_i && !req_q;
   wire open = rise || open_q;
   wire fall = req_q && !req_i;
   wire closing = fall || closing_q;
-  wire stall = !in_reset && !ready && (valid || ({hold} && open && !ack));
-  wire beat = !in_reset && valid && ready;
+  wire stall = !settling && !ready && (valid || ({hold} && open && !ack));
+  wire beat = !settling && valid && ready;
   // Edges since Req rose (lat), since it rose or the consumer last stalled (exc), since it fell
   // (flat); saturating just past the upper bound, where the properties have already decided.
   reg [{cw_msb}:0] lat_cnt = 0, exc_cnt = 0, fall_cnt = 0;
@@ -218,7 +223,7 @@ module aesim_formal_top #(
   wire [{cw_msb}:0] flat = fall ? {cw}'d0 : fall_cnt;
   always @(posedge clk) begin
     past_valid <= 1'b1;
-    free_q <= !in_reset;
+    free_q <= !settling;
     req_q <= req_i;
     ack_q <= ack;
     addr_q <= addr_i;
@@ -231,7 +236,7 @@ module aesim_formal_top #(
   end
 
   always @* begin
-    if (in_reset) assume (!req_i);
+    if (settling) assume (!req_i);
     if (rise) assume (!ack);
     if (open_q && !ack) assume (req_i);
     if (open_q && req_i) assume (addr_i == addr_q && contention_i == col_q);
@@ -241,7 +246,7 @@ module aesim_formal_top #(
     if ({p_reset}) if ({reset_done}) assert (!ack);
     if ({p_rise}) if (free_q && ack && !ack_q) assert (open);
     if ({p_rise_min}) if (free_q && ack && !ack_q && open) assert (lat >= {cw}'d{lmin});
-    if ({p_rise_max}) if (!in_reset && open && !ack) assert (exc < {cw}'d{lmax});
+    if ({p_rise_max}) if (!settling && open && !ack) assert (exc < {cw}'d{lmax});
     if ({p_fall}) if (free_q && !ack && ack_q) assert (!req_q);
     if ({p_fall_min}) if (closing && !ack && ack_q) assert (flat >= {cw}'d{lmin});
     if ({p_fall_max}) if (closing && ack) assert (flat < {cw}'d{lmax});
@@ -252,13 +257,13 @@ module aesim_formal_top #(
   reg [{ow_msb}:0] held_addr = 0;
   reg [{tw_msb}:0] held_ts = 0;
   always @(posedge clk) begin
-    held <= !in_reset && valid && !ready;
+    held <= !settling && valid && !ready;
     held_addr <= out_addr;
     held_ts <= out_ts;
     held_flag <= out_flag;
   end
   always @* if ({p_held}) begin
-    if (held && !in_reset) assert (valid && out_addr == held_addr && out_ts == held_ts && out_flag == held_flag);
+    if (held && !settling) assert (valid && out_addr == held_addr && out_ts == held_ts && out_flag == held_flag);
   end
 
   // Transactions whose beat (or drop) is still to come, and the symbolic tag: one transaction the
@@ -283,7 +288,7 @@ module aesim_formal_top #(
   always @(posedge clk) begin
     ov_q <= ov;
     if (rise) last_gives <= {gives};
-    if (in_reset) outstanding <= 0;
+    if (settling) outstanding <= 0;
     else if (outstanding != {qw}'d{qw_sat}) outstanding <= outstanding + (gives ? {qw}'d1 : {qw}'d0) - taken;
     if ((choose || tagged) && since_tag != {sw}'d{sw_sat}) since_tag_q <= since_tag + 1'b1;
     if (choose) begin
@@ -305,8 +310,9 @@ module aesim_formal_top #(
 {stamp_logic}endmodule
 )",
                          fmt::arg("description", d.file), fmt::arg("top", d.top), fmt::arg("aw_msb", aw - 1),
-                         fmt::arg("reset_steps", reset_steps),
-                         fmt::arg("reset_done", d.has_reset() ? "past_valid && !in_reset && !free_q" : "!past_valid"), fmt::arg("declarations", wiring.declarations()),
+                         fmt::arg("reset_steps", reset_steps), fmt::arg("settled_step", reset_steps + d.reset_release_cycles),
+                         fmt::arg("release", d.reset_release_cycles),
+                         fmt::arg("reset_done", d.has_reset() ? "past_valid && !settling && !free_q" : "!past_valid"), fmt::arg("declarations", wiring.declarations()),
                          fmt::arg("parameter_list", parameter_list.empty() ? "" : "#(" + parameter_list + ") "),
                          fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
                          fmt::arg("ack_on", level(d.active_high("ack"))), fmt::arg("valid_wire", valid_wire),

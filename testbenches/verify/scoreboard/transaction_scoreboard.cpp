@@ -18,6 +18,7 @@ TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool 
       overflow_mask_(overflow_width >= 64 ? ~0ULL : (1ULL << overflow_width) - 1),
       lat_min_(d.ack_latency_min),
       lat_max_(d.ack_latency_max),
+      release_edges_(static_cast<std::uint64_t>(d.reset_release_cycles)),
       stamps_(d) {}
 
 void TransactionScoreboard::begin_case(const std::string& name) {
@@ -25,7 +26,7 @@ void TransactionScoreboard::begin_case(const std::string& name) {
   pending_.clear();
   open_id_.reset();
   req_ = ack_ = in_reset_ = contention_ = false;
-  addr_ = req_rise_edge_ = req_rise_ps_ = 0;
+  addr_ = req_rise_edge_ = req_rise_ps_ = acting_from_edge_ = 0;
   ack_fall_due_ = late_reported_ = answered_glitch_ = false;
   stamps_.reset_ended(0);
   held_.reset();
@@ -118,7 +119,9 @@ void TransactionScoreboard::wires(std::uint64_t t_ps, std::uint64_t edges_done, 
   }
   if (in_reset_) return;
   if (rose) {
-    open_transaction(t_ps, edges_done + 1, edges_done + 1);
+    // A Req that rises while the design's own reset synchroniser still holds it is answered from
+    // the edge it comes out.
+    open_transaction(t_ps, edges_done + 1, std::max(edges_done + 1, acting_from_edge_));
     return;
   }
   Transaction* t = open();
@@ -156,14 +159,16 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
   }
   if (in_reset_) {
     in_reset_ = false;
-    stamps_.reset_ended(cycle - 1);
+    // The design's reset ends release_edges_ later than aesim's, where its own synchroniser lets go.
+    acting_from_edge_ = cycle + release_edges_;
+    stamps_.reset_ended(cycle - 1 + release_edges_);
     overflow_base_ = s.overflow;
     drops_strict_ = drops_maybe_ = 0;
     if (s.ack) fail("reset", cycle, t_ps, true, [&] { return Texts{"Ack low after reset", "Ack high"}; });
     ack_ = s.ack;
     // A Req held through the reset is a new transaction for the receiver: the lower latency
-    // bound counts from its rise, the upper from this edge (the first the receiver may act on).
-    if (req_) open_transaction(req_rise_ps_, std::min(req_rise_edge_, cycle), cycle);
+    // bound counts from its rise, the upper from the first edge the receiver may act on.
+    if (req_) open_transaction(req_rise_ps_, std::min(req_rise_edge_, cycle), acting_from_edge_);
   }
   overflow_now_ = s.overflow;
 

@@ -121,6 +121,9 @@ class TransactionScoreboard {
   bool has_overflow_, has_stamp_;
   std::uint64_t overflow_mask_;
   int lat_min_, lat_max_;
+  // The design's own reset synchroniser: it acts on the bus this many edges after the release.
+  std::uint64_t release_edges_;
+  std::uint64_t acting_from_edge_ = 0;  // the first edge it may act on after the last reset
   StampRule stamps_;  // one rule for the whole run, across cases
 
   std::string case_;
