@@ -298,6 +298,73 @@ ack_latency_cycles = [4, 4]
   EXPECT_NE(bad.err.find("reset.release_cycles: expected an integer from 0 to 64"), std::string::npos) << bad.err;
 }
 
+// A design with the bus's row and column on inputs of their own and the event's column, row and
+// stamp halves on outputs of their own (as DVS interfaces give them) is described by joining them
+// as Verilog does: it passes, here and in the exported testbench, and with the column and row
+// joined the other way round it fails at the first beat.
+TEST_F(VerifyTest, RolesJoinPortsAsVerilogJoinsThem) {
+  write("xy_top.v", R"(module xy_top (
+    input  wire        clk, rst_n, req, contention, ready,
+    input  wire [4:0]  row, col,
+    output wire        ack, valid, flag,
+    output wire [4:0]  evt_x, evt_y,
+    output wire [15:0] ts_hi, ts_lo);
+  wire [9:0] addr_out;
+  aer_receiver #(.ADDR_WIDTH(10), .TS_WIDTH(32), .DEPTH(8), .PRESCALE_WIDTH(24)) rx (
+      .clk_i(clk), .rst_ni(rst_n), .req_i(req), .addr_i({row, col}), .contention_i(contention),
+      .ack_o(ack), .prescale_i(24'd50), .fifo_limit_i(4'd8), .discard_collisions_i(1'b1),
+      .ts_external_i(1'b0), .ts_i(32'd0), .evt_valid_o(valid), .evt_ready_i(ready),
+      .evt_ts_o({ts_hi, ts_lo}), .evt_addr_o(addr_out), .evt_flags_o(flag),
+      .events_o(), .collisions_o(), .overflows_o(), .fifo_count_o(), .idle_o());
+  assign {evt_y, evt_x} = addr_out;
+endmodule
+)");
+  std::string description = "top = \"xy_top\"\nsources = [\"xy_top.v\"";
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) {
+    description += ", \"" + kRtl + "/" + f + "\"";
+  }
+  description += R"(]
+clock = "50MHz"
+reset = { port = "rst_n", active = "low" }
+[ports]
+clk = "clk"
+req = "req"
+ack = "ack"
+addr = "{row, col}"
+contention = "contention"
+valid = "valid"
+ready = "ready"
+out_addr = "{evt_y, evt_x}"
+timestamp = "{ts_hi, ts_lo}"
+flags = "flag"
+[behaviour]
+collisions = "discard"
+full = "drop"
+timestamp_tick = "1us"
+timestamp_bits = 32
+ack_latency_cycles = [4, 4]
+)";
+  write("xy.toml", description);
+  const Outcome o = verify("xy.toml --export-tb tb");
+  expect_pass(o, report());
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  write("swapped.toml", edited(description, "out_addr = \"{evt_y, evt_x}\"", "out_addr = \"{evt_x, evt_y}\""));
+  EXPECT_EQ(verify("swapped.toml --out swapped").status, 1);
+  EXPECT_EQ(report("swapped")["first_failure"]["check"], "beat") << report("swapped")["first_failure"].dump();
+  // Only the multi-bit roles join ports, each port once.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {edited(description, "valid = \"valid\"", "valid = \"{valid, flag}\""), "ports.valid: '{valid, flag}': only addr, out_addr and timestamp may join ports"},
+      {edited(description, "out_addr = \"{evt_y, evt_x}\"", "out_addr = \"{evt_y, evt_y}\""), "port evt_y is also ports.out_addr"},
+      {edited(description, "out_addr = \"{evt_y, evt_x}\"", "out_addr = \"{evt_y, }\""), "an empty part in the joined ports"}};
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    const std::string name = fmt::format("bad{}.toml", i);
+    write(name, bad[i].first);
+    const Outcome b = verify(name + " --out bad");
+    EXPECT_EQ(b.status, 2) << b.err;
+    EXPECT_NE(b.err.find(bad[i].second), std::string::npos) << b.err;
+  }
+}
+
 TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {
   const Outcome o = verify(kSecond + "/ae_rx_alt.toml");
   expect_pass(o, report());

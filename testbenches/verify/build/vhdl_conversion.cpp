@@ -325,7 +325,10 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   v.top = as_declared(d.top);
   v.sources = {converted.string()};
   v.parameters.clear();
-  for (auto& [role, ref] : v.ports) ref.port = as_declared(ref.port);
+  for (auto& [role, ref] : v.ports) {
+    if (!ref.joined()) ref.port = as_declared(ref.port);
+    for (PortRef& part : ref.parts) part.port = as_declared(part.port);
+  }
   if (v.has_reset()) v.reset_port = as_declared(v.reset_port);
   v.inputs.clear();
   for (const auto& [port, value] : d.inputs) v.inputs[as_declared(port)] = value;

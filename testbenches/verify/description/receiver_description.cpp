@@ -91,6 +91,24 @@ class Reader {
     if (!ok) fail(label, fmt::format("'{}' is not a plain Verilog identifier", text));
     return text;
   }
+  // "{a, b[3:0], ...}": the parts joined, the first the most significant.
+  PortRef joined_ref(const std::string& text, const std::string& label) const {
+    PortRef ref;
+    std::string inner = text.substr(1, text.size() - 2);
+    std::size_t from = 0;
+    for (;;) {
+      const std::size_t comma = inner.find(',', from);
+      std::string part = inner.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+      const auto first = part.find_first_not_of(' '), last = part.find_last_not_of(' ');
+      part = first == std::string::npos ? "" : part.substr(first, last - first + 1);
+      if (part.empty()) fail(label, fmt::format("'{}': an empty part in the joined ports", text));
+      ref.parts.push_back(port_ref(part, label));
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+    if (ref.parts.size() > 64) fail(label, fmt::format("'{}': more than 64 parts", text));
+    return ref;
+  }
   // "name", "name[msb:lsb]" or "name[bit]", descending.
   PortRef port_ref(const std::string& text, const std::string& label) const {
     PortRef ref;
@@ -135,7 +153,17 @@ class Reader {
 
 }  // namespace
 
+bool PortRef::uses(const std::string& name) const {
+  const std::vector<PortRef> all = pieces();
+  return std::any_of(all.begin(), all.end(), [&name](const PortRef& p) { return p.port == name; });
+}
+
 std::string PortRef::text() const {
+  if (joined()) {
+    std::string inner;
+    for (const PortRef& p : parts) inner += (inner.empty() ? "" : ", ") + p.text();
+    return "{" + inner + "}";
+  }
   if (!sliced()) return port;
   return msb == lsb ? fmt::format("{}[{}]", port, msb) : fmt::format("{}[{}:{}]", port, msb, lsb);
 }
@@ -267,7 +295,14 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     } else {
       text = r.string_of(value, key);
     }
-    d.ports[role] = r.port_ref(text, key);
+    if (!text.empty() && text.front() == '{' && text.back() == '}') {
+      if (role != "addr" && role != "out_addr" && role != "timestamp") {
+        r.fail(key, fmt::format("'{}': only addr, out_addr and timestamp may join ports", text));
+      }
+      d.ports[role] = r.joined_ref(text, key);
+    } else {
+      d.ports[role] = r.port_ref(text, key);
+    }
   }
   for (const PortRole& p : port_roles()) {
     if (!p.optional && !d.has(p.name)) r.fail(fmt::format("ports.{}", p.name), "missing");
@@ -281,9 +316,16 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   // A port plays one role, except that slices of it may play several when their bits do not meet.
   std::map<std::string, std::string> used;  // port -> what uses it
   if (d.has_reset()) used[d.reset_port] = "reset.port";
+  // Every piece (a joined role's parts each) against every other, its own role's included.
+  std::vector<std::pair<std::string, PortRef>> pieces;
   for (const auto& [role, ref] : d.ports) {
-    for (const auto& [other_role, other] : d.ports) {
-      if (other_role >= role || other.port != ref.port) continue;
+    for (const PortRef& piece : ref.pieces()) pieces.emplace_back(role, piece);
+  }
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const auto& [role, ref] = pieces[i];
+    for (std::size_t j = 0; j < i; ++j) {
+      const auto& [other_role, other] = pieces[j];
+      if (other.port != ref.port) continue;
       const bool apart = ref.sliced() && other.sliced() && (ref.lsb > other.msb || other.lsb > ref.msb);
       if (!apart) r.fail("ports." + role, fmt::format("port {} is also ports.{}", ref.port, other_role));
     }

@@ -8,11 +8,18 @@
 
 namespace aesim {
 
-// Where a role lives in the RTL: a whole port, or a slice of one (`pkt_data[23:8]`, `ctl[0]`).
+// Where a role lives in the RTL: a whole port, a slice of one (`pkt_data[23:8]`, `ctl[0]`), or,
+// for a multi-bit role, ports and slices joined as Verilog joins them (`{evt_y, evt_x[4:0]}`: the
+// first part the most significant).
 struct PortRef {
-  std::string port;
+  std::string port;        // empty for a joined role
   int msb = -1, lsb = -1;  // the slice in the port's own bit numbering; -1: the whole port
+  std::vector<PortRef> parts{};  // a joined role's parts, most significant first
   bool sliced() const { return msb >= 0; }
+  bool joined() const { return !parts.empty(); }
+  // The single ports and slices it is made of: its parts, or itself.
+  std::vector<PortRef> pieces() const { return joined() ? parts : std::vector<PortRef>{*this}; }
+  bool uses(const std::string& name) const;
   std::string text() const;  // as the description wrote it
 };
 

@@ -37,23 +37,33 @@ PortAccess bind(DutInstance& dut, const RtlPort& p, const PortRef& ref) {
   return ref.sliced() ? dut.port(p.name, p.bytes, ref.lsb - lo, ref.msb - ref.lsb + 1) : dut.port(p.name, p.bytes, 0, p.width);
 }
 
+int piece_width(const std::vector<RtlPort>& ports, const PortRef& ref) {
+  const RtlPort* p = find_port(ports, ref.port);
+  if (!p) return 0;
+  return ref.sliced() ? ref.msb - ref.lsb + 1 : p->width;
+}
+
 }  // namespace
 
 int role_width(const ReceiverDescription& d, const std::vector<RtlPort>& ports, const std::string& role) {
-  const PortRef& ref = d.ref(role);
-  if (ref.sliced()) return ref.msb - ref.lsb + 1;
-  const RtlPort* p = find_port(ports, ref.port);
-  return p ? p->width : 0;
+  int width = 0;
+  for (const PortRef& piece : d.ref(role).pieces()) {
+    const int w = piece_width(ports, piece);
+    if (w == 0) return 0;
+    width += w;
+  }
+  return width;
 }
 
 void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports, int bus_bits) {
   for (const PortRole& role : port_roles()) {
     if (!d.has(role.name)) continue;
     const std::string key = fmt::format("ports.{}", role.name);
-    need(d, ports, key, d.ref(role.name), role.input);
+    for (const PortRef& piece : d.ref(role.name).pieces()) need(d, ports, key, piece, role.input);
     const std::string r = role.name;
     const int width = role_width(d, ports, r);
     const std::string what = d.ref(r).text();
+    if (d.ref(r).joined() && width > 64) port_error(d, key, fmt::format("{} is {} bits; aesim joins up to 64", what, width));
     const bool one_bit = r == "clk" || r == "req" || r == "ack" || r == "contention" || r == "valid" || r == "ready";
     if (one_bit && width != 1) port_error(d, key, fmt::format("{} is {} bits; {} is one bit", what, width, r));
     if ((r == "addr" || r == "out_addr") && width < bus_bits) {
@@ -79,7 +89,7 @@ std::vector<std::string> inputs_held_at_zero(const ReceiverDescription& d, const
   std::vector<std::string> held;
   for (const RtlPort& p : ports) {
     if (!p.input || p.name == d.reset_port || d.inputs.count(p.name)) continue;
-    const bool has_role = std::any_of(d.ports.begin(), d.ports.end(), [&](const auto& role) { return role.second.port == p.name; });
+    const bool has_role = std::any_of(d.ports.begin(), d.ports.end(), [&](const auto& role) { return role.second.uses(p.name); });
     if (!has_role) held.push_back(p.name);
   }
   return held;
@@ -89,16 +99,22 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   auto role = [&](const char* r) {
     return d.has(r) ? bind(dut, *find_port(ports, d.port(r)), d.ref(r)) : PortAccess();
   };
+  auto joined = [&](const char* r) {
+    JoinedAccess access;
+    if (!d.has(r)) return access;
+    for (const PortRef& piece : d.ref(r).pieces()) access.append(bind(dut, *find_port(ports, piece.port), piece), piece_width(ports, piece));
+    return access;
+  };
   BoundPorts b;
   b.clk = role("clk");
   b.req = role("req");
   b.ack = role("ack");
-  b.addr = role("addr");
+  b.addr = joined("addr");
   b.contention = role("contention");
   b.valid = role("valid");
   b.ready = role("ready");
-  b.out_addr = role("out_addr");
-  b.timestamp = role("timestamp");
+  b.out_addr = joined("out_addr");
+  b.timestamp = joined("timestamp");
   b.flags = role("flags");
   b.overflow = role("overflow_count");
   if (d.has_reset()) b.reset = bind(dut, *find_port(ports, d.reset_port), PortRef{d.reset_port});

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,14 +19,42 @@ void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports
 // would make look like a receiver that never answers. In the order the RTL declares them.
 std::vector<std::string> inputs_held_at_zero(const ReceiverDescription& d, const std::vector<RtlPort>& ports);
 
-// The width of a role's bits (its slice, or its whole port).
+// The width of a role's bits (its slice, its whole port, or its parts together); 0 when a port
+// it names is not in `ports`.
 int role_width(const ReceiverDescription& d, const std::vector<RtlPort>& ports, const std::string& role);
+
+// A role's bits from one port or slice, or from several joined ({evt_y, evt_x}: the first part
+// the most significant), read and written as one number of at most 64 bits.
+class JoinedAccess {
+ public:
+  // A part below those added so far, `width` bits.
+  void append(PortAccess part, int width) {
+    for (Part& p : parts_) p.shift += width;
+    parts_.push_back({part, 0});
+  }
+  std::uint64_t read() const {
+    std::uint64_t v = 0;
+    for (const Part& p : parts_) v |= p.access.read() << p.shift;
+    return v;
+  }
+  void write(std::uint64_t v) const {
+    for (const Part& p : parts_) p.access.write(v >> p.shift);
+  }
+
+ private:
+  struct Part {
+    PortAccess access;
+    int shift;
+  };
+  std::vector<Part> parts_;
+};
 
 // A live model's ports by role, with each one-bit role's polarity applied: aesim reasons in "Req
 // raised", "valid raised" and so on whatever levels the RTL uses for them. Unbound roles (no
 // ready, no timestamp, ...) ignore writes.
 struct BoundPorts {
-  PortAccess clk, reset, req, ack, addr, contention, valid, ready, out_addr, timestamp, flags, overflow;
+  PortAccess clk, reset, req, ack, contention, valid, ready, flags, overflow;
+  JoinedAccess addr, out_addr, timestamp;
   bool reset_active_high = false, req_active_high = true, ack_active_high = true, valid_active_high = true,
        ready_active_high = true, contention_active_high = true;
   void set_reset(bool active) const { reset.write(active == reset_active_high ? 1 : 0); }

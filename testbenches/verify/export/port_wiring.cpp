@@ -11,11 +11,38 @@ std::string range(int msb, int lsb) { return msb == 0 && lsb == 0 ? "" : fmt::fo
 
 }  // namespace
 
-std::string PortWiring::read(const std::string& role) {
-  const PortRef& ref = d_.ref(role);
+std::string PortWiring::read(const std::string& role) { return read(d_.ref(role)); }
+
+std::string PortWiring::read(const PortRef& ref) {
+  if (ref.joined()) {
+    std::string parts;
+    for (const PortRef& part : ref.parts) parts += (parts.empty() ? "" : ", ") + read(part);
+    return "{" + parts + "}";
+  }
   used_[ref.port];
   if (!ref.sliced()) return "p_" + ref.port;
   return ref.msb == ref.lsb ? fmt::format("p_{}[{}]", ref.port, ref.msb) : fmt::format("p_{}[{}:{}]", ref.port, ref.msb, ref.lsb);
+}
+
+void PortWiring::drive(const std::string& role, const std::string& expr) {
+  const PortRef& ref = d_.ref(role);
+  if (!ref.joined()) return drive(ref, expr);
+  // Through a wire of the role's own: each part takes its bits of it.
+  const std::string wire = "r_" + role;
+  int width = 0;
+  std::vector<int> widths;
+  for (const PortRef& part : ref.parts) {
+    const RtlPort& p = *find_port(ports_, part.port);
+    widths.push_back(part.sliced() ? part.msb - part.lsb + 1 : p.width);
+    width += widths.back();
+  }
+  role_wires_ += fmt::format("  wire {}{} = {};\n", range(width - 1, 0), wire, expr);
+  int top = width - 1;
+  for (std::size_t i = 0; i < ref.parts.size(); ++i) {
+    const int lsb = top - widths[i] + 1;
+    drive(ref.parts[i], widths[i] == 1 ? fmt::format("{}[{}]", wire, top) : fmt::format("{}[{}:{}]", wire, top, lsb));
+    top = lsb - 1;
+  }
 }
 
 void PortWiring::drive(const PortRef& ref, const std::string& expr) {
@@ -25,7 +52,7 @@ void PortWiring::drive(const PortRef& ref, const std::string& expr) {
 }
 
 std::string PortWiring::declarations() const {
-  std::string out;
+  std::string out = role_wires_;
   for (const auto& [name, pieces] : used_) {
     const RtlPort& p = *find_port(ports_, name);
     const int lo = std::min(p.msb, p.lsb), hi = lo + p.width - 1;

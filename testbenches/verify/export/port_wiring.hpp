@@ -15,10 +15,10 @@ namespace aesim {
 class PortWiring {
  public:
   PortWiring(const ReceiverDescription& d, const std::vector<RtlPort>& ports) : d_(d), ports_(ports) {}
-  // An output role's bits, e.g. "p_pkt_data[17:8]".
+  // An output role's bits, e.g. "p_pkt_data[17:8]" (or "{p_evt_y, p_evt_x}" for a joined role).
   std::string read(const std::string& role);
   // An input role's bits (or a whole input port) driven by `expr`.
-  void drive(const std::string& role, const std::string& expr) { drive(d_.ref(role), expr); }
+  void drive(const std::string& role, const std::string& expr);
   void drive(const PortRef& ref, const std::string& expr);
   // A one-bit input role raised where the one-bit `expr` is 1, at the level the role is active at.
   void drive_raised(const std::string& role, const std::string& expr);
@@ -37,9 +37,12 @@ class PortWiring {
     int msb, lsb;
     std::string expr;
   };
+  std::string read(const PortRef& ref);
+
   const ReceiverDescription& d_;
   const std::vector<RtlPort>& ports_;
   std::map<std::string, std::vector<Piece>> used_;
+  std::string role_wires_;  // wires of joined input roles, which their parts read
 };
 
 }  // namespace aesim

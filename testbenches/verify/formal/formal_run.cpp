@@ -426,8 +426,8 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   ReceiverDescription narrowed = d;
   for (const auto& [name, value] : d.formal.inputs) narrowed.inputs[name] = value;
   try {
-    if (d.has("timestamp") && find_port(ports, d.port("timestamp"))) {
-      narrowed.timestamp_bits = std::min(d.timestamp_bits, role_width(d, ports, "timestamp"));
+    if (d.has("timestamp")) {
+      if (const int width = role_width(d, ports, "timestamp"); width > 0) narrowed.timestamp_bits = std::min(d.timestamp_bits, width);
     }
     check_ports(narrowed, ports, 1);
   } catch (const InputError& e) {
