@@ -861,7 +861,7 @@ TEST_F(EventFormats, EveryCommandThatReadsEventsReadsEveryFormatItWrites) {
 TEST_F(EventFormats, BadOutputsAreRefusedBeforeTheRunAndLeaveNothing) {
   const struct {
     std::string args, words;
-  } cases[] = {{"--out e.mp4", "unknown event file type"},
+  } cases[] = {{"--out e.mp4", "unknown event file type (write .aedat, .aedat4, .npy, .h5, .raw or .dat)"},
                {"--out e.txt", "events text is read, not written"},
                {"--out e.bin", "N-MNIST binary is read, not written"},
                {"--out e.npy --aedat-layout dvs128", "AEDAT 2.0"},

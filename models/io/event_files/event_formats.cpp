@@ -191,20 +191,33 @@ const EventFormatRow& event_format(EventFileFormat format) {
   throw std::logic_error("an event file format without a row");
 }
 
-const EventFormatRow& event_format_of(const std::string& path, const std::string& option) {
+namespace {
+
+// The row of `path`'s extension; none for an extension no format has. No extension keeps the
+// AEDAT 2.0 that --out always wrote.
+const EventFormatRow* format_row_of(const std::string& path) {
   const std::string ext = file_extension(path);
-  // No extension keeps the AEDAT 2.0 that --out always wrote.
-  if (ext.empty()) return event_format(EventFileFormat::Aedat2);
+  if (ext.empty()) return &event_format(EventFileFormat::Aedat2);
   for (const EventFormatRow& row : event_formats()) {
-    if (std::find(row.extensions.begin(), row.extensions.end(), ext) != row.extensions.end()) return row;
+    if (std::find(row.extensions.begin(), row.extensions.end(), ext) != row.extensions.end()) return &row;
   }
+  return nullptr;
+}
+
+}  // namespace
+
+const EventFormatRow& event_format_of(const std::string& path, const std::string& option) {
+  if (const EventFormatRow* row = format_row_of(path)) return *row;
   std::vector<std::string> all;
   for (const EventFormatRow& row : event_formats()) all.insert(all.end(), row.extensions.begin(), row.extensions.end());
   throw InputError(fmt::format("{} '{}': unknown event file type (use {})", option, path, listed(all)));
 }
 
 const EventFormatRow& writable_event_format(const std::string& path, const std::string& option) {
-  const EventFormatRow& row = event_format_of(path, option);
+  const EventFormatRow* found = format_row_of(path);
+  // An output is offered only what can be written.
+  if (!found) throw InputError(fmt::format("{} '{}': unknown event file type (write {})", option, path, event_extensions(true)));
+  const EventFormatRow& row = *found;
   if (row.open) return row;
   if (row.format == EventFileFormat::Csv) throw InputError(fmt::format("{} '{}': write events CSV with --csv", option, path));
   throw InputError(fmt::format("{} '{}': {} is read, not written (write {})", option, path, row.name, event_extensions(true)));
