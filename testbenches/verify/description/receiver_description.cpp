@@ -99,7 +99,7 @@ class Reader {
     for (;;) {
       const std::size_t comma = inner.find(',', from);
       std::string part = inner.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
-      const auto first = part.find_first_not_of(' '), last = part.find_last_not_of(' ');
+      const auto first = part.find_first_not_of(" \t"), last = part.find_last_not_of(" \t");
       part = first == std::string::npos ? "" : part.substr(first, last - first + 1);
       if (part.empty()) fail(label, fmt::format("'{}': an empty part in the joined ports", text));
       ref.parts.push_back(port_ref(part, label));
