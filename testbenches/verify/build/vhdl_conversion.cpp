@@ -208,6 +208,117 @@ std::vector<std::string> declared_entities(const std::vector<std::string>& sourc
   return names;
 }
 
+// Verilog text without its comments (strings kept as they are), for reading instances from.
+std::string without_comments(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    if (text[i] == '"') {
+      const std::size_t end = text.find('"', i + 1);
+      const std::size_t stop = end == std::string::npos ? text.size() : end + 1;
+      out.append(text, i, stop - i);
+      i = stop;
+    } else if (text.compare(i, 2, "//") == 0) {
+      i = std::min(text.find('\n', i), text.size());
+    } else if (text.compare(i, 2, "/*") == 0) {
+      const std::size_t end = text.find("*/", i + 2);
+      i = end == std::string::npos ? text.size() : end + 2;
+      out += ' ';
+    } else {
+      out += text[i++];
+    }
+  }
+  return out;
+}
+
+// A parameter value a Verilog instance gives a VHDL entity, as GHDL's -g and the module's own
+// parameter take it: a number (decimal, or sized with a base) as its decimal, a string as written.
+// Anything else (an expression, another module's parameter) is refused: GHDL needs the value.
+std::string literal_generic(const std::string& where, const std::string& entity, const std::string& name,
+                            const std::string& text) {
+  static const std::regex decimal(R"(\d+)"), based(R"((?:\d+)?\s*'\s*[sS]?([dDhHbBoO])\s*([0-9a-fA-F_]+))"),
+      string(R"("[^"\\]*")");
+  std::smatch m;
+  if (std::regex_match(text, decimal)) return std::to_string(std::stoull(text));
+  if (std::regex_match(text, m, based)) {
+    std::string digits = m[2].str();
+    digits.erase(std::remove(digits.begin(), digits.end(), '_'), digits.end());
+    const char base = static_cast<char>(std::tolower(static_cast<unsigned char>(m[1].str()[0])));
+    const int radix = base == 'd' ? 10 : base == 'h' ? 16 : base == 'b' ? 2 : 8;
+    try {
+      return std::to_string(std::stoull(digits, nullptr, radix));
+    } catch (const std::exception&) {
+      // not digits of that base, or too large: refused below
+    }
+  }
+  if (std::regex_match(text, string)) return text;
+  throw InputError(fmt::format("{}: the Verilog sets the VHDL entity {}'s generic {} to '{}'; aesim passes GHDL a "
+                               "number or a string there, not an expression",
+                               where, entity, name, text));
+}
+
+// The generics the Verilog's instances of `entity` set (`entity #(.NAME(value), ...) name (`),
+// the same for every instance: GHDL makes one module of an entity. None for instances without.
+std::map<std::string, std::string> instance_generics(const std::string& where, const std::string& entity,
+                                                     const std::string& verilog) {
+  const std::regex use("\\b" + entity + "\\s*(#\\s*\\(|[A-Za-z_][A-Za-z0-9_$]*\\s*\\()");
+  std::optional<std::map<std::string, std::string>> first;
+  for (auto m = std::sregex_iterator(verilog.begin(), verilog.end(), use); m != std::sregex_iterator(); ++m) {
+    std::map<std::string, std::string> set;
+    if ((*m)[1].str().front() == '#') {
+      // The list up to its closing parenthesis, split at the commas outside parentheses.
+      const std::size_t open = static_cast<std::size_t>(m->position(0) + m->length(0)) - 1;
+      std::vector<std::string> items(1);
+      int depth = 0;
+      std::size_t i = open + 1;
+      for (; i < verilog.size(); ++i) {
+        const char c = verilog[i];
+        if (c == '(') ++depth;
+        if (c == ')' && depth-- == 0) break;
+        if (c == ',' && depth == 0) {
+          items.emplace_back();
+        } else {
+          items.back() += c;
+        }
+      }
+      static const std::regex named(R"(\s*\.\s*([A-Za-z_][A-Za-z0-9_$]*)\s*\(\s*(.*?)\s*\)\s*)");
+      for (const std::string& item : items) {
+        std::smatch n;
+        if (!std::regex_match(item, n, named)) {
+          throw InputError(fmt::format("{}: the Verilog sets the VHDL entity {}'s generics by position ('{}'); name "
+                                       "them: #(.NAME(value))",
+                                       where, entity, item));
+        }
+        set[n[1].str()] = literal_generic(where, entity, n[1].str(), n[2].str());
+      }
+    }
+    if (!first) {
+      first = set;
+    } else if (*first != set) {
+      throw InputError(fmt::format("{}: instances of the VHDL entity {} set different generics; GHDL makes one module "
+                                   "of an entity, so give them all the same",
+                                   where, entity));
+    }
+  }
+  return first.value_or(std::map<std::string, std::string>{});
+}
+
+// GHDL's module for `entity` given the parameters its Verilog instances set, which the module
+// takes and ignores: GHDL has already built it with them as its generics.
+std::string with_parameters(const std::string& netlist, const std::string& entity,
+                            const std::map<std::string, std::string>& generics) {
+  if (generics.empty()) return netlist;
+  std::string list;
+  for (const auto& [k, v] : generics) list += fmt::format("{}parameter {} = {}", list.empty() ? "" : ", ", k, v);
+  std::istringstream lines(netlist);
+  std::string line, out;
+  while (std::getline(lines, line)) {
+    if (line.rfind("module ", 0) == 0 && ascii_lower(line.substr(7)) == ascii_lower(entity)) line += " #(" + list + ")";
+    out += line + "\n";
+  }
+  return out;
+}
+
 }  // namespace
 
 bool is_vhdl_source(const std::string& path) {
@@ -227,10 +338,10 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   }
   const bool mixed = !verilog.empty();
   // All VHDL: the top entity, its generics from `parameters`. Mixed: a Verilog top, and each VHDL
-  // entity the Verilog sources name, at its generics' defaults (GHDL fixes them; the Verilog's
-  // parameters are its own).
+  // entity the Verilog sources name, with the generics its instances set (literals, the same for
+  // every instance) or at their defaults.
   std::vector<std::string> entities;
-  std::map<std::string, std::string> generics;
+  std::map<std::string, std::map<std::string, std::string>> generics;  // entity -> its generics
   if (!mixed) {
     if (!d.formal.parameters.empty()) {
       throw InputError(fmt::format("{}: [formal] parameters: a VHDL design's generics are set once, in `parameters`, "
@@ -241,11 +352,11 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
       throw InputError(fmt::format("{}: `defines` and `include_dirs` are Verilog's; VHDL takes none", where));
     }
     entities = {d.top};
-    generics = d.parameters;
+    generics[d.top] = d.parameters;
   } else {
     const std::vector<std::string> declared = declared_entities(vhdl);
     std::string verilog_text;
-    for (const std::string& s : verilog) verilog_text += read_scratch_text(s) + "\n";
+    for (const std::string& s : verilog) verilog_text += without_comments(read_scratch_text(s)) + "\n";
     for (const std::string& e : declared) {
       if (ascii_lower(e) == ascii_lower(d.top)) {
         throw InputError(fmt::format("{}: the top '{}' is a VHDL entity and other sources are Verilog; GHDL's synthesis "
@@ -253,13 +364,7 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
                                      where, e));
       }
       if (!std::regex_search(verilog_text, std::regex("\\b" + e + "\\b"))) continue;
-      // An instance that sets parameters would find none on the module GHDL writes.
-      if (std::regex_search(verilog_text, std::regex("\\b" + e + "\\s*#\\s*\\("))) {
-        throw InputError(fmt::format("{}: the Verilog sets parameters on the VHDL entity {} (#(...)); GHDL fixes a "
-                                     "converted entity's generics at their defaults: set them there, or describe the "
-                                     "design as all VHDL with `parameters`",
-                                     where, e));
-      }
+      generics[e] = instance_generics(where, e, verilog_text);
       entities.push_back(e);
     }
     if (entities.empty()) {
@@ -275,16 +380,21 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   const ScratchFolder scratch(cache / fmt::format("tmp-vhdl.{}", ::getpid()));
   const fs::path& work = scratch.path();
 
-  std::string key = "aesim-vhdl-v3\n" + tool_output("ghdl", {"--version"}, work) + "\n";
-  for (const std::string& e : entities) key += "entity " + e + "\n";
-  for (const auto& [k, v] : generics) key += "generic " + k + "=" + v + "\n";
+  std::string key = "aesim-vhdl-v4\n" + tool_output("ghdl", {"--version"}, work) + "\n";
+  for (const std::string& e : entities) {
+    key += "entity " + e + "\n";
+    for (const auto& [k, v] : generics[e]) key += "generic " + k + "=" + v + "\n";
+  }
   for (const std::string& s : vhdl) key += "source " + s + "\n" + read_scratch_text(s) + "\n";
   const fs::path entry = cache / ("vhdl-" + content_hash_hex(key));
   const fs::path converted = entry / "receiver.v";
 
   if (!fs::is_regular_file(converted)) {
     std::vector<std::string> outputs;
-    for (const std::string& e : entities) outputs.push_back(synthesise(e, generics, vhdl, work, cache));
+    for (const std::string& e : entities) {
+      const std::string netlist = synthesise(e, generics[e], vhdl, work, cache);
+      outputs.push_back(mixed ? with_parameters(netlist, e, generics[e]) : netlist);
+    }
     fs::create_directories(work / "entry");
     write_scratch_text(work / "entry" / converted.filename(), escape_reserved_names(joined_modules(outputs)));
     fs::rename(work / "entry", entry, ec);
