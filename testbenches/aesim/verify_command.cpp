@@ -82,7 +82,11 @@ int verify_command(const VerifyCommandOptions& opt) {
     fo.cache_dir = build_options.cache_dir;
     fo.property_seconds = opt.formal_seconds;
     try {
-      formal = run_formal(d, result.stamp_edge, fo);
+      const ReceiverDescription proof = vhdl_for_the_proof(written, d, default_cache_dir());
+      formal = run_formal(proof, result.stamp_edge, fo);
+      if (proof.sources != d.sources) {
+        formal->notes.push_back("the VHDL the proof ran, synthesised with [formal] parameters: " + proof.sources.back());
+      }
     } catch (const InputError& e) {
       formal_error = e.what();
     }

@@ -343,11 +343,6 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   std::vector<std::string> entities;
   std::map<std::string, std::map<std::string, std::string>> generics;  // entity -> its generics
   if (!mixed) {
-    if (!d.formal.parameters.empty()) {
-      throw InputError(fmt::format("{}: [formal] parameters: a VHDL design's generics are set once, in `parameters`, "
-                                   "for the simulation and the proof alike",
-                                   where));
-    }
     if (!d.defines.empty() || !d.include_dirs.empty()) {
       throw InputError(fmt::format("{}: `defines` and `include_dirs` are Verilog's; VHDL takes none", where));
     }
@@ -435,6 +430,7 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   v.top = as_declared(d.top);
   v.sources = {converted.string()};
   v.parameters.clear();
+  v.formal.parameters.clear();
   for (auto& [role, ref] : v.ports) {
     if (!ref.joined()) ref.port = as_declared(ref.port);
     for (PortRef& part : ref.parts) part.port = as_declared(part.port);
@@ -446,6 +442,16 @@ ReceiverDescription with_vhdl_as_verilog(const ReceiverDescription& d, const std
   for (const auto& [port, value] : d.formal.inputs) v.formal.inputs[as_declared(port)] = value;
   for (std::string& out : v.formal.unsynchronised_outputs) out = as_declared(out);
   return v;
+}
+
+ReceiverDescription vhdl_for_the_proof(const ReceiverDescription& written, const ReceiverDescription& converted,
+                                       const std::string& cache_dir) {
+  const bool all_vhdl = !written.sources.empty() && std::all_of(written.sources.begin(), written.sources.end(), is_vhdl_source);
+  if (!all_vhdl || written.formal.parameters.empty()) return converted;
+  ReceiverDescription proof = written;
+  for (const auto& [k, v] : written.formal.parameters) proof.parameters[k] = v;
+  proof.formal.parameters.clear();
+  return with_vhdl_as_verilog(proof, cache_dir);
 }
 
 }  // namespace aesim
