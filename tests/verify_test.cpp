@@ -60,7 +60,7 @@ class VerifyTest : public testing::TempDirTest {
   }
   // A description of a wrapper `top` (its own file `top`.v in the test's folder) around the bundled
   // receiver: their sources, 50 MHz, `reset`, each role on the port `ports` names for it, else on
-  // the bundled receiver's own, and the bundled receiver's behaviour (discarded collisions, drops,
+  // the bundled receiver's own (with any other role `ports` names), and the bundled receiver's behaviour (discarded collisions, drops,
   // 1 us stamps of 32 bits, Ack on the 4th edge).
   static std::string around_bundled(const std::string& top, const std::string& reset,
                                     const std::map<std::string, std::string>& ports = {}) {
@@ -73,6 +73,7 @@ class VerifyTest : public testing::TempDirTest {
         {"ready", "\"evt_ready_i\""},   {"out_addr", "\"evt_addr_o\""},  {"timestamp", "\"evt_ts_o\""},
         {"flags", "\"evt_flags_o\""}};
     for (const auto& [role, port] : own) d += role + " = " + (ports.count(role) ? ports.at(role) : port) + "\n";
+    for (const auto& [role, port] : ports) d += own.count(role) ? "" : role + " = " + port + "\n";
     return d + "[behaviour]\ncollisions = \"discard\"\nfull = \"drop\"\ntimestamp_tick = \"1us\"\ntimestamp_bits = 32\n"
                "ack_latency_cycles = [4, 4]\n";
   }
@@ -211,7 +212,7 @@ endmodule
   }
   // Only the one-bit roles have a level.
   expect_refused("addr.toml", edited(description, "addr = \"addr_i\"", "addr = { port = \"addr_i\", active = \"low\" }"),
-                 "ports.addr: only req, ack, valid, ready and contention take { port, active }");
+                 "ports.addr: only req, ack, valid, ready, contention and special take { port, active }");
 }
 
 // A top with its own two-flop reset synchroniser comes out of reset two edges after aesim lets
@@ -284,6 +285,55 @@ endmodule
       {edited(description, "out_addr = \"{evt_y, evt_x}\"", "out_addr = \"{evt_y, evt_y}\""), "port evt_y is also ports.out_addr"},
       {edited(description, "out_addr = \"{evt_y, evt_x}\"", "out_addr = \"{evt_y, }\""), "an empty part in the joined ports"}};
   for (std::size_t i = 0; i < bad.size(); ++i) expect_refused(fmt::format("bad{}.toml", i), bad[i].first, bad[i].second);
+}
+
+// An output stream with in-band markers (a word with bit 15 set every 256 cycles, where an event
+// stream puts its time markers) passes with the marker bit described as `special`: such beats are
+// no transaction's, and are counted; described without it, the first marker is a beat no
+// transaction gave.
+TEST_F(VerifyTest, BeatsThatSayTheyAreNoEventAreNotMatchedToTransactions) {
+  write("mk_top.v", R"(module mk_top (
+    input  wire        clk_i, rst_ni, req_i, contention_i,
+    input  wire [15:0] addr_i,
+    output wire        ack_o, valid, evt_flags_o,
+    output wire [15:0] word,
+    output wire [31:0] evt_ts_o);
+  wire evt_valid;
+  wire [15:0] evt_addr;
+)" + bundled_instance({{"evt_valid_o", "evt_valid"}, {"evt_ready_i", "1'b1"}, {"evt_addr_o", "evt_addr"}}) +
+                           R"(  reg [7:0] cycles;
+  reg [6:0] markers;
+  reg pending;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      cycles <= 0;
+      markers <= 0;
+      pending <= 1'b0;
+    end else begin
+      cycles <= cycles + 1'b1;
+      if (cycles == 8'hff) pending <= 1'b1;
+      else if (pending && !evt_valid) begin
+        pending <= 1'b0;
+        markers <= markers + 1'b1;
+      end
+    end
+  assign valid = evt_valid || pending;
+  assign word = evt_valid ? {1'b0, evt_addr[14:0]} : {1'b1, 8'd0, markers};
+endmodule
+)");
+  std::string description =
+      around_bundled("mk_top", R"({ port = "rst_ni", active = "low" })",
+                     {{"valid", R"("valid")"}, {"out_addr", R"("word[9:0]")"}, {"special", R"("word[15]")"}});
+  description = edited(description, "ready = \"evt_ready_i\"\n", "");
+  write("mk.toml", description);
+  const Outcome o = verify("mk.toml --export-tb tb");
+  const nlohmann::json r = report();
+  expect_pass(o, r, 12);
+  EXPECT_GT(r["special_beats"].get<double>(), 1000) << r.dump();
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  write("plain.toml", edited(description, "special = \"word[15]\"\n", ""));
+  EXPECT_EQ(verify("plain.toml --out plain").status, 1);
+  EXPECT_EQ(report("plain")["first_failure"]["check"], "beat") << report("plain")["first_failure"].dump();
 }
 
 TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {

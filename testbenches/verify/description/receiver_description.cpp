@@ -173,7 +173,7 @@ const std::vector<PortRole>& port_roles() {
       {"clk", true, false},         {"req", true, false},        {"ack", false, false},
       {"addr", true, false},        {"valid", false, false},     {"out_addr", false, false},
       {"ready", true, true},        {"timestamp", false, true},  {"contention", true, true},
-      {"flags", false, true},       {"overflow_count", false, true}};
+      {"flags", false, true},       {"overflow_count", false, true}, {"special", false, true}};
   return roles;
 }
 
@@ -259,16 +259,17 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     const auto& roles = port_roles();
     if (std::none_of(roles.begin(), roles.end(), [&role](const PortRole& p) { return role == p.name; })) {
       r.fail(key, "not a port role (clk, req, ack, addr, contention, valid, ready, out_addr, timestamp, "
-                  "flags, overflow_count)");
+                  "flags, overflow_count, special)");
     }
     std::string text;
     if (value.is_table()) {
       // { port = "aer_req_n", active = "low" }: a one-bit role's polarity (an FX2 FIFO's write
       // strobe, SLWR#, is a valid active low); valid also takes { port = "data_ready", beat =
       // "rise" }: a level held for each word.
-      const bool one_bit = role == "req" || role == "ack" || role == "valid" || role == "ready" || role == "contention";
+      const bool one_bit =
+          role == "req" || role == "ack" || role == "valid" || role == "ready" || role == "contention" || role == "special";
       if (!one_bit) {
-        r.fail(key, "only req, ack, valid, ready and contention take { port, active } (and valid { port, beat }); "
+        r.fail(key, "only req, ack, valid, ready, contention and special take { port, active } (and valid { port, beat }); "
                     "give the port name");
       }
       const char* keys = role == "valid" ? "port, active, beat" : "port, active";

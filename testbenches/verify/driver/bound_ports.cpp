@@ -64,7 +64,8 @@ void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports
     const int width = role_width(d, ports, r);
     const std::string what = d.ref(r).text();
     if (d.ref(r).joined() && width > 64) port_error(d, key, fmt::format("{} is {} bits; aesim joins up to 64", what, width));
-    const bool one_bit = r == "clk" || r == "req" || r == "ack" || r == "contention" || r == "valid" || r == "ready";
+    const bool one_bit =
+        r == "clk" || r == "req" || r == "ack" || r == "contention" || r == "valid" || r == "ready" || r == "special";
     if (one_bit && width != 1) port_error(d, key, fmt::format("{} is {} bits; {} is one bit", what, width, r));
     if ((r == "addr" || r == "out_addr") && width < bus_bits) {
       port_error(d, key, fmt::format("{} is {} bits; the bus carries {}-bit addresses", what, width, bus_bits));
@@ -117,6 +118,7 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   b.timestamp = joined("timestamp");
   b.flags = role("flags");
   b.overflow = role("overflow_count");
+  b.special = role("special");
   if (d.has_reset()) b.reset = bind(dut, *find_port(ports, d.reset_port), PortRef{d.reset_port});
   b.reset_active_high = d.reset_active_high;
   b.req_active_high = d.active_high("req");
@@ -124,6 +126,7 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   b.valid_active_high = d.active_high("valid");
   b.ready_active_high = d.active_high("ready");
   b.contention_active_high = d.active_high("contention");
+  b.special_active_high = d.active_high("special");
   for (const auto& [name, value] : d.inputs) bind(dut, *find_port(ports, name), PortRef{name}).write(value);
   return b;
 }

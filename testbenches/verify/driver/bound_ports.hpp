@@ -53,16 +53,18 @@ class JoinedAccess {
 // raised", "valid raised" and so on whatever levels the RTL uses for them. Unbound roles (no
 // ready, no timestamp, ...) ignore writes.
 struct BoundPorts {
-  PortAccess clk, reset, req, ack, contention, valid, ready, flags, overflow;
+  PortAccess clk, reset, req, ack, contention, valid, ready, flags, overflow, special;
   JoinedAccess addr, out_addr, timestamp;
   bool reset_active_high = false, req_active_high = true, ack_active_high = true, valid_active_high = true,
-       ready_active_high = true, contention_active_high = true;
+       ready_active_high = true, contention_active_high = true, special_active_high = true;
   void set_reset(bool active) const { reset.write(active == reset_active_high ? 1 : 0); }
   void set_req(bool raised) const { req.write(raised == req_active_high ? 1 : 0); }
   void set_contention(bool raised) const { contention.write(raised == contention_active_high ? 1 : 0); }
   void set_ready(bool raised) const { ready.write(raised == ready_active_high ? 1 : 0); }
   bool ack_raised() const { return (ack.read() != 0) == ack_active_high; }
   bool valid_raised() const { return (valid.read() != 0) == valid_active_high; }
+  // A beat that is no event (an in-band time marker, say): raised only where the role is bound.
+  bool special_raised() const { return special.bound() && (special.read() != 0) == special_active_high; }
 };
 
 // Binds the roles and sets the [inputs] constants.

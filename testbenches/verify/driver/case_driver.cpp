@@ -225,10 +225,11 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       s.out_addr = ports.out_addr.read();
       s.timestamp = ports.timestamp.read();
       s.flags = ports.flags.read();
+      s.special = ports.special_raised();
     }
     s.overflow = ports.overflow.read();
     if (sb) sb->edge(k, t_edge, s);
-    if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1});
+    if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1, s.special});
 
     ports.clk.write(1);
     dut.eval();

@@ -21,6 +21,7 @@ struct WaveRecord {
 // A beat the receiver gave (taken at a rising edge with valid and ready).
 struct TakenBeat {
   std::uint64_t addr = 0, timestamp = 0, flags = 0;
+  bool special = false;  // said it is no event: its fields mean nothing to aesim
 };
 
 struct CaseRunOptions {

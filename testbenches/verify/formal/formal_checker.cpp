@@ -109,6 +109,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   const int tw = d.has("timestamp") ? role_width(d, ports, "timestamp") : 1;
   const int vw = d.has("overflow_count") ? role_width(d, ports, "overflow_count") : 1;
   const std::string valid_wire = wiring.valid_beat("valid");
+  const std::string special = d.has("special") ? wiring.read_raised("special") : "1'b0";
 
   std::map<std::string, std::string> parameters = d.parameters;
   for (const auto& [k, v] : d.formal.parameters) parameters[k] = v;
@@ -214,7 +215,9 @@ module aesim_formal_top #(
   wire fall = req_q && !req_i;
   wire closing = fall || closing_q;
   wire stall = !settling && !ready && (valid || ({hold} && open && !ack));
-  wire beat = !settling && valid && ready;
+  // A beat that says it is no event (an in-band time marker) is no transaction's.
+  wire special = {special};
+  wire beat = !settling && valid && ready && !special;
   // Edges since Req rose (lat), since it rose or the consumer last stalled (exc), since it fell
   // (flat); saturating just past the upper bound, where the properties have already decided.
   reg [{cw_msb}:0] lat_cnt = 0, exc_cnt = 0, fall_cnt = 0;
@@ -319,7 +322,7 @@ module aesim_formal_top #(
                          fmt::arg("ow_msb", ow - 1), fmt::arg("out_addr", out_addr), fmt::arg("tw_msb", tw - 1),
                          fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "1'b0" : flag + "[0]"),
                          fmt::arg("vw_msb", vw - 1), fmt::arg("ov_expr", ov.empty() ? "1'b0" : ov),
-                         fmt::arg("ready_expr", d.has("ready") ? "ready_i" : "1'b1"), fmt::arg("hold", hold ? "1'b1" : "1'b0"),
+                         fmt::arg("ready_expr", d.has("ready") ? "ready_i" : "1'b1"), fmt::arg("special", special), fmt::arg("hold", hold ? "1'b1" : "1'b0"),
                          fmt::arg("p_reset", on(p_reset)), fmt::arg("p_rise", on(p_rise)), fmt::arg("p_rise_min", on(p_rise_min)),
                          fmt::arg("p_rise_max", on(p_rise_max)), fmt::arg("p_fall", on(p_fall)), fmt::arg("p_fall_min", on(p_fall_min)),
                          fmt::arg("p_fall_max", on(p_fall_max)), fmt::arg("p_held", on(p_held)), fmt::arg("p_invent", on(p_invent)),

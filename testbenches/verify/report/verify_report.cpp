@@ -9,6 +9,7 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   j["passed"] = r.passed();
   j["transactions"] = r.transactions;
   j["beats_checked"] = r.beats_checked;
+  if (d.has("special")) j["special_beats"] = r.special_beats;
   j["failures"] = r.failures;
   j["protocol_violations"] = r.protocol_violations;
   j["receiver_cycles"] = r.receiver_cycles;

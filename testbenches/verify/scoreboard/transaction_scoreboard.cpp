@@ -189,7 +189,9 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
   held_.reset();
   if (s.valid) {
     const Beat b{s.out_addr, s.timestamp, (s.flags & 1) != 0};
-    if (s.ready) {
+    if (s.ready && s.special) {
+      ++special_beats_;  // no event: no transaction to match, though it waited as any beat does
+    } else if (s.ready) {
       beat(cycle, t_ps, b);
     } else {
       held_ = b;

@@ -15,6 +15,7 @@ namespace aesim {
 // What the receiver showed just before a rising clock edge, with the inputs that edge sees.
 struct EdgeSample {
   bool reset = false, ready = true, valid = false, ack = false;
+  bool special = false;  // the beat offered is no event (the description's `special` role)
   std::uint64_t out_addr = 0, timestamp = 0, flags = 0, overflow = 0;
 };
 
@@ -35,7 +36,9 @@ struct VerifyFailure {
 //    have counted exactly the drops. A Req that falls before any Ack (a glitch) is not a
 //    transaction: a receiver may ignore it, or (without a glitch filter) answer it within the
 //    latency bound with an Ack that then falls as usual and perhaps a beat of the glitch's
-//    address; the next transactions must go through as ever.
+//    address; the next transactions must go through as ever. A beat that says it is no event (the
+//    description's `special` role: an in-band time marker) belongs to no transaction; it is
+//    counted, and waits as any beat must.
 //  - Stamps follow one rule for the run (StampRule), exactly, modulo the wrap.
 //  - A beat offered and not taken (valid, not ready) stays, unchanged, until taken.
 //  - The handshake: Ack rises only while Req is high and falls only after Req fell (four-phase
@@ -68,6 +71,8 @@ class TransactionScoreboard {
 
   std::uint64_t transactions() const { return transactions_; }
   std::uint64_t beats_checked() const { return beats_; }
+  // Beats taken that said they were no event (the `special` role), not matched to transactions.
+  std::uint64_t special_beats() const { return special_beats_; }
   std::uint64_t failures() const { return failures_; }
   std::uint64_t protocol_violations() const { return violations_; }
   std::uint64_t drops_accepted() const { return drops_total_; }
@@ -142,7 +147,7 @@ class TransactionScoreboard {
   std::uint64_t overflow_base_ = 0, overflow_now_ = 0;
   std::uint64_t drops_strict_ = 0, drops_maybe_ = 0;
 
-  std::uint64_t transactions_ = 0, beats_ = 0, failures_ = 0, violations_ = 0, drops_total_ = 0;
+  std::uint64_t transactions_ = 0, beats_ = 0, failures_ = 0, violations_ = 0, drops_total_ = 0, special_beats_ = 0;
   std::optional<VerifyFailure> first_;
 };
 

@@ -70,6 +70,7 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
   }
   r.transactions = sb.transactions();
   r.beats_checked = sb.beats_checked();
+  r.special_beats = sb.special_beats();
   r.failures = sb.failures();
   r.protocol_violations = sb.protocol_violations();
   r.drops = sb.drops_accepted();

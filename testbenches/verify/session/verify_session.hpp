@@ -22,6 +22,7 @@ struct CaseSummary {
 struct VerifyResult {
   std::uint64_t transactions = 0, beats_checked = 0, failures = 0, protocol_violations = 0, receiver_cycles = 0;
   std::uint64_t drops = 0;
+  std::uint64_t special_beats = 0;  // beats that said they were no event (the `special` role)
   double run_seconds = 0;  // the cases alone, not the build
   std::optional<VerifyFailure> first_failure;
   std::vector<CaseSummary> cases;
