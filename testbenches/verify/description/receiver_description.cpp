@@ -287,11 +287,14 @@ ReceiverDescription read_receiver_description(const std::string& path) {
       }
       if (const TomlValue* beat = r.find(value, "beat")) {
         const std::string b = r.string_of(*beat, key + ".beat");
-        if (b != "high" && b != "rise") {
-          r.fail(key + ".beat", "must be \"high\" (a beat at every edge valid is high) or \"rise\" (at the edge it "
-                                "rises: a level held for each word)");
+        if (b != "high" && b != "rise" && b != "change") {
+          r.fail(key + ".beat", "must be \"high\" (a beat at every edge valid is high), \"rise\" (at the edge it "
+                                "rises: a level held for each word) or \"change\" (at each edge it toggled: a two-phase "
+                                "strobe)");
         }
-        d.valid_beat_on_rise = b == "rise";
+        d.valid_beat = b == "rise"     ? ReceiverDescription::ValidBeat::Rise
+                       : b == "change" ? ReceiverDescription::ValidBeat::Change
+                                       : ReceiverDescription::ValidBeat::High;
       }
     } else {
       text = r.string_of(value, key);
@@ -310,9 +313,9 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   }
   // With back-pressure a word stays on the output, valid high, until the consumer takes it: a beat
   // is valid and ready high together, and a level held for each word is what valid already is.
-  if (d.valid_beat_on_rise && d.has("ready")) {
-    r.fail("ports.valid.beat", "\"rise\" is for an output without back-pressure; with a ready port a beat is an edge "
-                               "where valid and ready are both high");
+  if (d.valid_beat != ReceiverDescription::ValidBeat::High && d.has("ready")) {
+    r.fail("ports.valid.beat", "\"rise\" and \"change\" are for an output without back-pressure; with a ready port a "
+                               "beat is an edge where valid and ready are both high");
   }
   // A port plays one role, except that slices of it may play several when their bits do not meet.
   std::map<std::string, std::string> used;  // port -> what uses it

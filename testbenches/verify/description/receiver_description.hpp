@@ -49,10 +49,13 @@ struct ReceiverDescription {
   // `{ port = "...", active = "low" }` (req, ack, valid, ready, contention).
   std::set<std::string> active_low;
   bool active_high(const std::string& role) const { return active_low.count(role) == 0; }
-  // `valid = { port, beat = "rise" }`: valid is a level held for each word (a data-ready flag
-  // that stays up until the handshake ends, say), so a beat is an edge where it is high and was
-  // low at the edge before, not every edge where it is high. Only without a ready port.
-  bool valid_beat_on_rise = false;
+  // Which edges are beats: where valid is high (with ready, where both are), the default; `valid =
+  // { port, beat = "rise" }`, a level held for each word (a data-ready flag that stays up until
+  // the handshake ends, say): where it is high and was low at the edge before; `beat = "change"`,
+  // a flag that toggles for each word (a two-phase strobe): where it differs from the edge before.
+  // The last two only without a ready port.
+  enum class ValidBeat { High, Rise, Change };
+  ValidBeat valid_beat = ValidBeat::High;
   std::map<std::string, PortRef> ports;            // role -> where it is
   std::map<std::string, std::uint64_t> inputs;     // RTL port -> constant value
   Collisions collisions = Collisions::Discard;

@@ -219,7 +219,11 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     s.ready = ready;
     s.ack = ack;
     const bool valid_now = ports.valid_raised();
-    s.valid = valid_now && !(d.valid_beat_on_rise && valid_was);
+    switch (d.valid_beat) {
+      case ReceiverDescription::ValidBeat::High: s.valid = valid_now; break;
+      case ReceiverDescription::ValidBeat::Rise: s.valid = valid_now && !valid_was; break;
+      case ReceiverDescription::ValidBeat::Change: s.valid = valid_now != valid_was; break;
+    }
     valid_was = valid_now;
     if (s.valid) {
       s.out_addr = ports.out_addr.read();

@@ -93,10 +93,11 @@ std::string PortWiring::read_raised(const std::string& role) {
 
 std::string PortWiring::valid_beat(const std::string& name) {
   const std::string valid = read_raised("valid");
-  if (!d_.valid_beat_on_rise) return fmt::format("  wire {} = {};\n", name, valid);
+  if (d_.valid_beat == ReceiverDescription::ValidBeat::High) return fmt::format("  wire {} = {};\n", name, valid);
   return fmt::format("  wire valid_level = {};\n  reg valid_was = 1'b0;\n  always @(posedge clk) valid_was <= valid_level;\n"
-                     "  wire {} = valid_level && !valid_was;\n",
-                     valid, name);
+                     "  wire {} = {};\n",
+                     valid, name,
+                     d_.valid_beat == ReceiverDescription::ValidBeat::Rise ? "valid_level && !valid_was" : "valid_level != valid_was");
 }
 
 }  // namespace aesim

@@ -27,9 +27,9 @@ class PortWiring {
   // The wires, one per port, and the instance's port connections.
   std::string declarations() const;
   std::string connections() const;
-  // `wire NAME` for the beats: valid as it is, or, for a valid held for each word
-  // (ReceiverDescription::valid_beat_on_rise), high at the edge it rises only (a register of it
-  // clocked by `clk`).
+  // `wire NAME` for the beats: valid as it is, or, for a valid held for each word or toggled for
+  // each (ReceiverDescription::valid_beat), high at the edge it rises or changes only (a register
+  // of it clocked by `clk`).
   std::string valid_beat(const std::string& name);
 
  private:
