@@ -210,6 +210,11 @@ endmodule
     const Outcome wrong = verify(role + ".toml --out " + role);
     EXPECT_EQ(wrong.status, 1) << role << ": " << wrong.err;
   }
+  // A valid read at the wrong level gives beats where no transaction waited, and the run says
+  // where to look.
+  const nlohmann::json first = report("valid")["first_failure"];
+  EXPECT_EQ(first["check"], "beat") << first.dump();
+  EXPECT_NE(first.value("hint", "").find("a valid active low"), std::string::npos) << first.dump();
   // Only the one-bit roles have a level.
   expect_refused("addr.toml", edited(description, "addr = \"addr_i\"", "addr = { port = \"addr_i\", active = \"low\" }"),
                  "ports.addr: only req, ack, valid, ready, contention and special take { port, active }");

@@ -18,6 +18,7 @@
 #include "formal/formal_run.hpp"
 #include "aesim/output/atomic_file.hpp"
 #include "plan/verification_plan.hpp"
+#include "report/failure_hint.hpp"
 #include "report/verify_report.hpp"
 #include "session/verify_session.hpp"
 #include "report_stream.hpp"
@@ -163,13 +164,7 @@ int verify_command(const VerifyCommandOptions& opt) {
     std::fprintf(report_stream(), "%llu failed checks (%llu protocol violations); trace: %s\n",
                 static_cast<unsigned long long>(result.failures),
                 static_cast<unsigned long long>(result.protocol_violations), vcd_path.c_str());
-    // A Req held through the reset answered late is what a top that synchronises its own reset
-    // does, until the description says so.
-    if (f.check == "ack_rise_latency" && f.case_name == "req_through_reset") {
-      std::fprintf(report_stream(), "hint: a design that passes its reset through flops of its own comes out of reset that many "
-                                    "edges late: reset = { ..., release_cycles = N } says so (now %d)\n",
-                   d.reset_release_cycles);
-    }
+    if (const std::string hint = failure_hint(f, d); !hint.empty()) std::fprintf(report_stream(), "hint: %s\n", hint.c_str());
   }
   if (!result.stamp_rule.empty()) std::fprintf(report_stream(), "stamps: %s\n", result.stamp_rule.c_str());
   for (const std::string& note : notes) {

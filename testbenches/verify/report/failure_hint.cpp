@@ -1,0 +1,24 @@
+#include "report/failure_hint.hpp"
+
+#include <fmt/format.h>
+
+namespace aesim {
+
+std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d) {
+  // A Req held through the reset answered late: a top that synchronises its own reset.
+  if (f.check == "ack_rise_latency" && f.case_name == "req_through_reset") {
+    return fmt::format("a design that passes its reset through flops of its own comes out of reset that many edges late: "
+                       "reset = {{ ..., release_cycles = N }} says so (now {})",
+                       d.reset_release_cycles);
+  }
+  // A beat with no transaction waiting: a valid read at the wrong level or as the wrong kind of
+  // strobe, or an output word that is no event.
+  if (f.check == "beat" && f.expected.rfind("no beat", 0) == 0) {
+    return "a beat where no transaction waited: a valid active low (valid = { port = ..., active = \"low\" }), one held "
+           "for each word (beat = \"rise\") or toggled for each (beat = \"change\"), and words that are no event "
+           "(special = ...) are each said in the description";
+  }
+  return "";
+}
+
+}  // namespace aesim
