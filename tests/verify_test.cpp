@@ -397,6 +397,14 @@ TEST_F(VerifyTest, SecondReceiverPassesWithNoChangeToAesim) {
   }
   EXPECT_EQ(missing, report()["drops_accounted"].get<double>());
   EXPECT_GT(missing, 0);
+  // Described as discarding collisions, it fails at the collision case, and the run says where
+  // to look.
+  write("ae_rx_alt.v", slurp(kSecond + "/ae_rx_alt.v"));
+  write("discard.toml", edited(slurp(kSecond + "/ae_rx_alt.toml"), "collisions = \"flag\"", "collisions = \"discard\""));
+  EXPECT_EQ(verify("discard.toml --out discard").status, 1);
+  const nlohmann::json first = report("discard")["first_failure"];
+  EXPECT_EQ(first["case"], "collision") << first.dump();
+  EXPECT_NE(first.value("hint", "").find("behaviour.collisions (now \"discard\""), std::string::npos) << first.dump();
 }
 
 // A receiver whose synchronizer has no glitch filter takes the directed case's glitch (half a

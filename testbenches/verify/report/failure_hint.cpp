@@ -11,6 +11,12 @@ std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d) {
                        "reset = {{ ..., release_cycles = N }} says so (now {})",
                        d.reset_release_cycles);
   }
+  // The collision case's beat: what a collided transaction gives is the description's policy.
+  if (f.check == "beat" && f.case_name == "collision") {
+    return fmt::format("what a collided transaction gives is behaviour.collisions (now \"{}\": \"discard\" no beat, "
+                       "\"flag\" a beat with bit 0 of flags set, \"pass\" a beat of the OR address)",
+                       to_string(d.collisions));
+  }
   // A beat with no transaction waiting: a valid read at the wrong level or as the wrong kind of
   // strobe, or an output word that is no event.
   if (f.check == "beat" && f.expected.rfind("no beat", 0) == 0) {
