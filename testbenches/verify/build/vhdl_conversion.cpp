@@ -239,16 +239,21 @@ std::string literal_generic(const std::string& where, const std::string& entity,
   static const std::regex decimal(R"(\d+)"), based(R"((?:\d+)?\s*'\s*[sS]?([dDhHbBoO])\s*([0-9a-fA-F_]+))"),
       string(R"("[^"\\]*")");
   std::smatch m;
-  if (std::regex_match(text, decimal)) return std::to_string(std::stoull(text));
+  std::string digits = text;
+  int radix = 10;
   if (std::regex_match(text, m, based)) {
-    std::string digits = m[2].str();
+    digits = m[2].str();
     digits.erase(std::remove(digits.begin(), digits.end(), '_'), digits.end());
     const char base = static_cast<char>(std::tolower(static_cast<unsigned char>(m[1].str()[0])));
-    const int radix = base == 'd' ? 10 : base == 'h' ? 16 : base == 'b' ? 2 : 8;
+    radix = base == 'd' ? 10 : base == 'h' ? 16 : base == 'b' ? 2 : 8;
+  }
+  if (std::regex_match(text, decimal) || !m.empty()) {
     try {
-      return std::to_string(std::stoull(digits, nullptr, radix));
+      std::size_t used = 0;
+      const unsigned long long value = std::stoull(digits, &used, radix);
+      if (used == digits.size()) return std::to_string(value);
     } catch (const std::exception&) {
-      // not digits of that base, or too large: refused below
+      // not digits of that base, or past 64 bits: refused below
     }
   }
   if (std::regex_match(text, string)) return text;
@@ -282,6 +287,8 @@ std::map<std::string, std::string> instance_generics(const std::string& where, c
         }
       }
       static const std::regex named(R"(\s*\.\s*([A-Za-z_][A-Za-z0-9_$]*)\s*\(\s*(.*?)\s*\)\s*)");
+      // `#()` sets none.
+      if (items.size() == 1 && items[0].find_first_not_of(" \t\r\n") == std::string::npos) items.clear();
       for (const std::string& item : items) {
         std::smatch n;
         if (!std::regex_match(item, n, named)) {
