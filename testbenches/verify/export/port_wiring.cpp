@@ -83,7 +83,11 @@ std::string PortWiring::connections() const {
 }
 
 void PortWiring::drive_raised(const std::string& role, const std::string& expr) {
-  drive(role, d_.active_high(role) ? expr : "!" + expr);
+  drive_raised(d_.ref(role), d_.active_high(role), expr);
+}
+
+void PortWiring::drive_raised(const PortRef& ref, bool active_high, const std::string& expr) {
+  drive(ref, active_high ? expr : "!" + expr);
 }
 
 std::string PortWiring::read_raised(const std::string& role) {

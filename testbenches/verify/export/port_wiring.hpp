@@ -20,8 +20,10 @@ class PortWiring {
   // An input role's bits (or a whole input port) driven by `expr`.
   void drive(const std::string& role, const std::string& expr);
   void drive(const PortRef& ref, const std::string& expr);
-  // A one-bit input role raised where the one-bit `expr` is 1, at the level the role is active at.
+  // A one-bit input raised where the one-bit `expr` is 1, at the level it is active at: a role's
+  // (ReceiverDescription::active_high), or the reset's.
   void drive_raised(const std::string& role, const std::string& expr);
+  void drive_raised(const PortRef& ref, bool active_high, const std::string& expr);
   // A one-bit output role, 1 where it is raised (whatever level it is active at).
   std::string read_raised(const std::string& role);
   // The wires, one per port, and the instance's port connections.

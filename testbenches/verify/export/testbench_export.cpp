@@ -42,19 +42,17 @@ void write_testbench(const std::string& dir, const ReceiverDescription& d, const
   list << "tb.v\n";
   for (const std::string& s : d.sources) list << s << "\n";
 
-  const auto level = [](bool active_high) { return active_high ? "1'b1" : "1'b0"; };
-  const auto inverse = [](bool active_high) { return active_high ? "1'b0" : "1'b1"; };
   PortWiring wiring(d, ports);
   wiring.drive("clk", "clk");
   if (d.has_reset()) {
-    wiring.drive(PortRef{d.reset_port}, fmt::format("(rst ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
+    wiring.drive_raised(PortRef{d.reset_port}, d.reset_active_high, "rst");
   }
   wiring.drive_raised("req", "req");
   wiring.drive("addr", "addr");
   if (d.has("contention")) wiring.drive_raised("contention", "contention");
   if (d.has("ready")) wiring.drive_raised("ready", "ready");
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
-  const std::string ack = wiring.read("ack"), out_addr = wiring.read("out_addr");
+  const std::string ack = wiring.read_raised("ack"), out_addr = wiring.read("out_addr");
   const std::string stamp = d.has("timestamp") ? wiring.read("timestamp") : "";
   const std::string flag = d.has("flags") ? wiring.read("flags") : "";
   if (d.has("overflow_count")) wiring.read("overflow_count");
@@ -98,7 +96,7 @@ module tb;
   reg ready = 1'b1;
   reg [{aw_msb}:0] addr = {aw}'d0;
 {declarations}
-  wire ack = {ack} == {ack_on};
+  wire ack = {ack};
 {valid_wire}  wire [63:0] out_addr = {out_addr};
   wire [63:0] out_stamp = {stamp_wire};
   wire out_flag = {flag_bit};
@@ -181,7 +179,7 @@ endmodule
                     fmt::arg("defines", defines), fmt::arg("half", period / 2), fmt::arg("end_ps", run.end_ps),
                     fmt::arg("n_inputs", run.waveform.size()), fmt::arg("aw_msb", aw - 1), fmt::arg("aw", aw),
                     fmt::arg("declarations", wiring.declarations()), fmt::arg("ack", ack),
-                    fmt::arg("ack_on", level(d.active_high("ack"))), fmt::arg("valid_wire", valid_wire), fmt::arg("special_wire", special_wire),
+                    fmt::arg("valid_wire", valid_wire), fmt::arg("special_wire", special_wire),
                     fmt::arg("out_addr", out_addr), fmt::arg("stamp_wire", stamp.empty() ? "64'd0" : stamp),
                     fmt::arg("flag_bit", flag_bit),
                     fmt::arg("flag_wire", flag.empty() ? "" : fmt::format("  wire [63:0] flag_bits = {};\n", flag)),

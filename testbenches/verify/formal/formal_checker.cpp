@@ -13,10 +13,8 @@ namespace {
 using Collisions = ReceiverDescription::Collisions;
 using Full = ReceiverDescription::Full;
 
-const char* level(bool active_high) { return active_high ? "1'b1" : "1'b0"; }
 // The guard of property p's assertions: CHECK selects one (0: all); a property left out is off.
 std::string on(int p) { return p < 0 ? "1'b0" : fmt::format("(CHECK == 0 || CHECK == {})", p); }
-const char* inverse(bool active_high) { return active_high ? "1'b0" : "1'b1"; }
 
 // Bits for a counter that reaches `n`.
 int bits_for(std::uint64_t n) {
@@ -89,7 +87,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   PortWiring wiring(d, ports);
   wiring.drive("clk", "clk");
   if (d.has_reset()) {
-    wiring.drive(PortRef{d.reset_port}, fmt::format("(in_reset ? {} : {})", level(d.reset_active_high), inverse(d.reset_active_high)));
+    wiring.drive_raised(PortRef{d.reset_port}, d.reset_active_high, "in_reset");
   }
   wiring.drive_raised("req", "req_i");
   // The addresses the receiver both takes and gives: of an input port wider than the output (a
@@ -102,7 +100,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   if (d.has("contention")) wiring.drive_raised("contention", "contention_i");
   if (d.has("ready")) wiring.drive_raised("ready", "ready_i");
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
-  const std::string ack = wiring.read("ack"), out_addr = wiring.read("out_addr");
+  const std::string ack = wiring.read_raised("ack"), out_addr = wiring.read("out_addr");
   const std::string ts = d.has("timestamp") ? wiring.read("timestamp") : "";
   const std::string flag = d.has("flags") ? wiring.read("flags") : "";
   const std::string ov = d.has("overflow_count") ? wiring.read("overflow_count") : "";
@@ -199,7 +197,7 @@ module aesim_formal_top #(
 {connections}
   );
 
-  wire ack = {ack} == {ack_on};
+  wire ack = {ack};
 {valid_wire}  wire [{ow_msb}:0] out_addr = {out_addr};
   wire [{tw_msb}:0] out_ts = {ts_expr};
   wire out_flag = {flag_expr};
@@ -318,7 +316,7 @@ module aesim_formal_top #(
                          fmt::arg("reset_done", d.has_reset() ? "past_valid && !settling && !free_q" : "!past_valid"), fmt::arg("declarations", wiring.declarations()),
                          fmt::arg("parameter_list", parameter_list.empty() ? "" : "#(" + parameter_list + ") "),
                          fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
-                         fmt::arg("ack_on", level(d.active_high("ack"))), fmt::arg("valid_wire", valid_wire),
+                         fmt::arg("valid_wire", valid_wire),
                          fmt::arg("ow_msb", ow - 1), fmt::arg("out_addr", out_addr), fmt::arg("tw_msb", tw - 1),
                          fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "1'b0" : flag + "[0]"),
                          fmt::arg("vw_msb", vw - 1), fmt::arg("ov_expr", ov.empty() ? "1'b0" : ov),
