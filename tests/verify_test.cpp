@@ -585,6 +585,54 @@ TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
   EXPECT_FALSE(fs::exists(dir_ / "ready"));
 }
 
+// A receiver that takes the address after Req falls (tests/rtl/late_sampling_receiver) is right
+// behind a sender that holds it until Ack falls, wrong behind the imager's pixels, which let go of
+// it with Req. Described with `[bus] address_held = "until_ack_falls"` it passes in simulation, in
+// the proof and in its exported testbench under Icarus; without it the first beat carries the
+// released lines (0), a hint names the key, the proof's beat_in_order fails and the replay of its
+// counterexample reports the same beat. The bundled receiver, which takes the address while Req is
+// high, passes behind either sender.
+TEST_F(VerifyTest, ASenderThatHoldsTheAddressUntilAckFallsIsDescribedByAddressHeld) {
+  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/late_sampling_receiver";
+  const Outcome o = verify("'" + dir + "/lsr.toml' --formal --export-tb tb");
+  const nlohmann::json good = report();
+  expect_pass(o, good, 12);
+  ASSERT_TRUE(good["formal"].is_array());
+  for (const auto& v : good["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  const std::string description = slurp(dir + "/lsr.toml");
+  write("lsr.v", slurp(dir + "/lsr.v"));
+  write("early.toml", edited(description, "[bus]\naddress_held = \"until_ack_falls\"\n", ""));
+  const Outcome early = verify("early.toml --formal --out early");
+  EXPECT_EQ(early.status, 1) << early.err;
+  const nlohmann::json early_report = report("early");
+  const nlohmann::json first = early_report["first_failure"];
+  EXPECT_EQ(first["check"], "beat") << first.dump();
+  EXPECT_NE(first.value("observed", "").find("address 0x0,"), std::string::npos) << first.dump();
+  EXPECT_NE(first.value("hint", "").find("address_held = \"until_ack_falls\""), std::string::npos) << first.dump();
+  int order = 0;
+  for (const auto& v : early_report["formal"]) {
+    if (v["property"] != "beat_in_order") {
+      EXPECT_EQ(v["verdict"], "proved") << v.dump();
+      continue;
+    }
+    EXPECT_EQ(v["verdict"], "failed") << v.dump();
+    ++order;
+  }
+  EXPECT_EQ(order, 1);
+  EXPECT_NE(early.out.find("replaying the counterexample's inputs, reports beat at cycle"), std::string::npos) << early.out;
+
+  write("bundled.toml", slurp(kRtl + "/aer_receiver.toml") + "\n[bus]\naddress_held = \"until_ack_falls\"\n");
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) write(f, slurp(kRtl + "/" + f));
+  const Outcome bundled = verify("bundled.toml --out bundled");
+  expect_pass(bundled, report("bundled"));
+
+  expect_refused("later.toml", edited(description, "\"until_ack_falls\"", "\"later\""),
+                 "bus.address_held: must be \"until_ack_rises\" (the imager's pixels) or \"until_ack_falls\"");
+  expect_refused("unknown.toml", edited(description, "address_held", "address_hold"), "bus.address_hold: unknown key (address_held)");
+}
+
 // An address port wider than the output's address (spio's AER-to-SpiNNaker mapper takes 16 bits
 // and its packet's slice gives 10): the proof drives the addresses both carry, as the bus and the
 // simulation do, so a solver's address in the extra bits is no counterexample; a wrong slice

@@ -97,6 +97,11 @@ int verify_command(const VerifyCommandOptions& opt) {
       replay.name = "formal counterexample (" + formal->failed_property + ")";
       replay.kind = "replay";
       replay.replay = formal->replay;
+      // The checker declares a consumer's ready input whatever the design; without a ready port
+      // it reads none, so the solver's values for it are no stall.
+      if (!d.has("ready")) {
+        for (ReplayStep& step : replay.replay) step.ready = true;
+      }
       replay.max_edges = formal->replay.size() + 2 * static_cast<std::uint64_t>(d.ack_latency_max) + 40;
       VerifyOptions ro;
       ro.progress = false;

@@ -187,6 +187,9 @@ const char* to_string(ReceiverDescription::Collisions c) {
 }
 
 const char* to_string(ReceiverDescription::Full f) { return f == ReceiverDescription::Full::Drop ? "drop" : "hold"; }
+const char* to_string(ReceiverDescription::AddressHeld h) {
+  return h == ReceiverDescription::AddressHeld::UntilAckRises ? "until_ack_rises" : "until_ack_falls";
+}
 
 ReceiverDescription read_receiver_description(const std::string& path) {
   if (!is_input_file(path, "receiver description")) {
@@ -198,7 +201,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   d.file = path;
   for (const auto& [key, value] : root.as_table()) {
     static const char* known[] = {"top", "sources", "include_dirs", "defines", "parameters", "clock",
-                                  "reset", "ports", "inputs", "behaviour", "formal"};
+                                  "reset", "ports", "inputs", "bus", "behaviour", "formal"};
     if (std::find(std::begin(known), std::end(known), key) == std::end(known)) {
       r.fail(key, "unknown key" + did_you_mean(key, {std::begin(known), std::end(known)}));
     }
@@ -351,6 +354,17 @@ ReceiverDescription read_receiver_description(const std::string& path) {
       } else {
         r.fail(label, "expected a non-negative integer or a boolean");
       }
+    }
+  }
+
+  if (const TomlValue* bus = r.find(root, "bus")) {
+    if (!bus->is_table()) r.fail("bus", "expected a table");
+    for (const auto& [key, value] : bus->as_table()) {
+      if (key != "address_held") r.fail("bus." + key, "unknown key (address_held)");
+      const std::string held = r.string_of(value, "bus.address_held");
+      if (held == "until_ack_rises") d.address_held = ReceiverDescription::AddressHeld::UntilAckRises;
+      else if (held == "until_ack_falls") d.address_held = ReceiverDescription::AddressHeld::UntilAckFalls;
+      else r.fail("bus.address_held", "must be \"until_ack_rises\" (the imager's pixels) or \"until_ack_falls\"");
     }
   }
 

@@ -56,6 +56,12 @@ struct ReceiverDescription {
   // The last two only without a ready port.
   enum class ValidBeat { High, Rise, Change };
   ValidBeat valid_beat = ValidBeat::High;
+  // How long the sender holds the address and contention it raised Req with (`[bus]
+  // address_held`): until Ack rises, as the imager's pixels do (they let go of the lines with Req
+  // when Ack resets them); or until Ack falls, as a synchronous sender's output register does (a
+  // receiver may then take the address after Req falls).
+  enum class AddressHeld { UntilAckRises, UntilAckFalls };
+  AddressHeld address_held = AddressHeld::UntilAckRises;
   std::map<std::string, PortRef> ports;            // role -> where it is
   std::map<std::string, std::uint64_t> inputs;     // RTL port -> constant value
   Collisions collisions = Collisions::Discard;
@@ -100,5 +106,6 @@ ReceiverDescription read_receiver_description(const std::string& path);
 
 const char* to_string(ReceiverDescription::Collisions c);
 const char* to_string(ReceiverDescription::Full f);
+const char* to_string(ReceiverDescription::AddressHeld h);
 
 }  // namespace aesim

@@ -20,11 +20,13 @@ namespace {
 constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 
 // The pixel side of the bus (the cycle rung's wired-OR lines, or a queue of senders taking turns)
-// and the wires it drives, with any glitch on top.
+// and the wires it drives, with any glitch on top. The senders let go of Req when Ack rises; the
+// address and contention go with it, or (a sender that holds them until Ack falls) stay until then.
 class BusSide {
  public:
-  BusSide(const VerifyCase& c, const BoundPorts& ports, TransactionScoreboard* sb, std::vector<WaveRecord>* wave)
-      : queued_(c.queued_senders), ports_(ports), sb_(sb), wave_(wave) {}
+  BusSide(const VerifyCase& c, const BoundPorts& ports, bool hold_until_ack_falls, TransactionScoreboard* sb,
+          std::vector<WaveRecord>* wave)
+      : queued_(c.queued_senders), hold_(hold_until_ack_falls), ports_(ports), sb_(sb), wave_(wave) {}
 
   void fire(std::uint32_t addr, bool ack, std::uint64_t t, std::uint64_t edges_done, CaseStats& stats) {
     ++stats.firings;
@@ -45,11 +47,22 @@ class BusSide {
   }
   void ack_changed(bool ack, std::uint64_t t, std::uint64_t edges_done) {
     if (ack) {
+      if (hold_ && lines_.req()) {
+        held_ = true;
+        held_addr_ = lines_.addr();
+        held_contention_ = lines_.contention();
+      }
       lines_.release(released_);
       drive(t, edges_done);
-    } else if (queued_ && !waiting_.empty() && !lines_.req()) {
+      return;
+    }
+    const bool was_held = held_;
+    held_ = false;
+    if (queued_ && !waiting_.empty() && !lines_.req()) {
       lines_.join(waiting_.front(), waiting_.front(), false);
       waiting_.pop_front();
+      drive(t, edges_done);
+    } else if (was_held) {
       drive(t, edges_done);
     }
   }
@@ -71,9 +84,12 @@ class BusSide {
 
  private:
   void drive(std::uint64_t t, std::uint64_t edges_done) {
-    const std::uint64_t addr = forced_ ? forced_addr_ : lines_.addr() | (glitch_ ? glitch_addr_ : 0);
+    // While Ack is high no pixel joins (one that fires sees Ack and withdraws), so held lines are
+    // the released transaction's alone.
+    const std::uint64_t lines = held_ ? held_addr_ : lines_.addr();
+    const std::uint64_t addr = forced_ ? forced_addr_ : lines | (glitch_ ? glitch_addr_ : 0);
     const bool req = forced_ ? forced_req_ : lines_.req() || glitch_;
-    const bool contention = forced_ ? forced_contention_ : lines_.contention();
+    const bool contention = forced_ ? forced_contention_ : held_ ? held_contention_ : lines_.contention();
     if (req == req_ && addr == addr_ && contention == contention_) return;
     req_ = req;
     addr_ = addr;
@@ -89,6 +105,9 @@ class BusSide {
   }
 
   bool queued_;
+  bool hold_;
+  bool held_ = false, held_contention_ = false;  // holding the last transaction's lines until Ack falls
+  std::uint32_t held_addr_ = 0;
   const BoundPorts& ports_;
   TransactionScoreboard* sb_;
   std::vector<WaveRecord>* wave_;
@@ -110,7 +129,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   const std::uint64_t period = clock_period_ps(d), half = period / 2;
   auto off_edge = [half](std::uint64_t t) { return t % half == 0 ? t + 1 : t; };
   CaseStats stats;
-  BusSide bus(c, ports, sb, options.waveform);
+  BusSide bus(c, ports, d.address_held == ReceiverDescription::AddressHeld::UntilAckFalls, sb, options.waveform);
   if (sb) sb->begin_case(c.name);
 
   std::unique_ptr<FiringSource> source = c.make_firings ? c.make_firings() : nullptr;

@@ -206,7 +206,7 @@ module aesim_formal_top #(
 
   // The sender and the handshake as the checker follows them: a transaction is open from the step
   // Req rises to the step Ack is seen high; closing from the step Req falls to the step Ack is low.
-  reg past_valid = 0, free_q = 0, req_q = 0, ack_q = 0, open_q = 0, closing_q = 0, col_q = 0;
+  reg past_valid = 0, free_q = 0, req_q = 0, ack_q = 0, open_q = 0, closing_q = 0, col_q = 0, txn_q = 0;
   reg [{aw_msb}:0] addr_q = 0;
   wire rise = !settling && req_i && !req_q;
   wire open = rise || open_q;
@@ -231,6 +231,7 @@ module aesim_formal_top #(
     col_q <= contention_i;
     open_q <= open && !ack;
     closing_q <= closing && ack;
+    txn_q <= (rise || txn_q) && (req_i || ack);
     lat_cnt <= open && !ack ? (lat == {cw}'d{sat} ? lat : lat + 1'b1) : {cw}'d0;
     exc_cnt <= open && !ack ? ({hold} && stall ? {cw}'d0 : exc == {cw}'d{sat} ? exc : exc + 1'b1) : {cw}'d0;
     fall_cnt <= closing && ack ? (flat == {cw}'d{sat} ? flat : flat + 1'b1) : {cw}'d0;
@@ -241,6 +242,8 @@ module aesim_formal_top #(
     if (rise) assume (!ack);
     if (open_q && !ack) assume (req_i);
     if (open_q && req_i) assume (addr_i == addr_q && contention_i == col_q);
+    // A sender that holds its lines until Ack falls ([bus] address_held).
+    if ({held_to_fall} && txn_q && (req_i || ack)) assume (addr_i == addr_q && contention_i == col_q);
   end
 
   always @* begin
@@ -321,6 +324,7 @@ module aesim_formal_top #(
                          fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "1'b0" : flag + "[0]"),
                          fmt::arg("vw_msb", vw - 1), fmt::arg("ov_expr", ov.empty() ? "1'b0" : ov),
                          fmt::arg("ready_expr", d.has("ready") ? "ready_i" : "1'b1"), fmt::arg("special", special), fmt::arg("hold", hold ? "1'b1" : "1'b0"),
+                         fmt::arg("held_to_fall", d.address_held == ReceiverDescription::AddressHeld::UntilAckFalls ? "1'b1" : "1'b0"),
                          fmt::arg("p_reset", on(p_reset)), fmt::arg("p_rise", on(p_rise)), fmt::arg("p_rise_min", on(p_rise_min)),
                          fmt::arg("p_rise_max", on(p_rise_max)), fmt::arg("p_fall", on(p_fall)), fmt::arg("p_fall_min", on(p_fall_min)),
                          fmt::arg("p_fall_max", on(p_fall_max)), fmt::arg("p_held", on(p_held)), fmt::arg("p_invent", on(p_invent)),

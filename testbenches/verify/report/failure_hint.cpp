@@ -17,6 +17,12 @@ std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d) {
                        "\"flag\" a beat with bit 0 of flags set, \"pass\" a beat of the OR address)",
                        to_string(d.collisions));
   }
+  // The address taken after the sender let go of it (a receiver that reads it when Req falls).
+  if (f.beat_of_released_lines && d.address_held == ReceiverDescription::AddressHeld::UntilAckRises) {
+    return "the beat carries the address lines as they are once Ack has risen and the sender let go of them: a receiver "
+           "takes the address while Req is high; a sender that holds it until Ack falls is described with "
+           "[bus] address_held = \"until_ack_falls\"";
+  }
   // A beat with no transaction waiting: a valid read at the wrong level or as the wrong kind of
   // strobe, or an output word that is no event.
   if (f.check == "beat" && f.expected.rfind("no beat", 0) == 0) {

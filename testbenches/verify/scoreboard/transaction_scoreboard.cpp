@@ -354,6 +354,9 @@ void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const 
       return Texts{head ? describe(*head) : "no beat (no transaction is waiting)",
                    fmt::format("address 0x{:x}, stamp {}, flag {}", b.addr, b.ts, b.flag ? 1 : 0)};
     });
+    if (failures_ == 1 && head && head->acked && !req_ && b.addr == addr_ && !value_matches(*head, b)) {
+      first_->beat_of_released_lines = true;
+    }
     return;
   }
   for (std::size_t k = 0; k < i; ++k) count_missing_beat(pending_[k]);

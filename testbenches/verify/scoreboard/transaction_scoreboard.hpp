@@ -23,6 +23,9 @@ struct VerifyFailure {
   std::string case_name, check, expected, observed;
   double time_s = 0;
   std::uint64_t cycle = 0;
+  // A beat whose address is what the bus's address lines carry once the sender has let go of them
+  // (Req low), not the transaction's: the receiver took the address after Ack rose.
+  bool beat_of_released_lines = false;
 };
 
 // Checks a receiver against its description alone, at the level of transactions: it sees the bus
