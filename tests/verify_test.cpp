@@ -633,6 +633,55 @@ TEST_F(VerifyTest, ASenderThatHoldsTheAddressUntilAckFallsIsDescribedByAddressHe
   expect_refused("unknown.toml", edited(description, "address_held", "address_hold"), "bus.address_hold: unknown key (address_held)");
 }
 
+// A two-phase receiver (each edge of Req an event, Ack toggled once) behind aesim's four-phase bus
+// gives a second beat, of the released lines, as Req falls: it fails there, and the hint says the
+// bus is four-phase rather than pointing at valid's level. A level-held valid described as a
+// plain one repeats its word instead, and keeps the hint about valid.
+TEST_F(VerifyTest, ATwoPhaseReceiverIsToldItMeetsAFourPhaseBus) {
+  write("tpr.v", R"(`default_nettype none
+module tpr (
+    input  wire       clk,
+    input  wire       rst,
+    input  wire       req,
+    input  wire [9:0] addr,
+    output reg        ack,
+    output reg  [9:0] word,
+    output reg        word_valid
+);
+  reg r1, r2, r3;
+  always @(posedge clk) begin
+    if (rst) begin
+      {r1, r2, r3, ack, word_valid} <= 5'd0;
+      word <= 10'd0;
+    end else begin
+      {r3, r2, r1} <= {r2, r1, req};
+      word_valid <= r2 != r3;
+      if (r2 != r3) begin
+        word <= addr;
+        ack  <= !ack;
+      end
+    end
+  end
+endmodule
+`default_nettype wire
+)");
+  write("tpr.toml", "top = \"tpr\"\nsources = [\"tpr.v\"]\nclock = \"50MHz\"\nreset = { port = \"rst\", active = \"high\" }\n"
+                    "[ports]\nclk = \"clk\"\nreq = \"req\"\nack = \"ack\"\naddr = \"addr\"\nvalid = \"word_valid\"\n"
+                    "out_addr = \"word\"\n[behaviour]\ncollisions = \"pass\"\nack_latency_cycles = [3, 3]\n");
+  const Outcome o = verify("tpr.toml --out two");
+  EXPECT_EQ(o.status, 1) << o.err;
+  const nlohmann::json first = report("two")["first_failure"];
+  EXPECT_EQ(first["check"], "beat") << first.dump();
+  EXPECT_EQ(first["observed"], "address 0x0, stamp 0, flag 0") << first.dump();
+  EXPECT_NE(first.value("hint", "").find("aesim's bus is four-phase"), std::string::npos) << first.dump();
+
+  write("level.toml", edited(level_valid_receiver(), "valid = { port = \"word_ready\", beat = \"rise\" }", "valid = \"word_ready\""));
+  EXPECT_EQ(verify("level.toml --out level").status, 1);
+  const nlohmann::json level = report("level")["first_failure"];
+  EXPECT_EQ(level["check"], "beat") << level.dump();
+  EXPECT_NE(level.value("hint", "").find("one held for each word (beat = \"rise\")"), std::string::npos) << level.dump();
+}
+
 // An address port wider than the output's address (spio's AER-to-SpiNNaker mapper takes 16 bits
 // and its packet's slice gives 10): the proof drives the addresses both carry, as the bus and the
 // simulation do, so a solver's address in the extra bits is no counterexample; a wrong slice

@@ -23,6 +23,12 @@ std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d) {
            "takes the address while Req is high; a sender that holds it until Ack falls is described with "
            "[bus] address_held = \"until_ack_falls\"";
   }
+  // A beat as Req fell: each edge of Req taken for a transaction.
+  if (f.beat_as_req_fell) {
+    return "a beat where no transaction waited, as Req fell: aesim's bus is four-phase (Req rises and falls once for "
+           "each event, Ack follows each edge), and a two-phase receiver, which takes each edge of Req for an event and "
+           "toggles Ack once, gives a second beat at the fall";
+  }
   // A beat with no transaction waiting: a valid read at the wrong level or as the wrong kind of
   // strobe, or an output word that is no event.
   if (f.check == "beat" && f.expected.rfind("no beat", 0) == 0) {

@@ -357,6 +357,11 @@ void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const 
     if (failures_ == 1 && head && head->acked && !req_ && b.addr == addr_ && !value_matches(*head, b)) {
       first_->beat_of_released_lines = true;
     }
+    // Of the lines as they are after the fall (a valid held over several edges repeats its word).
+    if (failures_ == 1 && !head && !req_ && b.addr == addr_ && req_fall_edge_ > 0 && cycle + 1 >= req_fall_edge_ &&
+        cycle + 1 - req_fall_edge_ <= 2 * static_cast<std::uint64_t>(lat_max_) + 2) {
+      first_->beat_as_req_fell = true;
+    }
     return;
   }
   for (std::size_t k = 0; k < i; ++k) count_missing_beat(pending_[k]);

@@ -26,6 +26,10 @@ struct VerifyFailure {
   // A beat whose address is what the bus's address lines carry once the sender has let go of them
   // (Req low), not the transaction's: the receiver took the address after Ack rose.
   bool beat_of_released_lines = false;
+  // A beat of the released lines where no transaction waited, soon after Req fell (within twice
+  // the latency bound and two edges: an Ack and a registered valid after it): the receiver took
+  // the fall for a transaction of its own (a two-phase receiver).
+  bool beat_as_req_fell = false;
 };
 
 // Checks a receiver against its description alone, at the level of transactions: it sees the bus
