@@ -633,6 +633,47 @@ TEST_F(VerifyTest, ASenderThatHoldsTheAddressUntilAckFallsIsDescribedByAddressHe
   expect_refused("unknown.toml", edited(description, "address_held", "address_hold"), "bus.address_hold: unknown key (address_held)");
 }
 
+// A design that stamps from a time it is given (the bundled receiver with ts_external_i set takes
+// ts_i) has that port described as `time_in`: aesim drives it, after each edge, with the ticks
+// completed since the reset by the stamps' own rule. Read at an edge, ts_i carries the ticks up to
+// the edge before, where the receiver's own counter gives those up to that edge: the stamps pass
+// with the rule one edge earlier. So they do in the proof (to the depth 2 s allow) and in Icarus.
+// Held at 0 instead, every stamp is 0 and the first one past a tick fails.
+TEST_F(VerifyTest, ATimeTheDesignReadsIsDrivenWithTheTicksSinceReset) {
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) write(f, slurp(kRtl + "/" + f));
+  // 8-bit stamps of two cycles, so that the proof sees several ticks and wraps within its depth.
+  std::string own = edited(slurp(kRtl + "/aer_receiver.toml"), "TS_WIDTH = 32,", "TS_WIDTH = 8,");
+  own = edited(edited(own, "prescale_i = 50 ", "prescale_i = 2 "), "timestamp_bits = 32", "timestamp_bits = 8");
+  own = edited(own, "timestamp_tick = \"1us\"", "timestamp_tick = \"40ns\"");
+  write("own.toml", own);
+  ASSERT_EQ(verify("own.toml --out own").status, 0);
+  EXPECT_EQ(report("own")["stamp_rule"], "ticks since reset at edge 4 after Req rose or the edge Ack rose");
+
+  const std::string given = edited(edited(own, "ts_external_i = 0 ", "ts_external_i = 1 "), "ts_i = 0\n", "");
+  write("given.toml", edited(given, "overflow_count = \"overflows_o\"\n", "overflow_count = \"overflows_o\"\ntime_in = \"ts_i\"\n"));
+  const Outcome o = verify("given.toml --formal --formal-seconds 2 --export-tb tb --out given");
+  const nlohmann::json r = report("given");
+  expect_pass(o, r);
+  EXPECT_EQ(r["stamp_rule"], "ticks since reset at edge 3 after Req rose or the edge Ack rose - 1");
+  ASSERT_TRUE(r["formal"].is_array());
+  bool stamp_checked = false;
+  for (const auto& v : r["formal"]) {
+    EXPECT_NE(v["verdict"], "failed") << v.dump();
+    stamp_checked = stamp_checked || v["property"] == "stamp_rule";
+  }
+  EXPECT_TRUE(stamp_checked);
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  write("held.toml", edited(given, "ts_external_i = 1 ", "ts_external_i = 1\nts_i = 0\n"));
+  const Outcome held = verify("held.toml --out held");
+  EXPECT_EQ(held.status, 1) << held.err;
+  EXPECT_EQ(report("held")["first_failure"]["check"], "timestamp") << report("held")["first_failure"].dump();
+
+  // The time's tick is the stamps' (timestamp_tick), needed without a timestamp port too.
+  expect_refused("untimed.toml", edited(level_valid_receiver(), "out_addr = \"word\"\n", "out_addr = \"word\"\ntime_in = \"now\"\n"),
+                 "behaviour.timestamp_tick");
+}
+
 // A two-phase receiver (each edge of Req an event, Ack toggled once) behind aesim's four-phase bus
 // gives a second beat, of the released lines, as Req falls: it fails there, and the hint says the
 // bus is four-phase rather than pointing at valid's level. A level-held valid described as a

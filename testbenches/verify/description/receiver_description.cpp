@@ -173,7 +173,8 @@ const std::vector<PortRole>& port_roles() {
       {"clk", true, false},         {"req", true, false},        {"ack", false, false},
       {"addr", true, false},        {"valid", false, false},     {"out_addr", false, false},
       {"ready", true, true},        {"timestamp", false, true},  {"contention", true, true},
-      {"flags", false, true},       {"overflow_count", false, true}, {"special", false, true}};
+      {"flags", false, true},       {"overflow_count", false, true}, {"special", false, true},
+      {"time_in", true, true}};
   return roles;
 }
 
@@ -262,7 +263,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     const auto& roles = port_roles();
     if (std::none_of(roles.begin(), roles.end(), [&role](const PortRole& p) { return role == p.name; })) {
       r.fail(key, "not a port role (clk, req, ack, addr, contention, valid, ready, out_addr, timestamp, "
-                  "flags, overflow_count, special)");
+                  "flags, overflow_count, special, time_in)");
     }
     std::string text;
     if (value.is_table()) {
@@ -303,8 +304,8 @@ ReceiverDescription read_receiver_description(const std::string& path) {
       text = r.string_of(value, key);
     }
     if (!text.empty() && text.front() == '{' && text.back() == '}') {
-      if (role != "addr" && role != "out_addr" && role != "timestamp") {
-        r.fail(key, fmt::format("'{}': only addr, out_addr and timestamp may join ports", text));
+      if (role != "addr" && role != "out_addr" && role != "timestamp" && role != "time_in") {
+        r.fail(key, fmt::format("'{}': only addr, out_addr, timestamp and time_in may join ports", text));
       }
       d.ports[role] = r.joined_ref(text, key);
     } else {
@@ -407,7 +408,8 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     d.synchroniser_flops = static_cast<int>(flops->as_integer());
   }
 
-  if (d.has("timestamp")) {
+  // The tick and the wrap are the stamp's, and the time a design reads (time_in) counts the same.
+  if (d.has("timestamp") || d.has("time_in")) {
     const TomlValue& tick = r.need(behaviour, "timestamp_tick", "behaviour.timestamp_tick");
     d.timestamp_tick = parse_si(r.string_of(tick, "behaviour.timestamp_tick"), "s", "behaviour.timestamp_tick");
     if (!(d.timestamp_tick <= 1.0)) r.fail("behaviour.timestamp_tick", "at most 1 s");
@@ -424,6 +426,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     }
     d.timestamp_bits = static_cast<int>(bits.as_integer());
     if (const TomlValue* offset = r.find(behaviour, "timestamp_offset_cycles")) {
+      if (!d.has("timestamp")) r.fail("behaviour.timestamp_offset_cycles", "given, but [ports] names no timestamp");
       if (!offset->is_integer() || offset->as_integer() < 0 || offset->as_integer() > d.ack_latency_max + 1) {
         r.fail("behaviour.timestamp_offset_cycles",
                fmt::format("expected the edge of the stamp, 0 to {} (ack_latency_cycles max + 1), counting the first "
@@ -434,7 +437,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     }
   } else {
     for (const char* key : {"timestamp_tick", "timestamp_bits", "timestamp_offset_cycles"}) {
-      if (r.find(behaviour, key)) r.fail(fmt::format("behaviour.{}", key), "given, but [ports] names no timestamp");
+      if (r.find(behaviour, key)) r.fail(fmt::format("behaviour.{}", key), "given, but [ports] names no timestamp or time_in");
     }
   }
 

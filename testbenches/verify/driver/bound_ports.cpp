@@ -116,6 +116,7 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   b.ready = role("ready");
   b.out_addr = joined("out_addr");
   b.timestamp = joined("timestamp");
+  b.time_in = joined("time_in");
   b.flags = role("flags");
   b.overflow = role("overflow_count");
   b.special = role("special");

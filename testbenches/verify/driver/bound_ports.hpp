@@ -54,7 +54,7 @@ class JoinedAccess {
 // ready, no timestamp, ...) ignore writes.
 struct BoundPorts {
   PortAccess clk, reset, req, ack, contention, valid, ready, flags, overflow, special;
-  JoinedAccess addr, out_addr, timestamp;
+  JoinedAccess addr, out_addr, timestamp, time_in;
   bool reset_active_high = false, req_active_high = true, ack_active_high = true, valid_active_high = true,
        ready_active_high = true, contention_active_high = true, special_active_high = true;
   void set_reset(bool active) const { reset.write(active == reset_active_high ? 1 : 0); }

@@ -181,6 +181,23 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       changed = true;
     }
   };
+  // The time a design reads (time_in): after edge e, the ticks completed since the reset, by the
+  // stamps' own rule (StampRule::ticks: from the design's release, its own release_cycles after
+  // aesim's), modulo 2^timestamp_bits.
+  const bool drives_time = d.has("time_in");
+  const std::uint64_t time_mask = d.timestamp_bits >= 64 ? ~0ULL : (1ULL << d.timestamp_bits) - 1;
+  std::uint64_t time_origin = 0;
+  bool time_in_reset = d.has_reset();
+  auto set_time = [&](std::uint64_t k, bool reset_k) {
+    if (reset_k) {
+      time_in_reset = true;
+    } else if (time_in_reset) {
+      time_in_reset = false;
+      time_origin = k - 1 + static_cast<std::uint64_t>(d.reset_release_cycles);
+    }
+    const std::uint64_t e = k - 1;
+    ports.time_in.write(time_in_reset || e <= time_origin ? 0 : ((e - time_origin) / d.timestamp_cycles) & time_mask);
+  };
   // The consumer and the reset for rising edge k, set a quarter period after edge k-1 (before
   // the falling edge, so that one evaluation takes them with it).
   auto set_controls = [&](std::uint64_t k) {
@@ -193,6 +210,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       ready_k = !stalled && (always_ready || (ready_rng() >> 11) < ready_below);
     }
     const bool reset_k = k <= reset_edges || (k >= reset_from && k < reset_from + static_cast<std::uint64_t>(c.reset_edges));
+    if (drives_time) set_time(k, reset_k);
     if (ready_k == ready && reset_k == reset) return;
     ready = ready_k;
     reset = reset_k;
@@ -207,6 +225,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   ports.set_contention(false);
   ports.set_ready(true);
   ports.set_reset(reset);
+  if (drives_time) set_time(1, reset);
   bus.record_controls(0, true, reset);
   if (!c.replay.empty()) {
     ready = c.replay[0].ready;

@@ -51,6 +51,19 @@ void write_testbench(const std::string& dir, const ReceiverDescription& d, const
   wiring.drive("addr", "addr");
   if (d.has("contention")) wiring.drive_raised("contention", "contention");
   if (d.has("ready")) wiring.drive_raised("ready", "ready");
+  // The time the design reads (time_in), counted here as aesim's run drove it: after each edge,
+  // the ticks since the reset's last edge and the design's own release, modulo 2^timestamp_bits.
+  std::string time_counter;
+  if (d.has("time_in")) {
+    wiring.drive("time_in", "time_in_now");
+    time_counter = fmt::format(
+        "  reg signed [63:0] time_edges = 64'sd0;  // edges since the ticks' origin\n"
+        "  always @(posedge clk) time_edges <= rst ? -64'sd{release} : time_edges + 64'sd1;\n"
+        "  wire signed [63:0] time_ticks = time_edges > 0 ? time_edges / 64'sd{cycles} : 64'sd0;\n"
+        "  wire [{bits_msb}:0] time_in_now = time_ticks[{bits_msb}:0];\n",
+        fmt::arg("release", d.reset_release_cycles), fmt::arg("cycles", d.timestamp_cycles),
+        fmt::arg("bits_msb", d.timestamp_bits - 1));
+  }
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
   const std::string ack = wiring.read_raised("ack"), out_addr = wiring.read("out_addr");
   const std::string stamp = d.has("timestamp") ? wiring.read("timestamp") : "";
@@ -95,7 +108,7 @@ module tb;
   reg contention = 1'b0;
   reg ready = 1'b1;
   reg [{aw_msb}:0] addr = {aw}'d0;
-{declarations}
+{time_counter}{declarations}
   wire ack = {ack};
 {valid_wire}  wire [63:0] out_addr = {out_addr};
   wire [63:0] out_stamp = {stamp_wire};
@@ -186,7 +199,8 @@ endmodule
                     fmt::arg("parameter_list", parameters.empty() ? "" : "#(" + parameters + ") "),
                     fmt::arg("connections", wiring.connections()), fmt::arg("period", period),
                     fmt::arg("beats_read", beats_read),
-                    fmt::arg("stamp_check", stamp_check), fmt::arg("stamp_text", stamp_text));
+                    fmt::arg("stamp_check", stamp_check), fmt::arg("stamp_text", stamp_text),
+                    fmt::arg("time_counter", time_counter));
 }
 
 }  // namespace aesim

@@ -99,6 +99,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   wiring.drive("addr", aw < addr_port_width ? fmt::format("{{{}'d0, addr_i}}", addr_port_width - aw) : "addr_i");
   if (d.has("contention")) wiring.drive_raised("contention", "contention_i");
   if (d.has("ready")) wiring.drive_raised("ready", "ready_i");
+  if (d.has("time_in")) wiring.drive("time_in", "time_tk");
   for (const auto& [name, value] : d.inputs) wiring.drive(PortRef{name}, fmt::format("{}'d{}", find_port(ports, name)->width, value));
   const std::string ack = wiring.read_raised("ack"), out_addr = wiring.read("out_addr");
   const std::string ts = d.has("timestamp") ? wiring.read("timestamp") : "";
@@ -168,6 +169,29 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
                               fmt::arg("p_stamp", on(p_stamp)));
   }
 
+  // The time the design reads (time_in): ticks since reset, by the rule the stamps follow.
+  std::string time_logic;
+  if (d.has("time_in")) {
+    time_logic = fmt::format(R"(
+  // The time the design reads: ticks since reset after each edge, by the stamps' rule.
+  reg [{tb_msb}:0] time_tk = 0;
+  reg [{dw_msb}:0] time_div = 0;
+  always @(posedge clk) begin
+    if (settling) begin
+      time_tk <= 0;
+      time_div <= 0;
+    end else if (time_div == {dw}'d{tick_last}) begin
+      time_tk <= time_tk + 1'b1;
+      time_div <= 0;
+    end else begin
+      time_div <= time_div + 1'b1;
+    end
+  end
+)",
+                             fmt::arg("tb_msb", d.timestamp_bits - 1), fmt::arg("tick_last", d.timestamp_cycles - 1),
+                             fmt::arg("dw", bits_for(d.timestamp_cycles)), fmt::arg("dw_msb", bits_for(d.timestamp_cycles) - 1));
+  }
+
   const std::string gives = d.collisions == Collisions::Discard ? "!contention_i" : "1'b1";
   const std::string flag_ok = d.collisions == Collisions::Flag ? "out_flag == tag_flag" : "!out_flag";
   const int cw = bits_for(static_cast<std::uint64_t>(lmax) + 1);
@@ -191,7 +215,7 @@ module aesim_formal_top #(
   // sends nothing and counts nothing until then.
   wire settling = rst_cnt < 8'd{settled_step};
   always @(posedge clk) if (settling) rst_cnt <= rst_cnt + 1'b1;
-
+{time_logic}
 {declarations}
   {top} {parameter_list}dut (
 {connections}
@@ -333,7 +357,7 @@ module aesim_formal_top #(
                          fmt::arg("cw", cw), fmt::arg("cw_msb", cw - 1), fmt::arg("sat", lmax + 1), fmt::arg("qw", qw),
                          fmt::arg("qw_msb", qw - 1), fmt::arg("qw_sat", (1 << qw) - 1), fmt::arg("sw", sw),
                          fmt::arg("sw_msb", sw - 1), fmt::arg("sw_sat", (1 << sw) - 1),
-                         fmt::arg("stamp_logic", stamp_logic));
+                         fmt::arg("time_logic", time_logic), fmt::arg("stamp_logic", stamp_logic));
   return c;
 }
 
