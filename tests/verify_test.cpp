@@ -286,7 +286,7 @@ endmodule
   // Only the multi-bit roles join ports, each port once.
   const std::vector<std::pair<std::string, std::string>> bad = {
       {edited(description, "valid = \"evt_valid_o\"", "valid = \"{evt_valid_o, evt_flags_o}\""),
-       "ports.valid: '{evt_valid_o, evt_flags_o}': only addr, out_addr and timestamp may join ports"},
+       "ports.valid: '{evt_valid_o, evt_flags_o}': only addr, out_addr, timestamp and time_in may join ports"},
       {edited(description, "out_addr = \"{evt_y, evt_x}\"", "out_addr = \"{evt_y, evt_y}\""), "port evt_y is also ports.out_addr"},
       {edited(description, "out_addr = \"{evt_y, evt_x}\"", "out_addr = \"{evt_y, }\""), "an empty part in the joined ports"}};
   for (std::size_t i = 0; i < bad.size(); ++i) expect_refused(fmt::format("bad{}.toml", i), bad[i].first, bad[i].second);
