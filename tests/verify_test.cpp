@@ -220,6 +220,57 @@ endmodule
                  "ports.addr: only req, ack, valid, ready, contention and special take { port, active }");
 }
 
+// A top whose output side has a clock port of its own (here a register stage on `out_clk` between
+// the bundled receiver and the consumer) lists both clocks, `clk = ["clk_i", "out_clk"]`: both are
+// driven by the receiver's clock, in the simulation, the proof and the exported testbench. With
+// only `clk_i` named, `out_clk` is held at 0, as the run says, and no beat ever comes out.
+TEST_F(VerifyTest, ASecondClockPortRunsOnTheReceiversClock) {
+  write("two_clk_top.v", R"(module two_clk_top (
+    input  wire        clk_i, out_clk, rst_ni, req_i, contention_i, evt_ready_i,
+    input  wire [15:0] addr_i,
+    output wire        ack_o,
+    output reg         evt_valid_o, evt_flags_o,
+    output reg  [31:0] evt_ts_o,
+    output reg  [15:0] evt_addr_o);
+  wire valid, flag;
+  wire [31:0] ts;
+  wire [15:0] addr;
+  wire take = !evt_valid_o || evt_ready_i;
+)" + bundled_instance({{"evt_valid_o", "valid"}, {"evt_ready_i", "take"}, {"evt_ts_o", "ts"}, {"evt_addr_o", "addr"},
+                       {"evt_flags_o", "flag"}}) +
+                                 R"(  always @(posedge out_clk or negedge rst_ni)
+    if (!rst_ni) begin
+      evt_valid_o <= 1'b0;
+      evt_flags_o <= 1'b0;
+      evt_ts_o    <= 32'd0;
+      evt_addr_o  <= 16'd0;
+    end else if (take) begin
+      evt_valid_o <= valid;
+      evt_flags_o <= flag;
+      evt_ts_o    <= ts;
+      evt_addr_o  <= addr;
+    end
+endmodule
+)");
+  const std::string description =
+      around_bundled("two_clk_top", R"({ port = "rst_ni", active = "low" })", {{"clk", R"(["clk_i", "out_clk"])"}});
+  write("two.toml", description);
+  const Outcome o = verify("two.toml --formal --formal-seconds 5 --export-tb tb --out two");
+  expect_pass(o, report("two"));
+  ASSERT_TRUE(report("two")["formal"].is_array());
+  for (const auto& v : report("two")["formal"]) EXPECT_NE(v["verdict"], "failed") << v.dump();
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  write("one.toml", edited(description, R"(clk = ["clk_i", "out_clk"])", R"(clk = "clk_i")"));
+  const Outcome one = verify("one.toml --out one");
+  EXPECT_EQ(one.status, 1) << one.err;
+  EXPECT_NE((one.out + one.err).find("out_clk held at 0"), std::string::npos) << one.out << one.err;
+  EXPECT_EQ(report("one")["beats_checked"], 0) << report("one")["first_failure"].dump();
+
+  expect_refused("both.toml", edited(description, R"(clk = ["clk_i", "out_clk"])", R"(clk = ["clk_i", "req_i"])"),
+                 "ports.clk: port req_i is also ports.req");
+}
+
 // A top with its own two-flop reset synchroniser comes out of reset two edges after aesim lets
 // go: a Req held through the reset is answered two edges late. Described with release_cycles = 2
 // it passes, with the stamps counted from its own release; with 1 or none it fails there.

@@ -266,7 +266,15 @@ ReceiverDescription read_receiver_description(const std::string& path) {
                   "flags, overflow_count, special, time_in)");
     }
     std::string text;
-    if (value.is_table()) {
+    if (role == "clk" && value.is_array()) {
+      // ["clk_i", "usb_clk"]: the clock on each of these ports, the first the receiver's own.
+      const auto& names = value.as_array();
+      if (names.empty()) r.fail(key, "expected a port name or a list of them");
+      for (std::size_t i = 1; i < names.size(); ++i) {
+        d.clock_also.push_back(r.identifier(r.string_of(names[i], key), key));
+      }
+      text = r.string_of(names[0], key);
+    } else if (value.is_table()) {
       // { port = "aer_req_n", active = "low" }: a one-bit role's polarity (an FX2 FIFO's write
       // strobe, SLWR#, is a valid active low); valid also takes { port = "data_ready", beat =
       // "rise" }: a level held for each word.
@@ -341,6 +349,10 @@ ReceiverDescription read_receiver_description(const std::string& path) {
       r.fail("ports." + role, fmt::format("port {} is also reset.port", ref.port));
     }
     used[ref.port] = "ports." + role;
+  }
+  for (const std::string& name : d.clock_also) {
+    if (used.count(name)) r.fail("ports.clk", fmt::format("port {} is also {}", name, used[name]));
+    used[name] = "ports.clk";
   }
   if (const TomlValue* inputs = r.find(root, "inputs")) {
     if (!inputs->is_table()) r.fail("inputs", "expected a table of PORT = value");

@@ -62,6 +62,9 @@ struct ReceiverDescription {
   // receiver may then take the address after Req falls).
   enum class AddressHeld { UntilAckRises, UntilAckFalls };
   AddressHeld address_held = AddressHeld::UntilAckRises;
+  // Further clock inputs driven by the receiver's clock (`clk = ["clk_i", "usb_clk"]`): a top whose
+  // output side has a clock port of its own runs both sides on the one clock.
+  std::vector<std::string> clock_also;
   std::map<std::string, PortRef> ports;            // role -> where it is
   std::map<std::string, std::uint64_t> inputs;     // RTL port -> constant value
   Collisions collisions = Collisions::Discard;

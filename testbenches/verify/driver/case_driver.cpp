@@ -219,7 +219,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     bus.record_controls((k - 1) * period + half / 2, ready, reset);
   };
 
-  ports.clk.write(0);
+  ports.set_clk(false);
   ports.set_req(false);
   ports.addr.write(0);
   ports.set_contention(false);
@@ -273,7 +273,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     if (sb) sb->edge(k, t_edge, s);
     if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1, s.special});
 
-    ports.clk.write(1);
+    ports.set_clk(true);
     dut.eval();
     const bool trace_now = options.trace && k >= options.trace_from && k <= options.trace_to;
     if (trace_now) dut.dump(t_edge);
@@ -306,7 +306,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       bus.force(step.req, step.addr, step.contention, t_edge + half / 2, k);
     }
     apply_until(t_edge + half, k);
-    ports.clk.write(0);
+    ports.set_clk(false);
     dut.eval();
     if (trace_now) dut.dump(t_edge + half);
     if ((ended = rtl_ended(k))) break;

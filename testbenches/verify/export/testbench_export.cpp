@@ -44,6 +44,7 @@ void write_testbench(const std::string& dir, const ReceiverDescription& d, const
 
   PortWiring wiring(d, ports);
   wiring.drive("clk", "clk");
+  for (const std::string& name : d.clock_also) wiring.drive(PortRef{name}, "clk");
   if (d.has_reset()) {
     wiring.drive_raised(PortRef{d.reset_port}, d.reset_active_high, "rst");
   }

@@ -86,6 +86,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
 
   PortWiring wiring(d, ports);
   wiring.drive("clk", "clk");
+  for (const std::string& name : d.clock_also) wiring.drive(PortRef{name}, "clk");
   if (d.has_reset()) {
     wiring.drive_raised(PortRef{d.reset_port}, d.reset_active_high, "in_reset");
   }
