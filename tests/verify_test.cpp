@@ -220,6 +220,60 @@ endmodule
                  "ports.addr: only req, ack, valid, ready, contention and special take { port, active }");
 }
 
+// An event given in two output words, as a 16-bit USB FIFO takes it (the bundled receiver behind a
+// serialiser: the flag and address, then the stamp's low 16 bits), is described with
+// `event_words = 2` and the word each field comes from. It passes in simulation, in the proof and
+// in Icarus; taken as one word an event, its stamp words are events no transaction gave.
+TEST_F(VerifyTest, AnEventOfSeveralOutputWordsIsGatheredFromThem) {
+  write("two_word_top.v", R"(module two_word_top (
+    input  wire        clk_i, rst_ni, req_i, contention_i, word_ready,
+    input  wire [15:0] addr_i,
+    output wire        ack_o, word_valid,
+    output wire [15:0] word,
+    output wire [31:0] overflows);
+  wire valid, flag;
+  wire [31:0] ts;
+  wire [15:0] addr;
+  reg second;  // the event's stamp word is the one offered
+  wire take = word_ready && second;
+)" + edited(bundled_instance({{"evt_valid_o", "valid"}, {"evt_ready_i", "take"}, {"evt_ts_o", "ts"}, {"evt_addr_o", "addr"},
+                              {"evt_flags_o", "flag"}}, 16, 4),
+            ".overflows_o()", ".overflows_o(overflows)") +
+                                 R"(  assign word_valid = valid;
+  assign word = second ? ts[15:0] : {flag, addr[14:0]};
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) second <= 1'b0;
+    else if (valid && word_ready) second <= !second;
+endmodule
+)");
+  std::string description = around_bundled("two_word_top", R"({ port = "rst_ni", active = "low" })",
+                                           {{"valid", "\"word_valid\""},
+                                            {"ready", "\"word_ready\""},
+                                            {"out_addr", R"({ port = "word[9:0]", word = 0 })"},
+                                            {"flags", R"({ port = "word[15]", word = 0 })"},
+                                            {"timestamp", R"({ port = "word", word = 1 })"},
+                                            {"overflow_count", "\"overflows\""}});
+  description = edited(description, "timestamp_bits = 32\n", "timestamp_bits = 16\nevent_words = 2\n");
+  write("words.toml", description);
+  const Outcome o = verify("words.toml --formal --formal-seconds 2 --export-tb tb --out words");
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  expect_pass(o, report("words"));
+  ASSERT_TRUE(report("words")["formal"].is_array());
+  for (const auto& v : report("words")["formal"]) EXPECT_NE(v["verdict"], "failed") << v.dump();
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  // Each word an event: the stamp words are beats no transaction gave.
+  std::string one = edited(description, "event_words = 2\n", "");
+  one = edited(edited(one, "timestamp = { port = \"word\", word = 1 }\n", ""), "timestamp_tick = \"1us\"\ntimestamp_bits = 16\n", "");
+  write("one.toml", one);
+  const Outcome single = verify("one.toml --out one");
+  EXPECT_EQ(single.status, 1) << single.err;
+  EXPECT_EQ(report("one")["first_failure"]["check"], "beat") << report("one")["first_failure"].dump();
+
+  expect_refused("third.toml", edited(description, "word = 1 }", "word = 2 }"),
+                 "ports.timestamp.word: word 2 of an event of 2 (behaviour.event_words; the first is 0)");
+}
+
 // A top whose output side has a clock port of its own (here a register stage on `out_clk` between
 // the bundled receiver and the consumer) lists both clocks, `clk = ["clk_i", "out_clk"]`: both are
 // driven by the receiver's clock, in the simulation, the proof and the exported testbench. With

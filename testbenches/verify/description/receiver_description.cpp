@@ -274,6 +274,19 @@ ReceiverDescription read_receiver_description(const std::string& path) {
         d.clock_also.push_back(r.identifier(r.string_of(names[i], key), key));
       }
       text = r.string_of(names[0], key);
+    } else if (value.is_table() && (role == "out_addr" || role == "timestamp" || role == "flags")) {
+      // { port = "fifo_data[9:0]", word = 0 }: which of an event's output words carries the role.
+      for (const auto& [k, v] : value.as_table()) {
+        if (k != "port" && k != "word") r.fail(key + "." + k, "unknown key (port, word)");
+        (void)v;
+      }
+      text = r.string_of(r.need(value, "port", key + ".port"), key + ".port");
+      if (const TomlValue* word = r.find(value, "word")) {
+        if (!word->is_integer() || word->as_integer() < 0 || word->as_integer() > 7) {
+          r.fail(key + ".word", "expected the word of the event that carries it, 0 (the first) to 7");
+        }
+        if (word->as_integer() > 0) d.word_of[role] = static_cast<int>(word->as_integer());
+      }
     } else if (value.is_table()) {
       // { port = "aer_req_n", active = "low" }: a one-bit role's polarity (an FX2 FIFO's write
       // strobe, SLWR#, is a valid active low); valid also takes { port = "data_ready", beat =
@@ -342,7 +355,9 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     for (std::size_t j = 0; j < i; ++j) {
       const auto& [other_role, other] = pieces[j];
       if (other.port != ref.port) continue;
-      const bool apart = ref.sliced() && other.sliced() && (ref.lsb > other.msb || other.lsb > ref.msb);
+      // Roles read from different words of an event share the output's bits.
+      const bool apart = (ref.sliced() && other.sliced() && (ref.lsb > other.msb || other.lsb > ref.msb)) ||
+                         d.word(role) != d.word(other_role);
       if (!apart) r.fail("ports." + role, fmt::format("port {} is also ports.{}", ref.port, other_role));
     }
     if (used.count(ref.port) && used[ref.port] == "reset.port") {
@@ -385,7 +400,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   if (!behaviour.is_table()) r.fail("behaviour", "expected a table");
   for (const auto& [key, value] : behaviour.as_table()) {
     static const char* known[] = {"collisions", "full", "timestamp_tick", "timestamp_bits", "timestamp_offset_cycles",
-                                  "ack_latency_cycles", "synchroniser_flops"};
+                                  "ack_latency_cycles", "synchroniser_flops", "event_words"};
     if (std::find(std::begin(known), std::end(known), key) == std::end(known)) {
       r.fail("behaviour." + key, "unknown key" + did_you_mean(key, {std::begin(known), std::end(known)}));
     }
@@ -421,6 +436,22 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   }
 
   // The tick and the wrap are the stamp's, and the time a design reads (time_in) counts the same.
+  if (const TomlValue* words = r.find(behaviour, "event_words")) {
+    if (!words->is_integer() || words->as_integer() < 1 || words->as_integer() > 8) {
+      r.fail("behaviour.event_words", "expected the output words an event takes, 1 to 8");
+    }
+    d.event_words = static_cast<int>(words->as_integer());
+  }
+  for (const auto& [role, word] : d.word_of) {
+    if (word >= d.event_words) {
+      r.fail("ports." + role + ".word",
+             fmt::format("word {} of an event of {} (behaviour.event_words; the first is 0)", word, d.event_words));
+    }
+  }
+  if (d.event_words > 1 && d.valid_beat != ReceiverDescription::ValidBeat::High) {
+    r.fail("behaviour.event_words", "an event of several words takes a valid that is high for each word taken");
+  }
+
   if (d.has("timestamp") || d.has("time_in")) {
     const TomlValue& tick = r.need(behaviour, "timestamp_tick", "behaviour.timestamp_tick");
     d.timestamp_tick = parse_si(r.string_of(tick, "behaviour.timestamp_tick"), "s", "behaviour.timestamp_tick");

@@ -65,6 +65,16 @@ struct ReceiverDescription {
   // Further clock inputs driven by the receiver's clock (`clk = ["clk_i", "usb_clk"]`): a top whose
   // output side has a clock port of its own runs both sides on the one clock.
   std::vector<std::string> clock_also;
+  // The output words an event takes (`[behaviour] event_words`, 1 to 8): an interface as narrow as
+  // a USB chip's 16-bit FIFO gives the address in one word and the stamp in the next. Each of
+  // out_addr, timestamp and flags is read from one of them (`{ port = "...", word = k }`, k from
+  // 0, the first; default 0); words that say they are no event (`special`) are not counted.
+  int event_words = 1;
+  std::map<std::string, int> word_of;  // role -> its word, where not 0
+  int word(const std::string& role) const {
+    const auto at = word_of.find(role);
+    return at == word_of.end() ? 0 : at->second;
+  }
   std::map<std::string, PortRef> ports;            // role -> where it is
   std::map<std::string, std::uint64_t> inputs;     // RTL port -> constant value
   Collisions collisions = Collisions::Discard;

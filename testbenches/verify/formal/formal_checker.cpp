@@ -156,7 +156,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   always @(posedge clk) begin
     tag_acked_q <= tag_ack_rise;
 {capture}    if (tag_beat) begin
-      tag_beat_ts <= out_ts;
+      tag_beat_ts <= ev_ts;
       tag_beat_known <= 1'b1;
     end
   end
@@ -194,7 +194,39 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   }
 
   const std::string gives = d.collisions == Collisions::Discard ? "!contention_i" : "1'b1";
-  const std::string flag_ok = d.collisions == Collisions::Flag ? "out_flag == tag_flag" : "!out_flag";
+  const std::string flag_ok = d.collisions == Collisions::Flag ? "ev_flag == tag_flag" : "!ev_flag";
+  // An event of several output words (event_words): the words taken of the one under way, each
+  // field kept from its word, and the event complete at its last word. With one word, the beat.
+  std::string event_logic = "  wire event_beat = beat;\n  wire [{ow_msb}:0] ev_addr = out_addr;\n"
+                            "  wire [{tw_msb}:0] ev_ts = out_ts;\n  wire ev_flag = out_flag;\n";
+  if (d.event_words > 1) {
+    const int last = d.event_words - 1;
+    const auto field = [last](int word, const char* now, const char* kept) {
+      return word == last ? std::string(now) : std::string(kept);
+    };
+    event_logic = fmt::format(R"(  reg [3:0] word_q = 0;
+  always @(posedge clk) begin
+    if (settling) word_q <= 4'd0;
+    else if (beat) word_q <= word_q == 4'd{last} ? 4'd0 : word_q + 1'b1;
+  end
+  wire event_beat = beat && word_q == 4'd{last};
+  reg [{{ow_msb}}:0] ev_addr_q = 0;
+  reg [{{tw_msb}}:0] ev_ts_q = 0;
+  reg ev_flag_q = 0;
+  always @(posedge clk) if (beat) begin
+    if (word_q == 4'd{aw}) ev_addr_q <= out_addr;
+    if (word_q == 4'd{tw}) ev_ts_q <= out_ts;
+    if (word_q == 4'd{fw}) ev_flag_q <= out_flag;
+  end
+  wire [{{ow_msb}}:0] ev_addr = {addr};
+  wire [{{tw_msb}}:0] ev_ts = {ts};
+  wire ev_flag = {flag};
+)",
+                              fmt::arg("last", last), fmt::arg("aw", d.word("out_addr")), fmt::arg("tw", d.word("timestamp")),
+                              fmt::arg("fw", d.word("flags")), fmt::arg("addr", field(d.word("out_addr"), "out_addr", "ev_addr_q")),
+                              fmt::arg("ts", field(d.word("timestamp"), "out_ts", "ev_ts_q")),
+                              fmt::arg("flag", field(d.word("flags"), "out_flag", "ev_flag_q")));
+  }
   const int cw = bits_for(static_cast<std::uint64_t>(lmax) + 1);
   const int qw = bits_for(static_cast<std::uint64_t>(d.formal.fifo_words) + 8);
   const int sw = bits_for(static_cast<std::uint64_t>(lmax) + 3);
@@ -225,7 +257,9 @@ module aesim_formal_top #(
   wire ack = {ack};
 {valid_wire}  wire [{ow_msb}:0] out_addr = {out_addr};
   wire [{tw_msb}:0] out_ts = {ts_expr};
-  wire out_flag = {flag_expr};
+  // Bit 0 of the flags, whether they are a port or a slice of one.
+  wire [63:0] flag_bits = {flag_expr};
+  wire out_flag = flag_bits[0];
   wire [{vw_msb}:0] ov = {ov_expr};
   wire ready = {ready_expr};
 
@@ -241,7 +275,7 @@ module aesim_formal_top #(
   // A beat that says it is no event (an in-band time marker) is no transaction's.
   wire special = {special};
   wire beat = !settling && valid && ready && !special;
-  // Edges since Req rose (lat), since it rose or the consumer last stalled (exc), since it fell
+{event_logic}  // Edges since Req rose (lat), since it rose or the consumer last stalled (exc), since it fell
   // (flat); saturating just past the upper bound, where the properties have already decided.
   reg [{cw_msb}:0] lat_cnt = 0, exc_cnt = 0, fall_cnt = 0;
   wire [{cw_msb}:0] lat = rise ? {cw}'d0 : lat_cnt;
@@ -312,8 +346,8 @@ module aesim_formal_top #(
   wire tag_open_any = choose || tag_open;
   wire [{sw_msb}:0] since_tag = choose ? {sw}'d0 : since_tag_q;
   wire tag_ack_rise = tag_open_any && ack && !ack_q;
-  wire tag_beat = tagged && !tag_dropped && !tag_done && beat && ahead == {qw}'d0;
-  wire [{qw_msb}:0] taken = (beat ? {qw}'d1 : {qw}'d0) + (dropped ? {qw}'d1 : {qw}'d0);
+  wire tag_beat = tagged && !tag_dropped && !tag_done && event_beat && ahead == {qw}'d0;
+  wire [{qw_msb}:0] taken = (event_beat ? {qw}'d1 : {qw}'d0) + (dropped ? {qw}'d1 : {qw}'d0);
   always @(posedge clk) begin
     ov_q <= ov;
     if (rise) last_gives <= {gives};
@@ -327,14 +361,14 @@ module aesim_formal_top #(
       tag_flag <= contention_i;
       ahead <= outstanding - taken;
     end
-    if (tagged && !tag_done && beat && ahead != {qw}'d0) ahead <= ahead - 1'b1;
+    if (tagged && !tag_done && event_beat && ahead != {qw}'d0) ahead <= ahead - 1'b1;
     if (tag_beat) tag_done <= 1'b1;
     if (tag_open && dropped) tag_dropped <= 1'b1;
     if (tag_ack_rise) tag_open <= 1'b0;
   end
   always @* begin
-    if ({p_invent}) if (beat && outstanding != {qw}'d{qw_sat}) assert (outstanding > (dropped ? {qw}'d1 : {qw}'d0));
-    if ({p_order}) if (tag_beat) assert (out_addr == tag_addr && {flag_ok});
+    if ({p_invent}) if (event_beat && outstanding != {qw}'d{qw_sat}) assert (outstanding > (dropped ? {qw}'d1 : {qw}'d0));
+    if ({p_order}) if (tag_beat) assert (ev_addr == tag_addr && {flag_ok});
   end
 {stamp_logic}endmodule
 )",
@@ -346,7 +380,7 @@ module aesim_formal_top #(
                          fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
                          fmt::arg("valid_wire", valid_wire),
                          fmt::arg("ow_msb", ow - 1), fmt::arg("out_addr", out_addr), fmt::arg("tw_msb", tw - 1),
-                         fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "1'b0" : flag + "[0]"),
+                         fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "64'd0" : flag),
                          fmt::arg("vw_msb", vw - 1), fmt::arg("ov_expr", ov.empty() ? "1'b0" : ov),
                          fmt::arg("ready_expr", d.has("ready") ? "ready_i" : "1'b1"), fmt::arg("special", special), fmt::arg("hold", hold ? "1'b1" : "1'b0"),
                          fmt::arg("held_to_fall", d.address_held == ReceiverDescription::AddressHeld::UntilAckFalls ? "1'b1" : "1'b0"),
@@ -358,7 +392,9 @@ module aesim_formal_top #(
                          fmt::arg("cw", cw), fmt::arg("cw_msb", cw - 1), fmt::arg("sat", lmax + 1), fmt::arg("qw", qw),
                          fmt::arg("qw_msb", qw - 1), fmt::arg("qw_sat", (1 << qw) - 1), fmt::arg("sw", sw),
                          fmt::arg("sw_msb", sw - 1), fmt::arg("sw_sat", (1 << sw) - 1),
-                         fmt::arg("time_logic", time_logic), fmt::arg("stamp_logic", stamp_logic));
+                         fmt::arg("time_logic", time_logic), fmt::arg("stamp_logic", stamp_logic),
+                         fmt::arg("event_logic", fmt::format(fmt::runtime(event_logic), fmt::arg("ow_msb", ow - 1),
+                                                             fmt::arg("tw_msb", tw - 1))));
   return c;
 }
 

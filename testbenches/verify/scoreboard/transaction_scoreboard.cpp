@@ -19,7 +19,11 @@ TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool 
       lat_min_(d.ack_latency_min),
       lat_max_(d.ack_latency_max),
       release_edges_(static_cast<std::uint64_t>(d.reset_release_cycles)),
-      stamps_(d) {}
+      stamps_(d),
+      event_words_(d.event_words),
+      addr_word_(d.word("out_addr")),
+      stamp_word_(d.word("timestamp")),
+      flag_word_(d.word("flags")) {}
 
 void TransactionScoreboard::begin_case(const std::string& name) {
   case_ = name;
@@ -30,6 +34,7 @@ void TransactionScoreboard::begin_case(const std::string& name) {
   ack_fall_due_ = late_reported_ = answered_glitch_ = false;
   stamps_.reset_ended(0);
   held_.reset();
+  words_taken_ = 0;
   last_stall_edge_ = 0;
   stalled_ever_ = false;
   overflow_base_ = overflow_now_ = 0;
@@ -104,6 +109,7 @@ void TransactionScoreboard::clear_for_reset() {
   pending_.clear();
   open_id_.reset();
   held_.reset();
+  words_taken_ = 0;
   ack_fall_due_ = late_reported_ = answered_glitch_ = false;
 }
 
@@ -192,7 +198,7 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     if (s.ready && s.special) {
       ++special_beats_;  // no event: no transaction to match, though it waited as any beat does
     } else if (s.ready) {
-      beat(cycle, t_ps, b);
+      word(cycle, t_ps, b);
     } else {
       held_ = b;
       last_stall_edge_ = cycle;
@@ -313,6 +319,16 @@ void TransactionScoreboard::check_stamp(const Transaction& t, std::uint64_t stam
   std::string expected;
   if (stamps_.check(edges, stamp, expected)) return;
   fail("timestamp", cycle, t_ps, false, [&] { return Texts{expected + " for " + describe(t), fmt::format("{}", stamp)}; });
+}
+
+void TransactionScoreboard::word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w) {
+  if (event_words_ == 1) return beat(cycle, t_ps, w);
+  if (words_taken_ == addr_word_) gathered_.addr = w.addr;
+  if (words_taken_ == stamp_word_) gathered_.ts = w.ts;
+  if (words_taken_ == flag_word_) gathered_.flag = w.flag;
+  if (++words_taken_ < event_words_) return;
+  words_taken_ = 0;
+  beat(cycle, t_ps, gathered_);
 }
 
 void TransactionScoreboard::beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b) {

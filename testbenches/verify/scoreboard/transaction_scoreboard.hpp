@@ -118,6 +118,8 @@ class TransactionScoreboard {
     first_ = VerifyFailure{case_, check, std::move(texts.first), std::move(texts.second),
                            static_cast<double>(t_ps) * 1e-12, cycle};
   }
+  // A word taken: an event's fields gathered from its words (event_words), then the event as a beat.
+  void word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w);
   void beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b);
   void check_stamp(const Transaction& t, std::uint64_t stamp, std::uint64_t cycle, std::uint64_t t_ps);
   bool value_matches(const Transaction& t, const Beat& b) const;
@@ -149,6 +151,11 @@ class TransactionScoreboard {
   std::uint64_t req_fall_edge_ = 0;  // first edge after Req fell, while Ack is due to fall
   bool ack_fall_due_ = false, late_reported_ = false, answered_glitch_ = false;
   std::optional<Beat> held_;  // offered, not taken, at the previous edge
+  // An event of several output words: how many, the word each field comes from, the words taken so
+  // far of the event under way and its fields from them.
+  int event_words_ = 1, addr_word_ = 0, stamp_word_ = 0, flag_word_ = 0;
+  int words_taken_ = 0;
+  Beat gathered_{0, 0, false};
   std::uint64_t last_stall_edge_ = 0;
   bool stalled_ever_ = false;
   std::uint64_t overflow_base_ = 0, overflow_now_ = 0;
