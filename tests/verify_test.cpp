@@ -274,6 +274,73 @@ endmodule
                  "ports.timestamp.word: word 2 of an event of 2 (behaviour.event_words; the first is 0)");
 }
 
+// Between events of two words the serialiser sends, every 256 cycles, a marker in an event's shape
+// (bit 14 of its first word set, its count in the second), as USB AER monitors send a timestamp
+// wrap: `special = { port = "word[14]", word = 0 }` makes each such event no event, counted as
+// special beats, in the simulation, the proof and Icarus. A mark on words of their own (no `word`)
+// would leave the marker's second word to start an event: the run fails.
+TEST_F(VerifyTest, AnEventMarkedOnOneOfItsWordsIsNoEvent) {
+  write("mark_top.v", R"(module mark_top (
+    input  wire        clk_i, rst_ni, req_i, contention_i, word_ready,
+    input  wire [15:0] addr_i,
+    output wire        ack_o, word_valid,
+    output wire [15:0] word,
+    output wire [31:0] overflows);
+  wire valid, flag;
+  wire [31:0] ts;
+  wire [15:0] addr;
+  reg second, marking, pending;
+  reg [7:0] cycles;
+  reg [15:0] markers;
+  wire take = word_ready && second && !marking;
+)" + edited(bundled_instance({{"evt_valid_o", "valid"}, {"evt_ready_i", "take"}, {"evt_ts_o", "ts"}, {"evt_addr_o", "addr"},
+                              {"evt_flags_o", "flag"}}, 16, 4),
+            ".overflows_o()", ".overflows_o(overflows)") +
+                              R"(  assign word_valid = marking || valid;
+  assign word = marking ? (second ? markers : 16'h4000) : (second ? ts[15:0] : {flag, 1'b0, addr[13:0]});
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      {second, marking, pending} <= 3'b000;
+      cycles <= 8'd0;
+      markers <= 16'd0;
+    end else begin
+      cycles <= cycles + 1'b1;
+      if (cycles == 8'hff) pending <= 1'b1;
+      if (!marking && !second && pending && !valid) marking <= 1'b1;
+      if (word_valid && word_ready) begin
+        second <= !second;
+        if (marking && second) begin
+          marking <= 1'b0;
+          pending <= 1'b0;
+          markers <= markers + 1'b1;
+        end
+      end
+    end
+endmodule
+)");
+  std::string description = around_bundled("mark_top", R"({ port = "rst_ni", active = "low" })",
+                                           {{"valid", "\"word_valid\""},
+                                            {"ready", "\"word_ready\""},
+                                            {"out_addr", R"({ port = "word[9:0]", word = 0 })"},
+                                            {"flags", R"({ port = "word[15]", word = 0 })"},
+                                            {"special", R"({ port = "word[14]", word = 0 })"},
+                                            {"timestamp", R"({ port = "word", word = 1 })"},
+                                            {"overflow_count", "\"overflows\""}});
+  description = edited(description, "timestamp_bits = 32\n", "timestamp_bits = 16\nevent_words = 2\n");
+  write("mark.toml", description);
+  const Outcome o = verify("mark.toml --formal --formal-seconds 2 --export-tb tb --out mark");
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  const nlohmann::json r = report("mark");
+  expect_pass(o, r);
+  EXPECT_GT(r["special_beats"].get<double>(), 100) << r.dump();
+  ASSERT_TRUE(r["formal"].is_array());
+  for (const auto& v : r["formal"]) EXPECT_NE(v["verdict"], "failed") << v.dump();
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  write("own.toml", edited(description, R"(special = { port = "word[14]", word = 0 })", R"(special = "word[14]")"));
+  EXPECT_EQ(verify("own.toml --out own").status, 1);
+}
+
 // A top whose output side has a clock port of its own (here a register stage on `out_clk` between
 // the bundled receiver and the consumer) lists both clocks, `clk = ["clk_i", "out_clk"]`: both are
 // driven by the receiver's clock, in the simulation, the proof and the exported testbench. With

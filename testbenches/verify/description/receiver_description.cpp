@@ -297,14 +297,21 @@ ReceiverDescription read_receiver_description(const std::string& path) {
         r.fail(key, "only req, ack, valid, ready, contention and special take { port, active } (and valid { port, beat }); "
                     "give the port name");
       }
-      const char* keys = role == "valid" ? "port, active, beat" : "port, active";
+      const char* keys = role == "valid" ? "port, active, beat" : role == "special" ? "port, active, word" : "port, active";
       for (const auto& [k, v] : value.as_table()) {
-        if (k != "port" && k != "active" && !(k == "beat" && role == "valid")) {
+        if (k != "port" && k != "active" && !(k == "beat" && role == "valid") && !(k == "word" && role == "special")) {
           r.fail(key + "." + k, fmt::format("unknown key ({})", keys));
         }
         (void)v;
       }
       text = r.string_of(r.need(value, "port", key + ".port"), key + ".port");
+      if (const TomlValue* word = r.find(value, "word")) {
+        if (!word->is_integer() || word->as_integer() < 0 || word->as_integer() > 7) {
+          r.fail(key + ".word", "expected the word of the event that carries the mark, 0 (the first) to 7");
+        }
+        d.special_word = static_cast<int>(word->as_integer());
+        if (*d.special_word > 0) d.word_of[role] = *d.special_word;
+      }
       if (const TomlValue* active = r.find(value, "active")) {
         const std::string a = r.string_of(*active, key + ".active");
         if (a != "low" && a != "high") r.fail(key + ".active", "must be \"low\" or \"high\"");

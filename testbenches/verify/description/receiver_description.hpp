@@ -70,6 +70,9 @@ struct ReceiverDescription {
   // out_addr, timestamp and flags is read from one of them (`{ port = "...", word = k }`, k from
   // 0, the first; default 0); words that say they are no event (`special`) are not counted.
   int event_words = 1;
+  // `special = { port, word = k }`: the whole event whose word k carries the mark is no event (a
+  // timestamp wrap sent in an event's shape); without `word`, each marked word is one on its own.
+  std::optional<int> special_word;
   std::map<std::string, int> word_of;  // role -> its word, where not 0
   int word(const std::string& role) const {
     const auto at = word_of.find(role);

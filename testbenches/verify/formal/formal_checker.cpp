@@ -199,7 +199,10 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   // field kept from its word, and the event complete at its last word. With one word, the beat.
   std::string event_logic = "  wire event_beat = beat;\n  wire [{ow_msb}:0] ev_addr = out_addr;\n"
                             "  wire [{tw_msb}:0] ev_ts = out_ts;\n  wire ev_flag = out_flag;\n";
-  if (d.event_words > 1) {
+  // A mark on one word of an event (special = { port, word = k }) makes the whole event no event:
+  // its words are counted as words, and the event is none.
+  const bool marked_events = d.special_word.has_value();
+  if (d.event_words > 1 || marked_events) {
     const int last = d.event_words - 1;
     const auto field = [last](int word, const char* now, const char* kept) {
       return word == last ? std::string(now) : std::string(kept);
@@ -209,23 +212,27 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
     if (settling) word_q <= 4'd0;
     else if (beat) word_q <= word_q == 4'd{last} ? 4'd0 : word_q + 1'b1;
   end
-  wire event_beat = beat && word_q == 4'd{last};
   reg [{{ow_msb}}:0] ev_addr_q = 0;
   reg [{{tw_msb}}:0] ev_ts_q = 0;
-  reg ev_flag_q = 0;
+  reg ev_flag_q = 0, ev_special_q = 0;
   always @(posedge clk) if (beat) begin
     if (word_q == 4'd{aw}) ev_addr_q <= out_addr;
     if (word_q == 4'd{tw}) ev_ts_q <= out_ts;
     if (word_q == 4'd{fw}) ev_flag_q <= out_flag;
+    if (word_q == 4'd{sw}) ev_special_q <= special;
   end
   wire [{{ow_msb}}:0] ev_addr = {addr};
   wire [{{tw_msb}}:0] ev_ts = {ts};
   wire ev_flag = {flag};
+  wire ev_special = {marked};
+  wire event_beat = beat && word_q == 4'd{last} && !ev_special;
 )",
                               fmt::arg("last", last), fmt::arg("aw", d.word("out_addr")), fmt::arg("tw", d.word("timestamp")),
-                              fmt::arg("fw", d.word("flags")), fmt::arg("addr", field(d.word("out_addr"), "out_addr", "ev_addr_q")),
+                              fmt::arg("fw", d.word("flags")), fmt::arg("sw", d.special_word.value_or(0)),
+                              fmt::arg("addr", field(d.word("out_addr"), "out_addr", "ev_addr_q")),
                               fmt::arg("ts", field(d.word("timestamp"), "out_ts", "ev_ts_q")),
-                              fmt::arg("flag", field(d.word("flags"), "out_flag", "ev_flag_q")));
+                              fmt::arg("flag", field(d.word("flags"), "out_flag", "ev_flag_q")),
+                              fmt::arg("marked", !marked_events ? "1'b0" : field(*d.special_word, "special", "ev_special_q")));
   }
   const int cw = bits_for(static_cast<std::uint64_t>(lmax) + 1);
   const int qw = bits_for(static_cast<std::uint64_t>(d.formal.fifo_words) + 8);
@@ -274,7 +281,7 @@ module aesim_formal_top #(
   wire stall = !settling && !ready && (valid || ({hold} && open && !ack));
   // A beat that says it is no event (an in-band time marker) is no transaction's.
   wire special = {special};
-  wire beat = !settling && valid && ready && !special;
+  wire beat = !settling && valid && ready{not_special};
 {event_logic}  // Edges since Req rose (lat), since it rose or the consumer last stalled (exc), since it fell
   // (flat); saturating just past the upper bound, where the properties have already decided.
   reg [{cw_msb}:0] lat_cnt = 0, exc_cnt = 0, fall_cnt = 0;
@@ -393,6 +400,7 @@ module aesim_formal_top #(
                          fmt::arg("qw_msb", qw - 1), fmt::arg("qw_sat", (1 << qw) - 1), fmt::arg("sw", sw),
                          fmt::arg("sw_msb", sw - 1), fmt::arg("sw_sat", (1 << sw) - 1),
                          fmt::arg("time_logic", time_logic), fmt::arg("stamp_logic", stamp_logic),
+                         fmt::arg("not_special", marked_events ? "" : " && !special"),
                          fmt::arg("event_logic", fmt::format(fmt::runtime(event_logic), fmt::arg("ow_msb", ow - 1),
                                                              fmt::arg("tw_msb", tw - 1))));
   return c;

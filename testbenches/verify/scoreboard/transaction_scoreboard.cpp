@@ -23,7 +23,8 @@ TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool 
       event_words_(d.event_words),
       addr_word_(d.word("out_addr")),
       stamp_word_(d.word("timestamp")),
-      flag_word_(d.word("flags")) {}
+      flag_word_(d.word("flags")),
+      special_word_(d.special_word.value_or(-1)) {}
 
 void TransactionScoreboard::begin_case(const std::string& name) {
   case_ = name;
@@ -35,6 +36,7 @@ void TransactionScoreboard::begin_case(const std::string& name) {
   stamps_.reset_ended(0);
   held_.reset();
   words_taken_ = 0;
+  gathered_special_ = false;
   last_stall_edge_ = 0;
   stalled_ever_ = false;
   overflow_base_ = overflow_now_ = 0;
@@ -110,6 +112,7 @@ void TransactionScoreboard::clear_for_reset() {
   open_id_.reset();
   held_.reset();
   words_taken_ = 0;
+  gathered_special_ = false;
   ack_fall_due_ = late_reported_ = answered_glitch_ = false;
 }
 
@@ -195,10 +198,10 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
   held_.reset();
   if (s.valid) {
     const Beat b{s.out_addr, s.timestamp, (s.flags & 1) != 0};
-    if (s.ready && s.special) {
+    if (s.ready && s.special && special_word_ < 0) {
       ++special_beats_;  // no event: no transaction to match, though it waited as any beat does
     } else if (s.ready) {
-      word(cycle, t_ps, b);
+      word(cycle, t_ps, b, s.special);
     } else {
       held_ = b;
       last_stall_edge_ = cycle;
@@ -321,13 +324,19 @@ void TransactionScoreboard::check_stamp(const Transaction& t, std::uint64_t stam
   fail("timestamp", cycle, t_ps, false, [&] { return Texts{expected + " for " + describe(t), fmt::format("{}", stamp)}; });
 }
 
-void TransactionScoreboard::word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w) {
-  if (event_words_ == 1) return beat(cycle, t_ps, w);
+void TransactionScoreboard::word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w, bool special) {
+  if (event_words_ == 1 && special_word_ < 0) return beat(cycle, t_ps, w);
   if (words_taken_ == addr_word_) gathered_.addr = w.addr;
   if (words_taken_ == stamp_word_) gathered_.ts = w.ts;
   if (words_taken_ == flag_word_) gathered_.flag = w.flag;
+  if (words_taken_ == special_word_) gathered_special_ = special;
   if (++words_taken_ < event_words_) return;
   words_taken_ = 0;
+  if (gathered_special_) {
+    ++special_beats_;  // an event's shape that says it is none (a timestamp wrap)
+    gathered_special_ = false;
+    return;
+  }
   beat(cycle, t_ps, gathered_);
 }
 

@@ -119,7 +119,7 @@ class TransactionScoreboard {
                            static_cast<double>(t_ps) * 1e-12, cycle};
   }
   // A word taken: an event's fields gathered from its words (event_words), then the event as a beat.
-  void word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w);
+  void word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w, bool special);
   void beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b);
   void check_stamp(const Transaction& t, std::uint64_t stamp, std::uint64_t cycle, std::uint64_t t_ps);
   bool value_matches(const Transaction& t, const Beat& b) const;
@@ -154,8 +154,10 @@ class TransactionScoreboard {
   // An event of several output words: how many, the word each field comes from, the words taken so
   // far of the event under way and its fields from them.
   int event_words_ = 1, addr_word_ = 0, stamp_word_ = 0, flag_word_ = 0;
+  int special_word_ = -1;  // the word whose mark makes the whole event no event; -1: marks are words of their own
   int words_taken_ = 0;
   Beat gathered_{0, 0, false};
+  bool gathered_special_ = false;
   std::uint64_t last_stall_edge_ = 0;
   bool stalled_ever_ = false;
   std::uint64_t overflow_base_ = 0, overflow_now_ = 0;
