@@ -842,6 +842,14 @@ TEST_F(VerifyTest, ATimeTheDesignReadsIsDrivenWithTheTicksSinceReset) {
   const Outcome held = verify("held.toml --out held");
   EXPECT_EQ(held.status, 1) << held.err;
   EXPECT_EQ(report("held")["first_failure"]["check"], "timestamp") << report("held")["first_failure"].dump();
+  // Left out of the description, ts_i is held at 0 all the same, and the hint names it.
+  write("absent.toml", given);
+  EXPECT_EQ(verify("absent.toml --out absent").status, 1);
+  const nlohmann::json absent = report("absent")["first_failure"];
+  EXPECT_EQ(absent["check"], "timestamp") << absent.dump();
+  EXPECT_NE(absent.value("hint", "").find("input ts_i is held at 0: a time the design stamps from is named time_in"),
+            std::string::npos)
+      << absent.dump();
 
   // The time's tick is the stamps' (timestamp_tick), needed without a timestamp port too.
   expect_refused("untimed.toml", edited(level_valid_receiver(), "out_addr = \"word\"\n", "out_addr = \"word\"\ntime_in = \"now\"\n"),

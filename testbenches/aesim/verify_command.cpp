@@ -58,7 +58,8 @@ int verify_command(const VerifyCommandOptions& opt) {
   check_ports(d, build.ports, kVerifyBusBits);
   const DutLibrary library(build.library);
   if (d.sources != written.sources) notes.push_back("the VHDL as GHDL synthesised it: " + d.sources.back());
-  if (const std::vector<std::string> held = inputs_held_at_zero(d, build.ports); !held.empty()) {
+  const std::vector<std::string> held = inputs_held_at_zero(d, build.ports);
+  if (!held.empty()) {
     std::string names;
     for (const std::string& h : held) names += (names.empty() ? "" : ", ") + h;
     notes.push_back(fmt::format("input{} {} held at 0 throughout (no role, not in [inputs])", held.size() > 1 ? "s" : "", names));
@@ -72,7 +73,8 @@ int verify_command(const VerifyCommandOptions& opt) {
   options.source_prefix = std::filesystem::absolute(d.file).parent_path().string() + "/";
   ExportedRun exported;
   if (!opt.export_tb.empty()) options.exported = &exported;
-  const VerifyResult result = verify_receiver(library, build.ports, d, cases, options);
+  VerifyResult result = verify_receiver(library, build.ports, d, cases, options);
+  if (result.first_failure) result.first_failure->hint = failure_hint(*result.first_failure, d, held);
 
   // The formal check, after the simulation (whose stamp rule it asserts). RTL yosys cannot read is
   // bad input: the report still says what the simulation found, then the one-line error.
@@ -169,7 +171,7 @@ int verify_command(const VerifyCommandOptions& opt) {
     std::fprintf(report_stream(), "%llu failed checks (%llu protocol violations); trace: %s\n",
                 static_cast<unsigned long long>(result.failures),
                 static_cast<unsigned long long>(result.protocol_violations), vcd_path.c_str());
-    if (const std::string hint = failure_hint(f, d); !hint.empty()) std::fprintf(report_stream(), "hint: %s\n", hint.c_str());
+    if (!f.hint.empty()) std::fprintf(report_stream(), "hint: %s\n", f.hint.c_str());
   }
   if (!result.stamp_rule.empty()) std::fprintf(report_stream(), "stamps: %s\n", result.stamp_rule.c_str());
   for (const std::string& note : notes) {

@@ -1,10 +1,25 @@
 #include "report/failure_hint.hpp"
 
+#include <cctype>
+
 #include <fmt/format.h>
 
 namespace aesim {
 
-std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d) {
+std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d, const std::vector<std::string>& held_at_zero) {
+  // A stamp wrong while an input that reads as a time is held at 0: a design that stamps from a
+  // time it is given.
+  if (f.check == "timestamp" && !d.has("time_in")) {
+    for (const std::string& name : held_at_zero) {
+      std::string lower = name;
+      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (lower.find("time") != std::string::npos || lower.find("ts") != std::string::npos) {
+        return fmt::format("input {} is held at 0: a time the design stamps from is named time_in in [ports], and aesim "
+                           "drives it with the ticks since the reset",
+                           name);
+      }
+    }
+  }
   // A Req held through the reset answered late: a top that synchronises its own reset.
   if (f.check == "ack_rise_latency" && f.case_name == "req_through_reset") {
     return fmt::format("a design that passes its reset through flops of its own comes out of reset that many edges late: "

@@ -1,6 +1,5 @@
 #include "report/verify_report.hpp"
 
-#include "report/failure_hint.hpp"
 
 namespace aesim {
 
@@ -20,7 +19,7 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
     const VerifyFailure& f = *r.first_failure;
     j["first_failure"] = {{"time_s", f.time_s}, {"cycle", f.cycle},       {"check", f.check},
                           {"expected", f.expected}, {"observed", f.observed}, {"case", f.case_name}};
-    if (const std::string hint = failure_hint(f, d); !hint.empty()) j["first_failure"]["hint"] = hint;
+    if (!f.hint.empty()) j["first_failure"]["hint"] = f.hint;
   } else {
     j["first_failure"] = nullptr;
   }

@@ -30,6 +30,9 @@ struct VerifyFailure {
   // the latency bound and two edges: an Ack and a registered valid after it): the receiver took
   // the fall for a transaction of its own (a two-phase receiver).
   bool beat_as_req_fell = false;
+  // What a correct design that fails so first usually lacks in its description (failure_hint),
+  // set by the command that has the whole description and the design's ports.
+  std::string hint = {};
 };
 
 // Checks a receiver against its description alone, at the level of transactions: it sees the bus
