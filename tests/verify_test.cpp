@@ -27,6 +27,20 @@ const std::string kRtl = std::string(AESIM_SOURCE_DIR) + "/rtl";
 const std::string kSecond = AESIM_SECOND_RECEIVER_DIR;
 const std::string kThird = AESIM_THIRD_RECEIVER_DIR;
 
+// The quick plan: 9 directed cases (6 without a ready port) and 6 scene runs of ~2000 firings.
+void expect_pass(const Outcome& o, const nlohmann::json& r, std::size_t cases = 15) {
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  EXPECT_EQ(r["passed"], true);
+  EXPECT_EQ(r["failures"], 0);
+  EXPECT_EQ(r["protocol_violations"], 0);
+  EXPECT_TRUE(r["first_failure"].is_null()) << r["first_failure"].dump();
+  EXPECT_GT(r["transactions"].get<double>(), 8000);
+  EXPECT_GT(r["beats_checked"].get<double>(), 7000);
+  EXPECT_GT(r["receiver_cycles"].get<double>(), 5e5);
+  EXPECT_EQ(r["cases"].size(), cases);
+  for (const char* key : {"wall_time_s", "receiver_cycles", "beats_checked", "transactions"}) EXPECT_TRUE(r.contains(key));
+}
+
 class VerifyTest : public testing::TempDirTest {
  protected:
   // aesim verify with the build tree's model cache (warmed by the verify.warm_cache test).
@@ -77,6 +91,49 @@ class VerifyTest : public testing::TempDirTest {
     return d + "[behaviour]\ncollisions = \"discard\"\nfull = \"drop\"\ntimestamp_tick = \"1us\"\ntimestamp_bits = 32\n"
                "ack_latency_cycles = [4, 4]\n";
   }
+  // A top `top` giving each event in 16-bit words on `word` with valid/ready (word_valid,
+  // word_ready) and its drop count on `overflows`: the bundled receiver (4 words deep) inside,
+  // its event taken from it as `take` says, and `body` for the rest; its ports as
+  // two_word_description() names them.
+  static std::string two_word_top(const std::string& top, const std::string& regs, const std::string& take,
+                                  const std::string& body) {
+    return "module " + top + R"( (
+    input  wire        clk_i, rst_ni, req_i, contention_i, word_ready,
+    input  wire [15:0] addr_i,
+    output wire        ack_o, word_valid,
+    output wire [15:0] word,
+    output wire [31:0] overflows);
+  wire valid, flag;
+  wire [31:0] ts;
+  wire [15:0] addr;
+)" + regs + "  wire take = " + take + ";\n" +
+           edited(bundled_instance({{"evt_valid_o", "valid"}, {"evt_ready_i", "take"}, {"evt_ts_o", "ts"}, {"evt_addr_o", "addr"},
+                                    {"evt_flags_o", "flag"}}, 16, 4),
+                  ".overflows_o()", ".overflows_o(overflows)") +
+           body + "endmodule\n";
+  }
+  // Its description: an event of two words, the flag and address in the first, the stamp's low 16
+  // bits in the second, and `more` roles.
+  static std::string two_word_description(const std::string& top, std::map<std::string, std::string> more = {}) {
+    more.insert({{"valid", "\"word_valid\""},
+                 {"ready", "\"word_ready\""},
+                 {"out_addr", R"({ port = "word[9:0]", word = 0 })"},
+                 {"flags", R"({ port = "word[15]", word = 0 })"},
+                 {"timestamp", R"({ port = "word", word = 1 })"},
+                 {"overflow_count", "\"overflows\""}});
+    return edited(around_bundled(top, R"({ port = "rst_ni", active = "low" })", more), "timestamp_bits = 32\n",
+                  "timestamp_bits = 16\nevent_words = 2\n");
+  }
+  // The description at `path` passes the quick plan (`cases` cases), proves every property, and
+  // its exported testbench prints PASS in Icarus.
+  void expect_proved_and_exported(const std::string& path, std::size_t cases) {
+    const Outcome o = verify("'" + path + "' --formal --export-tb tb");
+    const nlohmann::json r = report();
+    expect_pass(o, r, cases);
+    ASSERT_TRUE(r["formal"].is_array());
+    for (const auto& v : r["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
+    EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  }
   // `text`, written as `name`, is refused: exit 2, with `needle` in its one line.
   void expect_refused(const std::string& name, const std::string& text, const std::string& needle) {
     write(name, text);
@@ -107,19 +164,6 @@ class VerifyTest : public testing::TempDirTest {
   }
 };
 
-// The quick plan: 9 directed cases (6 without a ready port) and 6 scene runs of ~2000 firings.
-void expect_pass(const Outcome& o, const nlohmann::json& r, std::size_t cases = 15) {
-  ASSERT_EQ(o.status, 0) << o.out << o.err;
-  EXPECT_EQ(r["passed"], true);
-  EXPECT_EQ(r["failures"], 0);
-  EXPECT_EQ(r["protocol_violations"], 0);
-  EXPECT_TRUE(r["first_failure"].is_null()) << r["first_failure"].dump();
-  EXPECT_GT(r["transactions"].get<double>(), 8000);
-  EXPECT_GT(r["beats_checked"].get<double>(), 7000);
-  EXPECT_GT(r["receiver_cycles"].get<double>(), 5e5);
-  EXPECT_EQ(r["cases"].size(), cases);
-  for (const char* key : {"wall_time_s", "receiver_cycles", "beats_checked", "transactions"}) EXPECT_TRUE(r.contains(key));
-}
 
 TEST_F(VerifyTest, BundledReceiverPassesThroughItsOwnDescriptionInBothPolicies) {
   const Outcome drop = verify(kRtl + "/aer_receiver.toml");
@@ -225,35 +269,14 @@ endmodule
 // `event_words = 2` and the word each field comes from. It passes in simulation, in the proof and
 // in Icarus; taken as one word an event, its stamp words are events no transaction gave.
 TEST_F(VerifyTest, AnEventOfSeveralOutputWordsIsGatheredFromThem) {
-  write("two_word_top.v", R"(module two_word_top (
-    input  wire        clk_i, rst_ni, req_i, contention_i, word_ready,
-    input  wire [15:0] addr_i,
-    output wire        ack_o, word_valid,
-    output wire [15:0] word,
-    output wire [31:0] overflows);
-  wire valid, flag;
-  wire [31:0] ts;
-  wire [15:0] addr;
-  reg second;  // the event's stamp word is the one offered
-  wire take = word_ready && second;
-)" + edited(bundled_instance({{"evt_valid_o", "valid"}, {"evt_ready_i", "take"}, {"evt_ts_o", "ts"}, {"evt_addr_o", "addr"},
-                              {"evt_flags_o", "flag"}}, 16, 4),
-            ".overflows_o()", ".overflows_o(overflows)") +
-                                 R"(  assign word_valid = valid;
+  write("two_word_top.v", two_word_top("two_word_top", "  reg second;  // the event's stamp word is the one offered\n",
+                                       "word_ready && second", R"(  assign word_valid = valid;
   assign word = second ? ts[15:0] : {flag, addr[14:0]};
   always @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) second <= 1'b0;
     else if (valid && word_ready) second <= !second;
-endmodule
-)");
-  std::string description = around_bundled("two_word_top", R"({ port = "rst_ni", active = "low" })",
-                                           {{"valid", "\"word_valid\""},
-                                            {"ready", "\"word_ready\""},
-                                            {"out_addr", R"({ port = "word[9:0]", word = 0 })"},
-                                            {"flags", R"({ port = "word[15]", word = 0 })"},
-                                            {"timestamp", R"({ port = "word", word = 1 })"},
-                                            {"overflow_count", "\"overflows\""}});
-  description = edited(description, "timestamp_bits = 32\n", "timestamp_bits = 16\nevent_words = 2\n");
+)"));
+  const std::string description = two_word_description("two_word_top");
   write("words.toml", description);
   const Outcome o = verify("words.toml --formal --formal-seconds 2 --export-tb tb --out words");
   ASSERT_EQ(o.status, 0) << o.out << o.err;
@@ -281,23 +304,11 @@ endmodule
 // special beats, in the simulation, the proof and Icarus. A mark on words of their own (no `word`)
 // would leave the marker's second word to start an event: the run fails.
 TEST_F(VerifyTest, AnEventMarkedOnOneOfItsWordsIsNoEvent) {
-  write("mark_top.v", R"(module mark_top (
-    input  wire        clk_i, rst_ni, req_i, contention_i, word_ready,
-    input  wire [15:0] addr_i,
-    output wire        ack_o, word_valid,
-    output wire [15:0] word,
-    output wire [31:0] overflows);
-  wire valid, flag;
-  wire [31:0] ts;
-  wire [15:0] addr;
-  reg second, marking, pending;
+  write("mark_top.v", two_word_top("mark_top", R"(  reg second, marking, pending;
   reg [7:0] cycles;
   reg [15:0] markers;
-  wire take = word_ready && second && !marking;
-)" + edited(bundled_instance({{"evt_valid_o", "valid"}, {"evt_ready_i", "take"}, {"evt_ts_o", "ts"}, {"evt_addr_o", "addr"},
-                              {"evt_flags_o", "flag"}}, 16, 4),
-            ".overflows_o()", ".overflows_o(overflows)") +
-                              R"(  assign word_valid = marking || valid;
+)",
+                                   "word_ready && second && !marking", R"(  assign word_valid = marking || valid;
   assign word = marking ? (second ? markers : 16'h4000) : (second ? ts[15:0] : {flag, 1'b0, addr[13:0]});
   always @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) begin
@@ -317,17 +328,9 @@ TEST_F(VerifyTest, AnEventMarkedOnOneOfItsWordsIsNoEvent) {
         end
       end
     end
-endmodule
-)");
-  std::string description = around_bundled("mark_top", R"({ port = "rst_ni", active = "low" })",
-                                           {{"valid", "\"word_valid\""},
-                                            {"ready", "\"word_ready\""},
-                                            {"out_addr", R"({ port = "word[9:0]", word = 0 })"},
-                                            {"flags", R"({ port = "word[15]", word = 0 })"},
-                                            {"special", R"({ port = "word[14]", word = 0 })"},
-                                            {"timestamp", R"({ port = "word", word = 1 })"},
-                                            {"overflow_count", "\"overflows\""}});
-  description = edited(description, "timestamp_bits = 32\n", "timestamp_bits = 16\nevent_words = 2\n");
+)"));
+  const std::string description =
+      two_word_description("mark_top", {{"special", R"({ port = "word[14]", word = 0 })"}});
   write("mark.toml", description);
   const Outcome o = verify("mark.toml --formal --formal-seconds 2 --export-tb tb --out mark");
   ASSERT_EQ(o.status, 0) << o.out << o.err;
@@ -715,12 +718,7 @@ TEST_F(VerifyTest, AFifoFullOnlyBeforeItsPointersWrapIsCaughtAndANarrowDropCount
 // its first word, and fails for the words it lost. With a ready port "rise" is refused.
 TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
   const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/level_valid_receiver";
-  const Outcome o = verify("'" + dir + "/lvr.toml' --formal --export-tb tb");
-  const nlohmann::json good = report();
-  expect_pass(o, good, 12);
-  ASSERT_TRUE(good["formal"].is_array());
-  for (const auto& v : good["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
-  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  expect_proved_and_exported(dir + "/lvr.toml", 12);
 
   const std::string description = slurp(dir + "/lvr.toml");
   write("lvr.v", slurp(dir + "/lvr.v"));
@@ -768,12 +766,7 @@ TEST_F(VerifyTest, AValidHeldForEachWordGivesOneBeatOnItsRise) {
 // high, passes behind either sender.
 TEST_F(VerifyTest, ASenderThatHoldsTheAddressUntilAckFallsIsDescribedByAddressHeld) {
   const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/late_sampling_receiver";
-  const Outcome o = verify("'" + dir + "/lsr.toml' --formal --export-tb tb");
-  const nlohmann::json good = report();
-  expect_pass(o, good, 12);
-  ASSERT_TRUE(good["formal"].is_array());
-  for (const auto& v : good["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
-  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  expect_proved_and_exported(dir + "/lsr.toml", 12);
 
   const std::string description = slurp(dir + "/lsr.toml");
   write("lsr.v", slurp(dir + "/lsr.v"));

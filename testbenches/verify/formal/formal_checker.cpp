@@ -45,6 +45,28 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
     c.notes.push_back("the stamp rule is simulated only: the simulation inferred none (no stamped beat)");
   }
 
+  // A counter of the ticks completed since the reset, `name` after each edge (with `name`_div the
+  // edges into the current tick), `width` bits: the stamps' rule, and the time a design reads.
+  const auto ticks_since_reset = [&d](const std::string& name, int width) {
+    return fmt::format(R"(
+  // Ticks since reset: {name} after each edge, {name}_div the edges into the current tick.
+  reg [{msb}:0] {name} = 0;
+  reg [{dw_msb}:0] {name}_div = 0;
+  always @(posedge clk) begin
+    if (settling) begin
+      {name} <= 0;
+      {name}_div <= 0;
+    end else if ({name}_div == {dw}'d{tick_last}) begin
+      {name} <= {name} + 1'b1;
+      {name}_div <= 0;
+    end else begin
+      {name}_div <= {name}_div + 1'b1;
+    end
+  end
+)",
+                       fmt::arg("name", name), fmt::arg("msb", width - 1), fmt::arg("tick_last", d.timestamp_cycles - 1),
+                       fmt::arg("dw", bits_for(d.timestamp_cycles)), fmt::arg("dw_msb", bits_for(d.timestamp_cycles) - 1));
+  };
   auto add = [&](const std::string& name, const std::string& text) {
     c.properties.push_back({static_cast<int>(c.properties.size()) + 1, name, text});
     return c.properties.back().id;
@@ -133,21 +155,9 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
       capture = fmt::format("      if (tag_ack_rise) begin tag_ts <= tk_hist[{}]; tag_ts_known <= 1'b1; end\n", -stamp->offset - 1);
     }
     stamp_logic = fmt::format(R"(
-  // Ticks since reset: tk after each edge, div the edges into the current tick.
-  reg [{tw_msb}:0] tk = 0;
-  reg [{dw_msb}:0] div = 0;
-  reg [{tw_msb}:0] tk_hist [0:{hist_last}];
+{ticks}  reg [{tw_msb}:0] tk_hist [0:{hist_last}];
   integer h;
   always @(posedge clk) begin
-    if (settling) begin
-      tk <= 0;
-      div <= 0;
-    end else if (div == {dw}'d{tick_last}) begin
-      tk <= tk + 1'b1;
-      div <= 0;
-    end else begin
-      div <= div + 1'b1;
-    end
     tk_hist[0] <= tk;
     for (h = 1; h <= {hist_last}; h = h + 1) tk_hist[h] <= tk_hist[h - 1];
   end
@@ -164,34 +174,12 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
     if (tag_ts_known && tag_beat_known) assert (tag_beat_ts == tag_ts);
   end
 )",
-                              fmt::arg("tw_msb", tw - 1), fmt::arg("hist_last", hist - 1),
-                              fmt::arg("tick_last", d.timestamp_cycles - 1), fmt::arg("capture", capture),
-                              fmt::arg("dw", bits_for(d.timestamp_cycles)), fmt::arg("dw_msb", bits_for(d.timestamp_cycles) - 1),
-                              fmt::arg("p_stamp", on(p_stamp)));
+                              fmt::arg("ticks", ticks_since_reset("tk", tw)), fmt::arg("tw_msb", tw - 1),
+                              fmt::arg("hist_last", hist - 1), fmt::arg("capture", capture), fmt::arg("p_stamp", on(p_stamp)));
   }
 
   // The time the design reads (time_in): ticks since reset, by the rule the stamps follow.
-  std::string time_logic;
-  if (d.has("time_in")) {
-    time_logic = fmt::format(R"(
-  // The time the design reads: ticks since reset after each edge, by the stamps' rule.
-  reg [{tb_msb}:0] time_tk = 0;
-  reg [{dw_msb}:0] time_div = 0;
-  always @(posedge clk) begin
-    if (settling) begin
-      time_tk <= 0;
-      time_div <= 0;
-    end else if (time_div == {dw}'d{tick_last}) begin
-      time_tk <= time_tk + 1'b1;
-      time_div <= 0;
-    end else begin
-      time_div <= time_div + 1'b1;
-    end
-  end
-)",
-                             fmt::arg("tb_msb", d.timestamp_bits - 1), fmt::arg("tick_last", d.timestamp_cycles - 1),
-                             fmt::arg("dw", bits_for(d.timestamp_cycles)), fmt::arg("dw_msb", bits_for(d.timestamp_cycles) - 1));
-  }
+  const std::string time_logic = d.has("time_in") ? ticks_since_reset("time_tk", d.timestamp_bits) : "";
 
   const std::string gives = d.collisions == Collisions::Discard ? "!contention_i" : "1'b1";
   const std::string flag_ok = d.collisions == Collisions::Flag ? "ev_flag == tag_flag" : "!ev_flag";
