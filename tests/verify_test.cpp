@@ -278,7 +278,7 @@ TEST_F(VerifyTest, AnEventOfSeveralOutputWordsIsGatheredFromThem) {
 )"));
   const std::string description = two_word_description("two_word_top");
   write("words.toml", description);
-  const Outcome o = verify("words.toml --formal --formal-seconds 2 --export-tb tb --out words");
+  const Outcome o = verify("words.toml --formal --formal-seconds 1 --export-tb tb --out words");
   ASSERT_EQ(o.status, 0) << o.out << o.err;
   const nlohmann::json r = report("words");
   expect_pass(o, r);
@@ -332,7 +332,7 @@ TEST_F(VerifyTest, AnEventMarkedOnOneOfItsWordsIsNoEvent) {
   const std::string description =
       two_word_description("mark_top", {{"special", R"({ port = "word[14]", word = 0 })"}});
   write("mark.toml", description);
-  const Outcome o = verify("mark.toml --formal --formal-seconds 2 --export-tb tb --out mark");
+  const Outcome o = verify("mark.toml --formal --formal-seconds 1 --export-tb tb --out mark");
   ASSERT_EQ(o.status, 0) << o.out << o.err;
   const nlohmann::json r = report("mark");
   expect_pass(o, r);
