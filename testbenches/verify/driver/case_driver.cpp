@@ -7,6 +7,7 @@
 
 #include "aesim/bus/wired_or_lines.hpp"
 #include "aesim/random/splitmix64.hpp"
+#include "scoreboard/stamp_rule.hpp"
 
 namespace aesim {
 
@@ -181,22 +182,21 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       changed = true;
     }
   };
-  // The time a design reads (time_in): after edge e, the ticks completed since the reset, by the
-  // stamps' own rule (StampRule::ticks: from the design's release, its own release_cycles after
+  // The time a design reads (time_in): after edge e, the ticks completed since the reset by the
+  // stamps' own rule (StampRule::ticks, from the design's release, its own release_cycles after
   // aesim's), modulo 2^timestamp_bits.
   const bool drives_time = d.has("time_in");
   const std::uint64_t time_mask = d.timestamp_bits >= 64 ? ~0ULL : (1ULL << d.timestamp_bits) - 1;
-  std::uint64_t time_origin = 0;
+  StampRule time_rule(d);
   bool time_in_reset = d.has_reset();
   auto set_time = [&](std::uint64_t k, bool reset_k) {
     if (reset_k) {
       time_in_reset = true;
     } else if (time_in_reset) {
       time_in_reset = false;
-      time_origin = k - 1 + static_cast<std::uint64_t>(d.reset_release_cycles);
+      time_rule.reset_ended(k - 1 + static_cast<std::uint64_t>(d.reset_release_cycles));
     }
-    const std::uint64_t e = k - 1;
-    ports.time_in.write(time_in_reset || e <= time_origin ? 0 : ((e - time_origin) / d.timestamp_cycles) & time_mask);
+    ports.time_in.write(time_in_reset ? 0 : time_rule.ticks(k - 1) & time_mask);
   };
   // The consumer and the reset for rising edge k, set a quarter period after edge k-1 (before
   // the falling edge, so that one evaluation takes them with it).

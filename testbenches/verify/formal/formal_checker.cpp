@@ -185,8 +185,9 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   const std::string flag_ok = d.collisions == Collisions::Flag ? "ev_flag == tag_flag" : "!ev_flag";
   // An event of several output words (event_words): the words taken of the one under way, each
   // field kept from its word, and the event complete at its last word. With one word, the beat.
-  std::string event_logic = "  wire event_beat = beat;\n  wire [{ow_msb}:0] ev_addr = out_addr;\n"
-                            "  wire [{tw_msb}:0] ev_ts = out_ts;\n  wire ev_flag = out_flag;\n";
+  std::string event_logic = fmt::format("  wire event_beat = beat;\n  wire [{}:0] ev_addr = out_addr;\n"
+                                        "  wire [{}:0] ev_ts = out_ts;\n  wire ev_flag = out_flag;\n",
+                                        ow - 1, tw - 1);
   // A mark on one word of an event (special = { port, word = k }) makes the whole event no event:
   // its words are counted as words, and the event is none.
   const bool marked_events = d.special_word.has_value();
@@ -200,23 +201,24 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
     if (settling) word_q <= 4'd0;
     else if (beat) word_q <= word_q == 4'd{last} ? 4'd0 : word_q + 1'b1;
   end
-  reg [{{ow_msb}}:0] ev_addr_q = 0;
-  reg [{{tw_msb}}:0] ev_ts_q = 0;
+  reg [{ow_msb}:0] ev_addr_q = 0;
+  reg [{tw_msb}:0] ev_ts_q = 0;
   reg ev_flag_q = 0, ev_special_q = 0;
   always @(posedge clk) if (beat) begin
-    if (word_q == 4'd{aw}) ev_addr_q <= out_addr;
-    if (word_q == 4'd{tw}) ev_ts_q <= out_ts;
-    if (word_q == 4'd{fw}) ev_flag_q <= out_flag;
-    if (word_q == 4'd{sw}) ev_special_q <= special;
+    if (word_q == 4'd{addr_word}) ev_addr_q <= out_addr;
+    if (word_q == 4'd{ts_word}) ev_ts_q <= out_ts;
+    if (word_q == 4'd{flag_word}) ev_flag_q <= out_flag;
+    if (word_q == 4'd{mark_word}) ev_special_q <= special;
   end
-  wire [{{ow_msb}}:0] ev_addr = {addr};
-  wire [{{tw_msb}}:0] ev_ts = {ts};
+  wire [{ow_msb}:0] ev_addr = {addr};
+  wire [{tw_msb}:0] ev_ts = {ts};
   wire ev_flag = {flag};
   wire ev_special = {marked};
   wire event_beat = beat && word_q == 4'd{last} && !ev_special;
 )",
-                              fmt::arg("last", last), fmt::arg("aw", d.word("out_addr")), fmt::arg("tw", d.word("timestamp")),
-                              fmt::arg("fw", d.word("flags")), fmt::arg("sw", d.special_word.value_or(0)),
+                              fmt::arg("last", last), fmt::arg("ow_msb", ow - 1), fmt::arg("tw_msb", tw - 1),
+                              fmt::arg("addr_word", d.word("out_addr")), fmt::arg("ts_word", d.word("timestamp")),
+                              fmt::arg("flag_word", d.word("flags")), fmt::arg("mark_word", d.special_word.value_or(0)),
                               fmt::arg("addr", field(d.word("out_addr"), "out_addr", "ev_addr_q")),
                               fmt::arg("ts", field(d.word("timestamp"), "out_ts", "ev_ts_q")),
                               fmt::arg("flag", field(d.word("flags"), "out_flag", "ev_flag_q")),
@@ -389,8 +391,7 @@ module aesim_formal_top #(
                          fmt::arg("sw_msb", sw - 1), fmt::arg("sw_sat", (1 << sw) - 1),
                          fmt::arg("time_logic", time_logic), fmt::arg("stamp_logic", stamp_logic),
                          fmt::arg("not_special", marked_events ? "" : " && !special"),
-                         fmt::arg("event_logic", fmt::format(fmt::runtime(event_logic), fmt::arg("ow_msb", ow - 1),
-                                                             fmt::arg("tw_msb", tw - 1))));
+                         fmt::arg("event_logic", event_logic));
   return c;
 }
 

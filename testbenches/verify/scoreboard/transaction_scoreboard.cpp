@@ -28,15 +28,10 @@ TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool 
 
 void TransactionScoreboard::begin_case(const std::string& name) {
   case_ = name;
-  pending_.clear();
-  open_id_.reset();
+  clear_for_reset();
   req_ = ack_ = in_reset_ = contention_ = false;
   addr_ = req_rise_edge_ = req_rise_ps_ = acting_from_edge_ = 0;
-  ack_fall_due_ = late_reported_ = answered_glitch_ = false;
   stamps_.reset_ended(0);
-  held_.reset();
-  words_taken_ = 0;
-  gathered_special_ = false;
   last_stall_edge_ = 0;
   stalled_ever_ = false;
   overflow_base_ = overflow_now_ = 0;
