@@ -21,13 +21,9 @@ std::unordered_map<std::uint64_t, std::vector<double>> fire_times(const EventLog
 }  // namespace
 
 double psnr_db(const Image& image, const Image& reference) {
-  double sum = 0;
-  for (std::size_t i = 0; i < reference.pixels.size(); ++i) {
-    const double d = image.pixels[i] - reference.pixels[i];
-    sum += d * d;
-  }
-  const double mse = sum / static_cast<double>(reference.pixels.size());
-  return mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+  return psnr_db(
+      reference.pixels.size(), [&image](std::size_t i) { return image.pixels[i]; },
+      [&reference](std::size_t i) { return reference.pixels[i]; });
 }
 
 FidelityErrors fidelity_errors(const EventLog& reference, const EventLog& run, const Image& scene) {

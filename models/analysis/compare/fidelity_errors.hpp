@@ -1,4 +1,7 @@
 #pragma once
+#include <cmath>
+#include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "aesim/events/event_log.hpp"
@@ -21,5 +24,17 @@ FidelityErrors fidelity_errors(const EventLog& reference, const EventLog& run, c
 
 // PSNR (dB) of an image against a reference, both in [0, 1].
 double psnr_db(const Image& image, const Image& reference);
+// The same of pixels read through image(i) and reference(i), i < n: images that are not held as
+// such (a large array's counts, normalised as they are read) need not be copied into one.
+template <typename ImagePixel, typename ReferencePixel>
+double psnr_db(std::size_t n, ImagePixel image, ReferencePixel reference) {
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = image(i) - reference(i);
+    sum += d * d;
+  }
+  const double mse = sum / static_cast<double>(n);
+  return mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+}
 
 }  // namespace aesim

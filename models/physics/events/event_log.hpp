@@ -123,6 +123,13 @@ class EventLog {
     UninitializedGrowthVector<TileEvent>& events = filling_.events[tile];
     if (events.capacity() < events.size() + n) events.reserve(events.size() + n);
   }
+  // A pixel's four counters side by side: one cache line touched per event, not four.
+  struct PixelCounts {
+    std::uint32_t fired = 0, fired_in_window = 0, output = 0, output_in_window = 0;
+  };
+  // Every pixel's counters (y * cols + x; empty unless count_pixels was called), read in place: a
+  // large array's are tens of megabytes, which the per-pixel copies below each take again.
+  const std::vector<PixelCounts>& pixel_counts() const { return pixels_; }
   std::vector<std::uint32_t> fired_per_pixel() const { return per_pixel(&PixelCounts::fired); }
   std::vector<std::uint32_t> window_per_pixel() const { return per_pixel(&PixelCounts::fired_in_window); }
   // Output events per pixel, ghosts included; and real (non-ghost) ones within the window.
@@ -209,10 +216,6 @@ class EventLog {
   double set_aside_before_ = 0;
   bool set_aside_pending_ = false;
   LatencyRecorder latency_;
-  // A pixel's four counters side by side: one cache line touched per event, not four.
-  struct PixelCounts {
-    std::uint32_t fired = 0, fired_in_window = 0, output = 0, output_in_window = 0;
-  };
   PixelCounts& pixel_of(const AddressEvent& e) { return pixels_[std::size_t(e.y) * std::size_t(map_->cols()) + e.x]; }
   void count_fired(PixelCounts& p, const AddressEvent& firing) const {
     ++p.fired;
