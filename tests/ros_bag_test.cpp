@@ -218,8 +218,8 @@ TEST(RosBags, MalformedAndUnreadableBagsAreOneLineErrors) {
   expect_refused(kMagic + bag_header(1, 1) + chunk(events + one + message(0, 1, event_array(346, 260, {})), "none"),
                  "the array is 346x260, where the topic's messages before said 240x180");
   expect_refused(kMagic + bag_header(1, 1) +
-                     chunk(connection(0, "/events", "event_camera_msgs/EventPacket", kEventPacketMd5) + message(0, 1, event_packet("libcaer_cmp", "12345678")), "none"),
-                 "/events carries events encoded 'libcaer_cmp' (aesim reads 'evt3', 'mono' and 'libcaer' packets)");
+                     chunk(connection(0, "/events", "event_camera_msgs/EventPacket", kEventPacketMd5) + message(0, 1, event_packet("evt4", "12345678")), "none"),
+                 "/events carries events encoded 'evt4' (aesim reads 'evt3', 'mono', 'libcaer' and 'libcaer_cmp' packets)");
 }
 
 }  // namespace

@@ -255,6 +255,8 @@ void RosEventTopics::packet(EventTopic& topic, RosMessageBytes& m) {
     m.end();
     if (encoding == "mono" || encoding == "libcaer") {
       eight_byte_events(topic, m, time_base, words);
+    } else if (encoding == "libcaer_cmp") {
+      compressed_libcaer_events(topic, m, time_base, words);
     } else if (encoding == "trigger") {
       topic.triggers += n / 8;
     }
@@ -315,20 +317,78 @@ void RosEventTopics::eight_byte_events(EventTopic& topic, RosMessageBytes& m, st
   }
 }
 
+// libcaer_driver's default encoding, "libcaer_cmp" (its message_converter.cpp writes it; event_camera_codecs'
+// libcaer_cmp_types.h and libcaer_cmp_decoder.h read it): little-endian 16-bit words, a 4-bit code
+// over 12 bits. TIME_HIGH (0) sets bits 12-23 of the microseconds since the message's first event,
+// TIME_LOW (1) bits 0-11, both 0 at each message's start; ADDR_X (2) the column (11 bits);
+// ADDR_Y (3) an event at that column, the row in bits 0-10 and the polarity in bit 11;
+// VECT_BASE_Y (4) a base row and polarity, then VECT_8 (5) an event at each of its 8 low bits set,
+// at the base row plus the bit's place, the base moving on 8 rows after it. An event stands at
+// time_base (ns: libcaer_driver writes the ROS time the camera started plus the first event's
+// microseconds) plus its microseconds. The codec leaves out events outside the message's array and
+// decodes nothing of other codes; so does this, counting both. (The codec's decoder since February
+// 2024 multiplies time_base by 1000 again; its first one, as here, added it.)
+void RosEventTopics::compressed_libcaer_events(EventTopic& topic, RosMessageBytes& m, std::uint64_t time_base,
+                                               std::string_view words) {
+  if (words.size() % 2 != 0) m.fail(fmt::format("{} bytes of 'libcaer_cmp' words, not a whole number of 16-bit words", words.size()));
+  const bool bounded = topic.width > 0 && topic.height > 0;
+  std::uint64_t high = 0, low = 0;
+  const auto add = [&](std::uint16_t x, std::uint16_t y, bool on) {
+    if (bounded && (x >= topic.width || y >= topic.height)) {
+      ++topic.cmp_outside;
+      return;
+    }
+    if (++event_count_ > kMaxExpandedEvents) m.fail(fmt::format("more than the {} events aesim reads from one file", kMaxExpandedEvents));
+    const std::uint64_t us = high | low;
+    if (us * 1000 > std::numeric_limits<std::uint64_t>::max() - time_base) m.fail("an event stamped past 2^64 ns");
+    topic.events.push_back({static_cast<std::int64_t>((time_base + us * 1000) / 1000), x, y, on});
+  };
+  for (std::size_t at = 0; at < words.size(); at += 2) {
+    std::uint16_t w;
+    std::memcpy(&w, words.data() + at, 2);
+    const unsigned rest = w & 0xFFFu;
+    switch (w >> 12) {
+      case 0: high = std::uint64_t(rest) << 12; break;
+      case 1: low = rest; break;
+      case 2: topic.cmp_x = static_cast<std::uint16_t>(rest & 0x7FFu); break;
+      case 3: add(topic.cmp_x, static_cast<std::uint16_t>(rest & 0x7FFu), (rest >> 11) != 0); break;
+      case 4:
+        topic.cmp_base_y = static_cast<std::uint16_t>(rest & 0x7FFu);
+        topic.cmp_on = (rest >> 11) != 0;
+        break;
+      case 5:
+        for (unsigned bit = 0; bit < 8; ++bit) {
+          if ((rest >> bit) & 1u) add(topic.cmp_x, static_cast<std::uint16_t>(topic.cmp_base_y + bit), topic.cmp_on);
+        }
+        topic.cmp_base_y = static_cast<std::uint16_t>(topic.cmp_base_y + 8);
+        break;
+      default: ++topic.cmp_other_words; break;
+    }
+  }
+}
+
 // An EventPacket topic's events: the words of "evt3" decoded as one stream, as the camera wrote
 // them, by the Prophesee RAW reader (metavision_driver's; the stamps the camera's microseconds), or
 // those of "mono" and "libcaer", decoded as they came.
 PolarityRecording RosEventTopics::decode_packets(const std::string& name, EventTopic& topic) const {
-  if (topic.encoding == "mono" || topic.encoding == "libcaer") {
+  if (topic.encoding == "mono" || topic.encoding == "libcaer" || topic.encoding == "libcaer_cmp") {
     PolarityRecording rec;
     rec.events = std::move(topic.events);
     rec.read_as.push_back(fmt::format("{}'s '{}' events stamped from each message's time_base (ns), kept as whole microseconds",
                                       name, topic.encoding));
+    if (topic.cmp_outside > 0) {
+      rec.notes.push_back(fmt::format("{} 'libcaer_cmp' events of {} outside its {}x{} array", topic.cmp_outside, name, topic.width,
+                                      topic.height));
+    }
+    if (topic.cmp_other_words > 0) {
+      rec.notes.push_back(fmt::format("{} 'libcaer_cmp' words of {} that are no event (VECT_12 or an unassigned code)",
+                                      topic.cmp_other_words, name));
+    }
     return rec;
   }
   if (topic.encoding != "evt3") {
-    throw InputError(fmt::format("event file '{}': {} carries events encoded '{}' (aesim reads 'evt3', 'mono' and 'libcaer' "
-                                 "packets)",
+    throw InputError(fmt::format("event file '{}': {} carries events encoded '{}' (aesim reads 'evt3', 'mono', 'libcaer' and "
+                                 "'libcaer_cmp' packets)",
                                  label_, name, topic.encoding));
   }
   return decode_prophesee_raw(topic.stream, fmt::format("{} ({})", label_, name));

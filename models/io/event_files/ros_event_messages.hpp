@@ -53,6 +53,12 @@ class RosEventTopics {
     std::uint32_t width = 0, height = 0;
     std::uint64_t messages = 0;
     std::uint64_t triggers = 0;  // the external triggers of a topic of "trigger" packets
+    // "libcaer_cmp": the decoder's state that runs on from packet to packet (the column, a vector's
+    // base row and polarity), and what it left out: events outside the packets' array, and words
+    // of no event (VECT_12, which libcaer_driver never writes, and unassigned codes).
+    std::uint16_t cmp_x = 0, cmp_base_y = 0;
+    bool cmp_on = false;
+    std::uint64_t cmp_outside = 0, cmp_other_words = 0;
   };
   struct OtherTopic {
     std::string type;
@@ -60,6 +66,7 @@ class RosEventTopics {
   };
   void packet(EventTopic& topic, RosMessageBytes& m);
   void eight_byte_events(EventTopic& topic, RosMessageBytes& m, std::uint64_t time_base, std::string_view words);
+  void compressed_libcaer_events(EventTopic& topic, RosMessageBytes& m, std::uint64_t time_base, std::string_view words);
   PolarityRecording decode_packets(const std::string& name, EventTopic& topic) const;
 
   std::string label_;
