@@ -218,6 +218,9 @@ TEST_F(VerifyTest, PortsVerilatorRenamesInCppAreNamedAsTheVerilogNamesThem) {
   // A name that starts with '$' is a system task's, not a port's.
   expect_refused("dollar.toml", edited(description, "req = \"req$i\"", "req = \"$req\""),
                  "ports.req: '$req' is not a plain Verilog identifier");
+  // An inverted line written as an expression: the error says how a polarity is written.
+  expect_refused("inverted.toml", edited(description, "req = \"req$i\"", "req = \"!req$i\""),
+                 "ports.req: '!req$i' is not a plain Verilog identifier (a line active low is { port = \"req$i\", active = \"low\" })");
 }
 
 // An output to an FX2-style slave FIFO: a word written at an edge where the active-low strobe is
@@ -705,6 +708,13 @@ TEST_F(VerifyTest, AFifoFullOnlyBeforeItsPointersWrapIsCaughtAndANarrowDropCount
   for (const auto& c : r["cases"]) {
     if (c["name"] != "full_at_pointer_offsets") {
       EXPECT_EQ(c["failures"], 0) << c.dump();
+      EXPECT_TRUE(c["first_failure"].is_null()) << c.dump();
+    } else {
+      // The case's own first failure is the run's, and its line says which check at which cycle.
+      EXPECT_EQ(c["first_failure"]["check"], "stalled_output") << c.dump();
+      EXPECT_EQ(c["first_failure"]["cycle"], r["first_failure"]["cycle"]) << c.dump();
+      const std::string line = "FAIL (stalled_output at cycle " + c["first_failure"]["cycle"].dump() + ")";
+      EXPECT_NE(slip.err.find(line), std::string::npos) << line << "\n" << slip.err;
     }
   }
   EXPECT_EQ(r["first_failure"]["check"], "stalled_output") << r["first_failure"].dump();

@@ -88,6 +88,10 @@ class Reader {
                     text[0] != '$' && std::all_of(text.begin(), text.end(), [](char c) {
                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '$';
                     });
+    if (!ok && text.size() > 1 && (text[0] == '!' || text[0] == '~')) {
+      fail(label, fmt::format("'{}' is not a plain Verilog identifier (a line active low is {{ port = \"{}\", active = \"low\" }})",
+                              text, text.substr(1)));
+    }
     if (!ok) fail(label, fmt::format("'{}' is not a plain Verilog identifier", text));
     return text;
   }

@@ -2,6 +2,13 @@
 
 
 namespace aesim {
+namespace {
+
+nlohmann::json failure_json(const VerifyFailure& f) {
+  return {{"time_s", f.time_s}, {"cycle", f.cycle}, {"check", f.check}, {"expected", f.expected}, {"observed", f.observed}};
+}
+
+}  // namespace
 
 nlohmann::json verify_report(const ReceiverDescription& d, const std::string& plan, std::uint64_t seed,
                              const DutBuild& build, const VerifyResult& r, const std::vector<std::string>& notes,
@@ -16,10 +23,9 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   j["receiver_cycles"] = r.receiver_cycles;
   j["wall_time_s"] = wall_time_s;
   if (r.first_failure) {
-    const VerifyFailure& f = *r.first_failure;
-    j["first_failure"] = {{"time_s", f.time_s}, {"cycle", f.cycle},       {"check", f.check},
-                          {"expected", f.expected}, {"observed", f.observed}, {"case", f.case_name}};
-    if (!f.hint.empty()) j["first_failure"]["hint"] = f.hint;
+    j["first_failure"] = failure_json(*r.first_failure);
+    j["first_failure"]["case"] = r.first_failure->case_name;
+    if (!r.first_failure->hint.empty()) j["first_failure"]["hint"] = r.first_failure->hint;
   } else {
     j["first_failure"] = nullptr;
   }
@@ -37,7 +43,8 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   for (const CaseSummary& c : r.cases) {
     cases.push_back({{"name", c.name}, {"kind", c.kind}, {"receiver_cycles", c.edges}, {"firings", c.firings},
                      {"transactions", c.transactions}, {"beats_checked", c.beats}, {"failures", c.failures},
-                     {"rtl_finish", c.rtl_finish.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.rtl_finish)}});
+                     {"rtl_finish", c.rtl_finish.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.rtl_finish)},
+                     {"first_failure", c.first_failure ? failure_json(*c.first_failure) : nlohmann::json(nullptr)}});
   }
   j["cases"] = cases;
   return j;

@@ -28,6 +28,7 @@ TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool 
 
 void TransactionScoreboard::begin_case(const std::string& name) {
   case_ = name;
+  case_first_.reset();
   clear_for_reset();
   req_ = ack_ = in_reset_ = contention_ = false;
   addr_ = req_rise_edge_ = req_rise_ps_ = acting_from_edge_ = 0;

@@ -87,6 +87,9 @@ class TransactionScoreboard {
   std::uint64_t protocol_violations() const { return violations_; }
   std::uint64_t drops_accepted() const { return drops_total_; }
   const std::optional<VerifyFailure>& first_failure() const { return first_; }
+  // The first failure of the case under way (since begin_case), beside the run's first: a design
+  // that fails several cases usually fails each for its own reason.
+  const std::optional<VerifyFailure>& case_first_failure() const { return case_first_; }
   // The stamp rule the beats followed, e.g. "ticks since reset at edge 4 after Req rose".
   std::string stamp_rule() const { return stamps_.describe(); }
   std::optional<StampRule::Candidate> stamp_edge() const { return stamps_.rule(); }
@@ -116,10 +119,11 @@ class TransactionScoreboard {
   void fail(const char* check, std::uint64_t cycle, std::uint64_t t_ps, bool protocol, Describe describe) {
     ++failures_;
     violations_ += protocol ? 1 : 0;
-    if (first_) return;
+    if (case_first_) return;
     Texts texts = describe();
-    first_ = VerifyFailure{case_, check, std::move(texts.first), std::move(texts.second),
-                           static_cast<double>(t_ps) * 1e-12, cycle};
+    case_first_ = VerifyFailure{case_, check, std::move(texts.first), std::move(texts.second),
+                                static_cast<double>(t_ps) * 1e-12, cycle};
+    if (!first_) first_ = case_first_;
   }
   // A word taken: an event's fields gathered from its words (event_words), then the event as a beat.
   void word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w, bool special);
@@ -167,7 +171,7 @@ class TransactionScoreboard {
   std::uint64_t drops_strict_ = 0, drops_maybe_ = 0;
 
   std::uint64_t transactions_ = 0, beats_ = 0, failures_ = 0, violations_ = 0, drops_total_ = 0, special_beats_ = 0;
-  std::optional<VerifyFailure> first_;
+  std::optional<VerifyFailure> first_, case_first_;
 };
 
 }  // namespace aesim

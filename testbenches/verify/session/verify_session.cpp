@@ -52,7 +52,11 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
     const std::uint64_t t0 = sb.transactions(), b0 = sb.beats_checked(), f0 = sb.failures();
     const CaseStats stats = run_case(dut, bound, d, c, &sb, o);
     CaseSummary s{c.name, c.kind, stats.edges, stats.firings, sb.transactions() - t0, sb.beats_checked() - b0,
-                  sb.failures() - f0, ""};
+                  sb.failures() - f0, "", sb.case_first_failure()};
+    if (s.first_failure) {
+      s.first_failure->observed = shorten(s.first_failure->observed);
+      s.first_failure->expected = shorten(s.first_failure->expected);
+    }
     if (stats.rtl.kind == RtlEvent::Kind::Finish) s.rtl_finish = shorten(stats.rtl.where);
     if (!stats.rtl_output.empty() && r.rtl_output.size() < (1u << 20)) {
       r.rtl_output += "== " + c.name + "\n" + shorten(stats.rtl_output);
@@ -61,9 +65,11 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
     r.receiver_cycles += stats.edges;
     if (export_this) options.exported->end_ps = (stats.edges + 2) * clock_period_ps(d);
     if (options.progress) {
+      const std::string verdict =
+          s.first_failure ? fmt::format("FAIL ({} at cycle {})", s.first_failure->check, s.first_failure->cycle) : "ok";
       std::fprintf(stderr, "  %-34s %9llu cycles %8llu transactions %8llu beats  %s%s\n", c.name.c_str(),
                    static_cast<unsigned long long>(s.edges), static_cast<unsigned long long>(s.transactions),
-                   static_cast<unsigned long long>(s.beats), s.failures ? "FAIL" : "ok",
+                   static_cast<unsigned long long>(s.beats), verdict.c_str(),
                    s.rtl_finish.empty() ? "" : fmt::format(" (ended by the RTL's $finish at {})", s.rtl_finish).c_str());
     }
     r.cases.push_back(s);

@@ -17,6 +17,7 @@ struct CaseSummary {
   std::string name, kind;
   std::uint64_t edges = 0, firings = 0, transactions = 0, beats = 0, failures = 0;
   std::string rtl_finish;  // where the RTL's $finish ended the case, if it did
+  std::optional<VerifyFailure> first_failure;  // the case's own first
 };
 
 struct VerifyResult {
