@@ -2,7 +2,6 @@
 #include <cstddef>
 #include <vector>
 
-#include "aesim/containers/huge_page_growth.hpp"
 #include "aesim/events/address_event.hpp"
 #include "aesim/events/truth_record.hpp"
 
@@ -25,12 +24,11 @@ class EventStream {
 };
 
 // An EventStream that keeps everything: for runs whose records are analysed after the run
-// (compare, tests, the Python module) rather than written as they come. Its blocks of records go
-// on huge pages (append_on_huge_pages).
+// (compare, tests, the Python module) rather than written as they come.
 class EventCollector : public EventStream {
  public:
-  void events(const AddressEvent* first, std::size_t count) override { append_on_huge_pages(events_, first, count); }
-  void truth(const TruthRecord* first, std::size_t count) override { append_on_huge_pages(truth_, first, count); }
+  void events(const AddressEvent* first, std::size_t count) override { events_.insert(events_.end(), first, first + count); }
+  void truth(const TruthRecord* first, std::size_t count) override { truth_.insert(truth_.end(), first, first + count); }
   const std::vector<AddressEvent>& events() const { return events_; }
   const std::vector<TruthRecord>& truth() const { return truth_; }
 
