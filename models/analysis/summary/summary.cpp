@@ -46,8 +46,8 @@ void add_sizing(nlohmann::json& s, const SensorConfig& config, const EventLog& l
 
 // The PSNR of the histogram of real output events within the window against the scene, each
 // normalised to its peak (histogram_image and the scene divided by its peak, as psnr_db takes
-// them), read in place: at 2048x2048 the two images were 64 MB of fresh memory, whose first touch
-// was most of the summary's time.
+// them), read in place: at 2048x2048 the two images would be 64 MB of fresh memory, whose first
+// touch would be most of the summary's time.
 double window_psnr_db(const std::vector<EventLog::PixelCounts>& pixels, const Image& scene) {
   std::uint32_t most = 0;
   for (const EventLog::PixelCounts& p : pixels) most = std::max(most, p.output_in_window);
