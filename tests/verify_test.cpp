@@ -223,6 +223,40 @@ TEST_F(VerifyTest, PortsVerilatorRenamesInCppAreNamedAsTheVerilogNamesThem) {
                  "ports.req: '!req$i' is not a plain Verilog identifier (a line active low is { port = \"req$i\", active = \"low\" })");
 }
 
+// Sources that hold what yosys cannot parse (a debug package's string function, which Verilator
+// takes): `--formal` stops with yosys's line and names `[formal] sources`; given the sources
+// without that file, the proof reads them instead, says so, and proves the bundled receiver.
+TEST_F(VerifyTest, TheProofReadsFormalSourcesWhereYosysCannotReadTheSources) {
+  write("rx_names_pkg.sv", "package rx_names_pkg;\n  function automatic string state_name(input int s);\n"
+                           "    return (s != 0) ? \"busy\" : \"idle\";\n  endfunction\nendpackage\n");
+  std::string rtl;
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) rtl += ", \"" + kRtl + "/" + f + "\"";
+  const std::string bundled = slurp(kRtl + "/aer_receiver.toml");
+  const std::string listed = "sources = [\"aer_receiver.v\", \"aer_req_sync.v\", \"aer_timestamp.v\", \"aer_fifo.v\"]";
+  const std::string with_package = edited(bundled, listed, "sources = [\"rx_names_pkg.sv\"" + rtl + "]");
+  write("package.toml", with_package);
+  const Outcome refused = verify("package.toml --formal --formal-seconds 1 --out refused");
+  EXPECT_EQ(refused.status, 2) << refused.err;
+  EXPECT_NE(refused.err.find("yosys: rx_names_pkg.sv:2"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("[formal] sources"), std::string::npos) << refused.err;
+
+  write("formal_sources.toml", edited(with_package, "unsynchronised_outputs = [\"idle_o\"]\n",
+                                      "unsynchronised_outputs = [\"idle_o\"]\nsources = [" + rtl.substr(2) + "]\n"));
+  const Outcome proved = verify("formal_sources.toml --formal --formal-seconds 1 --out proved");
+  EXPECT_EQ(proved.status, 0) << proved.err;
+  const nlohmann::json r = report("proved");
+  EXPECT_TRUE(r["passed"].get<bool>());
+  ASSERT_EQ(r["formal"].size(), 12u) << r.dump();
+  for (const auto& v : r["formal"]) EXPECT_NE(v["verdict"], "failed") << v.dump();
+  EXPECT_NE(r["formal_run"]["notes"].dump().find("the proof read [formal] sources in place of sources"), std::string::npos)
+      << r["formal_run"].dump();
+  // A VHDL file is no source for yosys.
+  write("x.vhd", "entity x is end x;\n");
+  expect_refused("vhdl.toml", edited(with_package, "unsynchronised_outputs = [\"idle_o\"]\n",
+                                     "unsynchronised_outputs = [\"idle_o\"]\nsources = [\"x.vhd\"]\n"),
+                 "formal.sources[0]: yosys reads Verilog or SystemVerilog here");
+}
+
 // An output to an FX2-style slave FIFO: a word written at an edge where the active-low strobe is
 // low and the active-high full flag is not up, and a bus whose contention line is active low.
 // Described with those polarities it passes, here and in the exported testbench; described as

@@ -85,9 +85,15 @@ int verify_command(const VerifyCommandOptions& opt) {
     fo.cache_dir = build_options.cache_dir;
     fo.property_seconds = opt.formal_seconds;
     try {
-      const ReceiverDescription proof = vhdl_for_the_proof(written, d, default_cache_dir());
+      ReceiverDescription proof = vhdl_for_the_proof(written, d, default_cache_dir());
+      const bool resynthesised = proof.sources != d.sources;
+      if (!d.formal.sources.empty()) proof.sources = d.formal.sources;
       formal = run_formal(proof, result.stamp_edge, fo);
-      if (proof.sources != d.sources) {
+      if (!d.formal.sources.empty()) {
+        std::string names;
+        for (const std::string& s : d.formal.sources) names += (names.empty() ? "" : ", ") + std::filesystem::path(s).filename().string();
+        formal->notes.push_back("the proof read [formal] sources in place of sources: " + names);
+      } else if (resynthesised) {
         formal->notes.push_back("the VHDL the proof ran, synthesised with [formal] parameters: " + proof.sources.back());
       }
     } catch (const InputError& e) {

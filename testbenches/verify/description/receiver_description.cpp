@@ -512,6 +512,18 @@ ReceiverDescription read_receiver_description(const std::string& path) {
           if (!v.is_integer() || v.as_integer() < 0) r.fail(label + "." + name, "expected a non-negative integer");
           d.formal.inputs[name] = static_cast<std::uint64_t>(v.as_integer());
         }
+      } else if (key == "sources") {
+        if (!value.is_array() || value.as_array().empty()) r.fail(label, "expected a list of Verilog or SystemVerilog files");
+        if (value.as_array().size() > 1000) r.fail(label, "more than 1000 entries");
+        for (std::size_t i = 0; i < value.as_array().size(); ++i) {
+          const std::string at = fmt::format("{}[{}]", label, i);
+          const std::string path = r.path_of(value.as_array()[i], at, false);
+          const std::string ext = fs::path(path).extension().string();
+          if (ext == ".vhd" || ext == ".vhdl" || ext == ".VHD" || ext == ".VHDL") {
+            r.fail(at, "yosys reads Verilog or SystemVerilog here; a VHDL design's proof reads GHDL's Verilog of `sources`");
+          }
+          d.formal.sources.push_back(path);
+        }
       } else if (key == "unsynchronised_outputs") {
         if (!value.is_array()) r.fail(label, "expected a list of output port names");
         for (const TomlValue& v : value.as_array()) d.formal.unsynchronised_outputs.push_back(r.identifier(r.string_of(v, label), label));
@@ -523,7 +535,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
         if (key == "depth") d.formal.depth = static_cast<int>(value.as_integer());
         else d.formal.fifo_words = static_cast<int>(value.as_integer());
       } else {
-        r.fail(label, "unknown key (parameters, inputs, fifo_words, depth, unsynchronised_outputs)");
+        r.fail(label, "unknown key (parameters, inputs, fifo_words, depth, unsynchronised_outputs, sources)");
       }
     }
   }

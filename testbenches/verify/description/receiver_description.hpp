@@ -95,13 +95,15 @@ struct ReceiverDescription {
   // `aesim verify --formal`: parameter overrides for the proof only (a smaller FIFO, say), the
   // words the receiver can hold (for the depth of the bounded check), or that depth itself.
   // Outputs that may read Req before the synchroniser's last flop (a clock-gating hint, say): the
-  // structural check accepts logic whose only sinks they are.
+  // structural check accepts logic whose only sinks they are. The Verilog the proof reads instead
+  // of `sources`, where those hold what yosys cannot parse (a package's string functions, say).
   struct Formal {
     std::map<std::string, std::string> parameters;
     std::map<std::string, std::uint64_t> inputs;  // [inputs] overrides for the proof
     int fifo_words = 2;
     std::optional<int> depth;
     std::vector<std::string> unsynchronised_outputs;
+    std::vector<std::string> sources;
   } formal;
 
   bool has(const std::string& role) const { return ports.count(role) != 0; }

@@ -352,6 +352,7 @@ void run_yosys(const fs::path& work, const std::string& script_name, const Recei
         }
       }
     }
+    if (hint.empty() && d.formal.sources.empty()) hint = " ([formal] sources names Verilog for the proof to read instead)";
     throw InputError("--formal: yosys: " + first + hint);
   }
 }
