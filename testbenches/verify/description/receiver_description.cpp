@@ -11,6 +11,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/text/nearest_name.hpp"
 #include "aesim/files/input_path.hpp"
+#include "build/vhdl_conversion.hpp"
 #include "aesim/files/toml_file.hpp"
 #include "aesim/units/si_units.hpp"
 
@@ -62,8 +63,11 @@ class Reader {
     return full;
   }
   std::vector<std::string> paths(const std::string& key, bool folder, bool required) const {
+    return paths_in(find(root_, key), key, folder, required);
+  }
+  // A path or a list of them, `v` (null when the key is absent), named `key` in errors.
+  std::vector<std::string> paths_in(const TomlValue* v, const std::string& key, bool folder, bool required) const {
     std::vector<std::string> out;
-    const TomlValue* v = find(root_, key);
     if (!v) {
       if (required) fail(key, "missing");
       return out;
@@ -513,16 +517,12 @@ ReceiverDescription read_receiver_description(const std::string& path) {
           d.formal.inputs[name] = static_cast<std::uint64_t>(v.as_integer());
         }
       } else if (key == "sources") {
-        if (!value.is_array() || value.as_array().empty()) r.fail(label, "expected a list of Verilog or SystemVerilog files");
-        if (value.as_array().size() > 1000) r.fail(label, "more than 1000 entries");
-        for (std::size_t i = 0; i < value.as_array().size(); ++i) {
-          const std::string at = fmt::format("{}[{}]", label, i);
-          const std::string path = r.path_of(value.as_array()[i], at, false);
-          const std::string ext = fs::path(path).extension().string();
-          if (ext == ".vhd" || ext == ".vhdl" || ext == ".VHD" || ext == ".VHDL") {
-            r.fail(at, "yosys reads Verilog or SystemVerilog here; a VHDL design's proof reads GHDL's Verilog of `sources`");
+        d.formal.sources = r.paths_in(&value, label, false, true);
+        for (std::size_t i = 0; i < d.formal.sources.size(); ++i) {
+          if (is_vhdl_source(d.formal.sources[i])) {
+            r.fail(fmt::format("{}[{}]", label, i),
+                   "yosys reads Verilog or SystemVerilog here; a VHDL design's proof reads GHDL's Verilog of `sources`");
           }
-          d.formal.sources.push_back(path);
         }
       } else if (key == "unsynchronised_outputs") {
         if (!value.is_array()) r.fail(label, "expected a list of output port names");
