@@ -135,7 +135,7 @@ TEST_F(CliTest, BadInputIsOneLineExitTwoAndNoOutput) {
   const std::string outputs = " --out o.aedat --csv o.csv --summary o.json --recon o.png";
   const std::pair<std::string, std::string> cases[] = {
       {"run --scene " + truncated, "truncated"},
-      {"run --scene " + malformed, "not a PGM"},
+      {"run --scene " + malformed, "not a Netpbm image"},
       {"run --scene " + write("t.pfm", "Pf\n2 2\n-1.0\nabc"), "truncated"},
       {"run --set pixel.c_intt=1fF", "pixel.c_intt"},
       {"run --set pixel.c_int=abc", "pixel.c_int"},
@@ -171,7 +171,7 @@ TEST_F(CliTest, ReconReproducesTheCheckerboardAndInfoCountsEvents) {
   ASSERT_EQ(aesim("run --scene " + kScenes + "/checkerboard.pgm --duration 3s --out e.aedat --summary s.json").status, 0);
   const Outcome recon = aesim("recon e.aedat --mode histogram -o r.pgm");
   ASSERT_EQ(recon.status, 0) << recon.err;
-  const Image img = read_pgm((dir_ / "r.pgm").string());
+  const Image img = read_pnm((dir_ / "r.pgm").string());
   ASSERT_EQ(img.width, 64);
   // Lit squares fire ~30 times in 3 s, dark ones (1 fA) essentially never.
   for (int y = 4; y < 64; y += 8) {

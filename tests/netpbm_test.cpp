@@ -1,4 +1,4 @@
-// Scene files: PGM/PPM/PFM decoding, malformed files, resampling, frame folders.
+// Scene files: PBM/PGM/PPM/PFM decoding, malformed files, resampling, frame folders.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -21,35 +21,35 @@ namespace fs = std::filesystem;
 using SceneFilesTest = testing::TempDirTest;
 
 TEST_F(SceneFilesTest, AsciiAndBinaryPgmIn8And16Bit) {
-  const Image a = read_pgm(write("a.pgm", "P2\n# comment\n3 2\n255\n0 51 255\n# inline\n102 153 204\n"));
+  const Image a = read_pnm(write("a.pgm", "P2\n# comment\n3 2\n255\n0 51 255\n# inline\n102 153 204\n"));
   ASSERT_EQ(a.width, 3);
   ASSERT_EQ(a.height, 2);
   EXPECT_DOUBLE_EQ(a.at(1, 0), 51 / 255.0);
   EXPECT_DOUBLE_EQ(a.at(2, 1), 204 / 255.0);
 
-  const Image b = read_pgm(write("b.pgm", std::string("P5\n2 1\n255\n") + char(0) + char(255)));
+  const Image b = read_pnm(write("b.pgm", std::string("P5\n2 1\n255\n") + char(0) + char(255)));
   EXPECT_DOUBLE_EQ(b.at(0, 0), 0.0);
   EXPECT_DOUBLE_EQ(b.at(1, 0), 1.0);
 
   // 16-bit samples are big-endian: 0x0100 = 256, 0xFFFF = full scale.
-  const Image c = read_pgm(write("c.pgm", std::string("P5\n2 1\n65535\n") + char(1) + char(0) + char(255) + char(255)));
+  const Image c = read_pnm(write("c.pgm", std::string("P5\n2 1\n65535\n") + char(1) + char(0) + char(255) + char(255)));
   EXPECT_DOUBLE_EQ(c.at(0, 0), 256 / 65535.0);
   EXPECT_DOUBLE_EQ(c.at(1, 0), 1.0);
 }
 
 // PPM: three samples a pixel, taken as the Rec. 709 luminance of linear values, as PGM's grey.
 TEST_F(SceneFilesTest, PpmIsRec709LuminanceInAsciiAndBinaryAnd16Bit) {
-  const Image a = read_ppm(write("a.ppm", "P3\n# comment\n2 1\n255\n255 0 0  0 51 255\n"));
+  const Image a = read_pnm(write("a.ppm", "P3\n# comment\n2 1\n255\n255 0 0  0 51 255\n"));
   ASSERT_EQ(a.width, 2);
   ASSERT_EQ(a.height, 1);
   EXPECT_DOUBLE_EQ(a.at(0, 0), 0.2126);
   EXPECT_DOUBLE_EQ(a.at(1, 0), 0.7152 * 51 / 255.0 + 0.0722);
-  const Image b = read_ppm(write("b.ppm", std::string("P6\n1 2\n255\n") + char(0) + char(255) + char(0) + char(255) +
+  const Image b = read_pnm(write("b.ppm", std::string("P6\n1 2\n255\n") + char(0) + char(255) + char(0) + char(255) +
                                               char(255) + char(255)));
   EXPECT_DOUBLE_EQ(b.at(0, 0), 0.7152);
   EXPECT_NEAR(b.at(0, 1), 1.0, 1e-15);
   // 16-bit samples are big-endian, as PGM's.
-  const Image c = read_ppm(write("c.ppm", std::string("P6\n1 1\n65535\n") + char(1) + char(0) + char(0) + char(0) +
+  const Image c = read_pnm(write("c.ppm", std::string("P6\n1 1\n65535\n") + char(1) + char(0) + char(0) + char(0) +
                                               char(0) + char(0)));
   EXPECT_DOUBLE_EQ(c.at(0, 0), 0.2126 * 256 / 65535.0);
   // A grey PPM reads as the same PGM, through read_image by its extension in either case.
@@ -58,10 +58,57 @@ TEST_F(SceneFilesTest, PpmIsRec709LuminanceInAsciiAndBinaryAnd16Bit) {
   ASSERT_EQ(grey.pixels.size(), same.pixels.size());
   for (std::size_t i = 0; i < grey.pixels.size(); ++i) EXPECT_NEAR(grey.pixels[i], same.pixels[i], 1e-15) << i;
   for (const auto& [needle, bytes] : {std::pair<std::string, std::string>{"truncated pixel data", "P6\n2 1\n255\nabc"},
-                                      {"not a PPM", "P5\n1 1\n255\nx"},
+                                      {"not a Netpbm image (expected the magic number P1 to P6", "P7\n1 1\n255\nx"},
                                       {"pixel value 300", "P3\n1 1\n255\n1 2 300\n"}}) {
     try {
-      read_ppm(write("bad.ppm", bytes));
+      read_pnm(write("bad.ppm", bytes));
+      FAIL() << "accepted a file that should fail with '" << needle << "'";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Netpbm's tools tell PBM, PGM and PPM apart by the magic number, not the name: a grey picture an
+// imaging library wrote as P5 under .ppm, or a colour one under .pgm or .pnm, reads as what it is.
+TEST_F(SceneFilesTest, TheMagicNumberNotTheExtensionTellsGreyFromColour) {
+  const std::string grey = std::string("P5\n2 1\n255\n") + char(51) + char(255);
+  const std::string colour = std::string("P6\n2 1\n255\n") + char(255) + char(0) + char(0) + char(0) + char(0) + char(255);
+  for (const char* name : {"g.ppm", "g.pgm", "g.PNM", "g.pbm"}) {
+    const Image g = read_image(write(name, grey));
+    ASSERT_EQ(g.width, 2) << name;
+    EXPECT_DOUBLE_EQ(g.at(0, 0), 51 / 255.0) << name;
+    EXPECT_DOUBLE_EQ(g.at(1, 0), 1.0) << name;
+    const Image c = read_image(write(name, colour));
+    EXPECT_DOUBLE_EQ(c.at(0, 0), 0.2126) << name;
+    EXPECT_DOUBLE_EQ(c.at(1, 0), 0.0722) << name;
+  }
+  EXPECT_TRUE(is_scene_image("frame_001.pnm"));
+  EXPECT_TRUE(is_scene_image("frame_001.PBM"));
+}
+
+// PBM, as Netpbm's pbm(5) lays it out: 1 is black. Plain (P1) digits with or without space
+// between them; raw (P4) bits packed from the most significant, each row starting a new byte.
+TEST_F(SceneFilesTest, PbmBitmapsAreBlackForOneInPlainAndPackedRows) {
+  // Hand-worked 10x2: row 0 alternates from black, row 1 is black only at x = 9.
+  const std::string plain = "P1\n# a comment\n10 2\n1010101010\n0 0 0 0 0 0 0 0 0 1\n";
+  // Row 0: 1010 1010 | 10 padded -> 0xAA 0x80; row 1: 0000 0000 | 01 padded -> 0x00 0x40.
+  const std::string packed = std::string("P4\n10 2\n") + char(0xAA) + char(0x80) + char(0x00) + char(0x40);
+  for (const std::string& bytes : {plain, packed}) {
+    const Image img = read_pnm(write("b.pbm", bytes));
+    ASSERT_EQ(img.width, 10);
+    ASSERT_EQ(img.height, 2);
+    for (int x = 0; x < 10; ++x) {
+      EXPECT_EQ(img.at(x, 0), x % 2 == 0 ? 0.0 : 1.0) << bytes.substr(0, 2) << " x " << x;
+      EXPECT_EQ(img.at(x, 1), x == 9 ? 0.0 : 1.0) << bytes.substr(0, 2) << " x " << x;
+    }
+  }
+  for (const auto& [needle, bytes] : {std::pair<std::string, std::string>{"truncated pixel data (1 of 4 bytes)",
+                                                                          std::string("P4\n10 2\n") + char(0xAA)},
+                                      {"room for at most", "P1\n4 4\n1 0\n"},
+                                      {"malformed pixel '2'", "P1\n2 1\n12\n"}}) {
+    try {
+      read_pnm(write("bad.pbm", bytes));
       FAIL() << "accepted a file that should fail with '" << needle << "'";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
@@ -98,7 +145,7 @@ TEST_F(SceneFilesTest, PfmIsBottomUpInEitherByteOrderAndKeepsHdrValues) {
 TEST_F(SceneFilesTest, MalformedFilesAreInputErrorsNamingTheDefect) {
   const std::pair<const char*, std::string> cases[] = {
       {"truncated", std::string("P5\n4 4\n255\n") + std::string(10, 'x')},
-      {"not a PGM", "P6\n1 1\n255\n\xff\xff\xff"},
+      {"not a Netpbm image", "Pf\n1 1\n-1\n\0\0\0\0"},
       {"maxval", "P2\n1 1\n70000\n5\n"},
       {"pixel value 101", "P2\n1 1\n100\n101\n"},
       {"malformed width", "P2\nx 1\n255\n0\n"},
@@ -108,7 +155,7 @@ TEST_F(SceneFilesTest, MalformedFilesAreInputErrorsNamingTheDefect) {
   };
   for (const auto& [needle, bytes] : cases) {
     try {
-      read_pgm(write("bad.pgm", bytes));
+      read_pnm(write("bad.pgm", bytes));
       FAIL() << "accepted a file that should fail with '" << needle << "'";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();

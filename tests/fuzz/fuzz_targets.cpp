@@ -47,7 +47,7 @@ int expect_result_or_input_error(F parse) {
 
 int netpbm(const std::uint8_t* data, std::size_t size) {
   const std::string in = bytes(data, size);
-  expect_result_or_input_error([&] { decode_pgm(in, "fuzz.pgm"); });
+  expect_result_or_input_error([&] { decode_pnm(in, "fuzz.pgm"); });
   return expect_result_or_input_error([&] { decode_pfm(in, "fuzz.pfm"); });
 }
 

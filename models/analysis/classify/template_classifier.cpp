@@ -26,7 +26,7 @@ std::vector<Template> load_templates(const std::string& folder) {
   if (files.size() < 2) throw InputError(fmt::format("template folder '{}' needs at least two .pgm templates", folder));
   std::vector<Template> out;
   for (const fs::path& f : files) {
-    const Image img = read_pgm(f.string());
+    const Image img = read_pnm(f.string());
     Template t;
     t.name = f.stem().string();
     t.width = img.width;

@@ -39,6 +39,15 @@ class HeaderReader {
     return data_.substr(start, pos_ - start);
   }
 
+  // A plain PBM's pixel: one digit, with or without space before it.
+  bool bit() {
+    skip_space_and_comments();
+    if (pos_ >= data_.size()) fail("truncated pixel data");
+    const char c = data_[pos_++];
+    if (c != '0' && c != '1') fail(fmt::format("malformed pixel '{}' (a PBM's are 0 or 1)", c));
+    return c == '1';
+  }
+
   long long integer(const char* what, long long lo, long long hi) {
     const std::string t = token();
     if (t.size() > 12 || t.find_first_not_of("0123456789") != std::string::npos) {
@@ -82,25 +91,22 @@ class HeaderReader {
   std::size_t pos_ = 0;
 };
 
-// Checks the magic number and reads width and height into `img`; returns the magic.
-std::string read_preamble(HeaderReader& header, const std::string& data, const char* a, const char* b,
-                          const char* kind, Image& img) {
-  const std::string magic = data.size() >= 2 ? data.substr(0, 2) : std::string();
-  if (magic != a && magic != b) header.fail(fmt::format("not a {} (expected {} or {})", kind, a, b));
+// Reads width and height into `img` after the magic number, which names the format.
+void read_size(HeaderReader& header, Image& img) {
   header.token();
   img.width = static_cast<int>(header.integer("width", 1, kMaxSide));
   img.height = static_cast<int>(header.integer("height", 1, kMaxSide));
   if (static_cast<long long>(img.width) * img.height > kMaxArrayPixels) {
     header.fail(fmt::format("{}x{} is more than the {} pixels aesim reads", img.width, img.height, kMaxArrayPixels));
   }
-  return magic;
 }
+
+std::string magic_of(const std::string& data) { return data.size() >= 2 ? data.substr(0, 2) : std::string(); }
 
 }  // namespace
 
-Image read_pgm(const std::string& path) { return decode_pgm(read_scene_file(path), path); }
+Image read_pnm(const std::string& path) { return decode_pnm(read_scene_file(path), path); }
 Image read_pfm(const std::string& path) { return decode_pfm(read_scene_file(path), path); }
-Image read_ppm(const std::string& path) { return decode_ppm(read_scene_file(path), path); }
 
 namespace {
 
@@ -135,22 +141,58 @@ std::vector<double> read_samples(HeaderReader& header, const std::string& data, 
   return samples;
 }
 
-}  // namespace
-
-Image decode_pgm(const std::string& data, const std::string& path) {
-  HeaderReader header(data, path);
-  Image img;
-  const std::string magic = read_preamble(header, data, "P2", "P5", "PGM", img);
-  img.pixels = read_samples(header, data, magic == "P5", static_cast<std::size_t>(img.width) * img.height);
-  return img;
+// A bitmap's samples: 1 is black (no light), 0 white (full scale). P1 writes a digit a pixel;
+// P4 packs a row's pixels into bits, the first the most significant, each row from a new byte.
+std::vector<double> read_bits(HeaderReader& header, const std::string& data, bool binary, const Image& img) {
+  const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
+  std::vector<double> samples(count);
+  if (!binary) {
+    // Every pixel takes a digit: a header cannot promise more than the file holds.
+    if (header.remaining() < count) {
+      header.fail(fmt::format("truncated pixel data (room for at most {} of {} pixels)", header.remaining(), count));
+    }
+    for (double& v : samples) v = header.bit() ? 0.0 : 1.0;
+    return samples;
+  }
+  const std::size_t start = header.data_start();
+  const std::size_t row_bytes = (static_cast<std::size_t>(img.width) + 7) / 8;
+  const std::size_t bytes = row_bytes * static_cast<std::size_t>(img.height);
+  if (data.size() < start + bytes) {
+    header.fail(fmt::format("truncated pixel data ({} of {} bytes)", data.size() - std::min(data.size(), start), bytes));
+  }
+  const auto* p = reinterpret_cast<const unsigned char*>(data.data() + start);
+  for (std::size_t y = 0; y < static_cast<std::size_t>(img.height); ++y) {
+    for (std::size_t x = 0; x < static_cast<std::size_t>(img.width); ++x) {
+      const bool black = (p[y * row_bytes + x / 8] >> (7 - x % 8)) & 1u;
+      samples[y * static_cast<std::size_t>(img.width) + x] = black ? 0.0 : 1.0;
+    }
+  }
+  return samples;
 }
 
-Image decode_ppm(const std::string& data, const std::string& path) {
+}  // namespace
+
+Image decode_pnm(const std::string& data, const std::string& path) {
   HeaderReader header(data, path);
+  const std::string magic = magic_of(data);
+  const bool bitmap = magic == "P1" || magic == "P4", grey = magic == "P2" || magic == "P5",
+             colour = magic == "P3" || magic == "P6";
+  if (!bitmap && !grey && !colour) {
+    header.fail("not a Netpbm image (expected the magic number P1 to P6: PBM, PGM or PPM)");
+  }
+  const bool binary = magic == "P4" || magic == "P5" || magic == "P6";
   Image img;
-  const std::string magic = read_preamble(header, data, "P3", "P6", "PPM", img);
+  read_size(header, img);
+  if (bitmap) {
+    img.pixels = read_bits(header, data, binary, img);
+    return img;
+  }
   const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
-  const std::vector<double> rgb = read_samples(header, data, magic == "P6", 3 * count);
+  if (grey) {
+    img.pixels = read_samples(header, data, binary, count);
+    return img;
+  }
+  const std::vector<double> rgb = read_samples(header, data, binary, 3 * count);
   img.pixels.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
     img.pixels[i] = rec709_luminance(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
@@ -160,8 +202,10 @@ Image decode_ppm(const std::string& data, const std::string& path) {
 
 Image decode_pfm(const std::string& data, const std::string& path) {
   HeaderReader header(data, path);
+  const std::string magic = magic_of(data);
+  if (magic != "Pf" && magic != "PF") header.fail("not a PFM (expected Pf or PF)");
   Image img;
-  const std::string magic = read_preamble(header, data, "Pf", "PF", "PFM", img);
+  read_size(header, img);
   const std::string scale_text = header.token();
   char* end = nullptr;
   const double scale = std::strtod(scale_text.c_str(), &end);
@@ -223,9 +267,10 @@ std::string scene_image_formats() {
 
 Image read_image(const std::string& path) {
   const std::string ext = file_extension(path);
-  if (ext == ".pgm") return read_pgm(path);
+  // The magic number tells PBM, PGM and PPM apart, as Netpbm's own tools tell them, whichever of
+  // their names the file has (imaging libraries write a grey picture as P5 under .ppm).
+  if (ext == ".pgm" || ext == ".ppm" || ext == ".pnm" || ext == ".pbm") return read_pnm(path);
   if (ext == ".pfm") return read_pfm(path);
-  if (ext == ".ppm") return read_ppm(path);
   if (ext == ".png") return decode_png(read_scene_file(path), path);
   if (ext == ".jpg" || ext == ".jpeg") return decode_jpeg(read_scene_file(path), path);
   if (ext == ".tif" || ext == ".tiff") {

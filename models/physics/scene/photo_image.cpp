@@ -240,7 +240,9 @@ Image decode_jpeg(const std::string& data, const std::string& path) {
   std::vector<double> light;
   const std::vector<double> table = decoding_table(255, 0);
   std::unique_ptr<ReducedImage> image;
-  int orientation = 1;
+  // Set after the setjmp below and read after it returns normally: volatile, so that a register
+  // copy a longjmp would leave stale is never what is read (GCC's -Wclobbered).
+  volatile int orientation = 1;
   bool decodable = false;
   unsigned long width = 0, height = 0;
   if (setjmp(errors.jump)) {
