@@ -11,6 +11,10 @@
 #include <string>
 #include <vector>
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <ImfRgbaFile.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -925,6 +929,49 @@ TEST_F(PhotoFiles, OpenExrIsLinearLightAsItIs) {
   EXPECT_EQ(find_scene((dir_ / "frames").string()).frames.size(), 2u);
   const testing::Outcome o = aesim("run --scene hdr.exr --duration 0.1 --summary s.json");
   EXPECT_EQ(o.status, 0) << o.err;
+}
+
+// An OpenEXR file of float channels named as given, each its own values, by OpenEXR's own writer.
+void write_exr_channels(const std::string& path, int width, int height,
+                        const std::vector<std::pair<std::string, std::vector<float>>>& channels) {
+  Imf::Header header(width, height);
+  Imf::FrameBuffer frame;
+  for (const auto& [name, values] : channels) {
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    frame.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data())),
+                                  sizeof(float), sizeof(float) * static_cast<std::size_t>(width)));
+  }
+  Imf::OutputFile out(path.c_str(), header);
+  out.setFrameBuffer(frame);
+  out.writePixels(height);
+}
+
+// OpenEXR's RGBA interface fills the channels a file lacks with 0: without a look at the channels
+// first, a grey picture in a channel named anything but Y, or a layer's channels, read as a black
+// scene. A file of one channel is grey whatever the channel's name; channels with none of R, G, B
+// and Y are refused, named.
+TEST_F(PhotoFiles, AnExrOfOneChannelIsGreyWhateverItsNameAndLayersAreNamedNotReadAsDark) {
+  for (const char* name : {"L", "A", "R", "G", "gray", "Y"}) {
+    const std::string file = (dir_ / (std::string("one_") + name + ".exr")).string();
+    write_exr_channels(file, 2, 1, {{name, {0.25f, 20.0f}}});
+    const Image img = read_image(file);
+    ASSERT_EQ(img.pixels.size(), 2u) << name;
+    EXPECT_EQ(img.pixels[0], 0.25) << name;
+    EXPECT_EQ(img.pixels[1], 20.0) << name;
+  }
+  // Two colour channels of three: the missing one is no light (Rec. 709 of R and G).
+  write_exr_channels((dir_ / "rg.exr").string(), 1, 1, {{"R", {1.0f}}, {"G", {1.0f}}});
+  EXPECT_NEAR(read_image((dir_ / "rg.exr").string()).pixels[0], 0.2126 + 0.7152, 1e-6);
+  write_exr_channels((dir_ / "layer.exr").string(), 1, 1, {{"left.R", {1.0f}}, {"left.G", {1.0f}}, {"left.B", {1.0f}}});
+  try {
+    read_image((dir_ / "layer.exr").string());
+    ADD_FAILURE() << "a layer's channels read as a scene";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no R, G, B or Y channel"), std::string::npos) << what;
+    EXPECT_NE(what.find("left.B, left.G, left.R"), std::string::npos) << what;
+    EXPECT_NE(what.find("--chnames R,G,B"), std::string::npos) << what;
+  }
 }
 
 }  // namespace
