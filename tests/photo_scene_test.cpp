@@ -312,6 +312,8 @@ struct TiffSpec {
   bool tiled = false;
   std::vector<unsigned char> samples;
   std::vector<std::uint16_t> colormap;  // 3 x 256 for a palette
+  // The ExtraSamples tag's kinds; unless given, one alpha for 2 or 4 samples, none otherwise.
+  std::vector<std::uint16_t> extra_samples;
 };
 
 std::string encode_tiff(const TiffSpec& s, const std::filesystem::path& dir) {
@@ -327,7 +329,9 @@ std::string encode_tiff(const TiffSpec& s, const std::filesystem::path& dir) {
   TIFFSetField(t, TIFFTAG_ORIENTATION, s.orientation);
   TIFFSetField(t, TIFFTAG_COMPRESSION, s.compression);
   TIFFSetField(t, TIFFTAG_FILLORDER, s.fill_order);
-  if (s.spp == 2 || s.spp == 4) {
+  if (!s.extra_samples.empty()) {
+    TIFFSetField(t, TIFFTAG_EXTRASAMPLES, static_cast<std::uint16_t>(s.extra_samples.size()), s.extra_samples.data());
+  } else if (s.spp == 2 || s.spp == 4) {
     const std::uint16_t extra = EXTRASAMPLE_UNASSALPHA;
     TIFFSetField(t, TIFFTAG_EXTRASAMPLES, 1, &extra);
   }
@@ -627,6 +631,56 @@ TEST_F(TiffScenes, OtherLayoutsAndBrokenFilesAreOneLineErrors) {
   huge += std::string(64, '\0');
   expect_refused([&] { decode_tiff(huge, "huge_tiles.tif"); }, "tiles of 65520x65520 pixels");
   expect_refused([&] { decode_tiff("", "empty.tif"); }, "TIFF");
+}
+
+// Samples past the colours that the ExtraSamples tag declares (alpha and a depth, as oiiotool
+// writes RGBAZ) carry no light: the colours are read. Five samples none of them declared extra
+// are a multispectral image's bands, which aesim does not guess among.
+TEST_F(TiffScenes, DeclaredExtraSamplesAreLeftOutAndUndeclaredBandsRefused) {
+  TiffSpec rgbaz;
+  rgbaz.spp = 5;
+  rgbaz.photometric = PHOTOMETRIC_RGB;
+  rgbaz.extra_samples = {EXTRASAMPLE_UNASSALPHA, EXTRASAMPLE_UNSPECIFIED};
+  rgbaz.samples = {255, 0, 0, 7, 9, 0, 0, 255, 7, 9};
+  const Image img = decode_tiff(encode_tiff(rgbaz, dir_), "rgbaz.tif");
+  ASSERT_EQ(img.pixels.size(), 2u);
+  EXPECT_NEAR(img.pixels[0], 0.2126, 1e-12);
+  EXPECT_NEAR(img.pixels[1], 0.0722, 1e-12);
+  TiffSpec bands;
+  bands.spp = 5;
+  bands.samples.assign(10, 1);
+  expect_refused([&] { decode_tiff(encode_tiff(bands, dir_), "bands.tif"); }, "5 samples a pixel, 0 of them declared extra");
+}
+
+// JPEG compression stores colour as YCbCr, subsampled 2x2, as photo tools and scanners write it
+// (libtiff's own encoder here, given RGB rows): read back as RGB through libtiff's JPEG codec, a
+// flat colour's luminance within JPEG's rounding.
+TEST_F(TiffScenes, AJpegCompressedYCbCrTiffReadsAsItsRgb) {
+  const std::string path = (dir_ / "ycbcr.tif").string();
+  TIFF* t = TIFFOpen(path.c_str(), "w");
+  TIFFSetField(t, TIFFTAG_IMAGEWIDTH, 32u);
+  TIFFSetField(t, TIFFTAG_IMAGELENGTH, 16u);
+  TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 3);
+  TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 8);
+  TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  TIFFSetField(t, TIFFTAG_COMPRESSION, COMPRESSION_JPEG);
+  TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_YCBCR);
+  TIFFSetField(t, TIFFTAG_JPEGCOLORMODE, JPEGCOLORMODE_RGB);
+  TIFFSetField(t, TIFFTAG_JPEGQUALITY, 95);
+  TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, 16u);
+  std::vector<unsigned char> row(32 * 3);
+  for (std::size_t x = 0; x < 32; ++x) {
+    row[3 * x] = 200;
+    row[3 * x + 1] = 100;
+    row[3 * x + 2] = 50;
+  }
+  for (std::uint32_t y = 0; y < 16; ++y) ASSERT_EQ(TIFFWriteScanline(t, row.data(), y, 0), 1);
+  TIFFClose(t);
+  const Image img = read_tiff_file(path, 0);
+  ASSERT_EQ(img.width, 32);
+  ASSERT_EQ(img.height, 16);
+  const double expected = (0.2126 * 200 + 0.7152 * 100 + 0.0722 * 50) / 255;
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) EXPECT_NEAR(img.pixels[i], expected, 2.0 / 255) << i;
 }
 
 // A multi-page TIFF (a camera's or a microscope's stack) is a moving scene of its full-resolution

@@ -178,6 +178,14 @@ Image decode_tiff_from(TiffSource& src, const std::string& path, std::size_t pag
   TIFFGetFieldDefaulted(t, TIFFTAG_ORIENTATION, &l.orientation);
   if (!TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &l.photometric)) fail("no PhotometricInterpretation tag");
   ReducedImage::check(l.width, l.height, path);
+  // JPEG compression stores colour as YCbCr (what photo tools and scanners write by default):
+  // libtiff's JPEG codec hands it back as RGB when asked, its rows then RGB's.
+  std::uint16_t compression = COMPRESSION_NONE;
+  TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &compression);
+  if (l.photometric == PHOTOMETRIC_YCBCR && compression == COMPRESSION_JPEG &&
+      TIFFSetField(t, TIFFTAG_JPEGCOLORMODE, JPEGCOLORMODE_RGB)) {
+    l.photometric = PHOTOMETRIC_RGB;
+  }
   const bool grey = l.photometric == PHOTOMETRIC_MINISBLACK || l.photometric == PHOTOMETRIC_MINISWHITE;
   const bool palette = l.photometric == PHOTOMETRIC_PALETTE;
   l.colours = l.photometric == PHOTOMETRIC_RGB ? 3 : 1;
@@ -202,7 +210,18 @@ Image decode_tiff_from(TiffSource& src, const std::string& path, std::size_t pag
                                                        : "complex or unknown"));
   }
   if (palette && l.bps > 8) fail(fmt::format("a {}-bit palette (aesim reads palettes of up to 8 bits)", l.bps));
-  if (l.spp < l.colours || l.spp > 4) fail(fmt::format("{} samples a pixel (aesim reads {} to 4)", l.spp, l.colours));
+  // Samples past the colours are alpha or other extras (ExtraSamples), which carry no light: up to
+  // four samples in all whether declared or not (grey and alpha, RGB and alpha), more when the
+  // ExtraSamples tag declares them (RGB with alpha and depth); more undeclared would be bands of a
+  // multispectral image, of which aesim would have to guess one.
+  std::uint16_t extras = 0;
+  const std::uint16_t* extra_kinds = nullptr;
+  TIFFGetField(t, TIFFTAG_EXTRASAMPLES, &extras, &extra_kinds);
+  if (l.spp < l.colours || (l.spp > 4 && l.spp != l.colours + extras)) {
+    fail(fmt::format("{} samples a pixel, {} of them declared extra (aesim reads {} to 4, or the colours and their "
+                     "declared extras)",
+                     l.spp, extras, l.colours));
+  }
   if (packed && l.spp != 1) fail(fmt::format("{} samples a pixel of {} bits (aesim reads one, grey or a palette index)", l.spp, l.bps));
   if (floating && l.photometric == PHOTOMETRIC_MINISWHITE) fail("float samples with white at zero");
   std::uint16_t *red = nullptr, *green = nullptr, *blue = nullptr;
