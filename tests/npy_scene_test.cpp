@@ -114,7 +114,7 @@ TEST_F(NpySceneTest, BadArraysAreOneLineErrors) {
       {"structured", npy("[('x', '<i2'), ('y', '<i2')]", "(1,)", std::string(4, '\0'))},
       {"a 1-D array", npy("<f4", "(2,)", bytes_of<float>({1, 1}))},
       {"a 4-D array", npy("<f4", "(1, 1, 1, 1)", bytes_of<float>({1}))},
-      {"colour channels last", npy("|u1", "(1, 2, 3)", std::string(6, '\x10'))},
+      {"colour channels last", npy("|u1", "(5, 6, 3)", std::string(90, '\x10'))},
       {"8 or 16 bit", npy("<i8", "(1, 1)", std::string(8, '\0'))},
       {"not an array of", npy("<c8", "(1, 1)", std::string(8, '\0'))},
       {"truncated: 16 values announced, 2 there", npy("<f4", "(4, 4)", bytes_of<float>({1, 1}))},

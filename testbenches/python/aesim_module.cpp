@@ -149,6 +149,9 @@ std::vector<Image> frames_from_array(const py::handle& object, const char* what)
     if (a.shape(0) < 1 || static_cast<std::size_t>(a.shape(0)) > kMaxSceneFrames) {
       throw InputError(fmt::format("{}: an array of {} frames; aesim takes 1 to {}", what, a.shape(0), kMaxSceneFrames));
     }
+    check_not_colour_last({static_cast<std::uint64_t>(a.shape(0)), static_cast<std::uint64_t>(a.shape(1)),
+                           static_cast<std::uint64_t>(a.shape(2))},
+                          what);
     for (py::ssize_t k = 0; k < a.shape(0); ++k) frames.push_back(image_from_array(a[py::int_(k)], what));
   } else {
     frames.push_back(image_from_array(object, what));

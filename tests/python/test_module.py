@@ -138,6 +138,24 @@ def test_bad_arrays_are_value_errors():
         aesim.emulate(np.zeros((0, 4, 4)))
 
 
+def test_a_colour_picture_array_is_refused_as_its_npy_file_is(tmp_path):
+    # What imaging libraries hand NumPy, colour last (rows, columns, 3 or 4), would read as 48
+    # frames of 64x3 pixels: refused in the same words as the same array saved as a .npy scene.
+    picture = np.zeros((48, 64, 3), np.uint8)
+    np.save(tmp_path / "rgb.npy", picture)
+    done = cli("run", "--scene", str(tmp_path / "rgb.npy"), "--summary", str(tmp_path / "s.json"))
+    assert done.returncode == 2
+    assert "(48, 64, 3) array reads as colour channels last" in done.stderr
+    for rgb in (picture, np.zeros((48, 64, 4), np.float32)):
+        with pytest.raises(ValueError, match=r"array reads as colour channels last .* 0.2126 R"):
+            aesim.run(scene=rgb, duration="10ms")
+        with pytest.raises(ValueError, match="input: a .* array reads as colour channels last"):
+            aesim.emulate(rgb)
+    # A stack of small frames is a moving scene still, four columns wide or not.
+    for frames in (np.full((3, 8, 8), 0.5), np.full((6, 4, 4), 0.5), np.full((6, 8, 3), 0.5)[:3]):
+        assert len(aesim.run(scene=frames, duration="10ms").events) > 0
+
+
 def test_emulate_and_classify_mirror_the_commands(tmp_path):
     letter = os.path.join(SCENES, "letters", "O.pgm")
     done = cli("emulate", letter, "--queue", str(tmp_path / "q.txt"), "--out", str(tmp_path / "o.aedat"))

@@ -42,14 +42,7 @@ NpySceneLayout layout_of(const NpyHeader& header, const std::string& path) {
   if (shape.size() != 2 && shape.size() != 3) {
     throw fail(fmt::format("a {}-D array: a scene is 2-D (rows, columns) or 3-D (frames, rows, columns)", shape.size()));
   }
-  // An image array as NumPy holds colour, (rows, columns, 3 or 4), would read as frames of 3 or 4
-  // columns: refused, since its codes are gamma-encoded in most tools that make one.
-  if (shape.size() == 3 && (shape[2] == 3 || shape[2] == 4)) {
-    throw fail(fmt::format("a ({}, {}, {}) array reads as colour channels last (an RGB image): a scene is 2-D light "
-                           "(rows, columns) or 3-D frames (frames, rows, columns); give its linear luminance, "
-                           "0.2126 R + 0.7152 G + 0.0722 B",
-                           shape[0], shape[1], shape[2]));
-  }
+  check_not_colour_last(shape, what_of(path));
   const std::uint64_t frames = shape.size() == 3 ? shape[0] : 1;
   const std::uint64_t rows = shape[shape.size() - 2], cols = shape[shape.size() - 1];
   // Clamped first: a dimension past 2^40 is refused all the same, without overflowing the product.
@@ -72,6 +65,15 @@ double half_to_double(std::uint16_t bits) {
 }
 
 }  // namespace
+
+void check_not_colour_last(const std::vector<std::uint64_t>& shape, const std::string& what) {
+  if (shape.size() == 3 && (shape[2] == 3 || shape[2] == 4) && shape[0] > 4 && shape[1] > 4) {
+    throw InputError(fmt::format("{}: a ({}, {}, {}) array reads as colour channels last (an RGB image): a scene is 2-D "
+                                 "light (rows, columns) or 3-D frames (frames, rows, columns); give its linear luminance, "
+                                 "0.2126 R + 0.7152 G + 0.0722 B",
+                                 what, shape[0], shape[1], shape[2]));
+  }
+}
 
 double array_full_scale(char kind, int item_bytes, const std::string& what) {
   if (kind == 'u' || kind == 'i') {

@@ -1,6 +1,8 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "aesim/files/npy_header.hpp"
 #include "aesim/scene/image.hpp"
@@ -26,6 +28,12 @@ struct NpySceneLayout {
 // bit) are fractions as they are (as in PFM, above 1 is brighter); bools are 0 or 1. Any other
 // type is refused, InputError("<what>: ...").
 double array_full_scale(char kind, int item_bytes, const std::string& what);
+
+// An image array as imaging libraries hand it to NumPy, colour last (rows, columns, 3 or 4), would
+// read as frames of 3 or 4 columns: refused, InputError("<what>: ..."), for a .npy file and a
+// Python array alike, since its codes are gamma-encoded in most tools that make one. Only a
+// picture's shape is refused (both other sides over 4): a stack of 4x4 frames is a moving scene.
+void check_not_colour_last(const std::vector<std::uint64_t>& shape, const std::string& what);
 
 // The layout from the file's header alone (whether it is one frame or many, before reading it).
 NpySceneLayout read_npy_scene_header(const std::string& path);
