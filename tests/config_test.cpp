@@ -92,8 +92,14 @@ TEST(SensorConfig, BadKeysValuesAndPhysicsNameTheKey) {
   // A smaller array alone keeps the preset's 32-pixel tiles: the message gives both sizes.
   SensorConfig small_array;
   small_array.set("array.rows", "16");
-  EXPECT_NE(error_of([&] { small_array.validate(); }).find("32 rows a tile must be from 1 to array.rows (16)"),
+  EXPECT_NE(error_of([&] { small_array.validate(); }).find("32 rows a tile must be from 1 to array.rows (16): set array.tile_rows too"),
             std::string::npos);
+  // A tile of no columns was set, not left over: no advice to set it.
+  SensorConfig no_columns;
+  no_columns.set("array.tile_cols", "0");
+  const std::string no_columns_error = error_of([&] { no_columns.validate(); });
+  EXPECT_NE(no_columns_error.find("0 columns a tile must be from 1 to array.cols (64)"), std::string::npos) << no_columns_error;
+  EXPECT_EQ(no_columns_error.find("too"), std::string::npos) << no_columns_error;
   SensorConfig long_run;
   long_run.set("sim.duration", "1e7s");
   EXPECT_NE(error_of([&] { long_run.validate(); }).find("sim.duration"), std::string::npos);

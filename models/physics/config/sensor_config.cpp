@@ -292,11 +292,11 @@ void SensorConfig::validate() const {
   // Named with both values: a smaller array set alone keeps the preset's tile, which then no
   // longer fits.
   require(array.tile_rows >= 1 && array.tile_rows <= array.rows, "array.tile_rows",
-          fmt::format("{} rows a tile must be from 1 to array.rows ({}): set array.tile_rows too", array.tile_rows,
-                      array.rows));
+          fmt::format("{} rows a tile must be from 1 to array.rows ({}){}", array.tile_rows, array.rows,
+                      array.tile_rows > array.rows ? ": set array.tile_rows too" : ""));
   require(array.tile_cols >= 1 && array.tile_cols <= array.cols, "array.tile_cols",
-          fmt::format("{} columns a tile must be from 1 to array.cols ({}): set array.tile_cols too",
-                      array.tile_cols, array.cols));
+          fmt::format("{} columns a tile must be from 1 to array.cols ({}){}", array.tile_cols, array.cols,
+                      array.tile_cols > array.cols ? ": set array.tile_cols too" : ""));
   const AddressMap map(array);
   require(map.tiles() <= kMaxTiles, "array.tile_rows",
           fmt::format("{} tiles, more than the {} aesim models (each has its own bus and receiver)", map.tiles(),
