@@ -5,6 +5,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/units/si_units.hpp"
+#include "support/temp_dir_test.hpp"
 
 namespace aesim {
 namespace {
@@ -103,6 +104,39 @@ TEST(SensorConfig, BadKeysValuesAndPhysicsNameTheKey) {
   SensorConfig long_run;
   long_run.set("sim.duration", "1e7s");
   EXPECT_NE(error_of([&] { long_run.validate(); }).find("sim.duration"), std::string::npos);
+}
+
+// A file that names its base is read over that preset: what it leaves out is the base's (here
+// aloha's mismatch, reset time and array), a base named by a relative path is found beside the
+// file, and a loop of bases is refused. A file without one keeps SensorConfig's own values (an
+// ideal pixel: no mismatch, no reset time), as the key reference's "built in" says.
+using SensorPresetFiles = testing::TempDirTest;
+TEST_F(SensorPresetFiles, AFileIsReadOverTheBaseItNames) {
+  const SensorConfig aloha = load_sensor("aloha");
+  ASSERT_EQ(aloha.pixel.mismatch, 0.02);
+  write("mine.toml", "base = \"aloha\"\n[pixel]\nc_int = \"40fF\"\n");
+  std::filesystem::create_directories(dir_ / "runs");
+  write("runs/small.toml", "base = \"../mine.toml\"\n[array]\nrows = 32\ntile_rows = 16\n");
+  const SensorConfig small = load_sensor((dir_ / "runs/small.toml").string());
+  EXPECT_DOUBLE_EQ(small.pixel.c_int, 40e-15);
+  EXPECT_EQ(small.array.rows, 32);
+  EXPECT_EQ(small.array.tile_rows, 16);
+  EXPECT_EQ(small.pixel.mismatch, aloha.pixel.mismatch);
+  EXPECT_EQ(small.pixel.t_reset, aloha.pixel.t_reset);
+  EXPECT_EQ(small.pixel.i_dark, aloha.pixel.i_dark);
+  EXPECT_EQ(small.array.cols, aloha.array.cols);
+  EXPECT_EQ(small.bus.t_event, aloha.bus.t_event);
+  const SensorConfig bare = load_sensor(write("bare.toml", "[pixel]\nc_int = \"40fF\"\n"));
+  EXPECT_EQ(bare.pixel.mismatch, SensorConfig{}.pixel.mismatch);
+  EXPECT_EQ(bare.pixel.t_reset, SensorConfig{}.pixel.t_reset);
+  write("a.toml", "base = \"b.toml\"\n");
+  write("b.toml", "base = \"a.toml\"\n");
+  EXPECT_NE(error_of([&] { load_sensor((dir_ / "a.toml").string()); }).find("a loop"), std::string::npos);
+  EXPECT_NE(error_of([&] { load_sensor(write("c.toml", "base = \"no_such_preset\"\n")); }).find("unknown sensor 'no_such_preset'"),
+            std::string::npos);
+  // The key a user reaches for first is named in the refusal.
+  EXPECT_NE(error_of([&] { load_sensor(write("p.toml", "preset = \"aloha\"\n")); }).find("base = \"NAME\""),
+            std::string::npos);
 }
 
 TEST(SensorConfig, UnknownPresetIsAnInputError) {

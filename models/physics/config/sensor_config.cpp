@@ -1,10 +1,12 @@
 #include "aesim/config/sensor_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -360,7 +362,13 @@ void apply_toml_text(SensorConfig& config, const std::string& text, const std::s
       apply(section + "." + name, body);
       continue;
     }
-    if (!body.is_table()) throw InputError(fmt::format("'{}': '{}' is not a [section]", path, name));
+    if (name == "base" && body.is_string()) continue;  // the preset the file is read over: load_sensor
+    if (!body.is_table()) {
+      throw InputError(fmt::format("'{}': '{}' is not a [section]{}", path, name,
+                                   name == "preset" || name == "sensor" || name == "base"
+                                       ? " (the preset a file is read over is base = \"NAME\" or \"FILE.toml\")"
+                                       : ""));
+    }
     for (const auto& [key, value] : body.as_table()) apply(name + "." + key, value);
   }
 }
@@ -383,18 +391,49 @@ std::string sensor_file(const std::string& name_or_file) {
   return is_path ? name_or_file : sensors_dir() + "/" + name_or_file + ".toml";
 }
 
-SensorConfig load_sensor(const std::string& name_or_file) {
+namespace {
+
+// A chain of presets each read over the one it names is at most this long.
+constexpr int kMostBases = 8;
+
+SensorConfig load_sensor_file(const std::string& name_or_file, const std::string& from_folder, int depth,
+                              std::vector<std::string>& chain) {
   namespace fs = std::filesystem;
   const bool is_path = name_or_file.find('/') != std::string::npos ||
                        fs::path(name_or_file).extension() == ".toml";
-  const std::string path = sensor_file(name_or_file);
+  // A base named by a relative path is found beside the file that names it.
+  const std::string path = is_path && !from_folder.empty() && fs::path(name_or_file).is_relative()
+                               ? (fs::path(from_folder) / name_or_file).string()
+                               : sensor_file(name_or_file);
   if (!is_input_file(path, "sensor file")) {
     throw InputError(is_path ? fmt::format("sensor file '{}': {}", path, not_a_file(path))
                              : fmt::format("unknown sensor '{}' (no {})", name_or_file, path));
   }
+  std::error_code ec;
+  const std::string identity = fs::weakly_canonical(path, ec).string();
+  if (std::find(chain.begin(), chain.end(), identity) != chain.end()) {
+    throw InputError(fmt::format("sensor file '{}': its base presets name it again (a loop)", path));
+  }
+  if (depth >= kMostBases) {
+    throw InputError(fmt::format("sensor file '{}': more than {} presets each read over the next (base = ...)", path,
+                                 kMostBases));
+  }
+  chain.push_back(identity);
+  const std::string text = checked_toml_text(path, fmt::format("'{}'", path));
+  const TomlValue doc = parse_toml_text(text, fmt::format("'{}'", path));
   SensorConfig config;
-  apply_toml_file(config, path, "");
+  if (const auto base = doc.as_table().find("base"); base != doc.as_table().end() && base->second.is_string()) {
+    config = load_sensor_file(base->second.as_string(), fs::path(path).parent_path().string(), depth + 1, chain);
+  }
+  apply_toml_text(config, text, path, "");
   return config;
+}
+
+}  // namespace
+
+SensorConfig load_sensor(const std::string& name_or_file) {
+  std::vector<std::string> chain;
+  return load_sensor_file(name_or_file, "", 0, chain);
 }
 
 }  // namespace aesim

@@ -134,12 +134,16 @@ struct ResolvedConfig : SensorConfig {
   explicit ResolvedConfig(const SensorConfig& config) : SensorConfig(config) {}
 };
 
-// Loads a preset: NAME (a file in the sensors folder) or a path to a .toml file.
 // The file a sensor name (a preset in the data folder) or path names.
 std::string sensor_file(const std::string& name_or_file);
+// Loads a preset: NAME (a file in the sensors folder) or a path to a .toml file. A file that says
+// base = "NAME" or "FILE.toml" (a path from the file's own folder) is read over that preset, in
+// turn read over its own base (up to 8 deep; a loop is refused); the keys a file without a base
+// leaves out keep SensorConfig's own values.
 SensorConfig load_sensor(const std::string& name_or_file);
 // Sets keys from a TOML file: "[section] key = value" tables, or, when `section` is given, plain
-// "key = value" lines within that section. Values are strings with units, numbers or booleans.
+// "key = value" lines within that section. Values are strings with units, numbers or booleans. A
+// top-level base = "..." is load_sensor's and left alone here.
 void apply_toml_file(SensorConfig& config, const std::string& path, const std::string& section);
 // The same from the file's text; `path` names it in messages.
 void apply_toml_text(SensorConfig& config, const std::string& text, const std::string& path,
