@@ -257,6 +257,24 @@ TEST_F(VerifyTest, TheProofReadsFormalSourcesWhereYosysCannotReadTheSources) {
                  "formal.sources[0]: yosys reads Verilog or SystemVerilog here");
 }
 
+// Sources as a Makefile lists them, a folder's files by a pattern: every match, in byte order,
+// each file once where it first comes, so a package named ahead of the pattern stays ahead of the
+// module that imports it (pkt_rx.sv sorts before pkt_rx_pkg.sv). A pattern that matches nothing,
+// or has wildcards in its folder, is refused naming the entry.
+TEST_F(VerifyTest, SourcesTakeAFoldersFilesByAPatternEachOnceInOrder) {
+  fs::create_directories(dir_ / "rtl");
+  for (const char* f : {"pkt_rx.sv", "pkt_rx_pkg.sv"}) fs::copy_file(kThird + "/" + f, dir_ / "rtl" / f);
+  const std::string own = slurp(kThird + "/pkt_rx.toml");
+  const std::string listed = "sources = [\"pkt_rx_pkg.sv\", \"pkt_rx.sv\"]";
+  write("pattern.toml", edited(own, listed, "sources = [\"rtl/pkt_rx_pkg.sv\", \"rtl/*.sv\"]"));
+  const Outcome o = verify("pattern.toml --out pattern");
+  expect_pass(o, report("pattern"));
+  expect_refused("none.toml", edited(own, listed, "sources = [\"rtl/pkt_rx_pkg.sv\", \"rtl/*.vhd\"]"),
+                 "sources[1]: '" + (dir_ / "rtl/*.vhd").string() + "' matches no file");
+  expect_refused("folders.toml", edited(own, listed, "sources = [\"*/pkt_rx*.sv\"]"),
+                 "sources[0]: '*/pkt_rx*.sv': wildcards name files of one folder");
+}
+
 // An output to an FX2-style slave FIFO: a word written at an edge where the active-low strobe is
 // low and the active-high full flag is not up, and a bus whose contention line is active low.
 // Described with those polarities it passes, here and in the exported testbench; described as

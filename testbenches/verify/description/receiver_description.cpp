@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <glob.h>
+
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
@@ -52,8 +54,36 @@ class Reader {
     return v.as_string();
   }
   std::string path_of(const TomlValue& v, const std::string& label, bool folder) const {
-    const fs::path p = fs::path(string_of(v, label));
-    const std::string full = (p.is_absolute() ? p : dir_ / p).lexically_normal().string();
+    return checked_path(full_path(string_of(v, label)), label, folder);
+  }
+  std::string full_path(const std::string& text) const {
+    const fs::path p = fs::path(text);
+    return (p.is_absolute() ? p : dir_ / p).lexically_normal().string();
+  }
+  // A file name with *, ? or [...] in it (rtl/*.sv, as a Makefile lists a folder's sources) is
+  // every file it matches, in byte order, so that the same description always compiles the same
+  // list; matching none is an error. Expanded by glob(3) in one folder, no shell.
+  std::vector<std::string> files_of(const TomlValue& v, const std::string& label) const {
+    const std::string text = string_of(v, label);
+    if (text.find_first_of("*?[") == std::string::npos) return {path_of(v, label, false)};
+    // One folder read, whatever the pattern: wildcards in the file's name only.
+    if (fs::path(text).parent_path().string().find_first_of("*?[") != std::string::npos) {
+      fail(label, fmt::format("'{}': wildcards name files of one folder, in the file name only", text));
+    }
+    glob_t found{};
+    const int status = ::glob(full_path(text).c_str(), GLOB_ERR, nullptr, &found);
+    std::vector<std::string> matches(found.gl_pathv, found.gl_pathv + (status == 0 ? found.gl_pathc : 0));
+    globfree(&found);
+    if (matches.empty()) fail(label, fmt::format("'{}' matches no file", full_path(text)));
+    std::sort(matches.begin(), matches.end());
+    std::vector<std::string> out;
+    for (const std::string& m : matches) {
+      if (!fs::is_directory(m)) out.push_back(checked_path(m, label, false));
+    }
+    if (out.empty()) fail(label, fmt::format("'{}' matches only folders", full_path(text)));
+    return out;
+  }
+  std::string checked_path(const std::string& full, const std::string& label, bool folder) const {
     const bool ok = folder ? is_input_folder(full, label) : is_input_file(full, label);
     if (!ok) fail(label, fmt::format("'{}' is not {}", full, folder ? "a folder" : "a readable file"));
     std::error_code ec;
@@ -72,14 +102,20 @@ class Reader {
       if (required) fail(key, "missing");
       return out;
     }
+    // Each file once, where it first comes: a package named first stays first when a pattern
+    // after it matches it again.
+    const auto add = [&](const TomlValue& entry, const std::string& label) {
+      for (std::string& p : folder ? std::vector<std::string>{path_of(entry, label, true)} : files_of(entry, label)) {
+        if (std::find(out.begin(), out.end(), p) == out.end()) out.push_back(std::move(p));
+      }
+      if (out.size() > 1000) fail(key, "more than 1000 entries");
+    };
     if (v->is_string()) {
-      out.push_back(path_of(*v, key, folder));
+      add(*v, key);
       return out;
     }
     if (!v->is_array()) fail(key, "expected a list of paths");
-    for (std::size_t i = 0; i < v->as_array().size(); ++i) {
-      out.push_back(path_of(v->as_array()[i], fmt::format("{}[{}]", key, i), folder));
-    }
+    for (std::size_t i = 0; i < v->as_array().size(); ++i) add(v->as_array()[i], fmt::format("{}[{}]", key, i));
     if (required && out.empty()) fail(key, "empty");
     if (out.size() > 1000) fail(key, "more than 1000 entries");
     return out;
