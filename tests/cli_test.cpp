@@ -333,6 +333,19 @@ TEST_F(CliTest, CompareMeasuresEveryRungAgainstTheEventRung) {
   EXPECT_NE(coarse.err.find("coarser than some pixels' integration time"), std::string::npos) << coarse.err;
 }
 
+// -o names the event file of run and emulate as it names recon's and sweep's output: the same
+// bytes as --out.
+TEST_F(CliTest, DashOIsTheOutOfRunAndEmulate) {
+  for (const std::string& command : {"emulate " + kScenes + "/letters/O.pgm", std::string("run --duration 50ms --summary s.json")}) {
+    ASSERT_EQ(aesim(command + " --out long.aedat").status, 0) << command;
+    const Outcome o = aesim(command + " -o short.aedat");
+    ASSERT_EQ(o.status, 0) << command << ": " << o.err;
+    const std::string long_form = slurp(dir_ / "long.aedat");
+    EXPECT_GT(long_form.size(), 1000u) << command;
+    EXPECT_EQ(slurp(dir_ / "short.aedat"), long_form) << command;
+  }
+}
+
 TEST_F(CliTest, EmulateThenClassifyRecognisesTheLetter) {
   const Outcome e = aesim("emulate " + kScenes + "/letters/O.pgm --queue q.txt --out o.aedat --recon r.pgm --events 500");
   ASSERT_EQ(e.status, 0) << e.err;

@@ -32,7 +32,7 @@ void add_run(CLI::App& app, int& status) {
   cmd->add_option("--duration", opt->duration, "Simulated time, e.g. 2s or 500ms (same as --set sim.duration=)");
   cmd->add_option("--set", opt->sets, "Override a parameter: section.key=value with SI units, e.g. pixel.c_int=50fF")
       ->allow_extra_args(false);
-  file_output(cmd, "--out", opt->out, "Event file, its type by extension (none: AEDAT 2.0): " + event_formats_help());
+  file_output(cmd, "-o,--out", opt->out, "Event file, its type by extension (none: AEDAT 2.0): " + event_formats_help());
   cmd->add_option("--aedat-layout", opt->aedat_layout,
                   "Address words of an AEDAT 2.0 --out: aesim (default), dvs128 or davis (jAER's layouts, y = 0 at the "
                   "bottom, polarity ON for a normal event and OFF for a ghost)");
@@ -174,7 +174,7 @@ void add_emulate(CLI::App& app, int& status) {
   cmd->add_option("--chaos-out", opt->chaos_out, "Probability that an event leaves the queue")->capture_default_str();
   cmd->add_option("--seed", opt->seed, "Seed of the chaos draws")->capture_default_str();
   cmd->add_option("--queue", opt->queue, "The event queue as text, one 'x y' per line in queue order");
-  file_output(cmd, "--out", opt->out,
+  file_output(cmd, "-o,--out", opt->out,
               "Events with synthetic timestamps, by extension (none: AEDAT 2.0): " + event_formats_help());
   cmd->add_option("--aedat4-compression", opt->aedat4_compression, "Packets of an .aedat4 --out: lz4, zstd or none")
       ->capture_default_str();
