@@ -479,6 +479,10 @@ TEST_F(CliTest, MistypedNamesGetTheNearestAndNoCommandListsThem) {
                {"run --set c_int=50fF", "did you mean 'pixel.c_int'?"},
                {"rnu", "unknown command 'rnu', did you mean 'run'?"},
                {"frobnicate", "unknown command 'frobnicate' (commands: run, recon,"},
+               {"run --outt x.aedat", "aesim run: unknown option '--outt', did you mean '--out'?"},
+               {"run --sumary=s.json", "aesim run: unknown option '--sumary', did you mean '--summary'?"},
+               {"info --sizee 4x4 x.aedat", "aesim info: unknown option '--sizee'"},
+               {"run --duration 10ms stray", "not expected: stray"},
                {"", "a command is required (run, recon,"}};
   for (const Case& c : cases) {
     const Outcome o = aesim(c.args);

@@ -239,6 +239,26 @@ void add_config(CLI::App& app, int& status) {
   cmd->callback([sensor, markdown, &status] { status = config_keys_command(*sensor, *markdown); });
 }
 
+// For "aesim run --outt x": the first argument the command took for no option of its own, as
+// "aesim run: unknown option '--outt', did you mean '--out'?"; empty when the extras are not
+// options (stray values, which CLI11's own message lists).
+std::string unknown_option(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) {
+    for (const std::string& arg : sub->remaining()) {
+      if (arg.size() < 2 || arg[0] != '-' || (arg[1] >= '0' && arg[1] <= '9') || arg[1] == '.') continue;
+      const std::string given = arg.substr(0, arg.find('='));
+      std::vector<std::string> names;
+      for (const CLI::Option* o : sub->get_options()) {
+        for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+        for (const std::string& n : o->get_snames()) names.push_back("-" + n);
+      }
+      return fmt::format("aesim {}: unknown option '{}'{} (aesim {} --help lists them)", sub->get_name(), given,
+                         did_you_mean(given, names), sub->get_name());
+    }
+  }
+  return {};
+}
+
 // "aesim" alone or "aesim rnu": the commands there are, and the one meant.
 std::string command_list(const CLI::App& app) {
   std::string list;
@@ -284,6 +304,10 @@ int run_command_line(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::ExtrasError& e) {
+    const std::string unknown = unknown_option(app);
+    std::fprintf(stderr, "%s\n", unknown.empty() ? (std::string("aesim: ") + e.what()).c_str() : unknown.c_str());
+    return 2;
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "aesim: %s\n", e.what());
     return 2;
