@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "aesim/errors/input_error.hpp"
@@ -255,6 +256,35 @@ TEST_F(VerifyTest, TheProofReadsFormalSourcesWhereYosysCannotReadTheSources) {
   expect_refused("vhdl.toml", edited(with_package, "unsynchronised_outputs = [\"idle_o\"]\n",
                                      "unsynchronised_outputs = [\"idle_o\"]\nsources = [\"x.vhd\"]\n"),
                  "formal.sources[0]: yosys reads Verilog or SystemVerilog here");
+}
+
+// A clock as datasheets and timing constraints give it: a frequency with its unit, a plain number
+// of hertz, or a period; a stamp's tick as a number of seconds. The same receiver at 50 MHz passes
+// with the same cycles and transactions whichever way it is written; a period of no time is
+// refused naming the key.
+TEST_F(VerifyTest, AClockIsAFrequencyOrAPeriodAndPlainNumbersAreInTheKeysUnit) {
+  std::string rtl;
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) rtl += ", \"" + kRtl + "/" + f + "\"";
+  const std::string bundled = edited(slurp(kRtl + "/aer_receiver.toml"),
+                                     "sources = [\"aer_receiver.v\", \"aer_req_sync.v\", \"aer_timestamp.v\", \"aer_fifo.v\"]",
+                                     "sources = [" + rtl.substr(2) + "]");
+  write("hz.toml", bundled);
+  ASSERT_EQ(verify("hz.toml --out hz").status, 0);
+  const nlohmann::json reference = report("hz");
+  for (const auto& [name, clock, tick] : {std::tuple<const char*, const char*, const char*>{"number", "50e6", "1e-6"},
+                                         {"period", "\"20 ns\"", "\"1us\""}}) {
+    const std::string text = edited(edited(bundled, "clock = \"50MHz\"", std::string("clock = ") + clock),
+                                    "timestamp_tick = \"1us\"", std::string("timestamp_tick = ") + tick);
+    write(std::string(name) + ".toml", text);
+    const Outcome o = verify(std::string(name) + ".toml --out " + name);
+    ASSERT_EQ(o.status, 0) << name << ": " << o.err;
+    const nlohmann::json r = report(name);
+    EXPECT_TRUE(r["passed"].get<bool>()) << name;
+    EXPECT_EQ(r["receiver_cycles"], reference["receiver_cycles"]) << name;
+    EXPECT_EQ(r["beats_checked"], reference["beats_checked"]) << name;
+    EXPECT_EQ(r["transactions"], reference["transactions"]) << name;
+  }
+  expect_refused("zero.toml", edited(bundled, "clock = \"50MHz\"", "clock = \"0 s\""), "clock: a period of 0 s");
 }
 
 // Sources as a Makefile lists them, a folder's files by a pattern: every match, in byte order,

@@ -56,6 +56,25 @@ class Reader {
   std::string path_of(const TomlValue& v, const std::string& label, bool folder) const {
     return checked_path(full_path(string_of(v, label)), label, folder);
   }
+  // A quantity in `unit`: a string with SI prefix and unit ("1us"), or a plain TOML number in it.
+  double quantity_of(const TomlValue& v, const std::string& label, const char* unit) const {
+    if (v.is_integer()) return static_cast<double>(v.as_integer());
+    if (v.is_floating()) return v.as_floating();
+    return parse_si(string_of(v, label), unit, label);
+  }
+  // A clock as its frequency ("50MHz", or 50e6 in Hz) or as its period ("20ns"), as datasheets and
+  // timing constraints give it.
+  double frequency_of(const TomlValue& v, const std::string& label) const {
+    if (!v.is_string()) return quantity_of(v, label, "Hz");
+    std::string text = v.as_string();
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+    if (!text.empty() && text.back() == 's') {
+      const double period = parse_si(text, "s", label);
+      if (!(period > 0)) fail(label, fmt::format("a period of {} s", period));
+      return 1 / period;
+    }
+    return parse_si(string_of(v, label), "Hz", label);
+  }
   std::string full_path(const std::string& text) const {
     const fs::path p = fs::path(text);
     return (p.is_absolute() ? p : dir_ / p).lexically_normal().string();
@@ -270,7 +289,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     }
   }
   const TomlValue& clock = r.need(root, "clock", "clock");
-  d.clock_hz = parse_si(clock.is_string() ? clock.as_string() : r.string_of(clock, "clock"), "Hz", "clock");
+  d.clock_hz = r.frequency_of(clock, "clock");
   if (!(d.clock_hz >= 1e3 && d.clock_hz <= 10e9)) r.fail("clock", "must be 1 kHz to 10 GHz");
 
   // A design without a reset (an FPGA's registers with initial values) says "none": its initial
@@ -505,7 +524,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
 
   if (d.has("timestamp") || d.has("time_in")) {
     const TomlValue& tick = r.need(behaviour, "timestamp_tick", "behaviour.timestamp_tick");
-    d.timestamp_tick = parse_si(r.string_of(tick, "behaviour.timestamp_tick"), "s", "behaviour.timestamp_tick");
+    d.timestamp_tick = r.quantity_of(tick, "behaviour.timestamp_tick", "s");
     if (!(d.timestamp_tick <= 1.0)) r.fail("behaviour.timestamp_tick", "at most 1 s");
     // The receiver counts clock cycles, so a tick is a whole number of them.
     const double cycles = d.timestamp_tick * d.clock_hz;
