@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "aesim/errors/input_error.hpp"
+#include "description/receiver_description.hpp"
 #include "description/rtl_folder_key.hpp"
 #include "support/temp_dir_test.hpp"
 
@@ -285,6 +286,38 @@ TEST_F(VerifyTest, AClockIsAFrequencyOrAPeriodAndPlainNumbersAreInTheKeysUnit) {
     EXPECT_EQ(r["transactions"], reference["transactions"]) << name;
   }
   expect_refused("zero.toml", edited(bundled, "clock = \"50MHz\"", "clock = \"0 s\""), "clock: a period of 0 s");
+}
+
+// Parameters and defines as TOML users write them: a string that reads as a Verilog integer
+// ("16", "16'd16", "'hFF", "8'b1010_1010", "-3") is that number, passed on in decimal (the string
+// "16" passed as a string made a 16-bit port 12,598 bits wide); a float as it is; any other
+// string stays a string. A run with ADDR_WIDTH = "16" passes as with 16.
+TEST_F(VerifyTest, ParametersWrittenAsStringsOfNumbersAreNumbers) {
+  std::string rtl;
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) rtl += ", \"" + kRtl + "/" + f + "\"";
+  const std::string bundled = edited(slurp(kRtl + "/aer_receiver.toml"),
+                                     "sources = [\"aer_receiver.v\", \"aer_req_sync.v\", \"aer_timestamp.v\", \"aer_fifo.v\"]",
+                                     "sources = [" + rtl.substr(2) + "]");
+  write("strings.toml", edited(bundled, "ADDR_WIDTH = 16, TS_WIDTH = 32, DEPTH = 64",
+                               "ADDR_WIDTH = \"16\", TS_WIDTH = \"32'd32\", DEPTH = \"'h40\""));
+  const ReceiverDescription d = read_receiver_description((dir_ / "strings.toml").string());
+  EXPECT_EQ(d.parameters.at("ADDR_WIDTH"), "16");
+  EXPECT_EQ(d.parameters.at("TS_WIDTH"), "32");
+  EXPECT_EQ(d.parameters.at("DEPTH"), "64");
+  const Outcome o = verify("strings.toml --out strings");
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_TRUE(report("strings")["passed"].get<bool>());
+  write("kinds.toml", edited(bundled, "parameters = {",
+                             "defines = { BITS = \"8'b1010_1010\", NEG = \"-3\", FILE = \"mem.hex\", GAIN = 2.5, "
+                             "BIG = \"64'hFFFF_FFFF_FFFF_FFFF\", HUGE = \"65'h1_0000_0000_0000_0000\" }\nparameters = {"));
+  const ReceiverDescription k = read_receiver_description((dir_ / "kinds.toml").string());
+  EXPECT_EQ(k.defines.at("BITS"), "170");
+  EXPECT_EQ(k.defines.at("NEG"), "-3");
+  EXPECT_EQ(k.defines.at("FILE"), "\"mem.hex\"");
+  EXPECT_EQ(k.defines.at("GAIN"), "2.5");
+  EXPECT_EQ(k.defines.at("BIG"), "18446744073709551615");
+  // Past 64 bits it is no number aesim works out: the string as written.
+  EXPECT_EQ(k.defines.at("HUGE"), "\"65'h1_0000_0000_0000_0000\"");
 }
 
 // Sources as a Makefile lists them, a folder's files by a pattern: every match, in byte order,

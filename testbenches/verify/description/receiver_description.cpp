@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <glob.h>
 
@@ -24,6 +26,42 @@ namespace fs = std::filesystem;
 
 // Sources are read whole to hash them for the cache.
 constexpr std::uintmax_t kMaxSourceBytes = 64ull << 20;
+
+// A string that reads as a Verilog integer, "16", "-3", "16'd16", "'hFF" or "8'b1010_1010": its
+// value in decimal. TOML users write numbers as strings often enough that "16" passed on as the
+// string it is made a 16-bit port 12,598 bits wide (the string's two bytes, read as a number).
+std::optional<std::string> verilog_integer(const std::string& text) {
+  std::string s;
+  for (char c : text) {
+    if (c != '_' && !std::isspace(static_cast<unsigned char>(c))) s += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  const bool negative = !s.empty() && s[0] == '-';
+  if (negative) s.erase(0, 1);
+  const std::size_t tick = s.find('\'');
+  std::string digits = tick == std::string::npos ? s : s.substr(tick + 1);
+  if (tick != std::string::npos) {
+    const std::string size = s.substr(0, tick);
+    if (!std::all_of(size.begin(), size.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) return std::nullopt;
+    if (!digits.empty() && digits[0] == 's') digits.erase(0, 1);
+  }
+  int base = 10;
+  if (tick != std::string::npos) {
+    if (digits.empty()) return std::nullopt;
+    const char b = digits[0];
+    base = b == 'b' ? 2 : b == 'o' ? 8 : b == 'd' ? 10 : b == 'h' ? 16 : 0;
+    if (base == 0) return std::nullopt;
+    digits.erase(0, 1);
+  }
+  if (digits.empty() || digits.size() > 64) return std::nullopt;
+  std::uint64_t value = 0;
+  for (char c : digits) {
+    const int d = std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : (c >= 'a' && c <= 'f') ? c - 'a' + 10 : 99;
+    if (d >= base) return std::nullopt;
+    if (value > (~std::uint64_t(0) - static_cast<std::uint64_t>(d)) / static_cast<std::uint64_t>(base)) return std::nullopt;
+    value = value * static_cast<std::uint64_t>(base) + static_cast<std::uint64_t>(d);
+  }
+  return (negative ? "-" : "") + std::to_string(value);
+}
 
 class Reader {
  public:
@@ -198,13 +236,18 @@ class Reader {
   std::string literal(const TomlValue& v, const std::string& label) const {
     if (v.is_integer()) return std::to_string(v.as_integer());
     if (v.is_boolean()) return v.as_boolean() ? "1" : "0";
+    if (v.is_floating()) {
+      if (!std::isfinite(v.as_floating())) fail(label, "a number must be finite");
+      return fmt::format("{}", v.as_floating());
+    }
     if (v.is_string()) {
       const std::string& s = v.as_string();
+      if (const std::optional<std::string> number = verilog_integer(s)) return *number;
       const bool printable = std::all_of(s.begin(), s.end(), [](char c) { return c >= 0x20 && c < 0x7f && c != '"' && c != '\\'; });
       if (!printable) fail(label, "a string value may hold printable characters other than \" and \\ only");
       return "\"" + s + "\"";
     }
-    fail(label, "expected an integer, a boolean or a string");
+    fail(label, "expected a number, a boolean or a string");
   }
   const TomlValue& root() const { return root_; }
 
