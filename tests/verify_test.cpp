@@ -318,6 +318,11 @@ TEST_F(VerifyTest, ParametersWrittenAsStringsOfNumbersAreNumbers) {
   EXPECT_EQ(k.defines.at("BIG"), "18446744073709551615");
   // Past 64 bits it is no number aesim works out: the string as written.
   EXPECT_EQ(k.defines.at("HUGE"), "\"65'h1_0000_0000_0000_0000\"");
+  // An input held at a value takes the same literals; a negative one or a float is refused.
+  write("held.toml", edited(bundled, "prescale_i = 50 ", "prescale_i = \"8'd50\" "));
+  EXPECT_EQ(read_receiver_description((dir_ / "held.toml").string()).inputs.at("prescale_i"), 50u);
+  expect_refused("negative.toml", edited(bundled, "prescale_i = 50 ", "prescale_i = \"-50\" "),
+                 "inputs.prescale_i: expected a non-negative integer");
 }
 
 // Sources as a Makefile lists them, a folder's files by a pattern: every match, in byte order,

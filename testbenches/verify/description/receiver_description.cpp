@@ -492,8 +492,12 @@ ReceiverDescription read_receiver_description(const std::string& path) {
         d.inputs[name] = value.as_boolean() ? 1 : 0;
       } else if (value.is_integer() && value.as_integer() >= 0) {
         d.inputs[name] = static_cast<std::uint64_t>(value.as_integer());
+      } else if (const std::optional<std::string> number =
+                     value.is_string() ? verilog_integer(value.as_string()) : std::nullopt;
+                 number && number->front() != '-') {
+        d.inputs[name] = std::stoull(*number);
       } else {
-        r.fail(label, "expected a non-negative integer or a boolean");
+        r.fail(label, "expected a non-negative integer (a number, or a Verilog literal such as \"8'd50\") or a boolean");
       }
     }
   }
