@@ -259,6 +259,23 @@ TEST_F(VerifyTest, TheProofReadsFormalSourcesWhereYosysCannotReadTheSources) {
                  "formal.sources[0]: yosys reads Verilog or SystemVerilog here");
 }
 
+// Req and Ack named active low (the third receiver's aer_req_n, aer_ack_n) but described at the
+// default level: the run fails, rightly, and the hint names the key that says so.
+TEST_F(VerifyTest, AHandshakeNamedActiveLowButDescribedHighIsHinted) {
+  for (const char* f : {"pkt_rx.sv", "pkt_rx_pkg.sv"}) fs::copy_file(kThird + "/" + f, dir_ / f);
+  const std::string own = slurp(kThird + "/pkt_rx.toml");
+  write("high.toml", edited(edited(own, "req = { port = \"aer_req_n\", active = \"low\" }", "req = \"aer_req_n\""),
+                            "ack = { port = \"aer_ack_n\", active = \"low\" }", "ack = \"aer_ack_n\""));
+  const Outcome o = verify("high.toml --out high");
+  EXPECT_EQ(o.status, 1) << o.err;
+  const nlohmann::json first = report("high")["first_failure"];
+  EXPECT_NE(first.value("hint", "").find("req port aer_req_n is named as active low but described active high: "
+                                         "req = { port = \"aer_req_n\", active = \"low\" }"),
+            std::string::npos)
+      << first.dump();
+  EXPECT_NE(o.out.find("hint: req port aer_req_n"), std::string::npos) << o.out;
+}
+
 // A clock as datasheets and timing constraints give it: a frequency with its unit, a plain number
 // of hertz, or a period; a stamp's tick as a number of seconds. The same receiver at 50 MHz passes
 // with the same cycles and transactions whichever way it is written; a period of no time is

@@ -5,6 +5,24 @@
 #include <fmt/format.h>
 
 namespace aesim {
+namespace {
+
+// Whether a port's name says it is active low, as designers name such lines: a suffix _n, _b,
+// _l, _bar, _n_i or _ni, or a role name run on into an n ("reqn", "ackn").
+bool named_active_low(const std::string& port) {
+  std::string l;
+  for (char c : port) l += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const auto ends = [&l](const char* suffix) {
+    const std::string s(suffix);
+    return l.size() > s.size() && l.compare(l.size() - s.size(), s.size(), s) == 0;
+  };
+  for (const char* s : {"_n", "_b", "_l", "_bar", "_n_i", "_ni", "_n_o", "_no", "reqn", "ackn"}) {
+    if (ends(s)) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d, const std::vector<std::string>& held_at_zero) {
   // A stamp wrong while an input that reads as a time is held at 0: a design that stamps from a
@@ -17,6 +35,19 @@ std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d, c
         return fmt::format("input {} is held at 0: a time the design stamps from is named time_in in [ports], and aesim "
                            "drives it with the ticks since the reset",
                            name);
+      }
+    }
+  }
+  // A handshake line named active low but described at the default, high: the design sees Req up
+  // whenever the bus is idle, or Ack reads up as reset ends. Named before every other cause: the
+  // rest of the run follows from it.
+  if (f.check == "reset" || f.check.rfind("ack_", 0) == 0 || f.check == "handshake") {
+    for (const char* role : {"req", "ack"}) {
+      const auto port = d.ports.find(role);
+      if (port != d.ports.end() && !port->second.joined() && d.active_high(role) && named_active_low(port->second.port)) {
+        return fmt::format("{} port {} is named as active low but described active high: {} = {{ port = \"{}\", "
+                           "active = \"low\" }}",
+                           role, port->second.port, role, port->second.port);
       }
     }
   }
