@@ -342,6 +342,43 @@ TEST_F(VerifyTest, ParametersWrittenAsStringsOfNumbersAreNumbers) {
                  "inputs.prescale_i: expected a non-negative integer");
 }
 
+// A project's file list (files.f, as verilator -F reads it) among the sources stands for what it
+// names, in its place: paths from the list's own folder, a nested -F list, +incdir+ and +define+,
+// comments of all three kinds, $VAR from the environment. The receiver passes as with its files
+// named one by one; a switch aesim cannot pass on, an unset variable and a list naming itself
+// are refused naming the list and its line.
+TEST_F(VerifyTest, AFileListStandsForTheFilesItNames) {
+  fs::create_directories(dir_ / "proj/rtl");
+  fs::create_directories(dir_ / "proj/inc");
+  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) {
+    fs::copy_file(kRtl + "/" + f, dir_ / "proj/rtl" / f);
+  }
+  write("proj/rtl/core.f", "// the receiver's parts\naer_req_sync.v  aer_timestamp.v  /* two on a line */\naer_fifo.v # the FIFO\n");
+  write("proj/files.f", "+incdir+inc\n+define+AESIM_LISTED+WIDTH=16\n-F rtl/core.f\n${AESIM_TEST_RX}/rtl/aer_receiver.v\n");
+  const std::string own = slurp(kRtl + "/aer_receiver.toml");
+  const std::string listed = "sources = [\"aer_receiver.v\", \"aer_req_sync.v\", \"aer_timestamp.v\", \"aer_fifo.v\"]";
+  write("proj/rx.toml", edited(own, listed, "sources = [\"files.f\"]"));
+  ::setenv("AESIM_TEST_RX", (dir_ / "proj").c_str(), 1);
+  const ReceiverDescription d = read_receiver_description((dir_ / "proj/rx.toml").string());
+  const std::string rtl = (dir_ / "proj/rtl/").string();
+  EXPECT_EQ(d.sources, (std::vector<std::string>{rtl + "aer_req_sync.v", rtl + "aer_timestamp.v", rtl + "aer_fifo.v",
+                                                 rtl + "aer_receiver.v"}));
+  EXPECT_EQ(d.include_dirs, std::vector<std::string>{(dir_ / "proj/inc").string()});
+  EXPECT_EQ(d.defines.at("AESIM_LISTED"), "");
+  EXPECT_EQ(d.defines.at("WIDTH"), "16");
+  const Outcome o = verify("proj/rx.toml --out listed");
+  expect_pass(o, report("listed"));
+  write("proj/files.f", "+incdir+inc\n-F rtl/core.f\n-y lib\n");
+  expect_refused("proj/switch.toml", edited(own, listed, "sources = [\"files.f\"]"),
+                 "file list '" + (dir_ / "proj/files.f").string() + "' line 3: '-y' asks the simulator");
+  write("proj/files.f", "$AESIM_NO_SUCH_VARIABLE/rtl/aer_receiver.v\n");
+  expect_refused("proj/unset.toml", edited(own, listed, "sources = [\"files.f\"]"),
+                 "line 1: environment variable AESIM_NO_SUCH_VARIABLE is not set");
+  write("proj/files.f", "-f files.f\n");
+  expect_refused("proj/loop.toml", edited(own, listed, "sources = [\"files.f\"]"), "a loop of lists");
+  ::unsetenv("AESIM_TEST_RX");
+}
+
 // Sources as a Makefile lists them, a folder's files by a pattern: every match, in byte order,
 // each file once where it first comes, so a package named ahead of the pattern stays ahead of the
 // module that imports it (pkt_rx.sv sorts before pkt_rx_pkg.sv). A pattern that matches nothing,

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "description/file_list.hpp"
 #include "aesim/text/nearest_name.hpp"
 #include "aesim/files/input_path.hpp"
 #include "build/vhdl_conversion.hpp"
@@ -317,6 +318,43 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   d.top = r.identifier(r.string_of(r.need(root, "top", "top"), "top"), "top");
   d.sources = r.paths("sources", false, true);
   d.include_dirs = r.paths("include_dirs", true, false);
+  // A file list among the sources (a project's files.f) stands for what it names, in its place;
+  // the description's own defines win over the list's.
+  std::map<std::string, std::string> listed_defines;
+  for (std::size_t i = 0; i < d.sources.size();) {
+    const std::string ext = fs::path(d.sources[i]).extension().string();
+    if (ext != ".f" && ext != ".F") {
+      ++i;
+      continue;
+    }
+    const FileList list = read_file_list(d.sources[i], fmt::format("receiver description '{}': sources", path));
+    std::vector<std::string> files;
+    for (const std::string& f : list.sources) {
+      const std::string checked = r.checked_path(f, "sources", false);
+      if (std::find(d.sources.begin(), d.sources.end(), checked) == d.sources.end() &&
+          std::find(files.begin(), files.end(), checked) == files.end()) {
+        files.push_back(checked);
+      }
+    }
+    for (const std::string& dir : list.include_dirs) d.include_dirs.push_back(r.checked_path(dir, "include_dirs", true));
+    listed_defines.insert(list.defines.begin(), list.defines.end());
+    d.sources.erase(d.sources.begin() + static_cast<std::ptrdiff_t>(i));
+    d.sources.insert(d.sources.begin() + static_cast<std::ptrdiff_t>(i), files.begin(), files.end());
+    i += files.size();
+    if (d.sources.size() > 1000) r.fail("sources", "more than 1000 files");
+  }
+  if (d.sources.empty()) r.fail("sources", "its file lists name no source");
+  for (const auto& [name, value] : listed_defines) {
+    r.identifier(name, "sources: a file list's +define+");
+    // Its value reaches Verilator's arguments, yosys's script and the exported testbench as the
+    // TOML's do: printable, a string only as a whole in quotes.
+    const std::string inner = value.size() >= 2 && value.front() == '"' && value.back() == '"' ? value.substr(1, value.size() - 2) : value;
+    const bool plain = std::all_of(inner.begin(), inner.end(), [](char c) {
+      return c > 0x20 && c < 0x7f && c != '"' && c != '\\' && c != ';' && c != '`';
+    });
+    if (!plain) r.fail("sources", fmt::format("a file list's +define+{}={}: a value of printable characters, a string in quotes", name, value));
+    d.defines[name] = value;
+  }
   for (const char* table : {"defines", "parameters"}) {
     const TomlValue* t = r.find(root, table);
     if (!t) continue;
