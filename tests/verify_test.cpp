@@ -47,6 +47,15 @@ class VerifyTest : public testing::TempDirTest {
  protected:
   // aesim verify with the build tree's model cache (warmed by the verify.warm_cache test).
   Outcome verify(const std::string& args) { return aesim("verify " + args, "AESIM_CACHE_DIR='" AESIM_VERIFY_CACHE "' "); }
+  // The bundled receiver's description with its sources named by absolute paths, so that an
+  // edited copy may be written into the test's folder.
+  static std::string bundled_description_elsewhere() {
+    std::string rtl;
+    for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) rtl += ", \"" + kRtl + "/" + f + "\"";
+    return edited(slurp(kRtl + "/aer_receiver.toml"),
+                  "sources = [\"aer_receiver.v\", \"aer_req_sync.v\", \"aer_timestamp.v\", \"aer_fifo.v\"]",
+                  "sources = [" + rtl.substr(2) + "]");
+  }
   nlohmann::json report(const std::string& out = "out/verify") const {
     return nlohmann::json::parse(slurp(dir_ / out / "verify.json"));
   }
@@ -281,11 +290,7 @@ TEST_F(VerifyTest, AHandshakeNamedActiveLowButDescribedHighIsHinted) {
 // with the same cycles and transactions whichever way it is written; a period of no time is
 // refused naming the key.
 TEST_F(VerifyTest, AClockIsAFrequencyOrAPeriodAndPlainNumbersAreInTheKeysUnit) {
-  std::string rtl;
-  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) rtl += ", \"" + kRtl + "/" + f + "\"";
-  const std::string bundled = edited(slurp(kRtl + "/aer_receiver.toml"),
-                                     "sources = [\"aer_receiver.v\", \"aer_req_sync.v\", \"aer_timestamp.v\", \"aer_fifo.v\"]",
-                                     "sources = [" + rtl.substr(2) + "]");
+  const std::string bundled = bundled_description_elsewhere();
   write("hz.toml", bundled);
   ASSERT_EQ(verify("hz.toml --out hz").status, 0);
   const nlohmann::json reference = report("hz");
@@ -310,11 +315,7 @@ TEST_F(VerifyTest, AClockIsAFrequencyOrAPeriodAndPlainNumbersAreInTheKeysUnit) {
 // "16" passed as a string made a 16-bit port 12,598 bits wide); a float as it is; any other
 // string stays a string. A run with ADDR_WIDTH = "16" passes as with 16.
 TEST_F(VerifyTest, ParametersWrittenAsStringsOfNumbersAreNumbers) {
-  std::string rtl;
-  for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) rtl += ", \"" + kRtl + "/" + f + "\"";
-  const std::string bundled = edited(slurp(kRtl + "/aer_receiver.toml"),
-                                     "sources = [\"aer_receiver.v\", \"aer_req_sync.v\", \"aer_timestamp.v\", \"aer_fifo.v\"]",
-                                     "sources = [" + rtl.substr(2) + "]");
+  const std::string bundled = bundled_description_elsewhere();
   write("strings.toml", edited(bundled, "ADDR_WIDTH = 16, TS_WIDTH = 32, DEPTH = 64",
                                "ADDR_WIDTH = \"16\", TS_WIDTH = \"32'd32\", DEPTH = \"'h40\""));
   const ReceiverDescription d = read_receiver_description((dir_ / "strings.toml").string());
