@@ -589,6 +589,63 @@ TEST(ForeignReaders, EventsTextReadsTheDatasetsAndSimulatorsLines) {
 
 // The containers events come in that aesim does not open (a file compressed whole that is not a
 // ROS 2 bag's, Event Stream files): the one-line refusal names the way out where there is one.
+// Event CSVs other tools write. Metavision's, as OpenEB's RAW-to-CSV sample writes it ("%d,%d,%d,%d"
+// of x, y, p, t in microseconds, after its `%geometry:W,H` line in metavision_file_to_csv's): the
+// camera's size and stamps as written. A header naming the columns in any order and separator:
+// the time's unit from its name, else microseconds for whole numbers and seconds for fractions,
+// said in `read_as`; rows out of time order put in it and counted.
+TEST(ForeignReaders, EventCsvsOfOtherToolsAreReadByTheirColumns) {
+  const EventRecording mv = decode_events("%geometry:1280,720\n1279,0,1,1000000\n3,719,0,1000250\n", "mv.csv",
+                                          EventFileFormat::Csv);
+  EXPECT_EQ(mv.width, 1280);
+  EXPECT_EQ(mv.height, 720);
+  ASSERT_EQ(mv.events.size(), 2u);
+  EXPECT_EQ(mv.events[0].x, 1279u);
+  EXPECT_DOUBLE_EQ(mv.events[1].t, 1.00025);
+  EXPECT_EQ(mv.events[1].y, 719u);
+  EXPECT_EQ(mv.events[0].flags, kNormalEvent);
+  EXPECT_EQ(mv.events[1].flags, kOffEvent);
+  ASSERT_EQ(mv.read_as.size(), 1u);
+  EXPECT_NE(mv.read_as[0].find("Metavision's CSV rows x,y,p,t"), std::string::npos);
+  struct Case {
+    const char* text;
+    double t1;  // the second event's stamp, s
+    const char* read_as;
+  } cases[] = {{"timestamp,x,y,polarity\n1000,1,2,1\n2500,3,4,0\n", 2.5e-3, "time 'timestamp' in us (microseconds"},
+               {"x,y,p,t\n1,2,1,0.5\n3,4,0,0.75\n", 0.75, "time 't' in s (seconds"},
+               {"x;y;t_ms;pol\n1;2;1;1\n3;4;2.5;-1\n", 2.5e-3, "time 't_ms' in ms"},
+               {"\xEF\xBB\xBF\"t [us]\"\t\"x\"\t\"y\"\t\"on\"\n10\t1\t2\tTrue\n20\t3\t4\tFalse\n", 20e-6, "time 't [us]' in us"},
+               {"# exported\nx,y,timestamp\n1,2,5\n3,4,7\n", 7e-6, "time 'timestamp' in us"}};
+  for (const Case& c : cases) {
+    const EventRecording r = decode_events(c.text, "named.csv", EventFileFormat::Csv);
+    ASSERT_EQ(r.events.size(), 2u) << c.text;
+    EXPECT_EQ(r.events[0].x, 1u) << c.text;
+    EXPECT_EQ(r.events[1].y, 4u) << c.text;
+    EXPECT_NEAR(r.events[1].t, c.t1, 1e-12) << c.text;
+    ASSERT_EQ(r.read_as.size(), 1u) << c.text;
+    EXPECT_NE(r.read_as[0].find(c.read_as), std::string::npos) << r.read_as[0];
+  }
+  // No polarity column: every event ON; rows out of order put in order and counted.
+  const EventRecording late = decode_events("t,x,y\n30,1,1\n10,2,2\n20,3,3\n", "late.csv", EventFileFormat::Csv);
+  ASSERT_EQ(late.events.size(), 3u);
+  EXPECT_EQ(late.events[0].x, 2u);
+  EXPECT_EQ(late.reordered, 1u);
+  EXPECT_EQ(late.events[2].flags, kNormalEvent);
+  // Refused in one line naming the way out: rows in another order without a header, a header
+  // without a time, two time columns.
+  for (const auto& [text, needle] : {std::pair<const char*, const char*>{"1000,1,2,1\n", "needs a header naming its columns"},
+                                     {"x,y,p\n1,2,1\n", "needs x, y and the time"},
+                                     {"t,x,y,timestamp\n1,2,3,4\n", "two columns give the time"},
+                                     {"x,y,t\n1,2\n", "2 fields where the header has 3"}}) {
+    try {
+      decode_events(text, "bad.csv", EventFileFormat::Csv);
+      ADD_FAILURE() << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(ForeignReaders, ContainersAesimDoesNotOpenNameTheWayOut) {
   for (const auto& [path, words] : {std::pair<const char*, const char*>{"events.txt.zstd", "a file compressed whole: uncompress it with `zstd -d`"},
                                     {"events.es", "unsupported format (use .aedat"}}) {

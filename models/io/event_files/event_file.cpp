@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -19,6 +20,7 @@
 #include "aesim/event_files/event_writer.hpp"
 #include "aesim/event_files/events_csv.hpp"
 #include "aesim/event_files/evimo2_folder.hpp"
+#include "aesim/event_files/events_text.hpp"
 #include "aesim/event_files/ros2_bag_folder.hpp"
 #include "aesim/event_files/prophesee_dat.hpp"
 #include "aesim/files/input_path.hpp"
@@ -266,12 +268,19 @@ EventRecording decode_aedat_recording(const std::string& data, const std::string
   return from_aedat(decode_aedat(data, label), label, layout);
 }
 
+// aesim's own CSV begins with its header; any other is another tool's (foreign_csv).
+bool is_aesim_csv(std::string_view head) { return head.rfind("t_us,x,y,tile,flags", 0) == 0; }
+
 EventRecording decode_csv_recording(const std::string& data, const std::string& label) {
+  if (!is_aesim_csv(data)) return from_polarity(decode_foreign_csv(data, label), label);
   std::istringstream in(data);
   return from_csv(parse_events_csv(in, label), label);
 }
 
-EventRecording read_csv_recording(const std::string& path) { return from_csv(read_events_csv(path), path); }
+EventRecording read_csv_recording(const std::string& path) {
+  if (!is_aesim_csv(read_input_head(path, "event file", 32))) return decode_csv_recording(read_whole(path), path);
+  return from_csv(read_events_csv(path), path);
+}
 
 std::string read_event_file_bytes(const std::string& path) { return read_whole(path); }
 
