@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <stdexcept>
 
@@ -38,17 +40,20 @@ std::string header_text(std::uint64_t count) {
   return text + '\n';
 }
 
-std::uint64_t get_le_bytes(const unsigned char* p, int bytes) {
-  std::uint64_t v = 0;
-  for (int i = 0; i < bytes; ++i) v |= std::uint64_t(p[i]) << (8 * i);
-  return v;
-}
-
 struct Field {
   std::size_t offset = 0;
   int bytes = 0;
-  bool is_signed = false, is_bool = false;
+  bool is_signed = false, is_bool = false, is_float = false, big_endian = false;
 };
+
+// The field a role reads, by the names tools give it: tonic's x, y, t, p, and the longer names
+// other scripts use.
+const Field* role_field(const std::map<std::string, Field>& fields, std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    if (const auto it = fields.find(name); it != fields.end()) return &it->second;
+  }
+  return nullptr;
+}
 
 }  // namespace
 
@@ -153,40 +158,90 @@ PolarityRecording decode_npy(const std::string& data, const std::string& label) 
     const std::string type = descr.substr(type_begin + 1, type_end - type_begin - 1);
     Field f;
     f.offset = record;
-    if (type.size() < 3 || (type[0] != '<' && type[0] != '|') || (type[1] != 'i' && type[1] != 'u' && type[1] != 'b') ||
-        type.size() > 3 || type[2] < '1' || type[2] > '8' || (type[2] != '1' && type[0] != '<')) {
-      throw fail(fmt::format("field '{}' has type '{}': aesim reads little-endian integers and bools", name, type));
+    const char order = type.empty() ? '?' : type[0], kind = type.size() > 1 ? type[1] : '?';
+    const int width = type.size() == 3 && type[2] >= '1' && type[2] <= '8' ? type[2] - '0' : 0;
+    const bool integer = (kind == 'i' || kind == 'u' || kind == 'b') && width > 0;
+    const bool floating = kind == 'f' && (width == 4 || width == 8);
+    if ((order != '<' && order != '>' && order != '|') || !(integer || floating) || (order == '|' && width != 1)) {
+      throw fail(fmt::format("field '{}' has type '{}': aesim reads integers, bools and 32- or 64-bit floats", name, type));
     }
-    f.bytes = type[2] - '0';
-    f.is_signed = type[1] == 'i';
-    f.is_bool = type[1] == 'b';
+    f.bytes = width;
+    f.is_signed = kind == 'i';
+    f.is_bool = kind == 'b';
+    f.is_float = floating;
+    f.big_endian = order == '>';
     record += static_cast<std::size_t>(f.bytes);
     fields[name] = f;
   }
-  for (const char* name : {"x", "y", "t", "p"}) {
-    if (!fields.count(name)) throw fail(fmt::format("the .npy dtype has no field '{}' (tonic's x, y, t, p)", name));
+  const Field* const fx = role_field(fields, {"x"});
+  const Field* const fy = role_field(fields, {"y"});
+  const Field* const ft = role_field(fields, {"t", "ts", "timestamp", "time"});
+  const Field* const fp = role_field(fields, {"p", "pol", "polarity", "on"});
+  if (!fx || !fy || !ft) {
+    throw fail(fmt::format("the .npy dtype has no field '{}' (tonic's x, y, t, p; the time may be ts, timestamp or time)",
+                           !fx ? "x" : !fy ? "y" : "t"));
   }
+  if (fx->is_float || fy->is_float || (fp && fp->is_float)) throw fail("x, y and the polarity must be integers or bools");
   if (h.shape.size() != 1) throw fail("the .npy array is not one-dimensional");
   const std::uint64_t n = h.shape.front();
   if (record == 0 || n > (data.size() - at) / record) throw fail(fmt::format("truncated: {} records announced", n));
   PolarityRecording rec;
   rec.events.resize(n);
+  const auto raw_of = [](const unsigned char* r, const Field& f) {
+    std::uint64_t raw = 0;
+    for (int i = 0; i < f.bytes; ++i) {
+      const int shift = 8 * (f.big_endian ? f.bytes - 1 - i : i);
+      raw |= std::uint64_t(r[f.offset + static_cast<std::size_t>(i)]) << shift;
+    }
+    return raw;
+  };
   const auto value = [&](const unsigned char* r, const Field& f) -> std::int64_t {
-    const std::uint64_t raw = get_le_bytes(r + f.offset, f.bytes);
+    const std::uint64_t raw = raw_of(r, f);
     if (!f.is_signed || f.bytes == 8) return static_cast<std::int64_t>(raw);
     const std::uint64_t sign = std::uint64_t(1) << (8 * f.bytes - 1);
     return static_cast<std::int64_t>((raw ^ sign) - sign);
   };
+  const auto real = [&](const unsigned char* r, const Field& f) -> double {
+    const std::uint64_t raw = raw_of(r, f);
+    if (f.bytes == 4) {
+      float v;
+      const auto bits = static_cast<std::uint32_t>(raw);
+      std::memcpy(&v, &bits, 4);
+      return v;
+    }
+    double v;
+    std::memcpy(&v, &raw, 8);
+    return v;
+  };
+  // A float time is seconds when any stamp has a fraction (what Python keeps of seconds) and
+  // microseconds when every one is whole, as an event CSV's unnamed time is read.
+  bool fraction = false;
+  for (std::size_t i = 0; i < n && ft->is_float; ++i) {
+    const double t = real(bytes + at + i * record, *ft);
+    if (!std::isfinite(t) || t < 0 || t > 1e12 * 1e6) throw fail(fmt::format("event {} has time {}: not a time", i, t));
+    fraction = fraction || t != std::floor(t);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const unsigned char* r = bytes + at + i * record;
     PolarityEvent& e = rec.events[i];
-    const std::int64_t x = value(r, fields["x"]), y = value(r, fields["y"]);
+    const std::int64_t x = value(r, *fx), y = value(r, *fy);
     if (x < 0 || y < 0 || x >= 4096 || y >= 4096) throw fail(fmt::format("event {} at ({}, {}) is outside 4096x4096", i, x, y));
     e.x = static_cast<std::int32_t>(x);
     e.y = static_cast<std::int32_t>(y);
-    e.t_us = value(r, fields["t"]);
-    e.on = value(r, fields["p"]) > 0;
+    if (ft->is_float) {
+      const double t = real(r, *ft);
+      if (fraction && t > 1e12) throw fail(fmt::format("event {} is stamped {} s, past 1e12 s", i, t));
+      e.t_us = std::llround(fraction ? t * 1e6 : t);
+    } else {
+      e.t_us = value(r, *ft);
+    }
+    e.on = !fp || value(r, *fp) > 0;
   }
+  if (ft->is_float && n > 0) {
+    rec.read_as.push_back(fraction ? "a float time field in seconds (its stamps have fractions)"
+                                   : "a float time field in microseconds (its stamps are whole numbers)");
+  }
+  put_in_time_order(rec);
   return rec;
 }
 
