@@ -496,6 +496,61 @@ TEST_F(EventFormats, AnyGroupOfEventColumnsIsReadTheFirstByName) {
   }
 }
 
+// event_utils' HDF5 (Stoffregen's, for E2VID and its kin): /events/xs, ys, ts in float seconds and
+// ps as h5py writes a bool (an enum), the size as the root's sensor_resolution [height, width]. A
+// float stamp of whole numbers is microseconds. Written here with HDF5's C API.
+TEST_F(EventFormats, EventUtilsHdf5WithFloatSecondsIsRead) {
+  const auto column = [](hid_t group, const char* name, hid_t type, const void* values, hsize_t n) {
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t d = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), 0);
+    H5Idec_ref(d);
+    H5Idec_ref(space);
+  };
+  // h5py's bool: an enum over a signed byte, FALSE 0 and TRUE 1.
+  const hid_t boolean = H5Tenum_create(H5T_NATIVE_INT8);
+  const std::int8_t no = 0, yes = 1;
+  H5Tenum_insert(boolean, "FALSE", &no);
+  H5Tenum_insert(boolean, "TRUE", &yes);
+  const std::int16_t xs[] = {239, 3}, ys[] = {179, 5};
+  const std::int8_t ps[] = {1, 0};
+  for (const auto& [name, t0, t1, expected, words] :
+       {std::tuple<const char*, double, double, double, const char*>{"seconds.h5", 0.5, 0.75, 0.75, "in seconds"},
+        {"micro.h5", 1000.0, 2500.0, 2.5e-3, "in microseconds"}}) {
+    const std::string path = (dir_ / name).string();
+    const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t g = H5Gcreate2(file, "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const double ts[] = {t0, t1};
+    column(g, "xs", H5T_NATIVE_INT16, xs, 2);
+    column(g, "ys", H5T_NATIVE_INT16, ys, 2);
+    column(g, "ts", H5T_NATIVE_DOUBLE, ts, 2);
+    column(g, "ps", boolean, ps, 2);
+    const hsize_t two = 2;
+    const long long hw[] = {180, 240};
+    const hid_t space = H5Screate_simple(1, &two, nullptr);
+    const hid_t attr = H5Acreate2(file, "sensor_resolution", H5T_NATIVE_LLONG, space, H5P_DEFAULT, H5P_DEFAULT);
+    EXPECT_GE(H5Awrite(attr, H5T_NATIVE_LLONG, hw), 0);
+    H5Aclose(attr);
+    H5Sclose(space);
+    H5Gclose(g);
+    H5Fclose(file);
+    const EventRecording rec = load_events(path);
+    SCOPED_TRACE(name);
+    EXPECT_EQ(rec.width, 240);
+    EXPECT_EQ(rec.height, 180);
+    ASSERT_EQ(rec.events.size(), 2u);
+    EXPECT_EQ(rec.events[0].x, 239u);
+    EXPECT_EQ(rec.events[0].y, 179u);
+    EXPECT_EQ(rec.events[0].flags, kNormalEvent);
+    EXPECT_EQ(rec.events[1].flags, kOffEvent);
+    EXPECT_DOUBLE_EQ(rec.events[1].t, expected);
+    ASSERT_EQ(rec.read_as.size(), 2u);
+    EXPECT_NE(rec.read_as[0].find("/events/xs, /events/ys, /events/ts, /events/ps"), std::string::npos) << rec.read_as[0];
+    EXPECT_NE(rec.read_as[1].find(words), std::string::npos) << rec.read_as[1];
+  }
+  H5Tclose(boolean);
+}
+
 // A ghost (the OR of colliding addresses) may name no pixel of the array: past a narrow edge tile.
 // Every event file leaves it out and counts it: no reader could place it (aesim's own AEDAT 2.0
 // reader refuses such an address).

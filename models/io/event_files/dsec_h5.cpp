@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
 
 
 #include <fmt/format.h>
@@ -327,18 +328,24 @@ void check_stored(hid_t d, hid_t stored, hsize_t n, const char* name, const std:
 struct Column {
   Handle d;
   hsize_t n = 0;
+  bool real = false;  // floats (a time column only)
 };
 // `first`: the group's first column, whose length the others must have (`expected`).
 Column open_column(hid_t file, const char* name, const char* group, const std::string& path, const char* first,
-                   hsize_t expected, std::uintmax_t file_bytes) {
+                   hsize_t expected, std::uintmax_t file_bytes, bool floats_allowed = false) {
   require_local(file, name, path, group);
   Column c;
   c.d = Handle(H5Dopen2(file, name, H5P_DEFAULT));
   if (!c.d.ok()) throw InputError(fmt::format("event file '{}': no dataset {} (not the DSEC layout)", path, name));
   Handle space(H5Dget_space(c.d.get()));
   Handle stored(H5Dget_type(c.d.get()));
-  if (!space.ok() || H5Sget_simple_extent_ndims(space.get()) != 1 || H5Tget_class(stored.get()) != H5T_INTEGER) {
-    throw InputError(fmt::format("event file '{}': {} is not a 1-D array of integers", path, name));
+  c.real = floats_allowed && H5Tget_class(stored.get()) == H5T_FLOAT;
+  // h5py stores NumPy's bools as an enum of FALSE and TRUE over a byte.
+  const bool boolean = H5Tget_class(stored.get()) == H5T_ENUM;
+  if (!space.ok() || H5Sget_simple_extent_ndims(space.get()) != 1 ||
+      (H5Tget_class(stored.get()) != H5T_INTEGER && !c.real && !boolean)) {
+    throw InputError(fmt::format("event file '{}': {} is not a 1-D array of {}", path, name,
+                                 floats_allowed ? "integers or floats" : "integers"));
   }
   H5Sget_simple_extent_dims(space.get(), &c.n, nullptr);
   if (expected != static_cast<hsize_t>(-1) && c.n != expected) {
@@ -479,11 +486,13 @@ bool is_dataset(hid_t file, const char* name) {
 }
 
 // Entries [from, from + count) of a column, converted by HDF5 to int64.
-void read_block(const Column& c, hsize_t from, hsize_t count, std::int64_t* out, const char* name, const std::string& path) {
+template <typename T>
+void read_block(const Column& c, hsize_t from, hsize_t count, T* out, const char* name, const std::string& path) {
   Handle file_space(H5Dget_space(c.d.get()));
   Handle memory(H5Screate_simple(1, &count, nullptr));
+  const hid_t type = std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
   if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &from, nullptr, &count, nullptr) < 0 ||
-      H5Dread(c.d.get(), H5T_NATIVE_INT64, memory.get(), file_space.get(), H5P_DEFAULT, out) < 0) {
+      H5Dread(c.d.get(), type, memory.get(), file_space.get(), H5P_DEFAULT, out) < 0) {
     throw InputError(fmt::format("event file '{}': cannot read {}", path, name));
   }
 }
@@ -514,9 +523,38 @@ PolarityRecording read_columns(const Column (&columns)[4], const std::string (&n
   rec.events.reserve(n);
   std::vector<std::int64_t> block[4];
   for (auto& b : block) b.resize(std::min<hsize_t>(n, kBlock));
+  // Float stamps are seconds when any has a fraction (what Python keeps of seconds), microseconds
+  // when every one is whole: a first pass over them says which.
+  std::vector<double> seconds;
+  double per_stamp_us = 1;
+  if (columns[2].real) {
+    seconds.resize(block[2].size());
+    bool fraction = false;
+    for (hsize_t from = 0; from < n && !fraction; from += kBlock) {
+      const hsize_t count = std::min(kBlock, n - from);
+      read_block(columns[2], from, count, seconds.data(), names[2].c_str(), path);
+      for (hsize_t j = 0; j < count; ++j) fraction = fraction || seconds[j] != std::floor(seconds[j]);
+    }
+    per_stamp_us = fraction ? 1e6 : 1;
+    rec.read_as.push_back(fmt::format("{} as floats in {}", names[2],
+                                      fraction ? "seconds (its stamps have fractions)" : "microseconds (its stamps are whole numbers)"));
+  }
   for (hsize_t from = 0; from < n; from += kBlock) {
     const hsize_t count = std::min(kBlock, n - from);
-    for (int k = 0; k < 4; ++k) read_block(columns[k], from, count, block[k].data(), names[k].c_str(), path);
+    for (int k = 0; k < 4; ++k) {
+      if (k == 2 && columns[2].real) {
+        read_block(columns[2], from, count, seconds.data(), names[2].c_str(), path);
+        for (hsize_t j = 0; j < count; ++j) {
+          const double us = seconds[j] * per_stamp_us;
+          if (!(us >= 0 && us <= 1e18)) {
+            throw InputError(fmt::format("event file '{}': event {} has time {}: not a time", path, from + j, seconds[j]));
+          }
+          block[2][j] = std::llround(us);
+        }
+        continue;
+      }
+      read_block(columns[k], from, count, block[k].data(), names[k].c_str(), path);
+    }
     for (hsize_t j = 0; j < count; ++j) {
       const std::int64_t x = block[0][j], y = block[1][j];
       if (x < 0 || y < 0 || x >= kMostSide || y >= kMostSide) {
@@ -531,7 +569,10 @@ PolarityRecording read_columns(const Column (&columns)[4], const std::string (&n
 // Names a column of events goes by in the field's files: M3ED's /prophesee/left/{x,y,t,p}, and
 // anyone's group of the four.
 constexpr const char* kStampNames[] = {"t", "ts", "timestamp", "timestamps"};
-constexpr const char* kPolarityNames[] = {"p", "polarity", "pol", "polarities"};
+constexpr const char* kPolarityNames[] = {"p", "polarity", "pol", "polarities", "ps"};
+// event_utils' (Stoffregen's, for E2VID and its kin): /events/xs, ys, ts (float seconds) and ps.
+constexpr const char* kXNames[] = {"x", "xs"};
+constexpr const char* kYNames[] = {"y", "ys"};
 // A file's groups are searched up to this many objects (a file of millions of empty groups would
 // otherwise take its time to say it holds no events).
 constexpr std::size_t kMostObjectsSearched = 100000;
@@ -558,10 +599,9 @@ herr_t collect_event_group(hid_t, const char* name, const H5O_info_t* info, void
     }
     return "";
   };
-  const std::string x = member(name, "x"), y = member(name, "y");
-  if (!is_dataset(search.file, x.c_str()) || !is_dataset(search.file, y.c_str())) return 0;
+  const std::string x = first_of(kXNames), y = first_of(kYNames);
   const std::string t = first_of(kStampNames), p = first_of(kPolarityNames);
-  if (t.empty() || p.empty()) return 0;
+  if (x.empty() || y.empty() || t.empty() || p.empty()) return 0;
   search.found.push_back({x, y, t, p});
   search.groups.push_back(std::string(name) == "." ? "/" : "/" + std::string(name));
   return 0;
@@ -590,25 +630,39 @@ PolarityRecording read_in_this_process(const std::string& path) {
     }
     return rec;
   }
-  if (H5Lexists(file.get(), "events", H5P_DEFAULT) <= 0) {
+  if (H5Lexists(file.get(), "events", H5P_DEFAULT) <= 0 || !is_dataset(file.get(), "events/x")) {
     EventGroups search{file.get(), {}, {}, 0};
     H5Ovisit2(file.get(), H5_INDEX_NAME, H5_ITER_INC, collect_event_group, &search, H5O_INFO_BASIC);
     if (search.found.empty()) {
       throw InputError(fmt::format("event file '{}': no events (aesim reads /events/{{x,y,t,p}} as DSEC, /CD/events as "
                                    "Metavision, an /events table as v2e, /davis/left/events as MVSEC, or any group of "
-                                   "datasets x, y, t and p)", path));
+                                   "datasets x, y, t and p, or event_utils' xs, ys, ts and ps)", path));
     }
     const std::array<std::string, 4>& chosen = search.found.front();
     const std::string names[] = {chosen[0], chosen[1], chosen[2], chosen[3]};
     Column columns[4];
     hsize_t n = static_cast<hsize_t>(-1);
     for (int k = 0; k < 4; ++k) {
-      columns[k] = open_column(file.get(), names[k].c_str(), search.groups.front().c_str(), path, names[0].c_str(), n, file_bytes);
+      columns[k] = open_column(file.get(), names[k].c_str(), search.groups.front().c_str(), path, names[0].c_str(), n,
+                               file_bytes, k == 2);
       n = columns[k].n;
     }
     PolarityRecording rec = read_columns(columns, names, 0, path);
-    rec.read_as.push_back(fmt::format("{}, {}, {}, {} (stamps in microseconds, ON where the polarity is above 0)", names[0],
-                                      names[1], names[2], names[3]));
+    rec.read_as.insert(rec.read_as.begin(),
+                       fmt::format("{}, {}, {}, {} ({}ON where the polarity is above 0)", names[0], names[1], names[2],
+                                   names[3], columns[2].real ? "" : "stamps in microseconds, "));
+    // event_utils' size, [height, width], beside its events.
+    if (H5Aexists(file.get(), "sensor_resolution") > 0) {
+      Handle attr(H5Aopen(file.get(), "sensor_resolution", H5P_DEFAULT));
+      Handle space(attr.ok() ? H5Aget_space(attr.get()) : H5I_INVALID_HID);
+      long long hw[2] = {0, 0};
+      if (space.ok() && H5Sget_simple_extent_npoints(space.get()) == 2 &&
+          H5Aread(attr.get(), H5T_NATIVE_LLONG, hw) >= 0 && hw[0] >= 1 && hw[1] >= 1 && hw[0] <= kMostSide &&
+          hw[1] <= kMostSide) {
+        rec.height = static_cast<int>(hw[0]);
+        rec.width = static_cast<int>(hw[1]);
+      }
+    }
     for (std::size_t g = 1; g < search.groups.size(); ++g) {
       rec.notes.push_back(fmt::format("the events of {} ({}'s are read)", search.groups[g], search.groups.front()));
     }
