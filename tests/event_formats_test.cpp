@@ -425,19 +425,21 @@ TEST_F(EventFormats, V2eAndMvsecHdf5EventTablesAreReadInTimeOrder) {
   }
 }
 
+// A 1-D dataset `name` of `n` values of `type` in `group`, by HDF5's C API.
+void h5_column(hid_t group, const char* name, hid_t type, const void* values, hsize_t n) {
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t d = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), 0);
+  H5Idec_ref(d);
+  H5Idec_ref(space);
+}
+
 // Other datasets keep an event column a dataset in a group of their own: M3ED's
 // /prophesee/left/{x,y,t,p} beside its right camera's (uint16 x and y, int64 t in us, int8 p), or
 // a file's root holding x, y, ts and polarity (-1/1). The first such group by name is read, the
 // others counted; the columns' names are said in `info`'s "read as". Written here with HDF5's C
 // API.
 TEST_F(EventFormats, AnyGroupOfEventColumnsIsReadTheFirstByName) {
-  const auto column = [](hid_t group, const char* name, hid_t type, const void* values, hsize_t n) {
-    const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t d = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), 0);
-    H5Idec_ref(d);
-    H5Idec_ref(space);
-  };
   const std::uint16_t x[] = {1279, 3, 4}, y[] = {719, 5, 6};
   const std::int64_t t[] = {300, 100, 200};
   const std::int8_t p[] = {1, 0, 1};
@@ -447,10 +449,10 @@ TEST_F(EventFormats, AnyGroupOfEventColumnsIsReadTheFirstByName) {
   for (const char* camera : {"prophesee/right", "prophesee/left"}) {
     const hid_t g = H5Gcreate2(file, camera, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     const hsize_t n = std::string(camera) == "prophesee/left" ? 3 : 1;
-    column(g, "x", H5T_NATIVE_UINT16, x, n);
-    column(g, "y", H5T_NATIVE_UINT16, y, n);
-    column(g, "t", H5T_NATIVE_INT64, t, n);
-    column(g, "p", H5T_NATIVE_INT8, p, n);
+    h5_column(g, "x", H5T_NATIVE_UINT16, x, n);
+    h5_column(g, "y", H5T_NATIVE_UINT16, y, n);
+    h5_column(g, "t", H5T_NATIVE_INT64, t, n);
+    h5_column(g, "p", H5T_NATIVE_INT8, p, n);
     H5Idec_ref(g);
   }
   H5Fclose(file);
@@ -472,10 +474,10 @@ TEST_F(EventFormats, AnyGroupOfEventColumnsIsReadTheFirstByName) {
   file = H5Fcreate(root.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   const std::int32_t ts[] = {7, 9};
   const std::int16_t polarity[] = {-1, 1};
-  column(file, "x", H5T_NATIVE_UINT16, x, 2);
-  column(file, "y", H5T_NATIVE_UINT16, y, 2);
-  column(file, "ts", H5T_NATIVE_INT32, ts, 2);
-  column(file, "polarity", H5T_NATIVE_INT16, polarity, 2);
+  h5_column(file, "x", H5T_NATIVE_UINT16, x, 2);
+  h5_column(file, "y", H5T_NATIVE_UINT16, y, 2);
+  h5_column(file, "ts", H5T_NATIVE_INT32, ts, 2);
+  h5_column(file, "polarity", H5T_NATIVE_INT16, polarity, 2);
   H5Fclose(file);
   const EventRecording flat = load_events(root);
   ASSERT_EQ(flat.events.size(), 2u);
@@ -485,8 +487,8 @@ TEST_F(EventFormats, AnyGroupOfEventColumnsIsReadTheFirstByName) {
 
   const std::string none = (dir_ / "none.h5").string();
   file = H5Fcreate(none.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  column(file, "x", H5T_NATIVE_UINT16, x, 2);
-  column(file, "t", H5T_NATIVE_INT64, t, 2);
+  h5_column(file, "x", H5T_NATIVE_UINT16, x, 2);
+  h5_column(file, "t", H5T_NATIVE_INT64, t, 2);
   H5Fclose(file);
   try {
     load_events(none);
@@ -500,13 +502,6 @@ TEST_F(EventFormats, AnyGroupOfEventColumnsIsReadTheFirstByName) {
 // ps as h5py writes a bool (an enum), the size as the root's sensor_resolution [height, width]. A
 // float stamp of whole numbers is microseconds. Written here with HDF5's C API.
 TEST_F(EventFormats, EventUtilsHdf5WithFloatSecondsIsRead) {
-  const auto column = [](hid_t group, const char* name, hid_t type, const void* values, hsize_t n) {
-    const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t d = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), 0);
-    H5Idec_ref(d);
-    H5Idec_ref(space);
-  };
   // h5py's bool: an enum over a signed byte, FALSE 0 and TRUE 1.
   const hid_t boolean = H5Tenum_create(H5T_NATIVE_INT8);
   const std::int8_t no = 0, yes = 1;
@@ -521,10 +516,10 @@ TEST_F(EventFormats, EventUtilsHdf5WithFloatSecondsIsRead) {
     const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     const hid_t g = H5Gcreate2(file, "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     const double ts[] = {t0, t1};
-    column(g, "xs", H5T_NATIVE_INT16, xs, 2);
-    column(g, "ys", H5T_NATIVE_INT16, ys, 2);
-    column(g, "ts", H5T_NATIVE_DOUBLE, ts, 2);
-    column(g, "ps", boolean, ps, 2);
+    h5_column(g, "xs", H5T_NATIVE_INT16, xs, 2);
+    h5_column(g, "ys", H5T_NATIVE_INT16, ys, 2);
+    h5_column(g, "ts", H5T_NATIVE_DOUBLE, ts, 2);
+    h5_column(g, "ps", boolean, ps, 2);
     const hsize_t two = 2;
     const long long hw[] = {180, 240};
     const hid_t space = H5Screate_simple(1, &two, nullptr);
