@@ -328,6 +328,28 @@ CalibrationOptions over(double low, double high, int points) {
   return o;
 }
 
+// Without --subckt the deck's own subcircuit of three ports and iph is the pixel (an inverter
+// beside it, with four ports, is not); two such, or none, is refused listing the deck's own.
+TEST_F(NgspiceTest, WithoutSubcktTheDecksOnePixelIsTaken) {
+  const std::string pixel = slurp(kIdealDeck);
+  const std::string inverter = ".subckt inv in out vdd gnd\n.ends\n";
+  EXPECT_EQ(read_pixel_deck(write("one.cir", inverter + pixel), "", "int").subckt, "ideal_pixel");
+  std::string twin = pixel;
+  twin.replace(twin.find(".subckt ideal_pixel"), 19, ".subckt second_pixel");
+  twin.replace(twin.find(".ends"), 5, ".ends second_pixel");
+  for (const auto& [name, text, needle] :
+       {std::tuple<const char*, std::string, const char*>{"two.cir", pixel + "\n" + twin,
+                                                         "several with three ports and iph: ideal_pixel, second_pixel"},
+        {"none.cir", inverter, "none of the deck's own has three ports, vdd out gnd, and a parameter iph: inv"}}) {
+    try {
+      read_pixel_deck(write(name, text), "", "int");
+      ADD_FAILURE() << name;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST_F(NgspiceTest, KnownDeckGivesItsThresholdChargeAndResetWithinOnePercent) {
   const PixelDeck deck = read_pixel_deck(kIdealDeck, "ideal_pixel", "int");
   const CalibrationOptions o = over(100e-15, 100e-9, 10);

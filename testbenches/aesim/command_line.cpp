@@ -61,7 +61,7 @@ void add_recon(CLI::App& app, int& status) {
   cmd->add_option("--mode", opt->mode, "histogram (events per pixel) or interval (1 / time between a pixel's last two events)")
       ->capture_default_str();
   cmd->add_option("-o,--output", opt->output, "Output image (.png or .pgm)")->required();
-  cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT (an AEDAT header records it; a CSV does not)");
+  cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT (an AEDAT header records it; aesim's CSV does not)");
   cmd->add_option("--layout", opt->layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");
   cmd->callback([opt, &status] { status = recon_command(*opt); });
 }
@@ -116,7 +116,7 @@ void add_calibrate(CLI::App& app, int& status) {
       "calibrate", "Fit the pixel model to a pixel circuit: ngspice runs the deck over a range of photocurrents; "
                    "writes a preset with the fitted c_int, t_reset, i_dark, the measured period table and the energy");
   cmd->add_option("DECK", opt->deck, "SPICE deck defining .subckt NAME vdd out gnd params: iph=1p")->required();
-  cmd->add_option("--subckt", opt->subckt, "The pixel's subcircuit in the deck")->required();
+  cmd->add_option("--subckt", opt->subckt, "The pixel's subcircuit in the deck (default: the deck's one with three ports and iph)");
   cmd->add_option("-o,--output", opt->output, "Preset to write (.toml)")->required();
   cmd->add_option("--base", opt->base, "Preset whose other keys the calibrated one keeps")->capture_default_str();
   cmd->add_option("--vdd", opt->vdd, "Supply voltage; a firing is out rising through vdd/2")->capture_default_str();
@@ -192,7 +192,7 @@ void add_classify(CLI::App& app, int& status) {
   CLI::App* cmd = app.add_subcommand("classify", "Recognise the subject of an event file with the paper's rank-weighted templates");
   cmd->add_option("EVENTS", opt->events, "Event file (" + event_inputs() + ")")->required();
   cmd->add_option("--templates", opt->templates, "Folder of binary .pgm templates (default scenes/templates/letters)");
-  cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT: needed for a CSV, which records none");
+  cmd->add_option("--size", opt->size, "The array's WIDTHxHEIGHT: needed for aesim's CSV, which records none");
   cmd->add_option("--layout", opt->layout, "The chip of a jAER AEDAT 2.0 recording with no # AEChip line: dvs128, davis240c or davis346");
   cmd->add_option("--k", opt->classifier.k, "A winner leads the second score by at least K * r_max")->capture_default_str();
   cmd->add_option("--max-events", opt->classifier.max_events, "Restart after this many events without a decision")

@@ -186,6 +186,29 @@ std::optional<Subcircuit> find_subckt(const std::vector<std::string>& lines, con
   return std::nullopt;
 }
 
+// The deck's own subcircuit a run calibrates when --subckt names none: the one of its own
+// (not its included models') with three ports and a parameter iph; none or several is an
+// InputError listing them.
+std::string only_pixel_subckt(const std::vector<std::string>& lines, const std::string& path) {
+  std::vector<std::string> all, pixels;
+  for (const std::string& line : lines) {
+    const std::vector<std::string> t = tokens(line);
+    if (t.size() < 2 || ascii_lower(t[0]) != ".subckt") continue;
+    all.push_back(t[1]);
+    const std::optional<Subcircuit> s = find_subckt({line}, t[1]);
+    if (s && s->ports.size() == 3 && std::find(s->params.begin(), s->params.end(), "iph") != s->params.end()) {
+      pixels.push_back(t[1]);
+    }
+  }
+  if (pixels.size() == 1) return pixels.front();
+  std::string list;
+  for (const std::string& name : pixels.empty() ? all : pixels) list += (list.empty() ? "" : ", ") + name;
+  throw InputError(fmt::format("deck '{}': --subckt names the pixel's subcircuit ({})", path,
+                               pixels.size() > 1 ? "the deck defines several with three ports and iph: " + list
+                               : all.empty()     ? std::string("the deck itself defines none")
+                                                 : "none of the deck's own has three ports, vdd out gnd, and a parameter iph: " + list));
+}
+
 // A name a PDK gives a switch of its statistical models.
 bool statistical_switch(const std::string& name) {
   return name.rfind("sw_stat_", 0) == 0 || (name.rfind("mc_", 0) == 0 && name.find("switch") != std::string::npos);
@@ -320,12 +343,13 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
     }
     deck.osdi.push_back(absolute);
   }
-  deck.subckt = subckt;
   deck.given = path;
   std::uint64_t h = fnv1a(text, 0xcbf29ce484222325ull);
   refuse_commands(text, path);
   const std::vector<std::string> lines = logical_lines(text);
-  std::optional<Subcircuit> found = find_subckt(lines, subckt);
+  deck.subckt = subckt.empty() ? only_pixel_subckt(lines, path) : subckt;
+  const std::string& name = deck.subckt;
+  std::optional<Subcircuit> found = find_subckt(lines, name);
   find_statistics(lines, path, deck);
   find_ratings(lines, deck);
   // Every file (or section of one) the deck reads, and those they read (a PDK's .lib files nest),
@@ -354,7 +378,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
     }
     const std::vector<std::string> included_lines = section_lines(file->second, section);
     if (!found) {
-      found = find_subckt(included_lines, subckt);
+      found = find_subckt(included_lines, name);
       if (found) find_ratings(included_lines, deck);
     }
     find_statistics(included_lines, inc, deck);
@@ -363,14 +387,14 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   for (const std::string& library : deck.osdi) h = fnv1a(read_text(library, "--osdi"), h);
   deck.hash = fmt::format("{:016x}", h);
   if (!found) {
-    throw InputError(fmt::format("deck '{}': no subcircuit '{}' (in the deck or the files it includes)", path, subckt));
+    throw InputError(fmt::format("deck '{}': no subcircuit '{}' (in the deck or the files it includes)", path, name));
   }
   if (found->ports.size() != 3) {
     throw InputError(fmt::format("deck '{}': subcircuit '{}' has {} ports; aesim calibrate needs three: vdd out gnd",
-                                 path, subckt, found->ports.size()));
+                                 path, name, found->ports.size()));
   }
   if (std::find(found->params.begin(), found->params.end(), "iph") == found->params.end()) {
-    throw InputError(fmt::format("deck '{}': subcircuit '{}' has no parameter iph (params: iph=1p)", path, subckt));
+    throw InputError(fmt::format("deck '{}': subcircuit '{}' has no parameter iph (params: iph=1p)", path, name));
   }
   deck.mc_parameter = std::find(found->params.begin(), found->params.end(), "mc") != found->params.end();
   if (!probe_node.empty()) {
