@@ -523,21 +523,17 @@ PolarityRecording read_columns(const Column (&columns)[4], const std::string (&n
   rec.events.reserve(n);
   std::vector<std::int64_t> block[4];
   for (auto& b : block) b.resize(std::min<hsize_t>(n, kBlock));
-  // Float stamps are seconds when any has a fraction (what Python keeps of seconds), microseconds
-  // when every one is whole: a first pass over them says which.
+  // Float stamps in an unnamed unit: a first pass over them says which (UnnamedStampUnit).
   std::vector<double> seconds;
-  double per_stamp_us = 1;
+  UnnamedStampUnit unnamed;
   if (columns[2].real) {
     seconds.resize(block[2].size());
-    bool fraction = false;
-    for (hsize_t from = 0; from < n && !fraction; from += kBlock) {
+    for (hsize_t from = 0; from < n && !unnamed.seconds; from += kBlock) {
       const hsize_t count = std::min(kBlock, n - from);
       read_block(columns[2], from, count, seconds.data(), names[2].c_str(), path);
-      for (hsize_t j = 0; j < count; ++j) fraction = fraction || seconds[j] != std::floor(seconds[j]);
+      for (hsize_t j = 0; j < count; ++j) unnamed.see(seconds[j]);
     }
-    per_stamp_us = fraction ? 1e6 : 1;
-    rec.read_as.push_back(fmt::format("{} as floats in {}", names[2],
-                                      fraction ? "seconds (its stamps have fractions)" : "microseconds (its stamps are whole numbers)"));
+    rec.read_as.push_back(fmt::format("{} as floats in {}", names[2], unnamed.words()));
   }
   for (hsize_t from = 0; from < n; from += kBlock) {
     const hsize_t count = std::min(kBlock, n - from);
@@ -545,11 +541,11 @@ PolarityRecording read_columns(const Column (&columns)[4], const std::string (&n
       if (k == 2 && columns[2].real) {
         read_block(columns[2], from, count, seconds.data(), names[2].c_str(), path);
         for (hsize_t j = 0; j < count; ++j) {
-          const double us = seconds[j] * per_stamp_us;
+          const double us = seconds[j] * (unnamed.seconds ? 1e6 : 1);
           if (!(us >= 0 && us <= 1e18)) {
             throw InputError(fmt::format("event file '{}': event {} has time {}: not a time", path, from + j, seconds[j]));
           }
-          block[2][j] = std::llround(us);
+          block[2][j] = unnamed.microseconds(seconds[j]);
         }
         continue;
       }

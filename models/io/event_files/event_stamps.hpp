@@ -54,4 +54,17 @@ class MicrosecondStamps {
   std::uint64_t factor_;
 };
 
+// Stamps another tool kept as floats (or decimal text) in a unit its file does not name: seconds
+// when any has a fraction (what Python keeps of seconds), microseconds when every one is whole (a
+// camera's stamps kept as floats). The one rule every reader of such stamps follows (a CSV's time
+// column, a .npy's float field, an HDF5 float dataset): see() each, then convert, and say which.
+struct UnnamedStampUnit {
+  bool seconds = false;
+  void see(double stamp) { seconds = seconds || stamp != std::floor(stamp); }
+  std::int64_t microseconds(double stamp) const { return std::llround(seconds ? stamp * 1e6 : stamp); }
+  const char* words() const {
+    return seconds ? "seconds, as its stamps have fractions" : "microseconds, as its stamps are whole numbers";
+  }
+};
+
 }  // namespace aesim

@@ -14,6 +14,8 @@
 #include <fmt/format.h>
 
 #include "aesim/errors/input_error.hpp"
+#include "aesim/event_files/event_stamps.hpp"
+#include "aesim/text/ascii_case.hpp"
 
 namespace aesim {
 namespace {
@@ -57,12 +59,6 @@ std::string shown(std::string_view line) {
     if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) c = '?';
   }
   return line.size() > kMostShown ? s + "..." : s;
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
 }
 
 std::string_view trimmed(std::string_view s) {
@@ -185,11 +181,11 @@ PolarityRecording decode_foreign_csv(const std::string& data, const std::string&
   std::array<int, 4> column{-1, -1, -1, -1};
   std::optional<double> seconds_per_unit;
   char delimiter = ',';
-  bool known_layout = false, metavision = false;
+  bool known_layout = false, headerless = false;
   std::string time_name;
   // The stamps as written, until the whole column says its unit.
   std::vector<double> stamps;
-  bool fraction = false;
+  UnnamedStampUnit unnamed;
   while (at < data.size()) {
     std::size_t end = data.find('\n', at);
     if (end == std::string::npos) end = data.size();
@@ -199,7 +195,6 @@ PolarityRecording decode_foreign_csv(const std::string& data, const std::string&
     if (line.empty() || line.front() == '#') continue;
     if (line.front() == '%') {
       // Metavision's header lines: its geometry is the array's size.
-      metavision = true;
       unsigned w = 0, h = 0;
       if (std::sscanf(std::string(line).c_str(), "%%geometry:%u,%u", &w, &h) == 2 && w >= 1 && h >= 1 && w <= kMostSide &&
           h <= kMostSide) {
@@ -221,7 +216,7 @@ PolarityRecording decode_foreign_csv(const std::string& data, const std::string&
         const std::vector<std::string_view> names = split_at(line, delimiter);
         if (names.size() > kMostColumns) fail(line, fmt::format("more than {} columns", kMostColumns));
         for (std::size_t i = 0; i < names.size(); ++i) {
-          const std::string name = lower(names[i]);
+          const std::string name = ascii_lower(std::string(names[i]));
           bool is_time = false;
           const std::optional<double> unit = unit_of(name, is_time);
           const int role = name == "x" ? 0 : name == "y" ? 1
@@ -244,14 +239,13 @@ PolarityRecording decode_foreign_csv(const std::string& data, const std::string&
       // No header: Metavision's rows, x, y, p and t in microseconds.
       column = {0, 1, 2, 3};
       seconds_per_unit = 1e-6;
-      time_name = "t";
-      metavision = true;
+      headerless = true;
     }
     const std::vector<std::string_view> fields = split_at(line, delimiter);
     const int needed = *std::max_element(column.begin(), column.end());
     if (static_cast<int>(fields.size()) <= needed) {
       fail(line, fmt::format("{} fields where the {} has {} or more", fields.size(),
-                             metavision ? "x,y,p,t layout" : "header", needed + 1));
+                             headerless ? "x,y,p,t layout" : "header", needed + 1));
     }
     PolarityEvent e;
     for (int role = 0; role < 2; ++role) {
@@ -265,13 +259,13 @@ PolarityRecording decode_foreign_csv(const std::string& data, const std::string&
       v = static_cast<int>(n);
     }
     if (column[2] >= 0) {
-      const std::string p = lower(fields[static_cast<std::size_t>(column[2])]);
+      const std::string p = ascii_lower(std::string(fields[static_cast<std::size_t>(column[2])]));
       if (p == "1" || p == "true" || p == "on") {
         e.on = true;
       } else if (p == "0" || p == "-1" || p == "false" || p == "off") {
         e.on = false;
       } else {
-        fail(line, metavision ? "the polarity (the third field of Metavision's x,y,p,t rows; a file of another order "
+        fail(line, headerless ? "the polarity (the third field of Metavision's x,y,p,t rows; a file of another order "
                                 "needs a header naming its columns) must be 1 or 0"
                               : "the polarity must be 1, true or ON, or 0, -1, false or OFF");
       }
@@ -282,27 +276,28 @@ PolarityRecording decode_foreign_csv(const std::string& data, const std::string&
     if (t_ec != std::errc() || t_end != tf.data() + tf.size() || !std::isfinite(t) || t < 0) {
       fail(line, "the time is not a number, 0 or more");
     }
-    fraction = fraction || tf.find_first_of(".eE") != std::string_view::npos;
+    unnamed.see(t);
     stamps.push_back(t);
     rec.events.push_back(e);
   }
-  const double per_unit = seconds_per_unit ? *seconds_per_unit : fraction ? 1.0 : 1e-6;
   for (std::size_t i = 0; i < stamps.size(); ++i) {
-    const double seconds = stamps[i] * per_unit;
+    const double seconds = seconds_per_unit ? stamps[i] * *seconds_per_unit : unnamed.seconds ? stamps[i] : stamps[i] * 1e-6;
     if (!(seconds <= kLatestSeconds)) {
       throw InputError(fmt::format("event file '{}': event {} is stamped {:g} s, past {:g} s", label, i, seconds, kLatestSeconds));
     }
-    rec.events[i].t_us = std::llround(seconds * 1e6);
+    rec.events[i].t_us = seconds_per_unit ? std::llround(seconds * 1e6) : unnamed.microseconds(stamps[i]);
   }
   if (known_layout && !rec.events.empty()) {
-    const char* unit_words = seconds_per_unit ? "as its name says"
-                             : fraction       ? "seconds, as its values have fractions"
-                                              : "microseconds, as its values are whole numbers";
-    rec.read_as.push_back(metavision && column == std::array<int, 4>{0, 1, 2, 3} && time_name == "t"
-                              ? std::string("Metavision's CSV rows x,y,p,t, t in microseconds")
-                              : fmt::format("CSV columns by its header, time '{}' in {}{}", time_name,
-                                            per_unit == 1.0 ? "s" : per_unit == 1e-3 ? "ms" : per_unit == 1e-6 ? "us" : "ns",
-                                            seconds_per_unit ? "" : std::string(" (") + unit_words + ")"));
+    if (headerless) {
+      rec.read_as.push_back("Metavision's CSV rows x,y,p,t, t in microseconds");
+    } else if (seconds_per_unit) {
+      const double u = *seconds_per_unit;
+      rec.read_as.push_back(fmt::format("CSV columns by its header, time '{}' in {}", time_name,
+                                        u == 1.0 ? "s" : u == 1e-3 ? "ms" : u == 1e-6 ? "us" : "ns"));
+    } else {
+      rec.read_as.push_back(fmt::format("CSV columns by its header, time '{}' in {} ({})", time_name,
+                                        unnamed.seconds ? "s" : "us", unnamed.words()));
+    }
   }
   put_in_time_order(rec);
   return rec;

@@ -27,7 +27,7 @@ PolarityRecording decode_events_text(const std::string& data, const std::string&
 //    `%geometry:W,H` is the array's size), then `x,y,p,t` rows without a header, t in
 //    microseconds.
 // A time column whose name gives no unit is microseconds when every value is a whole number
-// (cameras' stamps) and seconds when any has a fraction or an exponent (what Python writes of
+// (cameras' stamps) and seconds when any has a fraction (UnnamedStampUnit: what Python writes of
 // seconds); the choice is said in `read_as`. Polarity 1, true or ON is ON; 0, -1, false or OFF is
 // OFF. `#` lines and a UTF-8 byte order mark are skipped; events out of time order are put in it
 // and counted. Throws InputError naming `label` and the line on anything else.

@@ -213,13 +213,11 @@ PolarityRecording decode_npy(const std::string& data, const std::string& label) 
     std::memcpy(&v, &raw, 8);
     return v;
   };
-  // A float time is seconds when any stamp has a fraction (what Python keeps of seconds) and
-  // microseconds when every one is whole, as an event CSV's unnamed time is read.
-  bool fraction = false;
+  UnnamedStampUnit unnamed;
   for (std::size_t i = 0; i < n && ft->is_float; ++i) {
     const double t = real(bytes + at + i * record, *ft);
     if (!std::isfinite(t) || t < 0 || t > 1e12 * 1e6) throw fail(fmt::format("event {} has time {}: not a time", i, t));
-    fraction = fraction || t != std::floor(t);
+    unnamed.see(t);
   }
   for (std::size_t i = 0; i < n; ++i) {
     const unsigned char* r = bytes + at + i * record;
@@ -230,16 +228,15 @@ PolarityRecording decode_npy(const std::string& data, const std::string& label) 
     e.y = static_cast<std::int32_t>(y);
     if (ft->is_float) {
       const double t = real(r, *ft);
-      if (fraction && t > 1e12) throw fail(fmt::format("event {} is stamped {} s, past 1e12 s", i, t));
-      e.t_us = std::llround(fraction ? t * 1e6 : t);
+      if (unnamed.seconds && t > 1e12) throw fail(fmt::format("event {} is stamped {} s, past 1e12 s", i, t));
+      e.t_us = unnamed.microseconds(t);
     } else {
       e.t_us = value(r, *ft);
     }
     e.on = !fp || value(r, *fp) > 0;
   }
   if (ft->is_float && n > 0) {
-    rec.read_as.push_back(fraction ? "a float time field in seconds (its stamps have fractions)"
-                                   : "a float time field in microseconds (its stamps are whole numbers)");
+    rec.read_as.push_back(std::string("a float time field in ") + unnamed.words());
   }
   put_in_time_order(rec);
   return rec;

@@ -339,7 +339,10 @@ void apply_toml_file(SensorConfig& config, const std::string& path, const std::s
 
 void apply_toml_text(SensorConfig& config, const std::string& text, const std::string& path,
                      const std::string& section) {
-  const TomlValue doc = parse_toml_text(text, fmt::format("'{}'", path));
+  apply_toml_document(config, parse_toml_text(text, fmt::format("'{}'", path)), path, section);
+}
+
+void apply_toml_document(SensorConfig& config, const TomlValue& doc, const std::string& path, const std::string& section) {
   auto apply = [&](const std::string& key, const TomlValue& value) {
     if (key == "pixel.transfer" && value.is_table()) {
       try {
@@ -419,13 +422,12 @@ SensorConfig load_sensor_file(const std::string& name_or_file, const std::string
                                  kMostBases));
   }
   chain.push_back(identity);
-  const std::string text = checked_toml_text(path, fmt::format("'{}'", path));
-  const TomlValue doc = parse_toml_text(text, fmt::format("'{}'", path));
+  const TomlValue doc = parse_toml_text(checked_toml_text(path, fmt::format("'{}'", path)), fmt::format("'{}'", path));
   SensorConfig config;
   if (const auto base = doc.as_table().find("base"); base != doc.as_table().end() && base->second.is_string()) {
     config = load_sensor_file(base->second.as_string(), fs::path(path).parent_path().string(), depth + 1, chain);
   }
-  apply_toml_text(config, text, path, "");
+  apply_toml_document(config, doc, path, "");
   return config;
 }
 

@@ -11,6 +11,8 @@
 
 namespace aesim {
 
+class TomlValue;
+
 enum class InitialState { Reset, Random };
 enum class BusAccess { Aloha, Arbitrated, Ideal };
 // Event, Cycle and Queue are the reference's rungs; PixelProcesses and FixedStep are the baselines a
@@ -148,6 +150,9 @@ void apply_toml_file(SensorConfig& config, const std::string& path, const std::s
 // The same from the file's text; `path` names it in messages.
 void apply_toml_text(SensorConfig& config, const std::string& text, const std::string& path,
                      const std::string& section);
+// The same from the file's parsed document.
+void apply_toml_document(SensorConfig& config, const TomlValue& doc, const std::string& path,
+                         const std::string& section);
 // The folder where named presets live.
 std::string sensors_dir();
 

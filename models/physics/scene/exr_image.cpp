@@ -54,9 +54,7 @@ std::vector<std::string> channel_names(const Imf::Header& header) {
 // A file of one channel, whatever its name, is a grey picture, read as the light itself: tools
 // name a grey image's channel Y (OpenCV), A (tinyexr), R, L, V or gray; a lone R or G taken as
 // coloured light would dim it to its Rec. 709 weight.
-Image read_one_channel(const std::string& data, const std::string& path, const std::string& name) {
-  MemoryStream stream(data, path);
-  Imf::InputFile file(stream);
+Image read_one_channel(Imf::InputFile& file, const std::string& path, const std::string& name) {
   const Imf::Channel& channel = *file.header().channels().findChannel(name);
   if (channel.xSampling != 1 || channel.ySampling != 1) {
     throw InputError(fmt::format("scene file '{}': its one channel '{}' is subsampled ({}x{}): give it a sample a pixel",
@@ -117,16 +115,14 @@ Image decode_exr(const std::string& data, const std::string& path) {
   try {
     // OpenEXR's RGBA interface fills a channel the file lacks with 0: a file with none of R, G, B
     // and Y (a layer's "left.R", a one-channel "L") would read as a black scene without a word.
-    std::vector<std::string> names;
-    {
-      MemoryStream stream(data, path);
-      names = channel_names(Imf::InputFile(stream).header());
-    }
+    MemoryStream stream(data, path);
+    Imf::InputFile file(stream);
+    const std::vector<std::string> names = channel_names(file.header());
     const bool colour = std::any_of(names.begin(), names.end(),
                                     [](const std::string& n) { return n == "R" || n == "G" || n == "B" || n == "Y"; });
     Image img;
     if (names.size() == 1) {
-      img = read_one_channel(data, path, names.front());
+      img = read_one_channel(file, path, names.front());
     } else if (colour) {
       img = read_rgb(data, path);
     } else {

@@ -121,8 +121,19 @@ class Reader {
   // A file name with *, ? or [...] in it (rtl/*.sv, as a Makefile lists a folder's sources) is
   // every file it matches, in byte order, so that the same description always compiles the same
   // list; matching none is an error. Expanded by glob(3) in one folder, no shell.
+  // A file list (`files.f`, verilator -F's) is the sources it names, checked as these are; its
+  // include folders and defines are kept for the description (listed()).
   std::vector<std::string> files_of(const TomlValue& v, const std::string& label) const {
     const std::string text = string_of(v, label);
+    const std::string ext = fs::path(text).extension().string();
+    if (ext == ".f" || ext == ".F") {
+      const FileList list = read_file_list(path_of(v, label, false), fmt::format("receiver description '{}': {}", path_, label));
+      std::vector<std::string> files;
+      for (const std::string& f : list.sources) files.push_back(checked_path(f, label, false));
+      for (const std::string& dir : list.include_dirs) listed_.include_dirs.push_back(checked_path(dir, label, true));
+      listed_.defines.insert(list.defines.begin(), list.defines.end());
+      return files;
+    }
     if (text.find_first_of("*?[") == std::string::npos) return {path_of(v, label, false)};
     // One folder read, whatever the pattern: wildcards in the file's name only.
     if (fs::path(text).parent_path().string().find_first_of("*?[") != std::string::npos) {
@@ -256,6 +267,10 @@ class Reader {
   std::string path_;
   fs::path dir_;
   const TomlValue& root_;
+  mutable FileList listed_;  // what file lists among the paths read added beside their sources
+
+ public:
+  const FileList& listed() const { return listed_; }
 };
 
 }  // namespace
@@ -318,33 +333,12 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   d.top = r.identifier(r.string_of(r.need(root, "top", "top"), "top"), "top");
   d.sources = r.paths("sources", false, true);
   d.include_dirs = r.paths("include_dirs", true, false);
-  // A file list among the sources (a project's files.f) stands for what it names, in its place;
-  // the description's own defines win over the list's.
-  std::map<std::string, std::string> listed_defines;
-  for (std::size_t i = 0; i < d.sources.size();) {
-    const std::string ext = fs::path(d.sources[i]).extension().string();
-    if (ext != ".f" && ext != ".F") {
-      ++i;
-      continue;
-    }
-    const FileList list = read_file_list(d.sources[i], fmt::format("receiver description '{}': sources", path));
-    std::vector<std::string> files;
-    for (const std::string& f : list.sources) {
-      const std::string checked = r.checked_path(f, "sources", false);
-      if (std::find(d.sources.begin(), d.sources.end(), checked) == d.sources.end() &&
-          std::find(files.begin(), files.end(), checked) == files.end()) {
-        files.push_back(checked);
-      }
-    }
-    for (const std::string& dir : list.include_dirs) d.include_dirs.push_back(r.checked_path(dir, "include_dirs", true));
-    listed_defines.insert(list.defines.begin(), list.defines.end());
-    d.sources.erase(d.sources.begin() + static_cast<std::ptrdiff_t>(i));
-    d.sources.insert(d.sources.begin() + static_cast<std::ptrdiff_t>(i), files.begin(), files.end());
-    i += files.size();
-    if (d.sources.size() > 1000) r.fail("sources", "more than 1000 files");
+  // File lists among the sources stood for what they name (Reader::files_of); the description's
+  // own include folders come first and its own defines win over the lists'.
+  for (const std::string& dir : r.listed().include_dirs) {
+    if (std::find(d.include_dirs.begin(), d.include_dirs.end(), dir) == d.include_dirs.end()) d.include_dirs.push_back(dir);
   }
-  if (d.sources.empty()) r.fail("sources", "its file lists name no source");
-  for (const auto& [name, value] : listed_defines) {
+  for (const auto& [name, value] : r.listed().defines) {
     r.identifier(name, "sources: a file list's +define+");
     // Its value reaches Verilator's arguments, yosys's script and the exported testbench as the
     // TOML's do: printable, a string only as a whole in quotes.
