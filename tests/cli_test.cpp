@@ -493,5 +493,37 @@ TEST_F(CliTest, MistypedNamesGetTheNearestAndNoCommandListsThem) {
   }
 }
 
+// The documentation's commands name shipped files by paths from aesim's tree (`--scene
+// scenes/natural.pgm`); from any other folder, where they name nothing, they are the shipped files
+// (the program here finds its tree as an installed one finds PREFIX/share/aesim), and a file of
+// the same path in the folder itself is taken before them.
+TEST_F(CliTest, TheDocumentationsPathsNameTheShippedFilesFromAnyFolderUnlessItHasThem) {
+  const Outcome shipped = aesim("run --scene scenes/natural.pgm --duration 20ms -o shipped.aedat");
+  ASSERT_EQ(shipped.status, 0) << shipped.err;
+  EXPECT_NE(shipped.out.find("scene " + kScenes + "/natural.pgm (64x64)"), std::string::npos) << shipped.out;
+  ASSERT_EQ(aesim("run --scene " + kScenes + "/natural.pgm --duration 20ms -o given.aedat").status, 0);
+  EXPECT_EQ(slurp(dir_ / "shipped.aedat"), slurp(dir_ / "given.aedat"));
+
+  fs::create_directories(dir_ / "scenes");
+  {
+    std::ofstream own(dir_ / "scenes" / "natural.pgm", std::ios::binary);
+    own << "P5 8 8 255\n" << std::string(64, '\xff');
+  }
+  const Outcome own = aesim("run --scene scenes/natural.pgm --duration 20ms -o own.aedat");
+  ASSERT_EQ(own.status, 0) << own.err;
+  EXPECT_NE(own.out.find("scene scenes/natural.pgm (8x8)"), std::string::npos) << own.out;
+
+  // A sweep spec and a pixel deck the same way: each named file read (the spec's -o refused after
+  // it, the deck's subcircuits listed), a name shipped nowhere not found.
+  EXPECT_NE(aesim("sweep scripts/sweeps/collisions.toml -o c.txt").err.find("-o 'c.txt': use a .csv file name"), std::string::npos);
+  EXPECT_NE(aesim("sweep scripts/sweeps/nothing.toml").err.find("sweep spec 'scripts/sweeps/nothing.toml': not found"),
+            std::string::npos);
+  const Outcome deck = aesim("calibrate models/circuits/aesim_pixel.cir --subckt nothing -o p.toml");
+  EXPECT_EQ(deck.status, 2);
+  EXPECT_NE(deck.err.find("aesim_pixel"), std::string::npos) << deck.err;
+  EXPECT_EQ(deck.err.find("not found"), std::string::npos) << deck.err;
+  EXPECT_FALSE(fs::exists(dir_ / "p.toml"));
+}
+
 }  // namespace
 }  // namespace aesim

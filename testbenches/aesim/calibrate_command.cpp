@@ -12,6 +12,7 @@
 #include "aesim/config/sensor_config.hpp"
 #include "deck/pixel_deck.hpp"
 #include "aesim/errors/input_error.hpp"
+#include "aesim/files/data_dir.hpp"
 #include "aesim/files/input_path.hpp"
 #include "aesim/output/atomic_file.hpp"
 #include "preset/calibrated_preset.hpp"
@@ -61,13 +62,14 @@ int calibrate_command(const CalibrateOptions& opt) {
   }
   const std::string chart_data =
       opt.chart.empty() ? std::string() : std::filesystem::path(opt.chart).replace_extension(".csv").string();
-  check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {opt.deck, sensor_file(opt.base)});
-  const PixelDeck deck = read_pixel_deck(opt.deck, opt.subckt, opt.probe, opt.osdi);
+  const std::string deck_path = shipped_if_missing(opt.deck);
+  check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {deck_path, sensor_file(opt.base)});
+  const PixelDeck deck = read_pixel_deck(deck_path, opt.subckt, opt.probe, opt.osdi);
   // Beside the preset: the testbench and ngspice's whole log when ngspice rejects the deck.
   options.failure_log = std::filesystem::path(opt.output).replace_extension(".ngspice.log").string();
 
   std::fprintf(stderr, "aesim calibrate: %s (%s), %d photocurrents from %s to %s%s, vdd %s, %d ngspice at once\n",
-               deck.subckt.c_str(), opt.deck.c_str(), options.points, format_si(options.i_low, "A").c_str(),
+               deck.subckt.c_str(), deck_path.c_str(), options.points, format_si(options.i_low, "A").c_str(),
                format_si(options.i_high, "A").c_str(),
                options.mc > 0 ? fmt::format(", {} Monte Carlo runs", options.mc).c_str() : "",
                format_si(options.vdd, "V").c_str(), options.jobs);

@@ -17,7 +17,7 @@
 namespace aesim {
 
 nlohmann::json classify_recording(ClassifyOptions opt, const EventRecording* given) {
-  if (opt.templates.empty()) opt.templates = data_dir() + "/scenes/templates/letters";
+  opt.templates = opt.templates.empty() ? data_dir() + "/scenes/templates/letters" : shipped_if_missing(opt.templates);
   if (!(opt.classifier.k > 0)) throw InputError("--k: must be positive");
   if (opt.classifier.max_events == 0) throw InputError("--max-events: must be at least 1");
   if (!(opt.classifier.overflow > 0)) throw InputError("--overflow: must be positive");

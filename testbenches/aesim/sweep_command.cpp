@@ -333,6 +333,7 @@ int sweep_command(SweepOptions opt) {
 #endif
     }
   } finalize{share.size > 1 || launched_by_mpirun()};
+  opt.spec = shipped_if_missing(opt.spec);
   const SweepSpec spec = load_sweep_spec(opt.spec);
   if (opt.output.empty()) opt.output = "out/" + fs::path(opt.spec).stem().string() + ".csv";
   if (file_extension(opt.output) != ".csv") throw InputError(fmt::format("-o '{}': use a .csv file name", opt.output));

@@ -39,4 +39,12 @@ std::string data_dir() {
   return installed.empty() ? AESIM_SOURCE_DIR : installed;
 }
 
+std::string shipped_if_missing(const std::string& path) {
+  std::error_code ec;
+  const fs::path given(path);
+  if (path.empty() || given.is_absolute() || fs::symlink_status(given, ec).type() != fs::file_type::not_found) return path;
+  const fs::path shipped = fs::path(data_dir()) / given;
+  return fs::exists(shipped, ec) ? shipped.string() : path;
+}
+
 }  // namespace aesim

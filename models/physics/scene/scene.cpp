@@ -73,7 +73,8 @@ class SceneFrames {
 
 std::string default_scene_path() { return data_dir() + "/" + kDefaultScene; }
 
-SceneFiles find_scene(const std::string& file_or_dir) {
+SceneFiles find_scene(const std::string& given) {
+  const std::string file_or_dir = shipped_if_missing(given);
   SceneFiles files;
   files.source = file_or_dir;
   if (is_input_file(file_or_dir, "scene")) {

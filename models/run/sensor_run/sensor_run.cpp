@@ -180,7 +180,7 @@ RunReport run_sensor(const RunSpec& spec) {
   report.warnings = run_warnings(spec, config, scene, result.facts, events.get());
   report.fidelity = rung.fidelity();
   report.tick = tick;
-  report.scene = default_scene ? kDefaultScene : in_memory ? "(frames in memory)" : spec.scene;
+  report.scene = default_scene ? kDefaultScene : in_memory ? "(frames in memory)" : scene_files.source;
   report.default_scene = default_scene;
   report.scene_width = scene.source_width;
   report.scene_height = scene.source_height;
