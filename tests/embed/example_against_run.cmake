@@ -8,8 +8,10 @@
 # prefix, and must give the same bytes. Both builds are C++20, as many projects are, where aesim
 # and Debian's SystemC library are C++17: they link only with the SC_CPLUSPLUS that aesim::aesim
 # and aesim.pc carry (cmake/aesimSystemCStandard.cmake); the sensor node's example stays C++17.
+# Last, the Python module installed with them (when built: PYTHON is its interpreter, PYTHON_DIR
+# its folder under the prefix) is imported from there and reads a preset only the prefix holds.
 #   cmake -DBUILD=<aesim build> -DSOURCE=<aesim source> -DWORK=<scratch> -DGENERATOR=<gen>
-#         -DCXX=<C++ compiler> -P this
+#         -DCXX=<C++ compiler> [-DPYTHON=<python> -DPYTHON_DIR=<dir>] -P this
 cmake_policy(VERSION 3.22)
 include(${CMAKE_CURRENT_LIST_DIR}/required_definitions.cmake)
 require_definitions(example_against_run BUILD SOURCE WORK GENERATOR CXX)
@@ -61,3 +63,16 @@ if(NOT status EQUAL 0 OR NOT differ EQUAL 0)
   message(FATAL_ERROR "the example built from pkg-config failed (${status}) or differs from aesim run")
 endif()
 message(STATUS "built from pkg-config, the same rows")
+
+if(PYTHON)
+  file(WRITE ${prefix}/share/aesim/models/sensors/prefix_only.toml "base = \"aloha\"\n[pixel]\nc_int = \"77fF\"\n")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_DIR} ${PYTHON} -c
+                          "import aesim; r = aesim.run(sensor='prefix_only', duration='10ms'); print(aesim.__file__, r.summary['sensor']['pixel']['c_int'])"
+                  WORKING_DIRECTORY ${WORK} OUTPUT_VARIABLE said ERROR_VARIABLE err RESULT_VARIABLE status
+                  OUTPUT_STRIP_TRAILING_WHITESPACE)
+  string(FIND "${said}" "${prefix}/${PYTHON_DIR}/aesim" at)
+  if(NOT status EQUAL 0 OR NOT at EQUAL 0 OR NOT said MATCHES "[.]so 7[.]7e-14$")
+    message(FATAL_ERROR "the installed Python module (${prefix}/${PYTHON_DIR}) did not read the prefix's preset (${status}): ${said}${err}")
+  endif()
+  message(STATUS "the installed Python module reads the prefix's presets: ${said}")
+endif()

@@ -12,9 +12,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// An installed aesim keeps its data in PREFIX/share/aesim beside PREFIX/lib/libaesim.so and
-// PREFIX/bin/aesim: found from wherever this code was loaded (the library, or the program that
-// links it statically), never from a path compiled in.
+// An installed aesim keeps its data in PREFIX/share/aesim beside PREFIX/lib/libaesim.so,
+// PREFIX/bin/aesim and PREFIX/lib/python3.X/dist-packages/aesim*.so: found from wherever this code
+// was loaded (the library, or the program or Python module that links it statically), never from
+// a path compiled in.
 std::string installed_data_dir() {
   std::error_code ec;
   std::vector<fs::path> objects;
@@ -25,8 +26,15 @@ std::string installed_data_dir() {
   objects.emplace_back(fs::read_symlink("/proc/self/exe", ec));
   for (const fs::path& object : objects) {
     if (object.empty()) continue;
-    const fs::path share = fs::weakly_canonical(object, ec).parent_path().parent_path() / "share" / "aesim";
-    if (!ec && fs::is_directory(share / "models" / "sensors", ec)) return share.string();
+    const fs::path loaded = fs::weakly_canonical(object, ec);
+    if (ec) continue;
+    // PREFIX is the parent of a library's or program's folder (lib, bin), of the Python module's
+    // folder's two parents' (lib/python3.X/dist-packages).
+    fs::path folder = loaded.parent_path();
+    for (int up = 0; up < 3 && folder.has_relative_path(); ++up, folder = folder.parent_path()) {
+      const fs::path share = folder.parent_path() / "share" / "aesim";
+      if (fs::is_directory(share / "models" / "sensors", ec)) return share.string();
+    }
   }
   return "";
 }
