@@ -1034,6 +1034,74 @@ TEST_F(VerifyTest, ATimeTheDesignReadsIsDrivenWithTheTicksSinceReset) {
                  "behaviour.timestamp_tick");
 }
 
+// A receiver that stamps as it ends the handshake (EventReceiver-style: the address word first,
+// the stamp when Ack falls, as an FPGA event receiver writes a FIFO) follows one rule all the same:
+// ticks at the edge Ack fell. Its beats come after that edge, so the rule is found there, checked
+// by the proof too and by the exported testbench; a stamp a tick late for odd addresses fails.
+TEST_F(VerifyTest, AStampTakenAsAckFallsIsHeldToThatEdge) {
+  const std::string rtl = R"(`default_nettype none
+module fall_stamp (
+    input  wire        clk,
+    input  wire        rst,
+    input  wire        req,
+    input  wire [9:0]  addr,
+    output reg         ack,
+    output reg  [9:0]  word_addr,
+    output reg  [15:0] word_ts,
+    output reg         word_valid
+);
+  reg r1, r2;
+  reg [9:0] taken;
+  reg [15:0] now;
+  always @(posedge clk) begin
+    if (rst) begin
+      {r1, r2, ack, word_valid} <= 4'd0;
+      {taken, word_addr} <= 20'd0;
+      {now, word_ts} <= 32'd0;
+    end else begin
+      {r2, r1} <= {r1, req};
+      now <= now + 16'd1;
+      word_valid <= 1'b0;
+      if (r2 && !ack) begin
+        taken <= addr;
+        ack <= 1'b1;
+      end else if (!r2 && ack) begin
+        ack <= 1'b0;
+        word_addr <= taken;
+        word_ts <= now LATE;
+        word_valid <= 1'b1;
+      end
+    end
+  end
+endmodule
+`default_nettype wire
+)";
+  write("fall_stamp.v", edited(rtl, " LATE", ""));
+  const std::string toml =
+      "top = \"fall_stamp\"\nsources = [\"fall_stamp.v\"]\nclock = \"50MHz\"\nreset = { port = \"rst\", active = \"high\" }\n"
+      "[ports]\nclk = \"clk\"\nreq = \"req\"\nack = \"ack\"\naddr = \"addr\"\nvalid = \"word_valid\"\n"
+      "out_addr = \"word_addr\"\ntimestamp = \"word_ts\"\n"
+      "[behaviour]\ncollisions = \"pass\"\nack_latency_cycles = [3, 3]\ntimestamp_tick = \"20ns\"\ntimestamp_bits = 16\n";
+  write("fall.toml", toml);
+  const Outcome o = verify("fall.toml --formal --formal-seconds 2 --export-tb tb --out fall");
+  const nlohmann::json r = report("fall");
+  expect_pass(o, r, 12);  // no ready port: the three back-pressure cases are left out
+  EXPECT_EQ(r["stamp_rule"], "ticks since reset at the edge Ack fell - 1") << r.dump();
+  ASSERT_TRUE(r["formal"].is_array());
+  bool stamp_checked = false;
+  for (const auto& v : r["formal"]) {
+    EXPECT_NE(v["verdict"], "failed") << v.dump();
+    stamp_checked = stamp_checked || v["property"] == "stamp_rule";
+  }
+  EXPECT_TRUE(stamp_checked);
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+
+  write("fall_stamp.v", edited(rtl, " LATE", " + {15'd0, taken[0]}"));
+  const Outcome late = verify("fall.toml --out late");
+  EXPECT_EQ(late.status, 1) << late.err;
+  EXPECT_EQ(report("late")["first_failure"]["check"], "timestamp") << report("late")["first_failure"].dump();
+}
+
 // A two-phase receiver (each edge of Req an event, Ack toggled once) behind aesim's four-phase bus
 // gives a second beat, of the released lines, as Req falls: it fails there, and the hint says the
 // bus is four-phase rather than pointing at valid's level. A level-held valid described as a

@@ -139,20 +139,23 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   for (const auto& [k, v] : parameters) parameter_list += fmt::format("{}.{}({})", parameter_list.empty() ? "" : ", ", k, v);
 
   // The stamp's edge for the tagged transaction: ticks since reset (tk, with div the edges into
-  // the current tick) at edge rise + k, or at the Ack edge + j; tk_hist keeps earlier ticks.
+  // the current tick) at edge rise + k, or at the edge its Ack rose or fell + j; tk_hist keeps
+  // earlier ticks.
   std::string stamp_logic;
   if (stamps) {
     const int hist = std::max(1, lmax + 1);
     std::string capture;
-    if (!stamp->from_ack) {
+    const char* edge = stamp->anchor == StampRule::Anchor::AckFall ? "tag_ack_fall" : "tag_ack_rise";
+    const char* edge_q = stamp->anchor == StampRule::Anchor::AckFall ? "tag_fell_q" : "tag_acked_q";
+    if (stamp->anchor == StampRule::Anchor::ReqRise) {
       capture = fmt::format("      if ((choose || tagged) && !tag_ts_known && since_tag == {}) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n",
                             stamp->offset);
     } else if (stamp->offset == 1) {
-      capture = "      if (tag_acked_q) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n";
+      capture = fmt::format("      if ({}) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n", edge_q);
     } else if (stamp->offset == 0) {
-      capture = "      if (tag_ack_rise) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n";
+      capture = fmt::format("      if ({}) begin tag_ts <= tk; tag_ts_known <= 1'b1; end\n", edge);
     } else {
-      capture = fmt::format("      if (tag_ack_rise) begin tag_ts <= tk_hist[{}]; tag_ts_known <= 1'b1; end\n", -stamp->offset - 1);
+      capture = fmt::format("      if ({}) begin tag_ts <= tk_hist[{}]; tag_ts_known <= 1'b1; end\n", edge, -stamp->offset - 1);
     }
     stamp_logic = fmt::format(R"(
 {ticks}  reg [{tw_msb}:0] tk_hist [0:{hist_last}];
@@ -162,9 +165,14 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
     for (h = 1; h <= {hist_last}; h = h + 1) tk_hist[h] <= tk_hist[h - 1];
   end
   reg [{tw_msb}:0] tag_ts = 0, tag_beat_ts = 0;
-  reg tag_ts_known = 0, tag_beat_known = 0, tag_acked_q = 0;
+  reg tag_ts_known = 0, tag_beat_known = 0, tag_acked_q = 0, tag_ack_high = 0, tag_fell_q = 0;
+  // The tagged transaction's Ack falling: the first fall after it rose.
+  wire tag_ack_fall = tag_ack_high && !ack && ack_q;
   always @(posedge clk) begin
     tag_acked_q <= tag_ack_rise;
+    tag_fell_q <= tag_ack_fall;
+    if (tag_ack_rise) tag_ack_high <= 1'b1;
+    else if (tag_ack_fall) tag_ack_high <= 1'b0;
 {capture}    if (tag_beat) begin
       tag_beat_ts <= ev_ts;
       tag_beat_known <= 1'b1;

@@ -1,5 +1,8 @@
 #include "scoreboard/stamp_rule.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include <fmt/format.h>
 
 namespace aesim {
@@ -9,35 +12,53 @@ StampRule::StampRule(const ReceiverDescription& d)
       tick_cycles_(d.timestamp_cycles ? d.timestamp_cycles : 1),
       mask_(d.timestamp_bits >= 64 ? ~0ULL : (1ULL << d.timestamp_bits) - 1) {
   if (d.timestamp_offset_cycles) {
-    initial_.push_back({false, *d.timestamp_offset_cycles});
+    initial_.push_back({Anchor::ReqRise, *d.timestamp_offset_cycles});
   } else {
-    for (int k = 0; k <= d.ack_latency_max + 1; ++k) initial_.push_back({false, k});
-    for (int j = -d.ack_latency_max; j <= 1; ++j) initial_.push_back({true, j});
+    for (int k = 0; k <= d.ack_latency_max + 1; ++k) initial_.push_back({Anchor::ReqRise, k});
+    for (const Anchor a : {Anchor::AckRise, Anchor::AckFall}) {
+      for (int j = -d.ack_latency_max; j <= 1; ++j) initial_.push_back({a, j});
+    }
   }
   candidates_ = initial_;
 }
 
 std::string StampRule::name(const Candidate& c) {
-  if (!c.from_ack) return fmt::format("edge {} after Req rose", c.offset);
-  if (c.offset == 0) return "the edge Ack rose";
-  return fmt::format("the edge Ack rose {} {}", c.offset < 0 ? "-" : "+", std::abs(c.offset));
+  if (c.anchor == Anchor::ReqRise) return fmt::format("edge {} after Req rose", c.offset);
+  const char* edge = c.anchor == Anchor::AckRise ? "the edge Ack rose" : "the edge Ack fell";
+  if (c.offset == 0) return edge;
+  return fmt::format("{} {} {}", edge, c.offset < 0 ? "-" : "+", std::abs(c.offset));
+}
+
+namespace {
+
+std::uint64_t at(std::uint64_t edge, int offset) {
+  const auto shifted = static_cast<std::int64_t>(edge) + offset;
+  return shifted < 0 ? 0 : static_cast<std::uint64_t>(shifted);
+}
+
+}  // namespace
+
+std::optional<std::uint64_t> StampRule::edge_of(const Candidate& c, const Edges& e) {
+  switch (c.anchor) {
+    case Anchor::ReqRise: return at(e.req_last, c.offset - 1);
+    case Anchor::AckRise: return at(e.ack, c.offset);
+    case Anchor::AckFall: break;
+  }
+  if (!e.ack_fall) return std::nullopt;
+  return at(*e.ack_fall, c.offset);
 }
 
 // The edges of candidate c: one edge, or a range when Req rose during a reset.
 bool StampRule::explains(const Candidate& c, const Edges& e, std::uint64_t stamp) const {
-  const auto at = [](std::uint64_t edge, int offset) {
-    const auto shifted = static_cast<std::int64_t>(edge) + offset;
-    return shifted < 0 ? 0 : static_cast<std::uint64_t>(shifted);
-  };
-  const std::uint64_t lo = c.from_ack ? at(e.ack, c.offset) : at(e.req_first, c.offset - 1);
-  const std::uint64_t hi = c.from_ack ? lo : at(e.req_last, c.offset - 1);
-  const std::uint64_t t_lo = ticks(lo), t_hi = ticks(hi);
+  const std::optional<std::uint64_t> hi = edge_of(c, e);
+  if (!hi) return false;
+  const std::uint64_t lo = c.anchor == Anchor::ReqRise ? at(e.req_first, c.offset - 1) : *hi;
+  const std::uint64_t t_lo = ticks(lo), t_hi = ticks(*hi);
   return t_hi - t_lo >= mask_ || ((stamp - t_lo) & mask_) <= t_hi - t_lo;
 }
 
 std::uint64_t StampRule::predicted(const Candidate& c, const Edges& e) const {
-  const auto shifted = static_cast<std::int64_t>(c.from_ack ? e.ack : e.req_last) + c.offset - (c.from_ack ? 0 : 1);
-  return ticks(shifted < 0 ? 0 : static_cast<std::uint64_t>(shifted)) & mask_;
+  return ticks(edge_of(c, e).value_or(0)) & mask_;
 }
 
 bool StampRule::check(const Edges& e, std::uint64_t stamp, std::string& expected) {
@@ -54,9 +75,15 @@ bool StampRule::check(const Edges& e, std::uint64_t stamp, std::string& expected
     const Candidate& c = candidates_.front();
     expected = fmt::format("stamp {} (ticks since reset at {}, the rule of the earlier beats)", predicted(c, e), name(c));
   } else {
-    const std::uint64_t lo = predicted(candidates_.front(), e), hi = predicted(candidates_.back(), e);
-    expected = fmt::format("a stamp from {} to {} (ticks since reset at an edge from Req rising to Ack rising)",
-                           std::min(lo, hi), std::max(lo, hi));
+    // The span of the candidates' edges, of those that have come.
+    std::uint64_t lo = ~0ULL, hi = 0;
+    for (const Candidate& c : candidates_) {
+      if (!edge_of(c, e)) continue;
+      lo = std::min(lo, predicted(c, e));
+      hi = std::max(hi, predicted(c, e));
+    }
+    expected = fmt::format("a stamp from {} to {} (ticks since reset at an edge from Req rising to Ack {})", lo, hi,
+                           e.ack_fall ? "falling" : "rising");
   }
   return false;
 }

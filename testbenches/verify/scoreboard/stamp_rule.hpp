@@ -13,12 +13,14 @@ namespace aesim {
 // of the transaction, where
 //   ticks(e) = floor((e - r) / N)  (0 for e <= r), e counting rising edges, r the last edge of the
 //   reset, N the tick in clock cycles.
-// The edge is fixed relative to Req or to Ack: edge k after Req rose (the first edge after the rise
-// is 1; k from 0, the edge before it, to ack_latency max + 1), or edge Ack + j (j from -ack_latency
-// max to +1). A description may state k (timestamp_offset_cycles); otherwise every such edge is a
-// candidate, and each beat keeps only the candidates that explain its stamp. A stamp that no
-// remaining candidate explains fails; the candidates stay as they were, so each later beat is held
-// to the same rule.
+// The edge is fixed relative to one edge of the handshake: edge k after Req rose (the first edge
+// after the rise is 1; k from 0, the edge before it, to ack_latency max + 1), or the edge Ack rose
+// + j, or the edge Ack fell + j (j from -ack_latency max to +1: a receiver that stamps as it ends
+// the handshake, with the address word out long before). A description may state k
+// (timestamp_offset_cycles); otherwise every such edge is a candidate, and each beat keeps only the
+// candidates that explain its stamp (one whose Ack has not fallen explains none of Ack's fall). A
+// stamp that no remaining candidate explains fails; the candidates stay as they were, so each later
+// beat is held to the same rule.
 // A stamp a whole tick off can be told from a stamp taken at another edge only when the tick is
 // longer than the window of candidate edges; stating the offset removes the doubt.
 class StampRule {
@@ -30,9 +32,11 @@ class StampRule {
   void reset_ended(std::uint64_t last_reset_edge) { origin_ = last_reset_edge; }
 
   // A transaction's edges: the first edge after Req rose (a range, for a Req held through a reset:
-  // from the first edge after it rose to the first edge after the reset), and the edge Ack rose.
+  // from the first edge after it rose to the first edge after the reset), the edge Ack rose, and
+  // the edge it fell (none while it has not).
   struct Edges {
     std::uint64_t req_first = 0, req_last = 0, ack = 0;
+    std::optional<std::uint64_t> ack_fall;
   };
   // True if some remaining candidate explains `stamp` (then only those remain); false, with what
   // the rule predicts in `expected`, if none does.
@@ -43,9 +47,10 @@ class StampRule {
   std::string describe() const;
 
   // The edge of a stamp: offset k after Req rose (1 = the first edge after it), or the edge Ack
-  // rose + offset.
+  // rose or fell + offset.
+  enum class Anchor { ReqRise, AckRise, AckFall };
   struct Candidate {
-    bool from_ack;
+    Anchor anchor;
     int offset;
   };
   // The first rule that explains every beat so far (the stated one if the description states it),
@@ -59,6 +64,8 @@ class StampRule {
 
  private:
   bool explains(const Candidate& c, const Edges& e, std::uint64_t stamp) const;
+  // Candidate c's edge (the last of a range); none for Ack's fall before it fell.
+  static std::optional<std::uint64_t> edge_of(const Candidate& c, const Edges& e);
   std::uint64_t predicted(const Candidate& c, const Edges& e) const;
   static std::string name(const Candidate& c);
 

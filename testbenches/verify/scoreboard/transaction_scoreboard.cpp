@@ -106,6 +106,7 @@ void TransactionScoreboard::count_missing_beat(const Transaction& t) {
 void TransactionScoreboard::clear_for_reset() {
   pending_.clear();
   open_id_.reset();
+  acked_id_.reset();
   held_.reset();
   words_taken_ = 0;
   gathered_special_ = false;
@@ -248,6 +249,7 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
           cycle - glitch.bound_edge + 1 <= static_cast<std::uint64_t>(lat_max_)) {
         glitch.answered = true;
         glitch.ack_edge = cycle;
+        acked_id_ = glitch.id;
         glitch.values.push_back({addr_, contention_});  // the wires as the receiver latched them
         ack_fall_due_ = true;
         answered_glitch_ = true;
@@ -278,6 +280,7 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     }
     t->acked = true;
     t->ack_edge = cycle;
+    acked_id_ = t->id;
     // Met a full output: the output stalled within a few edges before the Req (a receiver may
     // decide on fullness a pipeline stage or two early) or while waiting for the Ack.
     t->stalled = stalled_ever_ && last_stall_edge_ + static_cast<std::uint64_t>(lat_max_) + 8 >= t->first_edge;
@@ -298,6 +301,11 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     });
     return;
   }
+  // The edge the transaction's Ack fell, for a stamp taken there (its beat still to come).
+  for (Transaction& t : pending_) {
+    if (acked_id_ && t.id == *acked_id_) t.ack_fall_edge = cycle;
+  }
+  acked_id_.reset();
   if (ack_fall_due_) {
     const std::uint64_t latency = cycle - req_fall_edge_ + 1;
     const bool early = latency < static_cast<std::uint64_t>(lat_min_) && !answered_glitch_;
@@ -314,7 +322,7 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
 
 void TransactionScoreboard::check_stamp(const Transaction& t, std::uint64_t stamp, std::uint64_t cycle, std::uint64_t t_ps) {
   if (!has_stamp_) return;
-  const StampRule::Edges edges{t.first_edge, t.bound_edge, t.ack_edge};
+  const StampRule::Edges edges{t.first_edge, t.bound_edge, t.ack_edge, t.ack_fall_edge};
   std::string expected;
   if (stamps_.check(edges, stamp, expected)) return;
   fail("timestamp", cycle, t_ps, false, [&] { return Texts{expected + " for " + describe(t), fmt::format("{}", stamp)}; });

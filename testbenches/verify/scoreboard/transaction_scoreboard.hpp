@@ -102,6 +102,7 @@ class TransactionScoreboard {
     std::uint64_t first_edge = 0;  // the first rising edge after Req rose: the lower latency bound's origin
     std::uint64_t bound_edge = 0;  // the later of that and the reset's release: the upper bound's origin
     std::uint64_t ack_edge = 0;
+    std::optional<std::uint64_t> ack_fall_edge;  // once its Ack has fallen (a stamp may be taken then)
     bool acked = false, withdrawn = false, stalled = false;
     bool answered = false;                               // withdrawn (a glitch), yet the receiver raised Ack for it
     bool beat_taken = false;                             // its beat came before its Ack
@@ -152,6 +153,7 @@ class TransactionScoreboard {
   Transaction* open();  // the transaction whose Req is up and not yet acknowledged, if any
   std::optional<std::uint64_t> open_id_;
   std::uint64_t next_id_ = 0;
+  std::optional<std::uint64_t> acked_id_;  // the transaction the Ack now high (or last high) answered
   bool req_ = false, ack_ = false, in_reset_ = false;
   std::uint64_t addr_ = 0, req_rise_edge_ = 0, req_rise_ps_ = 0;
   bool contention_ = false;
