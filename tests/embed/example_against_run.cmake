@@ -64,6 +64,22 @@ if(NOT status EQUAL 0 OR NOT differ EQUAL 0)
 endif()
 message(STATUS "built from pkg-config, the same rows")
 
+# The library exports aesim's own names and SystemC's template instances, nothing of what it is
+# built from (models/library/exports.map): a project's own Verilated receiver under the class
+# name of aesim's, or its own Verilator or toml11, then never binds to aesim's copies.
+find_program(NM nm REQUIRED)
+find_program(CXXFILT c++filt REQUIRED)
+find_program(GREP grep REQUIRED)
+execute_process(COMMAND ${NM} -D --defined-only ${prefix}/lib/libaesim.so COMMAND ${CXXFILT}
+                COMMAND ${GREP} -c "aesim::" OUTPUT_VARIABLE own OUTPUT_STRIP_TRAILING_WHITESPACE)
+execute_process(COMMAND ${NM} -D --defined-only ${prefix}/lib/libaesim.so COMMAND ${CXXFILT}
+                COMMAND ${GREP} -v -e "aesim::" -e "^[0-9a-f]* [A-Za-z] \\(typeinfo \\(name \\)\\?for \\|vtable for \\|guard variable for \\)\\?\\(sc_core\\|sc_dt\\|tlm\\|tlm_utils\\)::"
+                OUTPUT_VARIABLE foreign)
+if(own LESS 500 OR NOT foreign STREQUAL "")
+  message(FATAL_ERROR "libaesim.so exports ${own} names of aesim's and these of others':\n${foreign}")
+endif()
+message(STATUS "libaesim.so exports ${own} names of aesim's, SystemC's template instances, nothing else")
+
 if(PYTHON)
   file(WRITE ${prefix}/share/aesim/models/sensors/prefix_only.toml "base = \"aloha\"\n[pixel]\nc_int = \"77fF\"\n")
   execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_DIR} ${PYTHON} -c
