@@ -1087,6 +1087,10 @@ endmodule
   const nlohmann::json r = report("fall");
   expect_pass(o, r, 12);  // no ready port: the three back-pressure cases are left out
   EXPECT_EQ(r["stamp_rule"], "ticks since reset at the edge Ack fell - 1") << r.dump();
+  // Two synchroniser flops, then Ack at the next edge: 3 edges each way, as the RTL reads.
+  EXPECT_EQ(r["ack_latency_observed"], nlohmann::json::parse(R"({"rise": [3, 3], "fall": [3, 3]})")) << r.dump();
+  EXPECT_NE(o.out.find("Ack latency seen: rise 3 edges (without a full output), fall 3 edges; described 3 to 3"),
+            std::string::npos) << o.out;
   ASSERT_TRUE(r["formal"].is_array());
   bool stamp_checked = false;
   for (const auto& v : r["formal"]) {

@@ -180,6 +180,15 @@ int verify_command(const VerifyCommandOptions& opt) {
     if (!f.hint.empty()) std::fprintf(report_stream(), "hint: %s\n", f.hint.c_str());
   }
   if (!result.stamp_rule.empty()) std::fprintf(report_stream(), "stamps: %s\n", result.stamp_rule.c_str());
+  if (result.ack_rise.count > 0 || result.ack_fall.count > 0) {
+    const auto span = [](const TransactionScoreboard::LatencySpan& s) {
+      if (s.count == 0) return std::string("none seen");
+      return s.min == s.max ? fmt::format("{} edges", s.min) : fmt::format("{} to {} edges", s.min, s.max);
+    };
+    std::fprintf(report_stream(), "Ack latency seen: rise %s (without a full output), fall %s; described %d to %d\n",
+                 span(result.ack_rise).c_str(), span(result.ack_fall).c_str(), d.ack_latency_min,
+                 d.ack_latency_max);
+  }
   for (const std::string& note : notes) {
     if (note.find("$finish") != std::string::npos) std::fprintf(report_stream(), "note: %s\n", note.c_str());
   }

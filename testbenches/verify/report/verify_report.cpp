@@ -8,6 +8,10 @@ nlohmann::json failure_json(const VerifyFailure& f) {
   return {{"time_s", f.time_s}, {"cycle", f.cycle}, {"check", f.check}, {"expected", f.expected}, {"observed", f.observed}};
 }
 
+nlohmann::json span_json(const TransactionScoreboard::LatencySpan& s) {
+  return s.count == 0 ? nlohmann::json(nullptr) : nlohmann::json::array({s.min, s.max});
+}
+
 }  // namespace
 
 nlohmann::json verify_report(const ReceiverDescription& d, const std::string& plan, std::uint64_t seed,
@@ -31,6 +35,7 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   }
   j["drops_accounted"] = r.drops;
   j["stamp_rule"] = r.stamp_rule.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.stamp_rule);
+  j["ack_latency_observed"] = {{"rise", span_json(r.ack_rise)}, {"fall", span_json(r.ack_fall)}};
   j["notes"] = notes;
   j["receiver"] = {{"description", d.file}, {"top", d.top},
                    {"collisions", to_string(d.collisions)}, {"full", to_string(d.full)}};

@@ -284,6 +284,7 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     // Met a full output: the output stalled within a few edges before the Req (a receiver may
     // decide on fullness a pipeline stage or two early) or while waiting for the Ack.
     t->stalled = stalled_ever_ && last_stall_edge_ + static_cast<std::uint64_t>(lat_max_) + 8 >= t->first_edge;
+    if (!t->stalled && t->bound_edge == t->first_edge) rise_latency_.add(latency);
     open_id_.reset();
     ++transactions_;
     late_reported_ = false;
@@ -308,6 +309,7 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
   acked_id_.reset();
   if (ack_fall_due_) {
     const std::uint64_t latency = cycle - req_fall_edge_ + 1;
+    if (!answered_glitch_) fall_latency_.add(latency);
     const bool early = latency < static_cast<std::uint64_t>(lat_min_) && !answered_glitch_;
     if (!late_reported_ && (early || latency > static_cast<std::uint64_t>(lat_max_))) {
       fail("ack_fall_latency", cycle, t_ps, true, [&] {

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -93,6 +94,19 @@ class TransactionScoreboard {
   // The stamp rule the beats followed, e.g. "ticks since reset at edge 4 after Req rose".
   std::string stamp_rule() const { return stamps_.describe(); }
   std::optional<StampRule::Candidate> stamp_edge() const { return stamps_.rule(); }
+  // The Ack latencies the receiver showed, in edges as ack_latency_cycles counts them: rising for
+  // transactions that met no full output and whose Req rose outside a reset, falling after every
+  // Req but a glitch's. Empty (count 0) when none came.
+  struct LatencySpan {
+    std::uint64_t min = ~0ULL, max = 0, count = 0;
+    void add(std::uint64_t edges) {
+      min = std::min(min, edges);
+      max = std::max(max, edges);
+      ++count;
+    }
+  };
+  const LatencySpan& ack_rise_latency() const { return rise_latency_; }
+  const LatencySpan& ack_fall_latency() const { return fall_latency_; }
   void hold_stamps_to(const StampRule::Candidate& c) { stamps_.hold_to(c); }
 
  private:
@@ -147,6 +161,7 @@ class TransactionScoreboard {
   std::uint64_t release_edges_;
   std::uint64_t acting_from_edge_ = 0;  // the first edge it may act on after the last reset
   StampRule stamps_;  // one rule for the whole run, across cases
+  LatencySpan rise_latency_, fall_latency_;
 
   std::string case_;
   std::deque<Transaction> pending_;

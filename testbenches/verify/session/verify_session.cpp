@@ -87,6 +87,8 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
   }
   r.stamp_rule = sb.stamp_rule();
   r.stamp_edge = sb.stamp_edge();
+  r.ack_rise = sb.ack_rise_latency();
+  r.ack_fall = sb.ack_fall_latency();
   r.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

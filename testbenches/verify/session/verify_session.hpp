@@ -29,6 +29,7 @@ struct VerifyResult {
   std::vector<CaseSummary> cases;
   std::string stamp_rule;  // the rule the stamps followed (StampRule::describe)
   std::optional<StampRule::Candidate> stamp_edge;
+  TransactionScoreboard::LatencySpan ack_rise, ack_fall;  // the Ack latencies seen (see the scoreboard)
   std::string rtl_output;  // what the RTL printed, per case (bounded)
   bool passed() const { return failures == 0; }
 };
