@@ -161,6 +161,18 @@ class VerifyTest : public testing::TempDirTest {
     }
     return text.replace(at, from.size(), to);
   }
+  // A run with --formal and --export-tb tb: no property failed, the stamp rule among them, and the
+  // exported testbench prints PASS in Icarus.
+  void expect_stamps_proved_and_exported(const nlohmann::json& r) const {
+    ASSERT_TRUE(r["formal"].is_array());
+    bool stamp_checked = false;
+    for (const auto& v : r["formal"]) {
+      EXPECT_NE(v["verdict"], "failed") << v.dump();
+      stamp_checked = stamp_checked || v["property"] == "stamp_rule";
+    }
+    EXPECT_TRUE(stamp_checked);
+    EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  }
   // Runs a program with its arguments in `folder` (a shell only for the redirection; every
   // argument is a path the test made) and returns its last output line.
   std::string last_line(const std::string& folder, const std::string& command) const {
@@ -1007,14 +1019,7 @@ TEST_F(VerifyTest, ATimeTheDesignReadsIsDrivenWithTheTicksSinceReset) {
   const nlohmann::json r = report("given");
   expect_pass(o, r);
   EXPECT_EQ(r["stamp_rule"], "ticks since reset at edge 3 after Req rose or the edge Ack rose - 1");
-  ASSERT_TRUE(r["formal"].is_array());
-  bool stamp_checked = false;
-  for (const auto& v : r["formal"]) {
-    EXPECT_NE(v["verdict"], "failed") << v.dump();
-    stamp_checked = stamp_checked || v["property"] == "stamp_rule";
-  }
-  EXPECT_TRUE(stamp_checked);
-  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  expect_stamps_proved_and_exported(r);
 
   write("held.toml", edited(given, "ts_external_i = 1 ", "ts_external_i = 1\nts_i = 0\n"));
   const Outcome held = verify("held.toml --out held");
@@ -1091,14 +1096,7 @@ endmodule
   EXPECT_EQ(r["ack_latency_observed"], nlohmann::json::parse(R"({"rise": [3, 3], "fall": [3, 3]})")) << r.dump();
   EXPECT_NE(o.out.find("Ack latency seen: rise 3 edges (without a full output), fall 3 edges; described 3 to 3"),
             std::string::npos) << o.out;
-  ASSERT_TRUE(r["formal"].is_array());
-  bool stamp_checked = false;
-  for (const auto& v : r["formal"]) {
-    EXPECT_NE(v["verdict"], "failed") << v.dump();
-    stamp_checked = stamp_checked || v["property"] == "stamp_rule";
-  }
-  EXPECT_TRUE(stamp_checked);
-  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  expect_stamps_proved_and_exported(r);
 
   write("fall_stamp.v", edited(rtl, " LATE", " + {15'd0, taken[0]}"));
   const Outcome late = verify("fall.toml --out late");
