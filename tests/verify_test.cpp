@@ -1104,6 +1104,58 @@ endmodule
   EXPECT_EQ(report("late")["first_failure"]["check"], "timestamp") << report("late")["first_failure"].dump();
 }
 
+// A SystemVerilog receiver whose bus is an interface port: Verilator takes no interface on the top,
+// so the error says to put the design under a top of plain ports, as does a role naming an
+// interface's member; under such a top (the one docs/verify.md shows) it passes.
+TEST_F(VerifyTest, AnInterfacePortOnTheTopIsToldToBeWrappedAndPassesWrapped) {
+  write("ifrx.sv", R"(interface aer_if;
+  logic req, ack;
+  logic [9:0] addr;
+  modport rx (input req, input addr, output ack);
+endinterface
+module ifrx (input logic clk, input logic rst_n, aer_if.rx bus, output logic [9:0] word, output logic valid);
+  logic r1, r2;
+  always_ff @(posedge clk) begin
+    if (!rst_n) begin
+      {r1, r2, bus.ack, valid} <= '0;
+      word <= '0;
+    end else begin
+      {r2, r1} <= {r1, bus.req};
+      valid <= 1'b0;
+      if (r2 && !bus.ack) begin
+        bus.ack <= 1'b1;
+        word <= bus.addr;
+        valid <= 1'b1;
+      end else if (!r2 && bus.ack) begin
+        bus.ack <= 1'b0;
+      end
+    end
+  end
+endmodule
+)");
+  write("ifrx_top.sv", R"(module ifrx_top (input logic clk, input logic rst_n, input logic req, input logic [9:0] addr,
+                 output logic ack, output logic [9:0] word, output logic valid);
+  aer_if bus ();
+  assign bus.req = req;
+  assign bus.addr = addr;
+  assign ack = bus.ack;
+  ifrx dut (.clk(clk), .rst_n(rst_n), .bus(bus.rx), .word(word), .valid(valid));
+endmodule
+)");
+  const std::string toml = "top = \"ifrx\"\nsources = [\"ifrx.sv\"]\nclock = \"50MHz\"\nreset = { port = \"rst_n\", active = \"low\" }\n"
+                           "[ports]\nclk = \"clk\"\nreq = \"req\"\nack = \"ack\"\naddr = \"addr\"\nvalid = \"valid\"\n"
+                           "out_addr = \"word\"\n[behaviour]\ncollisions = \"pass\"\nack_latency_cycles = [3, 3]\n";
+  write("ifrx.toml", toml);
+  const Outcome bare = verify("ifrx.toml --out bare");
+  EXPECT_EQ(bare.status, 2) << bare.err;
+  EXPECT_NE(bare.err.find("Interfaced port on top level module; aesim drives a top's plain ports"), std::string::npos) << bare.err;
+  expect_refused("member.toml", edited(toml, "req = \"req\"", "req = \"bus.req\""), "a member of an interface port?");
+
+  write("top.toml", edited(edited(toml, "top = \"ifrx\"", "top = \"ifrx_top\""), "[\"ifrx.sv\"]", "[\"ifrx.sv\", \"ifrx_top.sv\"]"));
+  const Outcome wrapped = verify("top.toml --out wrapped");
+  expect_pass(wrapped, report("wrapped"), 12);  // no ready port: the three back-pressure cases are left out
+}
+
 // A two-phase receiver (each edge of Req an event, Ack toggled once) behind aesim's four-phase bus
 // gives a second beat, of the released lines, as Req falls: it fails there, and the hint says the
 // bus is four-phase rather than pointing at valid's level. A level-held valid described as a

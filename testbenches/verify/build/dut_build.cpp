@@ -226,7 +226,13 @@ std::string cache_key(const ReceiverDescription& d, const Toolchain& t, bool tra
     fs::copy_file(log, dest, fs::copy_options::overwrite_existing, ec);
     if (!ec) kept = dest.string();
   }
-  throw InputError(fmt::format("receiver RTL does not build: {} ({}'s log: {})", first_error(read_scratch_text(log), tool), tool, kept));
+  const std::string error = first_error(read_scratch_text(log), tool);
+  // A top whose ports are an interface's (bus.req): the ports aesim drives must be plain ones.
+  const std::string advice = error.find("Interfaced port on top level module") != std::string::npos
+                                 ? "; aesim drives a top's plain ports: name as top a module of plain ports that makes the "
+                                   "interface and connects it to this one (docs/verify.md, a top with interface ports)"
+                                 : "";
+  throw InputError(fmt::format("receiver RTL does not build: {}{} ({}'s log: {})", error, advice, tool, kept));
 }
 
 }  // namespace

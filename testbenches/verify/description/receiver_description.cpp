@@ -201,6 +201,12 @@ class Reader {
       fail(label, fmt::format("'{}' is not a plain Verilog identifier (a line active low is {{ port = \"{}\", active = \"low\" }})",
                               text, text.substr(1)));
     }
+    if (!ok && text.find('.') != std::string::npos) {
+      fail(label, fmt::format("'{}' is not a plain Verilog identifier (a member of an interface port? the ports aesim drives "
+                              "are plain ones: name as top a module of plain ports that makes the interface, "
+                              "docs/verify.md)",
+                              text));
+    }
     if (!ok) fail(label, fmt::format("'{}' is not a plain Verilog identifier", text));
     return text;
   }
