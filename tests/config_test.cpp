@@ -33,6 +33,24 @@ TEST(SiUnits, RejectsWrongUnitsAndGarbageNamingTheKey) {
   }
 }
 
+// A unit in the wrong case is not guessed at ("mhz" could be milli or mega); the message says so.
+TEST(SiUnits, AUnitInAnotherCaseIsRefusedSayingUnitsAreCaseSensitive) {
+  for (const char* bad : {"100mhz", "100MHZ", "10 KHz", "5hz"}) {
+    try {
+      parse_si(bad, "Hz", "receiver.clock");
+      FAIL() << "accepted '" << bad << "'";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("case-sensitive: Hz, with m milli, M mega"), std::string::npos) << e.what();
+    }
+  }
+  try {
+    parse_si("100 furlong", "Hz", "receiver.clock");
+    FAIL() << "accepted '100 furlong'";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("case-sensitive"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SensorConfig, AlohaPresetHasTheSpecConstants) {
   const SensorConfig c = load_sensor("aloha");
   EXPECT_DOUBLE_EQ(c.pixel.c_int, 100e-15);

@@ -1,5 +1,6 @@
 #include "aesim/units/si_units.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -49,6 +50,7 @@ double parse_si(std::string_view text, std::string_view unit, std::string_view w
   if (errno == ERANGE || !std::isfinite(number)) return fail("number out of range");
   std::string_view rest = trim(std::string_view(buffer).substr(static_cast<size_t>(end - buffer.c_str())));
 
+  const std::string_view with_unit = rest;
   // The unit is optional; strip it first so that e.g. "m" in "ms" is read as the prefix.
   if (!unit.empty() && ends_with(rest, unit)) rest.remove_suffix(unit.size());
   double scale = 1.0;
@@ -62,8 +64,21 @@ double parse_si(std::string_view text, std::string_view unit, std::string_view w
       }
     }
     if (!matched) {
-      return fail(unit.empty() ? std::string("unexpected unit or suffix")
-                               : fmt::format("expected a value in {}", unit));
+      if (unit.empty()) return fail("unexpected unit or suffix");
+      // "100mhz", "10 KHz": the unit or its prefix in another case. Not taken as meant: m is milli,
+      // M mega.
+      const auto lower = [](std::string_view v) {
+        std::string out(v);
+        for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return out;
+      };
+      const std::string r = lower(with_unit), u = lower(unit);
+      if (r.size() >= u.size() && r.compare(r.size() - u.size(), u.size(), u) == 0) {
+        return fail(fmt::format("expected a value in {} (units and their prefixes are case-sensitive: {}, with m milli, "
+                                "M mega, k kilo, u micro)",
+                                unit, unit));
+      }
+      return fail(fmt::format("expected a value in {}", unit));
     }
   }
   const double value = number * scale;
