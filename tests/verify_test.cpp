@@ -1156,6 +1156,52 @@ endmodule
   expect_pass(wrapped, report("wrapped"), 12);  // no ready port: the three back-pressure cases are left out
 }
 
+// A receiver that reads a table by a relative name ($readmemh("map.hex"), beside its sources) finds
+// it when aesim verify is run from another folder: the RTL runs in the description's folder, where
+// the description's own paths start. Without the table it fails, and a note names the folder.
+TEST_F(VerifyTest, AFileTheRtlReadsByARelativeNameIsTheOneBesideTheDescription) {
+  std::filesystem::create_directories(dir_ / "rx");
+  write("rx/lutrx.v", R"(module lutrx (input wire clk, input wire rst_n, input wire req, input wire [9:0] addr,
+              output reg ack, output reg [9:0] word, output reg valid);
+  reg [9:0] map [0:1023];
+  initial $readmemh("map.hex", map);
+  reg r1, r2;
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      {r1, r2, ack, valid} <= 4'd0;
+      word <= 10'd0;
+    end else begin
+      {r2, r1} <= {r1, req};
+      valid <= 1'b0;
+      if (r2 && !ack) begin
+        ack <= 1'b1;
+        word <= map[addr];
+        valid <= 1'b1;
+      end else if (!r2 && ack) begin
+        ack <= 1'b0;
+      end
+    end
+  end
+endmodule
+)");
+  std::string table;
+  for (int a = 0; a < 1024; ++a) table += fmt::format("{:03x}\n", a);
+  write("rx/map.hex", table);
+  write("rx/lutrx.toml", "top = \"lutrx\"\nsources = [\"lutrx.v\"]\nclock = \"50MHz\"\nreset = { port = \"rst_n\", active = \"low\" }\n"
+                         "[ports]\nclk = \"clk\"\nreq = \"req\"\nack = \"ack\"\naddr = \"addr\"\nvalid = \"valid\"\n"
+                         "out_addr = \"word\"\n[behaviour]\ncollisions = \"pass\"\nack_latency_cycles = [3, 3]\n");
+  const Outcome o = verify("rx/lutrx.toml --out found");
+  expect_pass(o, report("found"), 12);
+
+  std::filesystem::remove(dir_ / "rx" / "map.hex");
+  const Outcome lost = verify("rx/lutrx.toml --out lost");
+  EXPECT_EQ(lost.status, 1) << lost.err;
+  EXPECT_NE(lost.out.find("note: the RTL's $readmem found no file (lost/rtl_output.log); the RTL reads relative names from "
+                          "the description's folder, " + (dir_ / "rx").string()),
+            std::string::npos)
+      << lost.out;
+}
+
 // A two-phase receiver (each edge of Req an event, Ack toggled once) behind aesim's four-phase bus
 // gives a second beat, of the released lines, as Req falls: it fails there, and the hint says the
 // bus is four-phase rather than pointing at valid's level. A level-held valid described as a

@@ -150,6 +150,12 @@ int verify_command(const VerifyCommandOptions& opt) {
   for (const CaseSummary& c : result.cases) {
     if (!c.rtl_finish.empty()) notes.push_back(fmt::format("the RTL's $finish at {} ended case '{}'", c.rtl_finish, c.name));
   }
+  // Verilator's "%Warning: map.hex:0: $readmem file not found": the RTL ran without its table.
+  if (result.rtl_output.find("$readmem file not found") != std::string::npos) {
+    notes.push_back(fmt::format("the RTL's $readmem found no file ({}); the RTL reads relative names from the "
+                                "description's folder, {}",
+                                rtl_log, std::filesystem::absolute(d.file).parent_path().string()));
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string formal_vcd = opt.out + "/formal_failure.vcd";
   if (formal && !formal->counterexample_vcd.empty()) files.open(formal_vcd) << formal->counterexample_vcd;
@@ -190,7 +196,9 @@ int verify_command(const VerifyCommandOptions& opt) {
                  d.ack_latency_max);
   }
   for (const std::string& note : notes) {
-    if (note.find("$finish") != std::string::npos) std::fprintf(report_stream(), "note: %s\n", note.c_str());
+    if (note.find("$finish") != std::string::npos || note.find("$readmem") != std::string::npos) {
+      std::fprintf(report_stream(), "note: %s\n", note.c_str());
+    }
   }
   if (!result.rtl_output.empty()) std::fprintf(report_stream(), "the RTL's own output: %s\n", rtl_log.c_str());
   if (formal) {

@@ -2,16 +2,20 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 #include <fmt/format.h>
 
 #include "driver/bound_ports.hpp"
+#include "driver/rtl_working_folder.hpp"
 
 namespace aesim {
 void trace_failure(const DutLibrary& library, const std::vector<RtlPort>& ports, const ReceiverDescription& d,
                    const VerifyCase& c, std::uint64_t cycle, const std::string& path) {
+  const std::string trace = std::filesystem::absolute(path).string();
+  const RtlWorkingFolder folder(d.file);
   DutInstance dut(library, true);
-  if (!dut.open_trace(path)) return;
+  if (!dut.open_trace(trace)) return;
   const BoundPorts bound = bind_ports(dut, d, ports);
   CaseRunOptions o;
   o.trace = true;
@@ -25,6 +29,7 @@ void trace_failure(const DutLibrary& library, const std::vector<RtlPort>& ports,
 VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPort>& ports, const ReceiverDescription& d,
                              const std::vector<VerifyCase>& cases, const VerifyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  const RtlWorkingFolder folder(d.file);
   TransactionScoreboard sb(d, d.has("overflow_count"),
                            d.has("overflow_count") ? find_port(ports, d.port("overflow_count"))->width : 0);
   if (options.stamp_rule) sb.hold_stamps_to(*options.stamp_rule);
