@@ -1,6 +1,7 @@
 // The aesim program as a user meets it: default run, outputs, bad input, reproducibility.
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <cmath>
@@ -16,6 +17,7 @@
 
 #include "aesim/config/sensor_config.hpp"
 #include "aesim/scene/netpbm.hpp"
+#include "aesim/version.hpp"
 #include "support/csv_rows.hpp"
 #include "support/temp_dir_test.hpp"
 
@@ -491,6 +493,15 @@ TEST_F(CliTest, MistypedNamesGetTheNearestAndNoCommandListsThem) {
     EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
     EXPECT_FALSE(fs::exists(dir_ / "out")) << c.args;
   }
+}
+
+// --version names the project's version (CMakeLists.txt), the one the Python module and the
+// installed package carry.
+TEST_F(CliTest, VersionIsTheProjectsAndExitsZero) {
+  const Outcome o = aesim("--version");
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_EQ(o.out, std::string("aesim ") + kVersion + "\n");
+  EXPECT_EQ(std::count(kVersion, kVersion + std::strlen(kVersion), '.'), 2) << kVersion;
 }
 
 // The documentation's commands name shipped files by paths from aesim's tree (`--scene

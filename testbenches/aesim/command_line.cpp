@@ -10,6 +10,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "aesim/event_files/event_formats.hpp"
 #include "aesim/text/nearest_name.hpp"
+#include "aesim/version.hpp"
 
 namespace aesim {
 namespace {
@@ -273,6 +274,7 @@ int run_command_line(int argc, char** argv) {
                "model to a cycle-level SystemC one with the receiver's RTL in the loop",
                "aesim"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("aesim ") + kVersion, "Print aesim's version and exit");
   int status = 0;
   add_run(app, status);
   add_recon(app, status);
@@ -303,6 +305,8 @@ int run_command_line(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ExtrasError& e) {
     const std::string unknown = unknown_option(app);

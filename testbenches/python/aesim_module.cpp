@@ -30,6 +30,7 @@
 #include "aesim/scene/npy_scene.hpp"
 #include "aesim/scene/scene.hpp"
 #include "aesim/sensor_run/sensor_run.hpp"
+#include "aesim/version.hpp"
 
 namespace py = pybind11;
 
@@ -377,6 +378,7 @@ PYBIND11_MODULE(aesim, m) {
   using namespace aesim;
   setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
   m.doc() = "aesim: the address-event imager simulator (docs/reference.md section 8). Same library as the aesim program.";
+  m.attr("__version__") = kVersion;
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

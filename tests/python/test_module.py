@@ -47,6 +47,10 @@ def test_run_gives_the_programs_events_and_summary(tmp_path):
     assert r.truth is None
 
 
+def test_the_version_is_the_programs():
+    assert cli("--version").stdout == f"aesim {aesim.__version__}\n"
+
+
 def test_warnings_are_the_programs_raised_as_runtime_warnings(tmp_path):
     # aesim_pixel is calibrated from 1 fA to 1 nA; the gradient at i_max = 2 nA leaves that range.
     scene = os.path.join(SCENES, "gradient.pgm")
