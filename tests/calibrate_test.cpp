@@ -350,6 +350,45 @@ TEST_F(NgspiceTest, WithoutSubcktTheDecksOnePixelIsTaken) {
   }
 }
 
+// A deck as a designer runs it on its own: a title line (SPICE's first line), its models from a
+// file beside it, and its own testbench (a supply named Vdd as the runs' is, an instance, .tran,
+// a .control block that would run a shell command, and text past .end). The runs take its
+// circuit alone, say what they left out, and give the bare pixel's table; the block never runs.
+TEST_F(NgspiceTest, ADeckRunOnItsOwnIsCalibratedOnItsCircuitAlone) {
+  std::string pixel = slurp(kIdealDeck);
+  pixel.replace(pixel.find(".model hysteresis"), pixel.find(".ends") - pixel.find(".model hysteresis"), "");
+  fs::create_directories(dir_ / "bench");
+  write("bench/switch.lib", ".model hysteresis sw vt=1.0005 vh=0.4995 ron=1 roff=1e16\n");
+  const std::string marker = (dir_ / "ran").string();
+  const std::string own = "Ideal pixel, characterised on its own\n" + pixel + ".include switch.lib\n"
+                          "Vdd vdd 0 3.3\nX1 vdd out 0 ideal_pixel\n+ iph=10p\n.tran 1u 1m\n"
+                          ".control\nshell touch " + marker + "\nrun\n.endc\n.end\nnot SPICE after the end\n";
+  const std::string path = write("bench/own.cir", own);
+  std::istringstream lines(own);
+  int control = 0, endc = 0, n = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++n;
+    if (line == ".control") control = n;
+    if (line == ".endc") endc = n;
+  }
+  const PixelDeck deck = read_pixel_deck(path, "ideal_pixel", "int");
+  EXPECT_EQ(deck.left_out, (std::vector<std::string>{"its title line", fmt::format("its .control block (lines {} to {})", control, endc),
+                                                      "its testbench's 2 element lines", "its .tran"}));
+  EXPECT_NE(deck.circuit.find(".include \"" + (dir_ / "bench" / "switch.lib").string() + "\""), std::string::npos) << deck.circuit;
+  const CalibrationOptions o = over(1e-12, 1e-10, 3);
+  const Calibration on_its_own = calibrate_pixel(deck, o);
+  const Calibration bare = calibrate_pixel(read_pixel_deck(kIdealDeck, "ideal_pixel", "int"), o);
+  EXPECT_EQ(on_its_own.current, bare.current);
+  EXPECT_EQ(on_its_own.period, bare.period);
+  EXPECT_FALSE(fs::exists(marker));
+
+  const Outcome cli = aesim("calibrate bench/own.cir --subckt ideal_pixel --currents 1pA:100pA --points 3 -o own.toml");
+  EXPECT_EQ(cli.status, 0) << cli.err;
+  EXPECT_NE(cli.err.find("the runs take the deck's circuit; left out: its title line, its .control block"), std::string::npos)
+      << cli.err;
+  EXPECT_FALSE(fs::exists(marker));
+}
+
 TEST_F(NgspiceTest, KnownDeckGivesItsThresholdChargeAndResetWithinOnePercent) {
   const PixelDeck deck = read_pixel_deck(kIdealDeck, "ideal_pixel", "int");
   const CalibrationOptions o = over(100e-15, 100e-9, 10);
@@ -979,7 +1018,7 @@ TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
       // The cause ngspice gave (an unclosed brace), not only its closing "fatal error".
       EXPECT_NE(last.find("not found"), std::string::npos) << o.err;
       const std::string kept = slurp(log);
-      EXPECT_NE(kept.find(".include"), std::string::npos) << kept;
+      EXPECT_NE(kept.find("Xpix vdd out 0 ideal_pixel"), std::string::npos) << kept;
       EXPECT_NE(kept.find("* ngspice's output"), std::string::npos) << kept;
     }
   }
@@ -996,7 +1035,8 @@ TEST_F(NgspiceTest, BadDecksEndWithOneLineExitTwoAndNoPreset) {
 }
 
 TEST_F(NgspiceTest, ShellSyntaxInTheDeckPathIsOnlyAName) {
-  // The path reaches ngspice inside the generated testbench (.include "PATH") and as an argument;
+  // The path reaches ngspice inside the generated testbench (its folder in the paths of the files
+  // the deck includes, .include "FOLDER/FILE") and as an argument;
   // no shell sees it. What ngspice's .include line cannot carry (a quote, ';', ' $') is refused.
   write("deck$(touch pwned)|`touch pwned2`&x.cir", slurp(kIdealDeck));
   const Outcome o = aesim("calibrate 'deck$(touch pwned)|`touch pwned2`&x.cir' --subckt ideal_pixel -o p.toml "

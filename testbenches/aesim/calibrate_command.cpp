@@ -73,6 +73,11 @@ int calibrate_command(const CalibrateOptions& opt) {
                format_si(options.i_high, "A").c_str(),
                options.mc > 0 ? fmt::format(", {} Monte Carlo runs", options.mc).c_str() : "",
                format_si(options.vdd, "V").c_str(), options.jobs);
+  if (!deck.left_out.empty()) {
+    std::string what;
+    for (const std::string& part : deck.left_out) what += (what.empty() ? "" : ", ") + part;
+    std::fprintf(stderr, "aesim calibrate: the runs take the deck's circuit; left out: %s\n", what.c_str());
+  }
   // Before the runs, which can take minutes: the user may stop them and rerun with --vdd.
   if (const std::string note = supply_rating_note(deck, options.vdd); !note.empty()) {
     std::fprintf(stderr, "aesim calibrate: warning: %s\n", note.c_str());

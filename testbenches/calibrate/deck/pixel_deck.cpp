@@ -122,9 +122,10 @@ std::vector<std::string> section_lines(const std::vector<std::string>& lines, co
 }
 
 // ngspice runs commands from a deck's .control (and .exec) blocks, `shell` among them, which could
-// run any program: a deck aesim calibrates must describe a circuit only. Found in every file the
-// deck includes, not only the deck.
-void refuse_commands(const std::string& text, const std::string& file) {
+// run any program: the files a deck includes must describe a circuit only, and the deck's own
+// blocks are left out of the runs (circuit_of), except one that loads an OSDI library, which the
+// runs need given with --osdi instead.
+void refuse_commands(const std::string& text, const std::string& file, bool own_deck) {
   std::istringstream in(text);
   std::string line;
   int block = 0;  // the line of the block's opening, 0 outside one
@@ -147,12 +148,130 @@ void refuse_commands(const std::string& text, const std::string& file) {
     }
     if (keyword == ".endc") break;
   }
-  if (block != 0) {
-    throw InputError(fmt::format("'{}' line {}: a {} block, whose commands ngspice would run (shell commands among "
-                                 "them); aesim calibrate runs the circuit of a deck only: remove the block",
+  if (block != 0 && !own_deck) {
+    throw InputError(fmt::format("'{}' line {}: a {} block in a file the deck includes, whose commands ngspice would "
+                                 "run (shell commands among them); aesim calibrate runs circuits only: remove the block",
                                  file, block, keyword_of_block));
   }
 }
+
+// The file an `.include FILE` or `.lib FILE SECTION` line names (quoted or not), and what follows
+// it; nothing for other lines and for `.lib SECTION` (a section's start).
+struct IncludeLine {
+  std::string keyword, file, rest;
+};
+std::optional<IncludeLine> include_line(const std::string& line) {
+  std::istringstream in(line);
+  std::string keyword;
+  in >> keyword;
+  const std::string lower = ascii_lower(keyword);
+  if (lower != ".include" && lower != ".inc" && lower != ".lib") return std::nullopt;
+  std::string rest;
+  std::getline(in, rest);
+  rest.erase(0, rest.find_first_not_of(" \t"));
+  if (rest.empty()) return std::nullopt;
+  std::string file;
+  if (rest.front() == '"' || rest.front() == '\'') {
+    const auto close = rest.find(rest.front(), 1);
+    if (close == std::string::npos) return std::nullopt;
+    file = rest.substr(1, close - 1);
+    rest.erase(0, close + 1);
+  } else {
+    const auto end = rest.find_first_of(" \t");
+    file = rest.substr(0, end);
+    rest.erase(0, end == std::string::npos ? rest.size() : end);
+  }
+  if (lower == ".lib" && rest.find_first_not_of(" \t") == std::string::npos) return std::nullopt;
+  return IncludeLine{keyword, file, rest};
+}
+
+// Statements of a deck's own testbench, which a deck run on its own needs and the runs replace.
+bool testbench_statement(const std::string& keyword) {
+  static const char* const kStatements[] = {".tran", ".ac",    ".dc",    ".op",     ".noise", ".tf",   ".sens",
+                                            ".pz",   ".disto", ".four",  ".sp",     ".pss",   ".print", ".plot",
+                                            ".probe", ".save", ".meas",  ".measure", ".ic",   ".nodeset", ".width"};
+  return std::any_of(std::begin(kStatements), std::end(kStatements), [&](const char* s) { return keyword == s; });
+}
+
+}  // namespace
+
+DeckCircuit circuit_of(const std::string& text, const std::string& folder) {
+  DeckCircuit c;
+  std::istringstream in(text);
+  std::string line;
+  int depth = 0;  // .subckt nesting
+  bool in_section = false, in_block = false, kept = true;
+  int block_from = 0, elements = 0;
+  std::vector<std::string> statements;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '*') {
+      if (!in_block) c.text += line + "\n";
+      continue;
+    }
+    if (line[first] == '+') {  // a continuation goes where its line went
+      if (kept && !in_block) c.text += line + "\n";
+      continue;
+    }
+    const std::vector<std::string> t = tokens(line);
+    if (t.empty()) {  // white space SPICE reads as such (a stray carriage return)
+      if (!in_block) c.text += line + "\n";
+      continue;
+    }
+    const std::string keyword = ascii_lower(t[0]);
+    if (in_block) {
+      if (keyword == ".endc") {
+        in_block = false;
+        c.left_out.push_back(fmt::format("its .control block (lines {} to {})", block_from, n));
+      }
+      continue;
+    }
+    kept = true;
+    if (n == 1 && line[first] != '.') {  // SPICE reads a netlist's first line as its title
+      kept = false;
+      c.left_out.push_back("its title line");
+      continue;
+    }
+    if (depth == 0 && !in_section) {
+      if (keyword == ".end") break;
+      if (keyword == ".control" || keyword == ".exec") {
+        in_block = true;
+        block_from = n;
+        continue;
+      }
+      if (line[first] != '.' || testbench_statement(keyword)) {
+        kept = false;
+        if (line[first] != '.') {
+          ++elements;
+        } else if (std::find(statements.begin(), statements.end(), keyword) == statements.end()) {
+          statements.push_back(keyword);
+        }
+        continue;
+      }
+    }
+    if (keyword == ".subckt") ++depth;
+    if (keyword == ".ends" && depth > 0) --depth;
+    if (keyword == ".lib" && t.size() == 2) in_section = true;
+    if (keyword == ".endl") in_section = false;
+    // The runs' testbench is elsewhere: a file named from the deck's folder is named whole.
+    const std::optional<IncludeLine> inc = include_line(line);
+    if (inc && !fs::path(inc->file).is_absolute()) {
+      c.text += fmt::format("{} \"{}\"{}\n", inc->keyword, (fs::path(folder) / inc->file).lexically_normal().string(), inc->rest);
+    } else {
+      c.text += line + "\n";
+    }
+  }
+  if (elements > 0) c.left_out.push_back(fmt::format("its testbench's {} element line{}", elements, elements == 1 ? "" : "s"));
+  if (!statements.empty()) {
+    std::string names;
+    for (const std::string& s : statements) names += (names.empty() ? "" : ", ") + s;
+    c.left_out.push_back("its " + names);
+  }
+  return c;
+}
+
+namespace {
 
 struct Subcircuit {
   std::vector<std::string> ports, params;
@@ -313,8 +432,9 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   const std::string text = read_text(path, "deck");
   std::error_code ec;
   deck.path = fs::absolute(path, ec).lexically_normal().string();
-  // The path goes into the testbench as `.include "PATH"`, and ngspice's reader cuts that line at
-  // a ';' or a " $" (its comment marks) and has no escape for a quote: measured on ngspice 39.
+  // The deck's folder goes into the testbench in the paths of the files it includes (`.include
+  // "FOLDER/FILE"`, circuit_of), and ngspice's reader cuts that line at a ';' or a " $" (its comment
+  // marks) and has no escape for a quote: measured on ngspice 39.
   const auto unquotable = [](const std::string& p) {
     const bool control =
         std::any_of(p.begin(), p.end(), [](char c) { return c == '"' || static_cast<unsigned char>(c) < 0x20; });
@@ -345,7 +465,10 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   }
   deck.given = path;
   std::uint64_t h = fnv1a(text, 0xcbf29ce484222325ull);
-  refuse_commands(text, path);
+  refuse_commands(text, path, true);
+  const DeckCircuit circuit = circuit_of(text, fs::path(deck.path).parent_path().string());
+  deck.circuit = circuit.text;
+  deck.left_out = circuit.left_out;
   const std::vector<std::string> lines = logical_lines(text);
   deck.subckt = subckt.empty() ? only_pixel_subckt(lines, path) : subckt;
   const std::string& name = deck.subckt;
@@ -372,7 +495,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
     auto file = lines_of.find(file_key);
     if (file == lines_of.end()) {
       const std::string included = read_text(inc, "included file");
-      refuse_commands(included, inc);
+      refuse_commands(included, inc, false);
       h = fnv1a(included, h);
       file = lines_of.emplace(file_key, logical_lines(included)).first;
     }

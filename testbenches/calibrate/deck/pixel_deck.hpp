@@ -12,6 +12,9 @@ struct PixelDeck {
   std::string subckt;    // as the deck spells it
   std::string probe;     // the integration node when the subcircuit has one by that name, else empty
   std::string hash;      // FNV-1a 64 of the deck's bytes and its .include'd files', for provenance
+  // What each run reads of the deck: its circuit (circuit_of), and what of it was left out.
+  std::string circuit;
+  std::vector<std::string> left_out;
   // The subcircuit declares a parameter `mc`: aesim passes mc=1 in Monte Carlo runs and mc=0
   // otherwise, so that one deck gives the nominal table and the statistical spread.
   bool mc_parameter = false;
@@ -35,6 +38,17 @@ struct PixelDeck {
   // in `hash` after the deck's.
   std::vector<std::string> osdi;
 };
+
+// A deck's circuit, as each run includes it: its subcircuits, models, parameters, options and the
+// files it reads (named from its folder, so the runs' testbench may be anywhere), without what a
+// deck run on its own carries beside them (its title line, the testbench's sources and instances,
+// analyses, output and measurement statements, .control blocks, and all after .end), which the
+// runs replace; `left_out` says what of that the deck had, for a note.
+struct DeckCircuit {
+  std::string text;
+  std::vector<std::string> left_out;
+};
+DeckCircuit circuit_of(const std::string& text, const std::string& folder);
 
 // Reads the deck and finds the subcircuit (in the deck or the files it .include's, one level),
 // checks its three ports and its iph parameter, and looks for `probe_node` inside it. Throws

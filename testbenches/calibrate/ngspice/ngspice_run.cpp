@@ -216,7 +216,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
   return fmt::format(
       "* aesim calibrate: {} at iph = {:.6g} A\n"
       ".options method={} reltol=1e-4 abstol={:g} chgtol={:g} gmin={:g} seed={}\n"
-      ".include \"{}\"\n"
+      "{}"
       "{}"
       "Vdd vdd 0 {:.12g}\n"
       "Xpix vdd out 0 {} iph={:.12g}{}\n"
@@ -231,7 +231,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "quit 0\n"
       ".endc\n"
       ".end\n",
-      deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.path, switches, vdd,
+      deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.circuit, switches, vdd,
       deck.subckt, r.iph,
       deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), osdi, r.t_max, r.t_stop, r.t_max,
       data_path, probe);
