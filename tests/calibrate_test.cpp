@@ -389,6 +389,17 @@ TEST_F(NgspiceTest, ADeckRunOnItsOwnIsCalibratedOnItsCircuitAlone) {
   EXPECT_FALSE(fs::exists(marker));
 }
 
+// The known deck with its ports declared gnd vdd out: taken by their names, the same table.
+TEST_F(NgspiceTest, APixelWithItsPortsInAnotherOrderGivesTheSameTable) {
+  std::string swapped = slurp(kIdealDeck);
+  swapped.replace(swapped.find("vdd out gnd params"), 11, "gnd vdd out");
+  const CalibrationOptions o = over(1e-12, 1e-10, 3);
+  const Calibration by_name = calibrate_pixel(read_pixel_deck(write("swapped.cir", swapped), "ideal_pixel", "int"), o);
+  const Calibration bare = calibrate_pixel(read_pixel_deck(kIdealDeck, "ideal_pixel", "int"), o);
+  ASSERT_EQ(by_name.period.size(), 3u);
+  EXPECT_EQ(by_name.period, bare.period);
+}
+
 TEST_F(NgspiceTest, KnownDeckGivesItsThresholdChargeAndResetWithinOnePercent) {
   const PixelDeck deck = read_pixel_deck(kIdealDeck, "ideal_pixel", "int");
   const CalibrationOptions o = over(100e-15, 100e-9, 10);
@@ -646,6 +657,24 @@ TEST_F(DeckReadingTest, ALibrarysSectionIsReadAloneAsNgspiceReadsIt) {
 // The supply the deck's MOS devices are made for, as SKY130 and GF180 spell it in their model
 // names: the lowest of those its element lines use, never a capacitor's density or a model the
 // PDK's own files define.
+// The runs' nets on the pixel's ports: by the ports' names when each is plainly the supply, the
+// output or the ground, one of each, in any order and case; else vdd out 0 in their order.
+TEST_F(DeckReadingTest, APixelsPortsAreTakenByTheirNamesWhenTheySayWhichIsWhich) {
+  using Nets = std::vector<std::string>;
+  EXPECT_EQ(port_nets_by_name({"vdd", "out", "gnd"}), (Nets{"vdd", "out", "0"}));
+  EXPECT_EQ(port_nets_by_name({"VSS", "VDD", "Spike"}), (Nets{"0", "vdd", "out"}));
+  EXPECT_EQ(port_nets_by_name({"vpwr", "vgnd", "fire"}), (Nets{"vdd", "0", "out"}));
+  for (const Nets& unclear : {Nets{"a", "b", "c"}, Nets{"vdd", "vcc", "out"}, Nets{"vdd", "out", "bias"}}) {
+    EXPECT_EQ(port_nets_by_name(unclear), (Nets{"vdd", "out", "0"})) << unclear[0] << " " << unclear[1] << " " << unclear[2];
+  }
+  std::string swapped = slurp(kIdealDeck);
+  swapped.replace(swapped.find("vdd out gnd params"), 11, "gnd vdd out");
+  const PixelDeck deck = read_pixel_deck(write("swapped.cir", swapped), "ideal_pixel", "int");
+  EXPECT_EQ(deck.port_nets, (Nets{"0", "vdd", "out"}));
+  EXPECT_EQ(deck.ports_by_name, "gnd vdd out");
+  EXPECT_EQ(read_pixel_deck(kIdealDeck, "ideal_pixel", "int").ports_by_name, "");
+}
+
 TEST_F(DeckReadingTest, TheDevicesRatedSupplyComesFromTheirModelNames) {
   write("pdk.lib", ".subckt sky130_fd_pr__nfet_g5v0d10v5 d g s b\nM1 d g s b sky130_fd_pr__nfet_01v8__model\n.ends\n"
                    ".model sky130_fd_pr__nfet_01v8__model nmos level=1\n");

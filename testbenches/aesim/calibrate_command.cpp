@@ -73,6 +73,10 @@ int calibrate_command(const CalibrateOptions& opt) {
                format_si(options.i_high, "A").c_str(),
                options.mc > 0 ? fmt::format(", {} Monte Carlo runs", options.mc).c_str() : "",
                format_si(options.vdd, "V").c_str(), options.jobs);
+  if (!deck.ports_by_name.empty()) {
+    std::fprintf(stderr, "aesim calibrate: %s's ports %s taken by their names (supply, output, ground), not in the order "
+                 "vdd out gnd\n", deck.subckt.c_str(), deck.ports_by_name.c_str());
+  }
   if (!deck.left_out.empty()) {
     std::string what;
     for (const std::string& part : deck.left_out) what += (what.empty() ? "" : ", ") + part;

@@ -426,6 +426,24 @@ StatisticsNote statistics_note(const PixelDeck& deck) {
   return {};
 }
 
+std::vector<std::string> port_nets_by_name(const std::vector<std::string>& ports) {
+  static const char* const kSupply[] = {"vdd", "vcc", "avdd", "vdda", "dvdd", "vpwr", "vdd!", "supply", "vpos"};
+  static const char* const kOutput[] = {"out", "vout", "spike", "fire", "req", "pulse", "event", "o", "q"};
+  static const char* const kGround[] = {"gnd", "vss", "0", "agnd", "vssa", "dgnd", "vgnd", "gnd!", "vneg"};
+  const auto in = [](const auto& names, const std::string& port) {
+    return std::any_of(std::begin(names), std::end(names), [&](const char* n) { return port == n; });
+  };
+  std::vector<std::string> nets;
+  for (const std::string& port : ports) {
+    const std::string p = ascii_lower(port);
+    nets.push_back(in(kSupply, p) ? "vdd" : in(kOutput, p) ? "out" : in(kGround, p) ? "0" : "");
+  }
+  std::vector<std::string> sorted = nets;
+  std::sort(sorted.begin(), sorted.end());
+  if (sorted == std::vector<std::string>{"0", "out", "vdd"}) return nets;
+  return {"vdd", "out", "0"};
+}
+
 PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node,
                           const std::vector<std::string>& osdi) {
   PixelDeck deck;
@@ -520,6 +538,10 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
     throw InputError(fmt::format("deck '{}': subcircuit '{}' has no parameter iph (params: iph=1p)", path, name));
   }
   deck.mc_parameter = std::find(found->params.begin(), found->params.end(), "mc") != found->params.end();
+  deck.port_nets = port_nets_by_name(found->ports);
+  if (deck.port_nets != std::vector<std::string>{"vdd", "out", "0"}) {
+    for (const std::string& port : found->ports) deck.ports_by_name += (deck.ports_by_name.empty() ? "" : " ") + port;
+  }
   if (!probe_node.empty()) {
     for (const std::string& line : found->body) {
       const std::vector<std::string> t = tokens(line);

@@ -11,6 +11,10 @@ struct PixelDeck {
   std::string given;     // as the user named it, for messages and provenance
   std::string subckt;    // as the deck spells it
   std::string probe;     // the integration node when the subcircuit has one by that name, else empty
+  // The runs' nets on the subcircuit's ports, in its order: vdd out 0 (supply, output, ground),
+  // unless its port names say another order (port_nets_by_name).
+  std::vector<std::string> port_nets{"vdd", "out", "0"};
+  std::string ports_by_name;  // "vdd gnd out" when the names set another order than vdd out gnd, else empty
   std::string hash;      // FNV-1a 64 of the deck's bytes and its .include'd files', for provenance
   // What each run reads of the deck: its circuit (circuit_of), and what of it was left out.
   std::string circuit;
@@ -49,6 +53,11 @@ struct DeckCircuit {
   std::vector<std::string> left_out;
 };
 DeckCircuit circuit_of(const std::string& text, const std::string& folder);
+
+// The runs' nets on a subcircuit's ports named `ports`: by their names when each is plainly the
+// supply (vdd, vcc, avdd, vpwr, ...), the output (out, spike, fire, req, ...) or the ground (gnd,
+// vss, 0, vgnd, ...), one of each; else vdd out 0 in their order, as the interface says.
+std::vector<std::string> port_nets_by_name(const std::vector<std::string>& ports);
 
 // Reads the deck and finds the subcircuit (in the deck or the files it .include's, one level),
 // checks its three ports and its iph parameter, and looks for `probe_node` inside it. Throws

@@ -219,7 +219,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "{}"
       "{}"
       "Vdd vdd 0 {:.12g}\n"
-      "Xpix vdd out 0 {} iph={:.12g}{}\n"
+      "Xpix {} {} {} {} iph={:.12g}{}\n"
       ".control\n"
       "{}"
       "set num_threads=1\n"
@@ -232,7 +232,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       ".endc\n"
       ".end\n",
       deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.circuit, switches, vdd,
-      deck.subckt, r.iph,
+      deck.port_nets[0], deck.port_nets[1], deck.port_nets[2], deck.subckt, r.iph,
       deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), osdi, r.t_max, r.t_stop, r.t_max,
       data_path, probe);
 }
