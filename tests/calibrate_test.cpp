@@ -389,6 +389,41 @@ TEST_F(NgspiceTest, ADeckRunOnItsOwnIsCalibratedOnItsCircuitAlone) {
   EXPECT_FALSE(fs::exists(marker));
 }
 
+// The known deck with its reset's reference (0.5 V inside it) taken out as a port, vlo: held by
+// --bias vlo=0.5V it gives the bare deck's table; held at 0.3 V the reset discharges towards a lower
+// level, so it reaches its end (0.501 V) sooner and the periods shorten; left unheld, or a bias
+// naming no port, is refused saying what to give.
+TEST_F(NgspiceTest, APortBeyondTheThreeIsHeldAtTheVoltageGiven) {
+  std::string biased = slurp(kIdealDeck);
+  biased.replace(biased.find("vdd out gnd params"), 18, "vdd out gnd vlo params");
+  biased.replace(biased.find("Vlo lo gnd 0.5\n"), 15, "");
+  biased.replace(biased.find("Rdis dis lo"), 11, "Rdis dis vlo");
+  const std::string path = write("biased.cir", biased);
+  const CalibrationOptions o = over(1e-12, 1e-10, 3);
+  const Calibration bare = calibrate_pixel(read_pixel_deck(kIdealDeck, "ideal_pixel", "int"), o);
+  const PixelDeck held = read_pixel_deck(path, "ideal_pixel", "int", {}, {{"VLO", 0.5}});
+  EXPECT_EQ(held.port_nets, (std::vector<std::string>{"vdd", "out", "0", "aesim_bias_vlo"}));
+  EXPECT_EQ(calibrate_pixel(held, o).period, bare.period);
+  const Calibration deeper = calibrate_pixel(read_pixel_deck(path, "ideal_pixel", "int", {}, {{"vlo", 0.3}}), o);
+  ASSERT_EQ(deeper.period.size(), bare.period.size());
+  EXPECT_LT(deeper.period.back(), bare.period.back() * (1 - 1e-4));
+
+  const Outcome unheld = aesim("calibrate biased.cir --subckt ideal_pixel -o p.toml");
+  EXPECT_EQ(unheld.status, 2);
+  EXPECT_NE(unheld.err.find("has 4 ports (vdd out gnd vlo); aesim calibrate needs three, vdd out gnd, and holds each other "
+                            "one at a voltage given as --bias NAME=VOLTS"),
+            std::string::npos)
+      << unheld.err;
+  const Outcome nowhere = aesim("calibrate biased.cir --subckt ideal_pixel --bias vlo=0.5V --bias vb=1V -o p.toml");
+  EXPECT_NE(nowhere.err.find("--bias vb: subcircuit 'ideal_pixel' has no port vb (its ports: vdd out gnd vlo)"), std::string::npos)
+      << nowhere.err;
+  EXPECT_NE(aesim("calibrate biased.cir --subckt ideal_pixel --bias vlo -o p.toml").err.find("expected PORT=VOLTS"),
+            std::string::npos);
+  const Outcome cli = aesim("calibrate biased.cir --subckt ideal_pixel --bias vlo=0.5V --currents 1pA:100pA --points 3 -o p.toml");
+  ASSERT_EQ(cli.status, 0) << cli.err;
+  EXPECT_NE(slurp(dir_ / "p.toml").find("# Ports held at a voltage in every run (--bias): vlo at 0.5 V."), std::string::npos);
+}
+
 // The known deck with its ports declared gnd vdd out: taken by their names, the same table.
 TEST_F(NgspiceTest, APixelWithItsPortsInAnotherOrderGivesTheSameTable) {
   std::string swapped = slurp(kIdealDeck);

@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <thread>
@@ -49,6 +50,27 @@ CalibrationOptions parse_options(const CalibrateOptions& opt) {
 
 }  // namespace
 
+namespace {
+
+// --bias NAME=VOLTS: a port name (one SPICE word: letters, digits, '_') and a voltage.
+std::vector<PortBias> port_biases(const std::vector<std::string>& given) {
+  std::vector<PortBias> out;
+  for (const std::string& text : given) {
+    const auto eq = text.find('=');
+    const std::string name = text.substr(0, eq);
+    const bool word = !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+    });
+    if (eq == std::string::npos || !word) {
+      throw InputError(fmt::format("--bias '{}': expected PORT=VOLTS, a port name of letters, digits and '_' (vbias=0.9V)", text));
+    }
+    out.push_back({name, parse_si(text.substr(eq + 1), "V", "--bias " + name)});
+  }
+  return out;
+}
+
+}  // namespace
+
 int calibrate_command(const CalibrateOptions& opt) {
   CalibrationOptions options = parse_options(opt);
   const SensorConfig base = load_sensor(opt.base);
@@ -64,7 +86,7 @@ int calibrate_command(const CalibrateOptions& opt) {
       opt.chart.empty() ? std::string() : std::filesystem::path(opt.chart).replace_extension(".csv").string();
   const std::string deck_path = shipped_if_missing(opt.deck);
   check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {deck_path, sensor_file(opt.base)});
-  const PixelDeck deck = read_pixel_deck(deck_path, opt.subckt, opt.probe, opt.osdi);
+  const PixelDeck deck = read_pixel_deck(deck_path, opt.subckt, opt.probe, opt.osdi, port_biases(opt.biases));
   // Beside the preset: the testbench and ngspice's whole log when ngspice rejects the deck.
   options.failure_log = std::filesystem::path(opt.output).replace_extension(".ngspice.log").string();
 

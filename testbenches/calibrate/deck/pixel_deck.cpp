@@ -444,8 +444,10 @@ std::vector<std::string> port_nets_by_name(const std::vector<std::string>& ports
   return {"vdd", "out", "0"};
 }
 
+std::string bias_net(const std::string& port) { return "aesim_bias_" + ascii_lower(port); }
+
 PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node,
-                          const std::vector<std::string>& osdi) {
+                          const std::vector<std::string>& osdi, const std::vector<PortBias>& biases) {
   PixelDeck deck;
   const std::string text = read_text(path, "deck");
   std::error_code ec;
@@ -530,17 +532,42 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   if (!found) {
     throw InputError(fmt::format("deck '{}': no subcircuit '{}' (in the deck or the files it includes)", path, name));
   }
-  if (found->ports.size() != 3) {
-    throw InputError(fmt::format("deck '{}': subcircuit '{}' has {} ports; aesim calibrate needs three: vdd out gnd",
-                                 path, name, found->ports.size()));
+  std::string port_list;
+  for (const std::string& port : found->ports) port_list += (port_list.empty() ? "" : " ") + port;
+  // Its ports: those --bias holds, and three more, the supply, the output and the ground.
+  std::vector<std::string> rest;
+  std::vector<bool> biased(found->ports.size(), false);
+  for (const PortBias& b : biases) {
+    const auto at = std::find_if(found->ports.begin(), found->ports.end(),
+                                 [&](const std::string& port) { return ascii_lower(port) == ascii_lower(b.port); });
+    if (at == found->ports.end()) {
+      throw InputError(fmt::format("--bias {}: subcircuit '{}' has no port {} (its ports: {})", b.port, name, b.port, port_list));
+    }
+    if (biased[static_cast<std::size_t>(at - found->ports.begin())]) {
+      throw InputError(fmt::format("--bias {}: given twice", b.port));
+    }
+    biased[static_cast<std::size_t>(at - found->ports.begin())] = true;
+    deck.biases.push_back({*at, b.volts});
+  }
+  for (std::size_t i = 0; i < found->ports.size(); ++i) {
+    if (!biased[i]) rest.push_back(found->ports[i]);
+  }
+  if (rest.size() != 3) {
+    throw InputError(fmt::format("deck '{}': subcircuit '{}' has {} port{} ({}); aesim calibrate needs three, vdd out gnd, "
+                                 "and holds each other one at a voltage given as --bias NAME=VOLTS",
+                                 path, name, found->ports.size(), found->ports.size() == 1 ? "" : "s", port_list));
   }
   if (std::find(found->params.begin(), found->params.end(), "iph") == found->params.end()) {
     throw InputError(fmt::format("deck '{}': subcircuit '{}' has no parameter iph (params: iph=1p)", path, name));
   }
   deck.mc_parameter = std::find(found->params.begin(), found->params.end(), "mc") != found->params.end();
-  deck.port_nets = port_nets_by_name(found->ports);
-  if (deck.port_nets != std::vector<std::string>{"vdd", "out", "0"}) {
-    for (const std::string& port : found->ports) deck.ports_by_name += (deck.ports_by_name.empty() ? "" : " ") + port;
+  const std::vector<std::string> nets = port_nets_by_name(rest);
+  if (nets != std::vector<std::string>{"vdd", "out", "0"}) {
+    for (const std::string& port : rest) deck.ports_by_name += (deck.ports_by_name.empty() ? "" : " ") + port;
+  }
+  deck.port_nets.clear();
+  for (std::size_t i = 0, k = 0; i < found->ports.size(); ++i) {
+    deck.port_nets.push_back(biased[i] ? bias_net(found->ports[i]) : nets[k++]);
   }
   if (!probe_node.empty()) {
     for (const std::string& line : found->body) {

@@ -4,6 +4,13 @@
 
 namespace aesim {
 
+// A port of the pixel beyond vdd, out and gnd (a comparator's or a reset's bias) held at a voltage
+// in every run (`--bias NAME=VOLTS`).
+struct PortBias {
+  std::string port;  // as the subcircuit spells it
+  double volts = 0;
+};
+
 // A team's pixel netlist as `aesim calibrate` takes it (docs/reference.md section 7): a deck that defines
 // `.subckt NAME vdd out gnd params: iph=...`, its models and includes its own.
 struct PixelDeck {
@@ -14,6 +21,8 @@ struct PixelDeck {
   // The runs' nets on the subcircuit's ports, in its order: vdd out 0 (supply, output, ground),
   // unless its port names say another order (port_nets_by_name).
   std::vector<std::string> port_nets{"vdd", "out", "0"};
+  // Its other ports, each on a net of its own held at its voltage (net bias_net(port)).
+  std::vector<PortBias> biases;
   std::string ports_by_name;  // "vdd gnd out" when the names set another order than vdd out gnd, else empty
   std::string hash;      // FNV-1a 64 of the deck's bytes and its .include'd files', for provenance
   // What each run reads of the deck: its circuit (circuit_of), and what of it was left out.
@@ -64,7 +73,11 @@ std::vector<std::string> port_nets_by_name(const std::vector<std::string>& ports
 // InputError naming the deck and the problem; what only ngspice can judge (syntax, models) is
 // left to the first run.
 PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node,
-                          const std::vector<std::string>& osdi = {});
+                          const std::vector<std::string>& osdi = {}, const std::vector<PortBias>& biases = {});
+
+// The runs' net for a biased port: aesim_bias_ and its name in lower case (a port name is one SPICE
+// word).
+std::string bias_net(const std::string& port);
 
 // What the table's runs make of the deck's statistical models, for the preset's provenance: the
 // switches set to 0 (nominal), or, for a deck that draws at random with no switch and no `mc`

@@ -202,6 +202,9 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
     switches += fmt::format(".param {}={}\n", name, r.monte_carlo ? 1 : 0);
   }
   const SolverSettings solver = solver_settings(r.settings, r.iph, vdd);
+  std::string nets, bias_sources;
+  for (const std::string& net : deck.port_nets) nets += (nets.empty() ? "" : " ") + net;
+  for (const PortBias& b : deck.biases) bias_sources += fmt::format("V{0} {0} 0 {1:.12g}\n", bias_net(b.port), b.volts);
   // OSDI libraries load before ngspice reads the circuit (the `pre_` prefix), wherever the block is.
   std::string osdi;
   for (const std::string& library : deck.osdi) osdi += fmt::format("pre_osdi '{}'\n", library);
@@ -219,7 +222,8 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       "{}"
       "{}"
       "Vdd vdd 0 {:.12g}\n"
-      "Xpix {} {} {} {} iph={:.12g}{}\n"
+      "{}"
+      "Xpix {} {} iph={:.12g}{}\n"
       ".control\n"
       "{}"
       "set num_threads=1\n"
@@ -232,7 +236,7 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
       ".endc\n"
       ".end\n",
       deck.subckt, r.iph, solver.method, solver.abstol, solver.chgtol, solver.gmin, r.seed, deck.circuit, switches, vdd,
-      deck.port_nets[0], deck.port_nets[1], deck.port_nets[2], deck.subckt, r.iph,
+      bias_sources, nets, deck.subckt, r.iph,
       deck.mc_parameter ? fmt::format(" mc={}", r.monte_carlo ? 1 : 0) : std::string(), osdi, r.t_max, r.t_stop, r.t_max,
       data_path, probe);
 }
