@@ -306,16 +306,16 @@ std::optional<Subcircuit> find_subckt(const std::vector<std::string>& lines, con
 }
 
 // The deck's own subcircuit a run calibrates when --subckt names none: the one of its own
-// (not its included models') with three ports and a parameter iph; none or several is an
-// InputError listing them.
-std::string only_pixel_subckt(const std::vector<std::string>& lines, const std::string& path) {
+// (not its included models') with three ports (and one more for each --bias) and a parameter iph;
+// none or several is an InputError listing them.
+std::string only_pixel_subckt(const std::vector<std::string>& lines, const std::string& path, std::size_t biased) {
   std::vector<std::string> all, pixels;
   for (const std::string& line : lines) {
     const std::vector<std::string> t = tokens(line);
     if (t.size() < 2 || ascii_lower(t[0]) != ".subckt") continue;
     all.push_back(t[1]);
     const std::optional<Subcircuit> s = find_subckt({line}, t[1]);
-    if (s && s->ports.size() == 3 && std::find(s->params.begin(), s->params.end(), "iph") != s->params.end()) {
+    if (s && s->ports.size() == 3 + biased && std::find(s->params.begin(), s->params.end(), "iph") != s->params.end()) {
       pixels.push_back(t[1]);
     }
   }
@@ -325,7 +325,9 @@ std::string only_pixel_subckt(const std::vector<std::string>& lines, const std::
   throw InputError(fmt::format("deck '{}': --subckt names the pixel's subcircuit ({})", path,
                                pixels.size() > 1 ? "the deck defines several with three ports and iph: " + list
                                : all.empty()     ? std::string("the deck itself defines none")
-                                                 : "none of the deck's own has three ports, vdd out gnd, and a parameter iph: " + list));
+                               : biased == 0     ? "none of the deck's own has three ports, vdd out gnd, and a parameter iph: " + list
+                                                 : fmt::format("none of the deck's own has {} ports, vdd out gnd and those --bias "
+                                                               "holds, and a parameter iph: {}", 3 + biased, list)));
 }
 
 // A name a PDK gives a switch of its statistical models.
@@ -490,7 +492,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   deck.circuit = circuit.text;
   deck.left_out = circuit.left_out;
   const std::vector<std::string> lines = logical_lines(text);
-  deck.subckt = subckt.empty() ? only_pixel_subckt(lines, path) : subckt;
+  deck.subckt = subckt.empty() ? only_pixel_subckt(lines, path, biases.size()) : subckt;
   const std::string& name = deck.subckt;
   std::optional<Subcircuit> found = find_subckt(lines, name);
   find_statistics(lines, path, deck);
