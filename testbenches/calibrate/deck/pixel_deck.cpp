@@ -79,19 +79,46 @@ struct Included {
   std::string section;  // lower case; empty for the whole file
 };
 
+// The file an `.include FILE` or `.lib FILE SECTION` line names (quoted or not), and what follows
+// it; nothing for other lines and for `.lib SECTION` (a section's start).
+struct IncludeLine {
+  std::string keyword, file, rest;
+};
+std::optional<IncludeLine> include_line(const std::string& line) {
+  std::istringstream in(line);
+  std::string keyword;
+  in >> keyword;
+  const std::string lower = ascii_lower(keyword);
+  if (lower != ".include" && lower != ".inc" && lower != ".lib") return std::nullopt;
+  std::string rest;
+  std::getline(in, rest);
+  rest.erase(0, rest.find_first_not_of(" \t"));
+  if (rest.empty()) return std::nullopt;
+  std::string file;
+  if (rest.front() == '"' || rest.front() == '\'') {
+    const auto close = rest.find(rest.front(), 1);
+    if (close == std::string::npos) return std::nullopt;
+    file = rest.substr(1, close - 1);
+    rest.erase(0, close + 1);
+  } else {
+    const auto end = rest.find_first_of(" \t");
+    file = rest.substr(0, end);
+    rest.erase(0, end == std::string::npos ? rest.size() : end);
+  }
+  if (lower == ".lib" && tokens(rest).empty()) return std::nullopt;
+  return IncludeLine{keyword, file, rest};
+}
+
 // The files a deck's lines read, resolved against its folder as ngspice does (a `.lib NAME` of
 // one word opens a section of the file it is in, not a file).
 std::vector<Included> includes(const std::vector<std::string>& lines, const fs::path& folder) {
   std::vector<Included> out;
   for (const std::string& line : lines) {
-    const std::vector<std::string> t = tokens(line);
-    const std::string keyword = t.empty() ? "" : ascii_lower(t[0]);
-    if (t.size() < 2 || (keyword != ".include" && keyword != ".inc" && keyword != ".lib")) continue;
-    if (keyword == ".lib" && t.size() < 3) continue;
-    std::string name = t[1];
-    if (name.size() >= 2 && (name.front() == '"' || name.front() == '\'')) name = name.substr(1, name.size() - 2);
-    const fs::path p = fs::path(name).is_absolute() ? fs::path(name) : folder / name;
-    out.push_back({p.string(), keyword == ".lib" ? ascii_lower(t[2]) : ""});
+    const std::optional<IncludeLine> inc = include_line(line);
+    if (!inc) continue;
+    const fs::path p = fs::path(inc->file).is_absolute() ? fs::path(inc->file) : folder / inc->file;
+    const std::vector<std::string> section = tokens(inc->rest);
+    out.push_back({p.string(), ascii_lower(inc->keyword) == ".lib" ? ascii_lower(section.front()) : ""});
   }
   return out;
 }
@@ -153,36 +180,6 @@ void refuse_commands(const std::string& text, const std::string& file, bool own_
                                  "run (shell commands among them); aesim calibrate runs circuits only: remove the block",
                                  file, block, keyword_of_block));
   }
-}
-
-// The file an `.include FILE` or `.lib FILE SECTION` line names (quoted or not), and what follows
-// it; nothing for other lines and for `.lib SECTION` (a section's start).
-struct IncludeLine {
-  std::string keyword, file, rest;
-};
-std::optional<IncludeLine> include_line(const std::string& line) {
-  std::istringstream in(line);
-  std::string keyword;
-  in >> keyword;
-  const std::string lower = ascii_lower(keyword);
-  if (lower != ".include" && lower != ".inc" && lower != ".lib") return std::nullopt;
-  std::string rest;
-  std::getline(in, rest);
-  rest.erase(0, rest.find_first_not_of(" \t"));
-  if (rest.empty()) return std::nullopt;
-  std::string file;
-  if (rest.front() == '"' || rest.front() == '\'') {
-    const auto close = rest.find(rest.front(), 1);
-    if (close == std::string::npos) return std::nullopt;
-    file = rest.substr(1, close - 1);
-    rest.erase(0, close + 1);
-  } else {
-    const auto end = rest.find_first_of(" \t");
-    file = rest.substr(0, end);
-    rest.erase(0, end == std::string::npos ? rest.size() : end);
-  }
-  if (lower == ".lib" && rest.find_first_not_of(" \t") == std::string::npos) return std::nullopt;
-  return IncludeLine{keyword, file, rest};
 }
 
 // Statements of a deck's own testbench, which a deck run on its own needs and the runs replace.

@@ -303,10 +303,16 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     return;
   }
   // The edge the transaction's Ack fell, for a stamp taken there (its beat still to come).
-  for (Transaction& t : pending_) {
-    if (acked_id_ && t.id == *acked_id_) t.ack_fall_edge = cycle;
+  if (acked_id_) {
+    // Nearly always the newest: searched from the back.
+    for (auto t = pending_.rbegin(); t != pending_.rend(); ++t) {
+      if (t->id == *acked_id_) {
+        t->ack_fall_edge = cycle;
+        break;
+      }
+    }
+    acked_id_.reset();
   }
-  acked_id_.reset();
   if (ack_fall_due_) {
     const std::uint64_t latency = cycle - req_fall_edge_ + 1;
     if (!answered_glitch_) fall_latency_.add(latency);
