@@ -16,6 +16,7 @@
 #include <flatbuffers/flatbuffers.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
+#include <lz4frame.h>
 
 #include "FileDataTable_generated.h"
 #include "IOHeader_generated.h"
@@ -845,6 +846,55 @@ TEST_F(EventFormats, Aedat4IsDvsFileHeaderAndSizePrefixedPackets) {
       EXPECT_EQ(sizeof(dv::Event), 16u);
     }
   }
+}
+
+// The packets of many compressed at once on two threads (the writer's, and the caller's while the
+// writer's is behind and when the file is finished) are the plain file's packets, in its order:
+// each LZ4 frame decompresses to the body the uncompressed file holds at the same place.
+TEST_F(EventFormats, Aedat4PacketsCompressedOnEitherThreadAreThePlainPacketsInOrder) {
+  const AddressMap map{ArrayParams{}};
+  std::vector<AddressEvent> events;
+  constexpr std::size_t kEvents = 300'000;  // 73 full packets of 4096 and one of 992
+  for (std::size_t i = 0; i < kEvents; ++i) {
+    AddressEvent e = map.event_at({static_cast<std::uint32_t>(i * 7 % 64), static_cast<std::uint32_t>(i * 13 / 64 % 64)});
+    e.t = static_cast<double>(i) * 3e-6;
+    events.push_back(e);
+  }
+  // Each packet's body after the header, by the packets' own sizes up to the data table.
+  const auto bodies = [](const std::string& data) {
+    const auto* b = reinterpret_cast<const std::uint8_t*>(data.data());
+    const auto le32 = [&](std::size_t at) {
+      return std::uint32_t(b[at]) | (std::uint32_t(b[at + 1]) << 8) | (std::uint32_t(b[at + 2]) << 16) |
+             (std::uint32_t(b[at + 3]) << 24);
+    };
+    const std::uint32_t header_size = le32(14);
+    const std::vector<std::uint64_t> header_copy = aligned(data.substr(14, 4 + header_size));
+    const auto end = static_cast<std::size_t>(dv::GetSizePrefixedIOHeader(header_copy.data())->dataTablePosition());
+    std::vector<std::string> out;
+    for (std::size_t at = 14 + 4 + header_size; at < end;) {
+      EXPECT_EQ(le32(at), 0u);  // the events' stream
+      const std::uint32_t size = le32(at + 4);
+      out.push_back(data.substr(at + 8, size));
+      at += 8 + size;
+    }
+    return out;
+  };
+  const std::vector<std::string> plain = bodies(slurp(write("plain.aedat4", events, Aedat4Compression::None)));
+  const std::vector<std::string> packed = bodies(slurp(write("lz4.aedat4", events, Aedat4Compression::Lz4)));
+  ASSERT_EQ(plain.size(), (kEvents + 4095) / 4096);
+  ASSERT_EQ(packed.size(), plain.size());
+  LZ4F_dctx* context = nullptr;
+  ASSERT_FALSE(LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION)));
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    std::string body(plain[i].size() + 1, '\0');
+    std::size_t out_size = body.size(), in_size = packed[i].size();
+    const std::size_t rest = LZ4F_decompress(context, body.data(), &out_size, packed[i].data(), &in_size, nullptr);
+    EXPECT_EQ(rest, 0u) << "packet " << i << ": one whole frame";
+    body.resize(out_size);
+    EXPECT_EQ(body, plain[i]) << "packet " << i;
+    LZ4F_resetDecompressionContext(context);
+  }
+  LZ4F_freeDecompressionContext(context);
 }
 
 TEST_F(EventFormats, AnotherRecordersAedat4KeepsItsPolarityAsEvents) {

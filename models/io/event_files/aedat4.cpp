@@ -1,10 +1,14 @@
 #include "aesim/event_files/aedat4.hpp"
 
 #include <algorithm>
+#include <condition_variable>
 #include <cstring>
+#include <deque>
+#include <exception>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <string_view>
 
 #include <flatbuffers/flatbuffers.h>
@@ -193,14 +197,26 @@ struct Aedat4Writer::Packets {
   struct Buffers {
     flatbuffers::FlatBufferBuilder fbb{kAedat4PacketEvents * sizeof(dv::Event) + 64};
     std::vector<char> packed;
+    std::size_t packed_size = 0;
+    // Whose the compression is: the writer's thread's, or the caller's when it finishes the file
+    // (it compresses the packets still waiting from the newest while the writer's thread works
+    // from the oldest). Set once, under `claims`; `packed_ready` once its frame is in `packed`.
+    bool claimed = false, packed_ready = false, pack_failed = false;
   };
 
-  // The packet being filled: its first `filled` events. Sized once, and written in place through
-  // a pointer (a vector's emplace_back an event stored its end back to memory each time).
-  std::vector<dv::Event> filling = std::vector<dv::Event>(kAedat4PacketEvents);
+  // The packet being filled, built in place: a full packet's vector of events is reserved in its
+  // FlatBuffer when the packet opens and the events are written straight into it (copying 64 KiB
+  // of events a packet into the FlatBuffer was a pass over every event). Its first `filled` events.
+  std::shared_ptr<Buffers> open;
+  dv::Event* filling = nullptr;
+  flatbuffers::Offset<flatbuffers::Vector<const dv::Event*>> events_vector;
   std::size_t filled = 0;
   std::mutex spare_mutex;
   std::vector<std::shared_ptr<Buffers>> spare;
+  // Packets handed to the writer's thread and not yet claimed for compression, oldest first.
+  std::mutex claims;
+  std::condition_variable packed_changed;
+  std::deque<std::shared_ptr<Buffers>> unclaimed;
   std::unique_ptr<SerialWorker> worker;
 
   std::shared_ptr<Buffers> take() {
@@ -210,6 +226,7 @@ struct Aedat4Writer::Packets {
         std::shared_ptr<Buffers> b = std::move(spare.back());
         spare.pop_back();
         b->fbb.Clear();
+        b->claimed = b->packed_ready = b->pack_failed = false;
         return b;
       }
     }
@@ -218,6 +235,37 @@ struct Aedat4Writer::Packets {
   void give_back(std::shared_ptr<Buffers> b) {
     std::lock_guard<std::mutex> lock(spare_mutex);
     spare.push_back(std::move(b));
+  }
+  void open_packet() {
+    open = take();
+    events_vector = open->fbb.CreateUninitializedVectorOfStructs(kAedat4PacketEvents, &filling);
+    filled = 0;
+  }
+  // Claims `b`'s compression for the writer's thread, which takes the packets oldest first (the
+  // front of `unclaimed`): false when the caller has it.
+  bool claim(Buffers& b) {
+    std::lock_guard<std::mutex> lock(claims);
+    if (b.claimed) return false;
+    b.claimed = true;
+    if (!unclaimed.empty() && unclaimed.front().get() == &b) unclaimed.pop_front();
+    return true;
+  }
+  // Compresses `b`, and says so to the writer's thread waiting for it, also when compression
+  // fails (it then fails the packet's write rather than wait for ever).
+  void pack(Buffers& b, const Aedat4Writer& writer) {
+    std::exception_ptr error;
+    try {
+      b.packed_size = writer.compress(reinterpret_cast<const char*>(b.fbb.GetBufferPointer()), b.fbb.GetSize(), b.packed);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(claims);
+      b.packed_ready = true;
+      b.pack_failed = error != nullptr;
+    }
+    packed_changed.notify_all();
+    if (error) std::rethrow_exception(error);
   }
 };
 
@@ -260,9 +308,10 @@ Aedat4Writer::Aedat4Writer(std::ostream& out, const EventFileSpec& spec)
 Aedat4Writer::~Aedat4Writer() { packets_->worker.reset(); }
 
 void Aedat4Writer::events(const AddressEvent* first, std::size_t count) {
-  dv::Event* const packet = packets_->filling.data();
   for (std::size_t i = 0; i < count;) {
+    if (!packets_->open) packets_->open_packet();
     // As many as the packet has room for, counted in a local.
+    dv::Event* const packet = packets_->filling;
     std::size_t filled = packets_->filled;
     const std::size_t n = std::min(count - i, kAedat4PacketEvents - filled);
     for (const AddressEvent* e = first + i; e != first + i + n; ++e) {
@@ -286,19 +335,28 @@ std::size_t Aedat4Writer::compress(const char* body, std::size_t size, std::vect
 }
 
 void Aedat4Writer::write_packet() {
-  const dv::Event* const filling = packets_->filling.data();
   const std::size_t filled = packets_->filled;
   // An empty run still gets one (empty) packet: readers that gather the event packets (tonic's)
   // fail on a file with none.
   if (filled == 0 && any_packet_) return;
   any_packet_ = true;
-  std::shared_ptr<Packets::Buffers> buffers = packets_->take();
+  std::shared_ptr<Packets::Buffers> buffers = std::move(packets_->open);
+  const dv::Event* events = packets_->filling;
+  flatbuffers::Offset<flatbuffers::Vector<const dv::Event*>> vector = packets_->events_vector;
+  if (filled < kAedat4PacketEvents) {
+    // The last packet, short of full: its events copied into a FlatBuffer of their number.
+    std::shared_ptr<Packets::Buffers> reserved = std::move(buffers);
+    buffers = std::make_shared<Packets::Buffers>();
+    static const dv::Event kNone{};
+    vector = buffers->fbb.CreateVectorOfStructs(filled == 0 ? &kNone : events, filled);
+    if (reserved) packets_->give_back(std::move(reserved));
+  }
   flatbuffers::FlatBufferBuilder& fbb = buffers->fbb;
-  const auto packet = dv::CreateEventPacket(fbb, fbb.CreateVectorOfStructs(filling, filled));
-  dv::FinishSizePrefixedEventPacketBuffer(fbb, packet);
-  const Written entry{-1, 0, static_cast<std::int64_t>(filled), filled == 0 ? 0 : filling[0].timestamp(),
-                      filled == 0 ? 0 : filling[filled - 1].timestamp()};
+  dv::FinishSizePrefixedEventPacketBuffer(fbb, dv::CreateEventPacket(fbb, vector));
+  const Written entry{-1, 0, static_cast<std::int64_t>(filled), filled == 0 ? 0 : events[0].timestamp(),
+                      filled == 0 ? 0 : events[filled - 1].timestamp()};
   packets_->filled = 0;
+  packets_->filling = nullptr;
   const char* plain = reinterpret_cast<const char*>(fbb.GetBufferPointer());
   if (!packets_->worker) {  // uncompressed
     write_body(plain, fbb.GetSize(), entry);
@@ -307,15 +365,45 @@ void Aedat4Writer::write_packet() {
   }
   // Compressed on the writer's thread; or here, while that thread is behind (half its queue
   // waiting), so that this thread compresses rather than waits. Written there, in order, either way.
-  const bool here = packets_->worker->waiting() >= kPacketsWaiting / 2;
-  const std::size_t packed_here = here ? compress(plain, fbb.GetSize(), buffers->packed) : 0;
-  packets_->worker->post([this, buffers, here, packed_here, entry] {
-    const flatbuffers::FlatBufferBuilder& built = buffers->fbb;
-    const std::size_t size =
-        here ? packed_here : compress(reinterpret_cast<const char*>(built.GetBufferPointer()), built.GetSize(), buffers->packed);
-    write_body(buffers->packed.data(), size, entry);
+  if (packets_->worker->waiting() >= kPacketsWaiting / 2) {
+    buffers->claimed = true;
+    packets_->pack(*buffers, *this);
+  } else {
+    std::lock_guard<std::mutex> lock(packets_->claims);
+    packets_->unclaimed.push_back(buffers);
+  }
+  packets_->worker->post([this, buffers, entry] {
+    if (packets_->claim(*buffers)) {
+      packets_->pack(*buffers, *this);
+    } else {
+      std::unique_lock<std::mutex> lock(packets_->claims);
+      packets_->packed_changed.wait(lock, [&] { return buffers->packed_ready; });
+      if (buffers->pack_failed) throw std::runtime_error("an .aedat4 packet could not be compressed");
+    }
+    write_body(buffers->packed.data(), buffers->packed_size, entry);
     packets_->give_back(buffers);
   });
+}
+
+// Compresses the packets still waiting from the newest back, while the writer's thread compresses
+// and writes them from the oldest: the end of a run's file is not left to one core.
+void Aedat4Writer::help_pack() {
+  for (;;) {
+    std::shared_ptr<Packets::Buffers> b;
+    {
+      std::lock_guard<std::mutex> lock(packets_->claims);
+      while (!packets_->unclaimed.empty() && !b) {
+        std::shared_ptr<Packets::Buffers> newest = std::move(packets_->unclaimed.back());
+        packets_->unclaimed.pop_back();
+        if (!newest->claimed) {
+          newest->claimed = true;
+          b = std::move(newest);
+        }
+      }
+    }
+    if (!b) return;
+    packets_->pack(*b, *this);
+  }
 }
 
 void Aedat4Writer::write_body(const char* body, std::size_t size, Written entry) {
@@ -330,7 +418,10 @@ void Aedat4Writer::write_body(const char* body, std::size_t size, Written entry)
 
 void Aedat4Writer::finish() {
   write_packet();
-  if (packets_->worker) packets_->worker->drain();
+  if (packets_->worker) {
+    help_pack();
+    packets_->worker->drain();
+  }
   write_data_table();
   // Ends the file's writes now (an output file gives back the space it reserved ahead of them).
   out_.flush();

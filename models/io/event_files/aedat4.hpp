@@ -19,8 +19,9 @@ namespace aesim {
 //
 // Events are put in a packet's layout as they come, on the caller's thread (the merge's); a full
 // packet's compression and writing run on a thread of the writer's own (SerialWorker) while the
-// next packet fills: LZ4 costs more than the merge that feeds it. Uncompressed, they are written
-// at once.
+// next packet fills: LZ4 costs more than the merge that feeds it. The caller compresses packets
+// too while that thread is behind, and at finish() those still waiting, from the newest back; the
+// writer's thread writes every packet in order. Uncompressed, they are written at once.
 class Aedat4Writer : public EventFileWriter {
  public:
   Aedat4Writer(std::ostream& out, const EventFileSpec& spec);
@@ -41,6 +42,7 @@ class Aedat4Writer : public EventFileWriter {
   // Compresses `size` bytes at `body` into `out` as the header says (copies them uncompressed);
   // returns the size to write.
   std::size_t compress(const char* body, std::size_t size, std::vector<char>& out) const;
+  void help_pack();
   std::ostream& out_;
   MicrosecondStamps stamps_;
   Aedat4Compression compression_;
