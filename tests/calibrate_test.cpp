@@ -893,6 +893,43 @@ TEST_F(NgspiceTest, APixelThatNeverFiresIsToldSoWithWhatTheRunShowed) {
   }
 }
 
+// Periods that scatter by more than the table resolves (the ideal pixel's photocurrent wobbling by
+// 3 % with the current, sin(iph x 1e15): at any spacing finer than the grid's, a point's period
+// lies anywhere within its wobble of its neighbours', as ngspice's near a foundry pixel's leak
+// knee do with its time step) are measured once and said, not chased: more points would only
+// sample the scatter again, to the table's 400-point limit. The smooth deck is never said to.
+TEST_F(NgspiceTest, PeriodsThatScatterBeyondTheTablesToleranceAreSaidNotChased) {
+  std::string deck = slurp(kIdealDeck);
+  const std::string photocurrent = "I = v(out) < v(vdd) / 2 ? iph : 0";
+  ASSERT_NE(deck.find(photocurrent), std::string::npos);
+  deck.replace(deck.find(photocurrent), photocurrent.size(), "I = v(out) < v(vdd) / 2 ? iph * (1 + 0.03 * sin(iph * 1e15)) : 0");
+  write("wobble.cir", deck);
+  const std::string range = " --subckt ideal_pixel --currents 10pA:100pA --points 3 -o ";
+  const Outcome o = aesim("calibrate wobble.cir" + range + "wobble.toml");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::size_t said = o.err.find("warning: the periods between ");
+  ASSERT_NE(said, std::string::npos) << o.err;
+  const std::string words = o.err.substr(said, o.err.find('\n', said) - said);
+  EXPECT_NE(words.find("scatter by more than the table resolves"), std::string::npos) << words;
+  EXPECT_NE(words.find("the table was not refined further there"), std::string::npos) << words;
+  // How far a point fell outside its neighbours: beyond the table's 0.2 %, within two wobbles.
+  const std::size_t up_to = words.find("by up to ");
+  ASSERT_NE(up_to, std::string::npos) << words;
+  const double outside = std::stod(words.substr(up_to + 9));
+  EXPECT_GT(outside, 0.2) << words;
+  EXPECT_LT(outside, 100 * (1.03 / 0.97 - 1)) << words;
+  const std::string preset = slurp(dir_ / "wobble.toml");
+  EXPECT_NE(preset.find("# The periods between "), std::string::npos) << preset;
+  SensorConfig c;
+  apply_toml_file(c, (dir_ / "wobble.toml").string(), "");
+  EXPECT_LT(c.pixel.transfer.current.size(), 100u) << "the table chased the scatter";
+  EXPECT_GT(c.pixel.transfer.current.size(), 3u);
+
+  const Outcome smooth = aesim("calibrate " + kIdealDeck + range + "smooth.toml");
+  ASSERT_EQ(smooth.status, 0) << smooth.err;
+  EXPECT_EQ(smooth.err.find("scatter"), std::string::npos) << smooth.err;
+}
+
 // A deck written as foundry decks are (tests/circuits/bsim_axon_hillock.cir: BSIM4 transistors,
 // a behavioural MIM capacitor with its leak, a photodiode with 2 fA of dark current, statistical
 // switches on) calibrates with the default currents: the switches are found and set to 0; at 1 fA,
@@ -929,6 +966,8 @@ quit 0
                        "the photocurrent) after ngspice gave up under tighter ones"),
             std::string::npos)
       << o.err;
+  // Its period turns once, rising again as the reset lengthens towards the latch: not scatter.
+  EXPECT_EQ(o.err.find("scatter"), std::string::npos) << o.err;
   const std::string preset = slurp(dir_ / "bsim.toml");
   EXPECT_NE(preset.find("the deck's switches sw_stat_global, sw_stat_mismatch were set to 0 for the table"),
             std::string::npos)

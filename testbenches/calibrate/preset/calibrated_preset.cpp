@@ -99,6 +99,7 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
     return "# " + std::string(1, static_cast<char>(std::toupper(note[0]))) + note.substr(1) + ".\n";
   };
   if (const std::string note = per_firing_energy_note(c, o.vdd); !note.empty()) text += "# " + note + ".\n";
+  if (!c.scatter_note.empty()) text += sentence(c.scatter_note);
   if (const std::string note = supply_rating_note(deck, o.vdd); !note.empty()) text += sentence(note);
   if (const StatisticsNote note = statistics_note(deck); !note.text.empty()) text += sentence(note.text);
   if (c.circuit) {

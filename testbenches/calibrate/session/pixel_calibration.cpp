@@ -102,6 +102,9 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
   // The first firing starts from ngspice's all-zero state, not from a reset, and may take longer
   // than a period: once a run has seen it, the next runs last that long plus the periods.
   double first_fire = 0;
+  // The last run that measured a period, and the largest step it had: ngspice's answer at another
+  // step, kept with the point's.
+  double earlier_period = kUnmeasured, earlier_step = kUnmeasured;
   for (int run = 0; run < kMaxRuns; ++run) {
     if (abandon && abandon()) {
       r.abandoned = true;
@@ -149,7 +152,16 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
       r.point.period = r.measure.period;
       r.point.pulse = r.measure.pulse;
       r.point.supply_charge = r.measure.supply_charge;
+      r.point.step = request.t_max;
+      if (std::isfinite(earlier_period) && std::fabs(earlier_step / request.t_max - 1) > 0.05) {
+        r.point.earlier_period = earlier_period;
+        r.point.earlier_step = earlier_step;
+      }
       return r;
+    }
+    if (fired >= 3) {
+      earlier_period = r.measure.period;
+      earlier_step = request.t_max;
     }
     if (fired < 3) {
       // It never will, or not periodically: no longer run is worth waiting for. A pixel that fired
@@ -176,6 +188,58 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
     }
   }
   return r;
+}
+
+// An added point whose period fell outside its interval's ends (calibrate_pixel's refinement).
+struct OutsideEnds {
+  double beyond;  // |log| of how far outside
+  double a, b;    // A, the interval's ends
+};
+
+// Where the table's periods scatter by more than it resolves, in words with the evidence: the
+// point furthest outside its neighbours' periods and, where a point's runs at two largest steps
+// gave periods further apart than the table's tolerance, the one furthest apart. Empty when
+// every added point lay between its neighbours.
+std::string scatter_note(const std::vector<PointRun>& runs, const std::map<double, OutsideEnds>& outside) {
+  if (outside.empty()) return "";
+  double low = std::numeric_limits<double>::infinity(), high = 0, worst_at = 0;
+  OutsideEnds worst{0, 0, 0};
+  for (const auto& [current, o] : outside) {
+    low = std::min(low, o.a);
+    high = std::max(high, o.b);
+    if (o.beyond > worst.beyond) {
+      worst = o;
+      worst_at = current;
+    }
+  }
+  const auto period_at = [&runs](double i) {
+    for (const PointRun& r : runs) {
+      if (r.point.current == i) return r.point.period;
+    }
+    return kUnmeasured;
+  };
+  std::string text = fmt::format(
+      "the periods between {:.3g} and {:.3g} A scatter by more than the table resolves: {} added point{} fell "
+      "outside the periods either side by up to {:.2g} % (at {:.3g} A, {:.4g} s between {:.4g} and {:.4g} s)",
+      low, high, outside.size(), outside.size() == 1 ? "" : "s", 100 * std::expm1(worst.beyond), worst_at,
+      period_at(worst_at), period_at(worst.a), period_at(worst.b));
+  const CalibrationPoint* steps = nullptr;
+  double apart = kInterpolationTolerance;
+  for (const PointRun& r : runs) {
+    const CalibrationPoint& p = r.point;
+    if (p.current < low || p.current > high || !std::isfinite(p.period) || !std::isfinite(p.earlier_period)) continue;
+    const double d = std::fabs(std::log(p.period / p.earlier_period));
+    if (d > apart) {
+      apart = d;
+      steps = &p;
+    }
+  }
+  if (steps) {
+    text += fmt::format("; ngspice's period there depends on its time step (at {:.3g} A, {:.4g} s with a largest step "
+                        "of {:.3g} s, {:.4g} s with {:.3g} s)",
+                        steps->current, steps->earlier_period, steps->earlier_step, steps->period, steps->step);
+  }
+  return text + "; the table was not refined further there and holds the periods measured";
 }
 
 // Runs `count` jobs on `jobs` threads; the first exception stops the rest and is rethrown.
@@ -381,6 +445,14 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
   // added midpoint missed by M are refined for the departure's bend only while M / 4, what
   // halving leaves of a true bend, is still over the tolerance.
   std::map<double, double> midpoint_miss;  // added current -> |log| of its interval's miss, measured
+  // A smooth period falls with the light, or turns once to rise towards a latch: a midpoint lies
+  // between its interval's ends, or beyond them where the period turns, and the points around turn
+  // no more. An added point whose period lies outside its ends by more than the tolerance with the
+  // periods turning again at a point beyond them shows that they scatter by more than the table
+  // resolves there (ngspice's own accuracy: near a leak's knee its period moved by 5 % with its
+  // largest step on a foundry deck), which more points would only sample again (that deck grew its
+  // table to 400 points). Intervals it ends are not halved.
+  std::map<double, OutsideEnds> outside;  // by the added current
   for (;;) {
     const std::vector<const PointRun*> f = fired();
     std::vector<double> current, period;
@@ -415,7 +487,7 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
       const bool measured_between = std::any_of(runs.begin(), runs.end(), [&](const PointRun& r) {
         return r.point.current > a && r.point.current < b;
       });
-      if (measured_between) continue;
+      if (measured_between || outside.count(a) || outside.count(b)) continue;
       // The table's departure from the fit at the ends carries over to the midpoint, as it stands
       // and bent as it bends at the nearer points (the larger of the two): either miss counts.
       const double ends = std::sqrt(period[k] / fit.period(a) * period[k + 1] / fit.period(b));
@@ -440,16 +512,37 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
       }
       return kUnmeasured;
     };
+    const std::vector<const PointRun*> now = fired();
+    // The period of the fired point `step` places from the one at `current` (NaN: none there).
+    const auto beside = [&now](double current, int step) {
+      for (std::size_t k = 0; k < now.size(); ++k) {
+        if (now[k]->point.current != current) continue;
+        const auto at = static_cast<std::ptrdiff_t>(k) + step;
+        return at >= 0 && at < static_cast<std::ptrdiff_t>(now.size()) ? now[static_cast<std::size_t>(at)]->point.period
+                                                                         : kUnmeasured;
+      }
+      return kUnmeasured;
+    };
     for (std::size_t j = 0; j < midpoints.size(); ++j) {
       const double pm = period_at(midpoints[j]), pa = period_at(halved[j].first), pb = period_at(halved[j].second);
       if (std::isfinite(pm) && std::isfinite(pa) && std::isfinite(pb)) {
         midpoint_miss[midpoints[j]] = std::fabs(std::log(pm / std::sqrt(pa * pb)));
+        // Outside its ends, and turning again at a point beyond them: a smooth period turns once
+        // at most here (falling with the light, or rising again towards a latch).
+        const double beyond = std::min(std::fabs(std::log(pm / pa)), std::fabs(std::log(pm / pb)));
+        const double before = beside(halved[j].first, -1), after = beside(halved[j].second, 1);
+        const bool turns_again = (std::isfinite(before) && (pa - before) * (pm - pa) < 0) ||
+                                 (std::isfinite(after) && (after - pb) * (pb - pm) < 0);
+        if ((pm - pa) * (pm - pb) > 0 && beyond > kInterpolationTolerance && turns_again) {
+          outside[midpoints[j]] = {beyond, halved[j].first, halved[j].second};
+        }
       }
     }
   }
 
   // The comparator trips where the probe node stands when out starts to rise under the weakest
   // light: its ramp is then so slow that it moves nothing during the comparator's delay.
+  c.scatter_note = scatter_note(runs, outside);
   c.trip_level = kUnmeasured;
   for (const PointRun& r : runs) {
     if (std::isfinite(r.point.period)) {
@@ -503,6 +596,7 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
                          "photocurrents (%s A)%s; the table holds the other %zu\n",
                  silent.size(), c.points.size(), listed(silent).c_str(), beyond_text.c_str(), c.current.size());
   }
+  if (!c.scatter_note.empty()) std::fprintf(stderr, "aesim calibrate: warning: %s\n", c.scatter_note.c_str());
   c.fit = fit_pixel(c.current, c.period);
   std::vector<double> pulses;
   for (const CalibrationPoint& p : c.points) {

@@ -32,6 +32,10 @@ struct CalibrationPoint {
   double pulse = 0;            // s, out's pulse width
   double comparator_delay = 0; // s, NaN without a probe node
   double supply_charge = 0;    // C per firing
+  double step = 0;             // s, ngspice's largest step in the run measured
+  // An earlier run's period at another largest step (NaN: none measured one): how far ngspice's
+  // answer moves with its step.
+  double earlier_period = std::numeric_limits<double>::quiet_NaN(), earlier_step = 0;
   int runs = 0;                // transients it took to size the run
   double simulated = 0;        // s of circuit time simulated
   std::size_t settings = 0;    // the solver settings level it was measured with (solver_settings())
@@ -46,6 +50,9 @@ struct CalibrationPoint {
 struct Calibration {
   std::vector<CalibrationPoint> points;  // every current measured, in increasing order
   int refined = 0;                       // of them added between the grid's points (see the .cpp)
+  // Where added points' periods fell outside their neighbours' (the periods scatter by more than the
+  // table resolves, which more points would not mend), in words; empty when nowhere.
+  std::string scatter_note;
   std::vector<double> current, period;   // the points that fired: the transfer table
   PixelFit fit;
   std::optional<CircuitFit> circuit;     // the circuit's own form (where every fired point has a pulse)
