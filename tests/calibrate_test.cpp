@@ -45,6 +45,7 @@ const std::string kSource = AESIM_SOURCE_DIR;
 const std::string kShippedDeck = kSource + "/models/circuits/aesim_pixel.cir";
 const std::string kIdealDeck = kSource + "/tests/circuits/ideal_pixel.cir";
 const std::string kBsimDeck = kSource + "/tests/circuits/bsim_axon_hillock.cir";
+const std::string kBinnedDeck = kSource + "/tests/circuits/binned_pixel.cir";
 
 // Text of a number with every digit (std::to_string would print 2.5e-14 as 0.000000).
 std::string num(double v) {
@@ -890,6 +891,66 @@ TEST_F(NgspiceTest, APixelThatNeverFiresIsToldSoWithWhatTheRunShowed) {
     EXPECT_NE(o.err.find(seen), std::string::npos) << o.err;
     EXPECT_NE(o.err.find("(12 of the 13 currents, beyond it, were not waited for)"), std::string::npos) << o.err;
     EXPECT_FALSE(fs::exists(dir_ / (std::string(name) + ".toml")));
+  }
+}
+
+// ngspice's compatibility mode is the one the user's own runs have: a PDK's .spiceinit beside the
+// deck sets it (open_pdks' `set ngbehavior=hsa`), aesim runs ngspice without reading that file
+// (it runs commands), and takes the mode from it; --ngbehavior chooses one. Under `hs` a binned
+// model is chosen by a finger's width, so the binned deck's table is the one its bin-1 card alone
+// gives, and without it the one bin 2 alone gives (tests/circuits/binned_pixel.cir).
+TEST_F(NgspiceTest, TheCompatibilityModeOfTheDecksSpiceinitIsTheRunsAndSaid) {
+  const std::string binned = slurp(kBinnedDeck);
+  const auto only_bin = [&binned](int keep) {
+    std::string text;
+    std::istringstream lines(binned);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind(".model nch.", 0) == 0) {
+        if (line[11] - '0' != keep) continue;
+        line = ".model nch nmos level=54 version=4.5" + line.substr(line.find(" vth0"));
+      }
+      text += line + "\n";
+    }
+    return text;
+  };
+  fs::create_directories(dir_ / "hsa");
+  fs::create_directories(dir_ / "plain");
+  write("hsa/binned.cir", binned);
+  write("hsa/.spiceinit", "* the PDK's\nset num_threads=4\nset ngbehavior=hsa\nset ng_nomodcheck\n");
+  write("plain/binned.cir", binned);
+  write("one.cir", only_bin(1));
+  write("two.cir", only_bin(2));
+  const std::string range = " --subckt binned_pixel --currents 1nA:10nA --points 3 -o ";
+  // The table and the reset pulses a preset holds.
+  const auto table = [this](const std::string& preset) {
+    SensorConfig c;
+    apply_toml_file(c, (dir_ / preset).string(), "");
+    return std::make_pair(c.pixel.transfer.current, c.pixel.transfer.period);
+  };
+  const Outcome hsa = aesim("calibrate hsa/binned.cir" + range + "hsa.toml");
+  ASSERT_EQ(hsa.status, 0) << hsa.err;
+  EXPECT_NE(hsa.err.find("ngspice runs in compatibility mode ngbehavior=hsa, as " + (dir_ / "hsa" / ".spiceinit").string() +
+                         " sets it (nothing else of that file is run"),
+            std::string::npos)
+      << hsa.err;
+  EXPECT_NE(slurp(dir_ / "hsa.toml").find("# ngspice's compatibility mode in every run: ngbehavior=hsa (as "),
+            std::string::npos);
+  ASSERT_EQ(aesim("calibrate plain/binned.cir" + range + "plain.toml").status, 0);
+  ASSERT_EQ(aesim("calibrate one.cir" + range + "one.toml").status, 0);
+  ASSERT_EQ(aesim("calibrate two.cir" + range + "two.toml").status, 0);
+  const Outcome chosen = aesim("calibrate plain/binned.cir --ngbehavior hsa" + range + "chosen.toml");
+  ASSERT_EQ(chosen.status, 0) << chosen.err;
+  EXPECT_EQ(table("hsa.toml"), table("one.toml"));
+  EXPECT_EQ(table("chosen.toml"), table("one.toml"));
+  EXPECT_EQ(table("plain.toml"), table("two.toml"));
+  EXPECT_NE(table("one.toml"), table("two.toml"));  // the bins differ in what the runs measure
+  EXPECT_EQ(slurp(dir_ / "plain.toml").find("compatibility mode"), std::string::npos);
+
+  for (const char* bad : {"'hs;x'", "HSA", "'hs a'"}) {
+    const Outcome o = aesim("calibrate plain/binned.cir --ngbehavior " + std::string(bad) + range + "bad.toml");
+    EXPECT_EQ(o.status, 2) << bad;
+    EXPECT_NE(o.err.find("expected ngspice's compatibility letters"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.toml"));
   }
 }
 

@@ -86,7 +86,18 @@ int calibrate_command(const CalibrateOptions& opt) {
       opt.chart.empty() ? std::string() : std::filesystem::path(opt.chart).replace_extension(".csv").string();
   const std::string deck_path = shipped_if_missing(opt.deck);
   check_output_paths({{"-o", opt.output}, {"--chart", opt.chart}, {"--chart", chart_data}}, {deck_path, sensor_file(opt.base)});
-  const PixelDeck deck = read_pixel_deck(deck_path, opt.subckt, opt.probe, opt.osdi, port_biases(opt.biases));
+  PixelDeck deck = read_pixel_deck(deck_path, opt.subckt, opt.probe, opt.osdi, port_biases(opt.biases));
+  // The mode the user's own runs of the deck have: their PDK's .spiceinit sets it, and aesim runs
+  // ngspice without reading one (it runs commands).
+  if (!opt.ngbehavior.empty()) {
+    check_ngbehavior(opt.ngbehavior, "--ngbehavior");
+    deck.ngbehavior = opt.ngbehavior;
+    deck.ngbehavior_from = "--ngbehavior";
+  } else {
+    const std::string folder = std::filesystem::path(deck.path).parent_path().string();
+    deck.ngbehavior = spiceinit_ngbehavior(folder);
+    if (!deck.ngbehavior.empty()) deck.ngbehavior_from = (std::filesystem::path(folder) / ".spiceinit").string();
+  }
   // Beside the preset: the testbench and ngspice's whole log when ngspice rejects the deck.
   options.failure_log = std::filesystem::path(opt.output).replace_extension(".ngspice.log").string();
 
@@ -98,6 +109,11 @@ int calibrate_command(const CalibrateOptions& opt) {
   if (!deck.ports_by_name.empty()) {
     std::fprintf(stderr, "aesim calibrate: %s's ports %s taken by their names (supply, output, ground), not in the order "
                  "vdd out gnd\n", deck.subckt.c_str(), deck.ports_by_name.c_str());
+  }
+  if (!deck.ngbehavior_from.empty() && deck.ngbehavior_from != "--ngbehavior") {
+    std::fprintf(stderr, "aesim calibrate: ngspice runs in compatibility mode ngbehavior=%s, as %s sets it (nothing "
+                 "else of that file is run; --ngbehavior chooses another)\n", deck.ngbehavior.c_str(),
+                 deck.ngbehavior_from.c_str());
   }
   if (!deck.left_out.empty()) {
     std::string what;

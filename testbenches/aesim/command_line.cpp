@@ -135,6 +135,8 @@ void add_calibrate(CLI::App& app, int& status) {
                                      "e.g. IHP SG13G2's psp103.osdi (repeatable; needs an ngspice built with OSDI)");
   cmd->add_option("--bias", opt->biases, "A port of the pixel beyond vdd out gnd held at a voltage in every run, "
                                        "NAME=VOLTS, e.g. vbias=0.9V (repeatable)");
+  cmd->add_option("--ngbehavior", opt->ngbehavior, "ngspice's compatibility mode for every run, e.g. hsa (default: the "
+                                                  "one a .spiceinit beside the deck sets, else ngspice's own)");
   cmd->add_option("-j,--jobs", opt->jobs, "ngspice processes at once (0: all cores)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

@@ -99,6 +99,7 @@ struct CalibrateOptions {
   std::string deck, subckt, output, base = "aloha", vdd = "3.3V", currents = "1fA:1nA", chart, probe = "int";
   std::vector<std::string> osdi;
   std::vector<std::string> biases;  // NAME=VOLTS, each a port beyond vdd out gnd
+  std::string ngbehavior;           // ngspice's compatibility mode; empty: a .spiceinit's beside the deck
   int points = 13, mc = 0, firings = 8, jobs = 0;
 };
 

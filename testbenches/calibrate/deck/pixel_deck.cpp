@@ -9,6 +9,7 @@
 #include <optional>
 #include <regex>
 #include <sstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -444,6 +445,35 @@ std::vector<std::string> port_nets_by_name(const std::vector<std::string>& ports
 }
 
 std::string bias_net(const std::string& port) { return "aesim_bias_" + ascii_lower(port); }
+
+std::string spiceinit_ngbehavior(const std::string& folder) {
+  const fs::path file = fs::path(folder) / ".spiceinit";
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return "";
+  std::ifstream in(file);
+  std::string line, mode;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string command, rest;
+    if (!(words >> command) || command != "set") continue;
+    std::getline(words, rest);
+    rest.erase(std::remove_if(rest.begin(), rest.end(), [](unsigned char c) { return std::isspace(c); }), rest.end());
+    constexpr std::string_view kKey = "ngbehavior=";
+    if (rest.compare(0, kKey.size(), kKey) == 0) mode = rest.substr(kKey.size());
+  }
+  if (!mode.empty()) check_ngbehavior(mode, file.string());
+  return mode;
+}
+
+void check_ngbehavior(const std::string& mode, const std::string& source) {
+  const bool word = !mode.empty() && mode.size() <= 16 && std::all_of(mode.begin(), mode.end(), [](unsigned char c) {
+    return std::islower(c) || std::isdigit(c);
+  });
+  if (!word) {
+    throw InputError(fmt::format("{}: ngbehavior '{}': expected ngspice's compatibility letters (hs, hsa, ps, lt, "
+                                 "ltpsa, ki, ...)", source, mode));
+  }
+}
 
 PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node,
                           const std::vector<std::string>& osdi, const std::vector<PortBias>& biases) {

@@ -291,7 +291,10 @@ Waveform run_transient(const PixelDeck& deck, double vdd, const TransientRequest
   try {
     // In the deck's folder, as the user runs it: ngspice finds a relative .include beside the file
     // that names it, but a relative .lib (a PDK's model library) only from its working folder.
-    pid = spawn_child("ngspice", {"-b", "-n", cir.string()},
+    std::vector<std::string> args{"-b", "-n"};
+    if (!deck.ngbehavior.empty()) args.insert(args.end(), {"-D", "ngbehavior=" + deck.ngbehavior});
+    args.push_back(cir.string());
+    pid = spawn_child("ngspice", args,
                       {(scratch / (name + ".out")).string(), log.string(), fs::path(deck.path).parent_path().string()});
   } catch (const ToolMissing&) {
     throw InputError("ngspice is not installed: run scripts/setup (or apt-get install ngspice)");

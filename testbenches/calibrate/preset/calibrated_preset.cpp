@@ -89,6 +89,11 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       deck.given, deck.subckt, deck.hash, c.ngspice, o.vdd, c.points.size(), o.i_low, o.i_high, o.firings, c.refined, base, c.fit.charge,
       c.fit.t_reset, c.fit.i_dark, 100 * c.fit.rms_residual, 100 * c.fit.max_residual, c.supply.charge_per_firing,
       c.supply.static_current, 100 * c.supply.rms_residual, 100 * c.supply.max_residual);
+  if (!deck.ngbehavior.empty()) {
+    text += fmt::format("# ngspice's compatibility mode in every run: ngbehavior={} ({}).\n", deck.ngbehavior,
+                        deck.ngbehavior_from == "--ngbehavior" ? std::string("--ngbehavior")
+                                                               : "as " + deck.ngbehavior_from + " sets it");
+  }
   if (!deck.biases.empty()) {
     std::string held;
     for (const PortBias& b : deck.biases) held += fmt::format("{}{} at {:.6g} V", held.empty() ? "" : ", ", b.port, b.volts);
