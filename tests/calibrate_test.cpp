@@ -915,6 +915,7 @@ TEST_F(NgspiceTest, TheCompatibilityModeOfTheDecksSpiceinitIsTheRunsAndSaid) {
   };
   fs::create_directories(dir_ / "hsa");
   fs::create_directories(dir_ / "plain");
+  fs::create_directories(dir_ / "spiceinit");
   write("hsa/binned.cir", binned);
   write("hsa/.spiceinit", "* the PDK's\nset num_threads=4\nset ngbehavior=hsa\nset ng_nomodcheck\n");
   write("plain/binned.cir", binned);
@@ -946,6 +947,10 @@ TEST_F(NgspiceTest, TheCompatibilityModeOfTheDecksSpiceinitIsTheRunsAndSaid) {
   EXPECT_NE(table("one.toml"), table("two.toml"));  // the bins differ in what the runs measure
   EXPECT_EQ(slurp(dir_ / "plain.toml").find("compatibility mode"), std::string::npos);
 
+  // Its last setting, spelled as ngspice takes it; nothing else of the file, and none without one.
+  write("spiceinit/.spiceinit", "set ngbehavior=hs\n  set   ngbehavior = \"ltpsa\"\nset ngbehaviour=ps\nshell touch x\n");
+  EXPECT_EQ(spiceinit_ngbehavior((dir_ / "spiceinit").string()), "ltpsa");
+  EXPECT_EQ(spiceinit_ngbehavior((dir_ / "plain").string()), "");
   for (const char* bad : {"'hs;x'", "HSA", "'hs a'"}) {
     const Outcome o = aesim("calibrate plain/binned.cir --ngbehavior " + std::string(bad) + range + "bad.toml");
     EXPECT_EQ(o.status, 2) << bad;

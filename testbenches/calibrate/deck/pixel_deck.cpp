@@ -459,7 +459,10 @@ std::string spiceinit_ngbehavior(const std::string& folder) {
     std::getline(words, rest);
     rest.erase(std::remove_if(rest.begin(), rest.end(), [](unsigned char c) { return std::isspace(c); }), rest.end());
     constexpr std::string_view kKey = "ngbehavior=";
-    if (rest.compare(0, kKey.size(), kKey) == 0) mode = rest.substr(kKey.size());
+    if (rest.compare(0, kKey.size(), kKey) != 0) continue;
+    mode = rest.substr(kKey.size());
+    // ngspice's `set` takes a value quoted too.
+    if (mode.size() >= 2 && mode.front() == '"' && mode.back() == '"') mode = mode.substr(1, mode.size() - 2);
   }
   if (!mode.empty()) check_ngbehavior(mode, file.string());
   return mode;
