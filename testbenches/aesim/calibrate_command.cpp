@@ -89,15 +89,7 @@ int calibrate_command(const CalibrateOptions& opt) {
   PixelDeck deck = read_pixel_deck(deck_path, opt.subckt, opt.probe, opt.osdi, port_biases(opt.biases));
   // The mode the user's own runs of the deck have: their PDK's .spiceinit sets it, and aesim runs
   // ngspice without reading one (it runs commands).
-  if (!opt.ngbehavior.empty()) {
-    check_ngbehavior(opt.ngbehavior, "--ngbehavior");
-    deck.ngbehavior = opt.ngbehavior;
-    deck.ngbehavior_from = "--ngbehavior";
-  } else {
-    const std::string folder = std::filesystem::path(deck.path).parent_path().string();
-    deck.ngbehavior = spiceinit_ngbehavior(folder);
-    if (!deck.ngbehavior.empty()) deck.ngbehavior_from = (std::filesystem::path(folder) / ".spiceinit").string();
-  }
+  choose_ngbehavior(deck, opt.ngbehavior);
   // Beside the preset: the testbench and ngspice's whole log when ngspice rejects the deck.
   options.failure_log = std::filesystem::path(opt.output).replace_extension(".ngspice.log").string();
 
@@ -110,15 +102,14 @@ int calibrate_command(const CalibrateOptions& opt) {
     std::fprintf(stderr, "aesim calibrate: %s's ports %s taken by their names (supply, output, ground), not in the order "
                  "vdd out gnd\n", deck.subckt.c_str(), deck.ports_by_name.c_str());
   }
-  if (!deck.ngbehavior_from.empty() && deck.ngbehavior_from != "--ngbehavior") {
+  if (!deck.ngbehavior_spiceinit.empty()) {
     std::fprintf(stderr, "aesim calibrate: ngspice runs in compatibility mode ngbehavior=%s, as %s sets it (nothing "
                  "else of that file is run; --ngbehavior chooses another)\n", deck.ngbehavior.c_str(),
-                 deck.ngbehavior_from.c_str());
+                 deck.ngbehavior_spiceinit.c_str());
   }
   if (!deck.left_out.empty()) {
-    std::string what;
-    for (const std::string& part : deck.left_out) what += (what.empty() ? "" : ", ") + part;
-    std::fprintf(stderr, "aesim calibrate: the runs take the deck's circuit; left out: %s\n", what.c_str());
+    std::fprintf(stderr, "aesim calibrate: the runs take the deck's circuit; left out: %s\n",
+                 fmt::format("{}", fmt::join(deck.left_out, ", ")).c_str());
   }
   // Before the runs, which can take minutes: the user may stop them and rerun with --vdd.
   if (const std::string note = supply_rating_note(deck, options.vdd); !note.empty()) {

@@ -261,11 +261,7 @@ DeckCircuit circuit_of(const std::string& text, const std::string& folder) {
     }
   }
   if (elements > 0) c.left_out.push_back(fmt::format("its testbench's {} element line{}", elements, elements == 1 ? "" : "s"));
-  if (!statements.empty()) {
-    std::string names;
-    for (const std::string& s : statements) names += (names.empty() ? "" : ", ") + s;
-    c.left_out.push_back("its " + names);
-  }
+  if (!statements.empty()) c.left_out.push_back(fmt::format("its {}", fmt::join(statements, ", ")));
   return c;
 }
 
@@ -446,11 +442,27 @@ std::vector<std::string> port_nets_by_name(const std::vector<std::string>& ports
 
 std::string bias_net(const std::string& port) { return "aesim_bias_" + ascii_lower(port); }
 
+namespace {
+
+// A compatibility mode as ngspice spells them (letters and digits); an InputError naming `source`
+// otherwise.
+void check_ngbehavior(const std::string& mode, const std::string& source) {
+  const bool word = !mode.empty() && mode.size() <= 16 && std::all_of(mode.begin(), mode.end(), [](unsigned char c) {
+    return std::islower(c) || std::isdigit(c);
+  });
+  if (!word) {
+    throw InputError(fmt::format("{}: ngbehavior '{}': expected ngspice's compatibility letters (hs, hsa, ps, lt, "
+                                 "ltpsa, ki, ...)", source, mode));
+  }
+}
+
+}  // namespace
+
 std::string spiceinit_ngbehavior(const std::string& folder) {
   const fs::path file = fs::path(folder) / ".spiceinit";
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) return "";
-  std::ifstream in(file);
+  std::istringstream in(read_text(file.string(), "the .spiceinit beside the deck"));
   std::string line, mode;
   while (std::getline(in, line)) {
     std::istringstream words(line);
@@ -468,14 +480,16 @@ std::string spiceinit_ngbehavior(const std::string& folder) {
   return mode;
 }
 
-void check_ngbehavior(const std::string& mode, const std::string& source) {
-  const bool word = !mode.empty() && mode.size() <= 16 && std::all_of(mode.begin(), mode.end(), [](unsigned char c) {
-    return std::islower(c) || std::isdigit(c);
-  });
-  if (!word) {
-    throw InputError(fmt::format("{}: ngbehavior '{}': expected ngspice's compatibility letters (hs, hsa, ps, lt, "
-                                 "ltpsa, ki, ...)", source, mode));
+void choose_ngbehavior(PixelDeck& deck, const std::string& chosen) {
+  if (!chosen.empty()) {
+    check_ngbehavior(chosen, "--ngbehavior");
+    deck.ngbehavior = chosen;
+    deck.ngbehavior_spiceinit.clear();
+    return;
   }
+  const fs::path folder = fs::path(deck.path).parent_path();
+  deck.ngbehavior = spiceinit_ngbehavior(folder.string());
+  deck.ngbehavior_spiceinit = deck.ngbehavior.empty() ? "" : (folder / ".spiceinit").string();
 }
 
 PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, const std::string& probe_node,
@@ -564,8 +578,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   if (!found) {
     throw InputError(fmt::format("deck '{}': no subcircuit '{}' (in the deck or the files it includes)", path, name));
   }
-  std::string port_list;
-  for (const std::string& port : found->ports) port_list += (port_list.empty() ? "" : " ") + port;
+  const std::string port_list = fmt::format("{}", fmt::join(found->ports, " "));
   // Its ports: those --bias holds, and three more, the supply, the output and the ground.
   std::vector<std::string> rest;
   std::vector<bool> biased(found->ports.size(), false);
@@ -594,9 +607,7 @@ PixelDeck read_pixel_deck(const std::string& path, const std::string& subckt, co
   }
   deck.mc_parameter = std::find(found->params.begin(), found->params.end(), "mc") != found->params.end();
   const std::vector<std::string> nets = port_nets_by_name(rest);
-  if (nets != std::vector<std::string>{"vdd", "out", "0"}) {
-    for (const std::string& port : rest) deck.ports_by_name += (deck.ports_by_name.empty() ? "" : " ") + port;
-  }
+  if (nets != std::vector<std::string>{"vdd", "out", "0"}) deck.ports_by_name = fmt::format("{}", fmt::join(rest, " "));
   deck.port_nets.clear();
   for (std::size_t i = 0, k = 0; i < found->ports.size(); ++i) {
     deck.port_nets.push_back(biased[i] ? bias_net(found->ports[i]) : nets[k++]);

@@ -51,18 +51,20 @@ struct PixelDeck {
   // in `hash` after the deck's.
   std::vector<std::string> osdi;
   // ngspice's compatibility mode for every run (`ngbehavior`, given as `-D ngbehavior=...`: a
-  // `.control` block's `pre_set` comes too late for it), and where it came from; empty: ngspice's
-  // own. A PDK setup's `.spiceinit` sets it (IIC-OSIC-TOOLS' `hsa`, under which a binned model is
-  // chosen by a finger's width, W / nf, not the device's).
-  std::string ngbehavior, ngbehavior_from;
+  // `.control` block's `pre_set` comes too late for it); empty: ngspice's own. A PDK setup's
+  // `.spiceinit` sets it (IIC-OSIC-TOOLS' `hsa`, under which a binned model is chosen by a
+  // finger's width, W / nf, not the device's); `ngbehavior_spiceinit` is that file when the mode
+  // is its, empty when --ngbehavior chose it.
+  std::string ngbehavior, ngbehavior_spiceinit;
 };
 
 // The compatibility mode the `.spiceinit` in `folder` sets (its last `set ngbehavior=MODE` line),
 // or empty: what the user's own ngspice runs of a deck there use. Nothing else of the file is run.
 std::string spiceinit_ngbehavior(const std::string& folder);
-// Checks a compatibility mode as ngspice spells them (letters and digits: hs, hsa, ps, lt, ltpsa,
-// ki, ...); throws InputError naming `source` otherwise.
-void check_ngbehavior(const std::string& mode, const std::string& source);
+// Sets the deck's compatibility mode: `chosen` (--ngbehavior) when given, else the one of the
+// `.spiceinit` beside the deck. A mode of anything but ngspice's letters and digits (hs, hsa, ps,
+// lt, ltpsa, ki, ...) is an InputError naming where it came from.
+void choose_ngbehavior(PixelDeck& deck, const std::string& chosen);
 
 // A deck's circuit, as each run includes it: its subcircuits, models, parameters, options and the
 // files it reads (named from its folder, so the runs' testbench may be anywhere), without what a

@@ -202,8 +202,8 @@ std::string testbench_text(const PixelDeck& deck, double vdd, const TransientReq
     switches += fmt::format(".param {}={}\n", name, r.monte_carlo ? 1 : 0);
   }
   const SolverSettings solver = solver_settings(r.settings, r.iph, vdd);
-  std::string nets, bias_sources;
-  for (const std::string& net : deck.port_nets) nets += (nets.empty() ? "" : " ") + net;
+  const std::string nets = fmt::format("{}", fmt::join(deck.port_nets, " "));
+  std::string bias_sources;
   for (const PortBias& b : deck.biases) bias_sources += fmt::format("V{0} {0} 0 {1:.12g}\n", bias_net(b.port), b.volts);
   // OSDI libraries load before ngspice reads the circuit (the `pre_` prefix), wherever the block is.
   std::string osdi;

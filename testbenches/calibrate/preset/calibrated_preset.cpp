@@ -91,8 +91,8 @@ std::string calibrated_preset_text(const SensorConfig& config, const Calibration
       c.supply.static_current, 100 * c.supply.rms_residual, 100 * c.supply.max_residual);
   if (!deck.ngbehavior.empty()) {
     text += fmt::format("# ngspice's compatibility mode in every run: ngbehavior={} ({}).\n", deck.ngbehavior,
-                        deck.ngbehavior_from == "--ngbehavior" ? std::string("--ngbehavior")
-                                                               : "as " + deck.ngbehavior_from + " sets it");
+                        deck.ngbehavior_spiceinit.empty() ? std::string("--ngbehavior")
+                                                          : "as " + deck.ngbehavior_spiceinit + " sets it");
   }
   if (!deck.biases.empty()) {
     std::string held;

@@ -190,6 +190,14 @@ PointRun measure_point(const PixelDeck& deck, const CalibrationOptions& o, doubl
   return r;
 }
 
+// The period measured at `current` (NaN: not measured, or it never fired).
+double period_at(const std::vector<PointRun>& runs, double current) {
+  for (const PointRun& r : runs) {
+    if (r.point.current == current) return r.point.period;
+  }
+  return kUnmeasured;
+}
+
 // An added point whose period fell outside its interval's ends (calibrate_pixel's refinement).
 struct OutsideEnds {
   double beyond;  // |log| of how far outside
@@ -212,17 +220,11 @@ std::string scatter_note(const std::vector<PointRun>& runs, const std::map<doubl
       worst_at = current;
     }
   }
-  const auto period_at = [&runs](double i) {
-    for (const PointRun& r : runs) {
-      if (r.point.current == i) return r.point.period;
-    }
-    return kUnmeasured;
-  };
   std::string text = fmt::format(
       "the periods between {:.3g} and {:.3g} A scatter by more than the table resolves: {} added point{} fell "
       "outside the periods either side by up to {:.2g} % (at {:.3g} A, {:.4g} s between {:.4g} and {:.4g} s)",
       low, high, outside.size(), outside.size() == 1 ? "" : "s", 100 * std::expm1(worst.beyond), worst_at,
-      period_at(worst_at), period_at(worst.a), period_at(worst.b));
+      period_at(runs, worst_at), period_at(runs, worst.a), period_at(runs, worst.b));
   const CalibrationPoint* steps = nullptr;
   double apart = kInterpolationTolerance;
   for (const PointRun& r : runs) {
@@ -506,12 +508,6 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
     if (midpoints.empty() || runs.size() + midpoints.size() > kMaxTablePoints) break;
     c.refined += static_cast<int>(midpoints.size());
     measure_all(midpoints, "photocurrents added between points");
-    const auto period_at = [&runs](double i) {
-      for (const PointRun& r : runs) {
-        if (r.point.current == i) return r.point.period;
-      }
-      return kUnmeasured;
-    };
     const std::vector<const PointRun*> now = fired();
     // The period of the fired point `step` places from the one at `current` (NaN: none there).
     const auto beside = [&now](double current, int step) {
@@ -524,7 +520,8 @@ Calibration calibrate_pixel(const PixelDeck& deck, const CalibrationOptions& o) 
       return kUnmeasured;
     };
     for (std::size_t j = 0; j < midpoints.size(); ++j) {
-      const double pm = period_at(midpoints[j]), pa = period_at(halved[j].first), pb = period_at(halved[j].second);
+      const double pm = period_at(runs, midpoints[j]), pa = period_at(runs, halved[j].first),
+                   pb = period_at(runs, halved[j].second);
       if (std::isfinite(pm) && std::isfinite(pa) && std::isfinite(pb)) {
         midpoint_miss[midpoints[j]] = std::fabs(std::log(pm / std::sqrt(pa * pb)));
         // Outside its ends, and turning again at a point beyond them: a smooth period turns once
