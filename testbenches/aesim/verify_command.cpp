@@ -191,9 +191,14 @@ int verify_command(const VerifyCommandOptions& opt) {
       if (s.count == 0) return std::string("none seen");
       return s.min == s.max ? fmt::format("{} edges", s.min) : fmt::format("{} to {} edges", s.min, s.max);
     };
-    std::fprintf(report_stream(), "Ack latency seen: rise %s (without a full output), fall %s; described %d to %d\n",
-                 span(result.ack_rise).c_str(), span(result.ack_fall).c_str(), d.ack_latency_min,
-                 d.ack_latency_max);
+    if (d.two_phase()) {
+      std::fprintf(report_stream(), "Ack latency seen: %s from a change of Req to Ack's (without a full output); described %d to %d\n",
+                   span(result.ack_rise).c_str(), d.ack_latency_min, d.ack_latency_max);
+    } else {
+      std::fprintf(report_stream(), "Ack latency seen: rise %s (without a full output), fall %s; described %d to %d\n",
+                   span(result.ack_rise).c_str(), span(result.ack_fall).c_str(), d.ack_latency_min,
+                   d.ack_latency_max);
+    }
   }
   for (const std::string& note : notes) {
     if (note.find("$finish") != std::string::npos || note.find("$readmem") != std::string::npos) {

@@ -320,6 +320,10 @@ const char* to_string(ReceiverDescription::AddressHeld h) {
   return h == ReceiverDescription::AddressHeld::UntilAckRises ? "until_ack_rises" : "until_ack_falls";
 }
 
+const char* to_string(ReceiverDescription::Handshake h) {
+  return h == ReceiverDescription::Handshake::FourPhase ? "four_phase" : "two_phase";
+}
+
 ReceiverDescription read_receiver_description(const std::string& path) {
   if (!is_input_file(path, "receiver description")) {
     throw InputError(fmt::format("receiver description '{}': no such file", path));
@@ -543,11 +547,23 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   if (const TomlValue* bus = r.find(root, "bus")) {
     if (!bus->is_table()) r.fail("bus", "expected a table");
     for (const auto& [key, value] : bus->as_table()) {
-      if (key != "address_held") r.fail("bus." + key, "unknown key (address_held)");
-      const std::string held = r.string_of(value, "bus.address_held");
-      if (held == "until_ack_rises") d.address_held = ReceiverDescription::AddressHeld::UntilAckRises;
-      else if (held == "until_ack_falls") d.address_held = ReceiverDescription::AddressHeld::UntilAckFalls;
-      else r.fail("bus.address_held", "must be \"until_ack_rises\" (the imager's pixels) or \"until_ack_falls\"");
+      if (key == "address_held") {
+        const std::string held = r.string_of(value, "bus.address_held");
+        if (held == "until_ack_rises") d.address_held = ReceiverDescription::AddressHeld::UntilAckRises;
+        else if (held == "until_ack_falls") d.address_held = ReceiverDescription::AddressHeld::UntilAckFalls;
+        else r.fail("bus.address_held", "must be \"until_ack_rises\" (the imager's pixels) or \"until_ack_falls\"");
+      } else if (key == "handshake") {
+        const std::string handshake = r.string_of(value, "bus.handshake");
+        if (handshake == "four_phase") d.handshake = ReceiverDescription::Handshake::FourPhase;
+        else if (handshake == "two_phase") d.handshake = ReceiverDescription::Handshake::TwoPhase;
+        else r.fail("bus.handshake", "must be \"four_phase\" (the imager's bus) or \"two_phase\" (each edge of Req an event)");
+      } else {
+        r.fail("bus." + key, "unknown key (address_held, handshake)");
+      }
+    }
+    if (d.two_phase() && d.address_held == ReceiverDescription::AddressHeld::UntilAckFalls) {
+      r.fail("bus.address_held", "a two-phase Ack does not fall: its sender holds the address until Ack changes, "
+                                 "\"until_ack_rises\"");
     }
   }
 

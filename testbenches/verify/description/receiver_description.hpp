@@ -62,6 +62,15 @@ struct ReceiverDescription {
   // receiver may then take the address after Req falls).
   enum class AddressHeld { UntilAckRises, UntilAckFalls };
   AddressHeld address_held = AddressHeld::UntilAckRises;
+  // How Req and Ack signal (`[bus] handshake`): four-phase, the imager's own bus (Req rises, Ack
+  // rises, Req falls, Ack falls: two edges of each a transaction); or two-phase (transition
+  // signalling: each edge of Req, either way, is a transaction, answered by one edge of Ack, so a
+  // transaction is open while the two lines differ). On a two-phase link the sender toggles Req when
+  // the bus opens a transaction, with the address and contention bundled until Ack answers; both
+  // lines start at their inactive level and return to it with the receiver's reset.
+  enum class Handshake { FourPhase, TwoPhase };
+  Handshake handshake = Handshake::FourPhase;
+  bool two_phase() const { return handshake == Handshake::TwoPhase; }
   // Further clock inputs driven by the receiver's clock (`clk = ["clk_i", "usb_clk"]`): a top whose
   // output side has a clock port of its own runs both sides on the one clock.
   std::vector<std::string> clock_also;
@@ -125,5 +134,6 @@ ReceiverDescription read_receiver_description(const std::string& path);
 const char* to_string(ReceiverDescription::Collisions c);
 const char* to_string(ReceiverDescription::Full f);
 const char* to_string(ReceiverDescription::AddressHeld h);
+const char* to_string(ReceiverDescription::Handshake h);
 
 }  // namespace aesim

@@ -23,11 +23,20 @@ constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 // The pixel side of the bus (the cycle rung's wired-OR lines, or a queue of senders taking turns)
 // and the wires it drives, with any glitch on top. The senders let go of Req when Ack rises; the
 // address and contention go with it, or (a sender that holds them until Ack falls) stay until then.
+// On a two-phase link the bus behind it is the same four-phase bus (what the scoreboard is told),
+// and its edge towards the receiver a toggle: Req changes where the bus's Req rises (outside the
+// receiver's reset), and the driver turns each change of Ack that answers it into Ack rising and
+// falling at once.
 class BusSide {
  public:
-  BusSide(const VerifyCase& c, const BoundPorts& ports, bool hold_until_ack_falls, TransactionScoreboard* sb,
+  BusSide(const VerifyCase& c, const BoundPorts& ports, const ReceiverDescription& d, TransactionScoreboard* sb,
           std::vector<WaveRecord>* wave)
-      : queued_(c.queued_senders), hold_(hold_until_ack_falls), ports_(ports), sb_(sb), wave_(wave) {}
+      : queued_(c.queued_senders),
+        hold_(d.address_held == ReceiverDescription::AddressHeld::UntilAckFalls),
+        two_phase_(d.two_phase()),
+        ports_(ports),
+        sb_(sb),
+        wave_(wave) {}
 
   void fire(std::uint32_t addr, bool ack, std::uint64_t t, std::uint64_t edges_done, CaseStats& stats) {
     ++stats.firings;
@@ -79,8 +88,24 @@ class BusSide {
   bool req() const { return req_; }
   void record_controls(std::uint64_t t, bool ready, bool reset) {
     ready_ = ready;
+    if (two_phase_ && reset != reset_) {
+      // The link's sender is reset with the receiver; a transaction the bus still holds open is
+      // asked for again as the reset ends.
+      const bool phase = !reset && req_;
+      if (phase != phase_) {
+        phase_ = phase;
+        ports_.set_req(phase_);
+      }
+    }
     reset_ = reset;
     record(t);
+  }
+  // A change of Ack on a two-phase link: whether it answers the change of Req waiting (the lines
+  // differed before it); in the receiver's reset it answers nothing.
+  bool ack_changed_on_link(bool ack_line) {
+    const bool answers = !reset_ && phase_ != ack_line_;
+    ack_line_ = ack_line;
+    return answers;
   }
 
  private:
@@ -92,21 +117,24 @@ class BusSide {
     const bool req = forced_ ? forced_req_ : lines_.req() || glitch_;
     const bool contention = forced_ ? forced_contention_ : held_ ? held_contention_ : lines_.contention();
     if (req == req_ && addr == addr_ && contention == contention_) return;
+    if (two_phase_ && req && !req_ && !reset_) phase_ = !phase_;
     req_ = req;
     addr_ = addr;
     contention_ = contention;
-    ports_.set_req(req);
+    ports_.set_req(two_phase_ ? phase_ : req);
     ports_.addr.write(addr);
     ports_.set_contention(contention);
     if (sb_) sb_->wires(t, edges_done, req, addr, contention);
     record(t);
   }
   void record(std::uint64_t t) {
-    if (wave_) wave_->push_back({t, req_, contention_, ready_, reset_, addr_});
+    if (wave_) wave_->push_back({t, two_phase_ ? phase_ : req_, contention_, ready_, reset_, addr_});
   }
 
   bool queued_;
   bool hold_;
+  bool two_phase_;
+  bool phase_ = false, ack_line_ = false;  // a two-phase link's Req line and the Ack line last seen
   bool held_ = false, held_contention_ = false;  // holding the last transaction's lines until Ack falls
   std::uint32_t held_addr_ = 0;
   const BoundPorts& ports_;
@@ -130,7 +158,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   const std::uint64_t period = clock_period_ps(d), half = period / 2;
   auto off_edge = [half](std::uint64_t t) { return t % half == 0 ? t + 1 : t; };
   CaseStats stats;
-  BusSide bus(c, ports, d.address_held == ReceiverDescription::AddressHeld::UntilAckFalls, sb, options.waveform);
+  BusSide bus(c, ports, d, sb, options.waveform);
   if (sb) sb->begin_case(c.name);
 
   std::unique_ptr<FiringSource> source = c.make_firings ? c.make_firings() : nullptr;
@@ -158,6 +186,17 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   // A design without a reset starts from its initial values, never in reset.
   const std::uint64_t reset_edges = d.has_reset() ? kResetEdges : 0;
   bool ready = true, reset = d.has_reset(), ack = false, draining = false;
+  // A two-phase link: the Ack line as last seen; `ack` is the four-phase Ack of the bus behind it,
+  // high from the change that answered its Req until that Req falls (at once, where the pixels let
+  // go of it as they see the answer; a replayed sender may hold it longer).
+  const bool two_phase = d.two_phase();
+  bool ack_line = false;
+  auto end_answer = [&](std::uint64_t edge, std::uint64_t t_ps) {
+    if (!two_phase || !ack || bus.req()) return;
+    ack = false;
+    if (sb) sb->ack_changed(edge, t_ps, false);
+    bus.ack_changed(false, t_ps + 1, edge);
+  };
   std::uint64_t acks = 0, reset_from = kNever, quiet = 0;
   bool valid_was = false;  // valid at the edge before (a beat on its rise: ReceiverDescription)
   std::uint64_t stalls_end = 0;
@@ -255,7 +294,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     EdgeSample s;
     s.reset = reset;
     s.ready = ready;
-    s.ack = ack;
+    s.ack = two_phase ? ack_line : ack;
     const bool valid_now = ports.valid_raised();
     switch (d.valid_beat) {
       case ReceiverDescription::ValidBeat::High: s.valid = valid_now; break;
@@ -279,7 +318,21 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     if (trace_now) dut.dump(t_edge);
     if ((ended = rtl_ended(k))) break;
     const bool ack_now = ports.ack_raised();
-    if (ack_now != ack) {
+    if (two_phase && ack_now != ack_line) {
+      ack_line = ack_now;
+      const bool answers = bus.ack_changed_on_link(ack_line);
+      if (sb) sb->ack_changed(k, t_edge, true);
+      if (answers) {
+        ack = true;
+        if (++acks == static_cast<std::uint64_t>(c.reset_after_ack) && c.reset_after_ack > 0) {
+          reset_from = k + static_cast<std::uint64_t>(c.reset_delay);
+        }
+        bus.ack_changed(true, t_edge + 1, k);
+        end_answer(k, t_edge);
+      } else if (!ack && sb) {
+        sb->ack_changed(k, t_edge, false);
+      }
+    } else if (!two_phase && ack_now != ack) {
       ack = ack_now;
       if (sb) sb->ack_changed(k, t_edge, ack);
       if (ack && ++acks == static_cast<std::uint64_t>(c.reset_after_ack) && c.reset_after_ack > 0) {
@@ -304,6 +357,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     if (k < c.replay.size()) {
       const ReplayStep& step = c.replay[k];
       bus.force(step.req, step.addr, step.contention, t_edge + half / 2, k);
+      end_answer(k, t_edge);
     }
     apply_until(t_edge + half, k);
     ports.set_clk(false);

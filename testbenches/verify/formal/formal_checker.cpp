@@ -74,16 +74,24 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   // A design without a reset starts from its registers' initial values: no reset steps, and Ack
   // low in that first state.
   const int reset_steps = d.has_reset() ? kFormalResetSteps : 0;
-  const int p_reset = add("ack_low_after_reset", d.has_reset() ? "Ack is low after the reset"
-                                                                : "Ack is low at power-up (the design has no reset)");
-  const int p_rise = add("ack_rises_with_req", "Ack rises only while a Req waits for it");
-  const int p_rise_min = add("ack_rise_min", fmt::format("Ack rises no sooner than {} edges after Req rose", lmin));
-  const int p_rise_max =
-      add("ack_rise_max", fmt::format("Ack rises within {} edges of Req rising{}", lmax,
-                                      hold ? " (or of the consumer's last stall)" : ""));
-  const int p_fall = add("ack_falls_after_req", "Ack falls only after Req fell");
-  const int p_fall_min = add("ack_fall_min", fmt::format("Ack falls no sooner than {} edges after Req fell", lmin));
-  const int p_fall_max = add("ack_fall_max", fmt::format("Ack falls within {} edges of Req falling", lmax));
+  // A two-phase link: the checker's sender is the four-phase bus behind it (req_i), whose every rise
+  // changes the Req line; its Ack is high from the change of the Ack line that answers to Req's fall.
+  // The handshake's properties are then about the changes; a fall has none.
+  const bool two = d.two_phase();
+  const int p_reset = two ? add("ack_at_rest_after_reset", d.has_reset() ? "Ack is at its resting level after the reset"
+                                                                         : "Ack is at its resting level at power-up (the design has no reset)")
+                          : add("ack_low_after_reset", d.has_reset() ? "Ack is low after the reset"
+                                                                     : "Ack is low at power-up (the design has no reset)");
+  const int p_rise = two ? add("ack_changes_with_req", "Ack changes only while a change of Req waits for it")
+                         : add("ack_rises_with_req", "Ack rises only while a Req waits for it");
+  const int p_rise_min = two ? add("ack_change_min", fmt::format("Ack changes no sooner than {} edges after Req changed", lmin))
+                             : add("ack_rise_min", fmt::format("Ack rises no sooner than {} edges after Req rose", lmin));
+  const char* stall_excuse = hold ? " (or of the consumer's last stall)" : "";
+  const int p_rise_max = two ? add("ack_change_max", fmt::format("Ack changes within {} edges of Req changing{}", lmax, stall_excuse))
+                             : add("ack_rise_max", fmt::format("Ack rises within {} edges of Req rising{}", lmax, stall_excuse));
+  const int p_fall = two ? -1 : add("ack_falls_after_req", "Ack falls only after Req fell");
+  const int p_fall_min = two ? -1 : add("ack_fall_min", fmt::format("Ack falls no sooner than {} edges after Req fell", lmin));
+  const int p_fall_max = two ? -1 : add("ack_fall_max", fmt::format("Ack falls within {} edges of Req falling", lmax));
   const int p_held = d.has("ready") ? add("held_beat_stable", "a beat offered and not taken stays, unchanged") : -1;
   const int p_invent = data ? add("no_invented_beat", "every beat is a transaction's") : -1;
   const int p_order =
@@ -112,7 +120,7 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   if (d.has_reset()) {
     wiring.drive_raised(PortRef{d.reset_port}, d.reset_active_high, "in_reset");
   }
-  wiring.drive_raised("req", "req_i");
+  wiring.drive_raised("req", two ? "req_line" : "req_i");
   // The addresses the receiver both takes and gives: of an input port wider than the output (a
   // 16-bit AER input whose low 10 bits come out in a packet's slice) the extra bits are held at
   // zero, as the narrower bus driving it holds them (the simulation drives bus-width addresses);
@@ -232,6 +240,24 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
                               fmt::arg("flag", field(d.word("flags"), "out_flag", "ev_flag_q")),
                               fmt::arg("marked", !marked_events ? "1'b0" : field(*d.special_word, "special", "ev_special_q")));
   }
+  // The two-phase link between the checker's four-phase sender and the design: the Req line changes
+  // at the step req_i rises; the checker's Ack is high from a change of the Ack line until req_i falls.
+  const std::string link = two ? fmt::format(R"(
+  // The two-phase link: its Req line, and the checker's four-phase view of its Ack line.
+  reg link_req_q = 0, req_line_q = 0, ack_line_q = 0, ack_held_q = 0;
+  wire req_line = req_line_q ^ (!settling && req_i && !link_req_q);
+  wire ack_line = {ack};
+  wire ack_change = ack_line != ack_line_q;
+  // Held while req_i stays up: a sender that lets go as Ack changes may change Req again the step after.
+  wire ack = ack_change || (ack_held_q && req_i && link_req_q);
+  always @(posedge clk) begin
+    link_req_q <= req_i;
+    req_line_q <= req_line;
+    ack_line_q <= ack_line;
+    ack_held_q <= ack;
+  end
+)", fmt::arg("ack", ack))
+                               : "";
   const int cw = bits_for(static_cast<std::uint64_t>(lmax) + 1);
   const int qw = bits_for(static_cast<std::uint64_t>(d.formal.fifo_words) + 8);
   const int sw = bits_for(static_cast<std::uint64_t>(lmax) + 3);
@@ -254,13 +280,12 @@ module aesim_formal_top #(
   wire settling = rst_cnt < 8'd{settled_step};
   always @(posedge clk) if (settling) rst_cnt <= rst_cnt + 1'b1;
 {time_logic}
-{declarations}
+{declarations}{link}
   {top} {parameter_list}dut (
 {connections}
   );
 
-  wire ack = {ack};
-{valid_wire}  wire [{ow_msb}:0] out_addr = {out_addr};
+{ack_wire}{valid_wire}  wire [{ow_msb}:0] out_addr = {out_addr};
   wire [{tw_msb}:0] out_ts = {ts_expr};
   // Bit 0 of the flags, whether they are a port or a slice of one.
   wire [63:0] flag_bits = {flag_expr};
@@ -311,8 +336,8 @@ module aesim_formal_top #(
   end
 
   always @* begin
-    if ({p_reset}) if ({reset_done}) assert (!ack);
-    if ({p_rise}) if (free_q && ack && !ack_q) assert (open);
+    if ({p_reset}) if ({reset_done}) assert (!{ack_at_rest});
+    if ({p_rise}) if ({rise_guard}) assert ({rise_check});
     if ({p_rise_min}) if (free_q && ack && !ack_q && open) assert (lat >= {cw}'d{lmin});
     if ({p_rise_max}) if (!settling && open && !ack) assert (exc < {cw}'d{lmax});
     if ({p_fall}) if (free_q && !ack && ack_q) assert (!req_q);
@@ -382,7 +407,13 @@ module aesim_formal_top #(
                          fmt::arg("release", d.reset_release_cycles),
                          fmt::arg("reset_done", d.has_reset() ? "past_valid && !settling && !free_q" : "!past_valid"), fmt::arg("declarations", wiring.declarations()),
                          fmt::arg("parameter_list", parameter_list.empty() ? "" : "#(" + parameter_list + ") "),
-                         fmt::arg("connections", wiring.connections()), fmt::arg("ack", ack),
+                         fmt::arg("connections", wiring.connections()), fmt::arg("link", link),
+                         fmt::arg("ack_wire", two ? "" : fmt::format("  wire ack = {};\n", ack)),
+                         fmt::arg("ack_at_rest", two ? "ack_line" : "ack"),
+                         // A change of the Ack line answers only a change of the Req line (this step's
+                         // included) it has not answered.
+                         fmt::arg("rise_guard", two ? "free_q && ack_change" : "free_q && ack && !ack_q"),
+                         fmt::arg("rise_check", two ? "req_line != ack_line_q" : "open"),
                          fmt::arg("valid_wire", valid_wire),
                          fmt::arg("ow_msb", ow - 1), fmt::arg("out_addr", out_addr), fmt::arg("tw_msb", tw - 1),
                          fmt::arg("ts_expr", ts.empty() ? "1'b0" : ts), fmt::arg("flag_expr", flag.empty() ? "64'd0" : flag),

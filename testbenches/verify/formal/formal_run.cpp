@@ -379,7 +379,7 @@ FormalResult run_formal(const ReceiverDescription& d, const std::optional<StampR
   // finds there), the tools, the rule. The files by their place beside the description, not by
   // where the folder lies: the verdicts and counterexamples hold no path, so a receiver's folder
   // copied or moved (a clone elsewhere, a test's scratch copy) keeps its proofs.
-  std::string key = fmt::format("aesim-formal-v9\n{}\nseconds {}\n", tool_output("yosys", {"-V"}, work), options.property_seconds);
+  std::string key = fmt::format("aesim-formal-v10\n{}\nseconds {}\n", tool_output("yosys", {"-V"}, work), options.property_seconds);
   if (stamp) key += fmt::format("stamp {} {}\n", static_cast<int>(stamp->anchor), stamp->offset);
   key += read_scratch_text(d.file);
   const fs::path home = fs::absolute(d.file).parent_path();

@@ -134,7 +134,7 @@ std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverD
                                    std::vector<std::string>* notes) {
   const bool ready = d.has("ready");
   std::vector<VerifyCase> cases;
-  std::vector<std::string> left_out, left_out_reset;
+  std::vector<std::string> left_out, left_out_reset, left_out_glitch;
   if (plan.directed) {
     for (VerifyCase& c : directed_cases(d)) {
       const auto& only = plan.directed_cases;
@@ -147,6 +147,10 @@ std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverD
         left_out_reset.push_back(c.name);
         continue;
       }
+      if (d.two_phase() && !c.glitches.empty()) {
+        left_out_glitch.push_back(c.name);
+        continue;
+      }
       cases.push_back(std::move(c));
     }
   }
@@ -154,6 +158,11 @@ std::vector<VerifyCase> plan_cases(const VerificationPlan& plan, const ReceiverD
     std::string note = "the receiver has no reset: every case starts from the design's initial values";
     if (!left_out_reset.empty()) note += fmt::format(", and the cases {} are left out", fmt::join(left_out_reset, ", "));
     notes->push_back(note);
+  }
+  if (notes && !left_out_glitch.empty()) {
+    notes->push_back(fmt::format("the link is two-phase, where every change of Req is an event and none is withdrawn: "
+                                 "the cases {} are left out",
+                                 fmt::join(left_out_glitch, ", ")));
   }
   bool always_ready = false;
   for (SceneLoad l : plan.scenes) {

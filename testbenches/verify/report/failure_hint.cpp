@@ -51,6 +51,13 @@ std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d, c
       }
     }
   }
+  // A two-phase link's lines rest where the reset leaves them, and the description says which level.
+  if (f.check == "reset" && d.two_phase()) {
+    return fmt::format("the lines of a two-phase link rest at their inactive level after reset, and aesim's Req starts "
+                       "there: low by default, high with req and ack described {{ port = \"...\", active = \"low\" }} (the "
+                       "description now has Ack rest {})",
+                       d.active_high("ack") ? "low" : "high");
+  }
   // A Req held through the reset answered late: a top that synchronises its own reset.
   if (f.check == "ack_rise_latency" && f.case_name == "req_through_reset") {
     return fmt::format("a design that passes its reset through flops of its own comes out of reset that many edges late: "
@@ -70,10 +77,10 @@ std::string failure_hint(const VerifyFailure& f, const ReceiverDescription& d, c
            "[bus] address_held = \"until_ack_falls\"";
   }
   // A beat as Req fell: each edge of Req taken for a transaction.
-  if (f.beat_as_req_fell) {
-    return "a beat where no transaction waited, as Req fell: aesim's bus is four-phase (Req rises and falls once for "
-           "each event, Ack follows each edge), and a two-phase receiver, which takes each edge of Req for an event and "
-           "toggles Ack once, gives a second beat at the fall";
+  if (f.beat_as_req_fell && !d.two_phase()) {
+    return "a beat where no transaction waited, as Req fell: the description's handshake is four-phase (Req rises and "
+           "falls once for each event, Ack follows each edge), and a two-phase receiver, which takes each edge of Req "
+           "for an event and changes Ack once, gives a second beat at the fall: [bus] handshake = \"two_phase\"";
   }
   // A beat with no transaction waiting: a valid read at the wrong level or as the wrong kind of
   // strobe, or an output word that is no event.

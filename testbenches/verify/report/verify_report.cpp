@@ -38,7 +38,8 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   j["ack_latency_observed"] = {{"rise", span_json(r.ack_rise)}, {"fall", span_json(r.ack_fall)}};
   j["notes"] = notes;
   j["receiver"] = {{"description", d.file}, {"top", d.top},
-                   {"collisions", to_string(d.collisions)}, {"full", to_string(d.full)}};
+                   {"collisions", to_string(d.collisions)}, {"full", to_string(d.full)},
+                   {"handshake", to_string(d.handshake)}};
   j["plan"] = plan;
   j["seed"] = seed;
   j["build"] = {{"cached", build.cached}, {"seconds", build.seconds}};

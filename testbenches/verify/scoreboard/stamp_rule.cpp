@@ -10,21 +10,24 @@ namespace aesim {
 StampRule::StampRule(const ReceiverDescription& d)
     : enabled_(d.has("timestamp")),
       tick_cycles_(d.timestamp_cycles ? d.timestamp_cycles : 1),
-      mask_(d.timestamp_bits >= 64 ? ~0ULL : (1ULL << d.timestamp_bits) - 1) {
+      mask_(d.timestamp_bits >= 64 ? ~0ULL : (1ULL << d.timestamp_bits) - 1),
+      two_phase_(d.two_phase()) {
   if (d.timestamp_offset_cycles) {
     initial_.push_back({Anchor::ReqRise, *d.timestamp_offset_cycles});
   } else {
     for (int k = 0; k <= d.ack_latency_max + 1; ++k) initial_.push_back({Anchor::ReqRise, k});
+    // A two-phase Ack changes once a transaction: its fall would be its rise again.
     for (const Anchor a : {Anchor::AckRise, Anchor::AckFall}) {
+      if (a == Anchor::AckFall && two_phase_) continue;
       for (int j = -d.ack_latency_max; j <= 1; ++j) initial_.push_back({a, j});
     }
   }
   candidates_ = initial_;
 }
 
-std::string StampRule::name(const Candidate& c) {
-  if (c.anchor == Anchor::ReqRise) return fmt::format("edge {} after Req rose", c.offset);
-  const char* edge = c.anchor == Anchor::AckRise ? "the edge Ack rose" : "the edge Ack fell";
+std::string StampRule::name(const Candidate& c) const {
+  if (c.anchor == Anchor::ReqRise) return fmt::format("edge {} after Req {}", c.offset, two_phase_ ? "changed" : "rose");
+  const char* edge = two_phase_ ? "the edge Ack changed" : c.anchor == Anchor::AckRise ? "the edge Ack rose" : "the edge Ack fell";
   if (c.offset == 0) return edge;
   return fmt::format("{} {} {}", edge, c.offset < 0 ? "-" : "+", std::abs(c.offset));
 }
@@ -82,8 +85,10 @@ bool StampRule::check(const Edges& e, std::uint64_t stamp, std::string& expected
       lo = std::min(lo, predicted(c, e));
       hi = std::max(hi, predicted(c, e));
     }
-    expected = fmt::format("a stamp from {} to {} (ticks since reset at an edge from Req rising to Ack {})", lo, hi,
-                           e.ack_fall ? "falling" : "rising");
+    expected = two_phase_ ? fmt::format("a stamp from {} to {} (ticks since reset at an edge from Req changing to Ack "
+                                        "changing)", lo, hi)
+                          : fmt::format("a stamp from {} to {} (ticks since reset at an edge from Req rising to Ack {})",
+                                        lo, hi, e.ack_fall ? "falling" : "rising");
   }
   return false;
 }

@@ -16,7 +16,8 @@ namespace aesim {
 // The edge is fixed relative to one edge of the handshake: edge k after Req rose (the first edge
 // after the rise is 1; k from 0, the edge before it, to ack_latency max + 1), or the edge Ack rose
 // + j, or the edge Ack fell + j (j from -ack_latency max to +1: a receiver that stamps as it ends
-// the handshake, with the address word out long before). A description may state k
+// the handshake, with the address word out long before); on a two-phase link the edges where Req and
+// Ack change, Ack once. A description may state k
 // (timestamp_offset_cycles); otherwise every such edge is a candidate, and each beat keeps only the
 // candidates that explain its stamp (one whose Ack has not fallen explains none of Ack's fall). A
 // stamp that no remaining candidate explains fails; the candidates stay as they were, so each later
@@ -67,10 +68,11 @@ class StampRule {
   // Candidate c's edge (the last of a range); none for Ack's fall before it fell.
   static std::optional<std::uint64_t> edge_of(const Candidate& c, const Edges& e);
   std::uint64_t predicted(const Candidate& c, const Edges& e) const;
-  static std::string name(const Candidate& c);
+  std::string name(const Candidate& c) const;
 
   bool enabled_;
   std::uint64_t tick_cycles_ = 1, mask_ = 0, origin_ = 0;
+  bool two_phase_;  // Req's and Ack's edges are changes either way, and Ack changes once a transaction
   std::vector<Candidate> candidates_, initial_;
   bool narrowed_ = false;
 };

@@ -19,6 +19,7 @@ TransactionScoreboard::TransactionScoreboard(const ReceiverDescription& d, bool 
       lat_min_(d.ack_latency_min),
       lat_max_(d.ack_latency_max),
       release_edges_(static_cast<std::uint64_t>(d.reset_release_cycles)),
+      two_phase_(d.two_phase()),
       stamps_(d),
       event_words_(d.event_words),
       addr_word_(d.word("out_addr")),
@@ -221,7 +222,8 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
       if (cycle >= start && cycle - start + 1 > static_cast<std::uint64_t>(lat_max_)) {
         late_reported_ = true;
         fail("ack_rise_latency", cycle, t_ps, true, [&] {
-          return Texts{fmt::format("Ack within {} edges of Req rising", lat_max_),
+          return Texts{fmt::format(two_phase_ ? "Ack changed within {} edges of Req changing" : "Ack within {} edges of Req rising",
+                                   lat_max_),
                        fmt::format("no Ack after {} edges", cycle - start + 1)};
         });
       }
@@ -265,7 +267,8 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     }
     if (!req_ || !t) {
       fail("ack_without_req", cycle, t_ps, true, [&] {
-        return Texts{"Ack rises only while Req is high", "Ack rose with Req low"};
+        return two_phase_ ? Texts{"Ack changes only while a change of Req waits for it", "Ack changed with none waiting"}
+                          : Texts{"Ack rises only while Req is high", "Ack rose with Req low"};
       });
       return;
     }
@@ -313,7 +316,8 @@ void TransactionScoreboard::ack_changed(std::uint64_t cycle, std::uint64_t t_ps,
     }
     acked_id_.reset();
   }
-  if (ack_fall_due_) {
+  // A two-phase Ack's one change answered the transaction; the driver ends it at once.
+  if (ack_fall_due_ && !two_phase_) {
     const std::uint64_t latency = cycle - req_fall_edge_ + 1;
     if (!answered_glitch_) fall_latency_.add(latency);
     const bool early = latency < static_cast<std::uint64_t>(lat_min_) && !answered_glitch_;

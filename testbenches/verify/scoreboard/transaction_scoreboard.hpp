@@ -59,6 +59,9 @@ struct VerifyFailure {
 //    receiver, whose synchroniser may or may not have been reset); under "hold" a rising Ack may
 //    also wait while the output is stalled. Ack falls within the same bounds of Req falling. Ack
 //    is low after a reset.
+//  - On a two-phase link (ReceiverDescription::Handshake) a change of Req is its rise and a change
+//    of Ack that answers it its Ack rising; Ack has no fall to check, and a change of Ack with no
+//    change of Req waiting is an Ack without a Req.
 //  - The RTL's own verdicts ($stop, $error, $fatal, failing assertions) fail the run.
 class TransactionScoreboard {
  public:
@@ -159,6 +162,9 @@ class TransactionScoreboard {
   int lat_min_, lat_max_;
   // The design's own reset synchroniser: it acts on the bus this many edges after the release.
   std::uint64_t release_edges_;
+  // A two-phase link, seen as the four-phase bus behind it: the driver reports each change of Ack
+  // that answers a transaction as Ack rising, the sender letting go, and Ack falling at once.
+  bool two_phase_;
   std::uint64_t acting_from_edge_ = 0;  // the first edge it may act on after the last reset
   StampRule stamps_;  // one rule for the whole run, across cases
   LatencySpan rise_latency_, fall_latency_;
