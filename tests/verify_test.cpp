@@ -1257,8 +1257,8 @@ endmodule
 // exported testbench under Icarus, with its stamps at the edge before Ack changes and its latency
 // seen from change to change. Its lines resting high (IDLE = 1) pass described active low, and
 // fail as reset ends described active high (the hint names the resting level); a copy that changes
-// Ack again once its beat is taken fails at that change in simulation and in the proof, whose
-// counterexample the driver replays to the same check; the bundled four-phase receiver described
+// Ack again once its beat is taken fails at that change in simulation, in the proof, whose
+// counterexample the driver replays to the same check, and in its exported testbench; the bundled four-phase receiver described
 // as two-phase fails its second transaction of a burst (it answers the Req that fell with its Ack's
 // fall, and gives no beat for it).
 TEST_F(VerifyTest, ATwoPhaseLinkIsVerifiedChangeByChange) {
@@ -1290,7 +1290,7 @@ TEST_F(VerifyTest, ATwoPhaseLinkIsVerifiedChangeByChange) {
   write("twice.v", edited(slurp(dir + "/tpr.v"), "if (take) ack <= req_sync;",
                           "if (take) ack <= req_sync;\n      else if (out_valid && out_ready) ack <= !ack;"));
   write("twice.toml", edited(description, "sources = [\"tpr.v\"]", "sources = [\"twice.v\"]"));
-  const Outcome twice = verify("twice.toml --formal --formal-seconds 5 --out twice");
+  const Outcome twice = verify("twice.toml --formal --formal-seconds 5 --export-tb twice_tb --out twice");
   EXPECT_EQ(twice.status, 1) << twice.err;
   const nlohmann::json t = report("twice");
   EXPECT_EQ(t["first_failure"]["check"], "ack_without_req") << t["first_failure"].dump();
@@ -1299,6 +1299,8 @@ TEST_F(VerifyTest, ATwoPhaseLinkIsVerifiedChangeByChange) {
   for (const auto& v : t["formal"]) changes_failed = changes_failed || (v["property"] == "ack_changes_with_req" && v["verdict"] == "failed");
   EXPECT_TRUE(changes_failed) << t["formal"].dump();
   EXPECT_NE(twice.out.find("replaying the counterexample's inputs, reports ack_without_req"), std::string::npos) << twice.out;
+  EXPECT_EQ(last_line((dir_ / "twice_tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("FAIL", 0), 0u);
+  EXPECT_NE(slurp(dir_ / "twice_tb" / "run.txt").find("Ack changed with no change of Req waiting"), std::string::npos);
 
   write("bundled.toml", slurp(kRtl + "/aer_receiver.toml") + "\n[bus]\nhandshake = \"two_phase\"\n");
   for (const char* f : {"aer_receiver.v", "aer_req_sync.v", "aer_timestamp.v", "aer_fifo.v"}) write(f, slurp(kRtl + "/" + f));

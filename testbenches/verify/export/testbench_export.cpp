@@ -165,13 +165,7 @@ module tb;
   end
   // A 4-state simulator can see Ack unknown (x) where aesim's two-state run cannot: an edge from 0
   // to x is no rise, and an x outside reset is told as such.
-  always @(posedge ack) begin
-    if (ack === 1'b1 && !req) begin
-      if (errors == 0) $display("Ack rose with Req low at %0t ps", $time);
-      errors = errors + 1;
-    end
-  end
-  always @(ack) begin
+{ack_order}  always @(ack) begin
     if (ack !== 1'b0 && ack !== 1'b1 && !rst) begin
       if (errors == 0)
         $display("Ack is unknown (x) at %0t ps: the design leaves it unset in 4-state simulation: no reset, or a combinational block that has not run since time 0", $time);
@@ -201,7 +195,21 @@ endmodule
                     fmt::arg("connections", wiring.connections()), fmt::arg("period", period),
                     fmt::arg("beats_read", beats_read),
                     fmt::arg("stamp_check", stamp_check), fmt::arg("stamp_text", stamp_text),
-                    fmt::arg("time_counter", time_counter));
+                    fmt::arg("time_counter", time_counter),
+                    fmt::arg("ack_order", d.two_phase() ? R"(  // A two-phase Ack changes to meet a change of Req that waits for it (req differs from ack).
+  always @(ack) begin
+    if ((ack === 1'b0 || ack === 1'b1) && ack !== req && !rst) begin
+      if (errors == 0) $display("Ack changed with no change of Req waiting at %0t ps", $time);
+      errors = errors + 1;
+    end
+  end
+)" : R"(  always @(posedge ack) begin
+    if (ack === 1'b1 && !req) begin
+      if (errors == 0) $display("Ack rose with Req low at %0t ps", $time);
+      errors = errors + 1;
+    end
+  end
+)"));
 }
 
 }  // namespace aesim
