@@ -1315,6 +1315,94 @@ TEST_F(VerifyTest, ATwoPhaseLinkIsVerifiedChangeByChange) {
                  "bus.address_held: a two-phase Ack does not fall");
 }
 
+// An output on a clock of its own (`clk = ["clk", { port = "out_clk", clock = "30MHz" }]`): its
+// beats are taken at that clock's edges and its consumer driven in its time. The two-clock
+// receiver of the tests (tests/rtl/two_clock_receiver: a toggle-handshake mailbox between a 50 MHz
+// input and a 30 MHz output) passes in simulation, in the proof (which runs both sides on one
+// clock, and says so) and in its exported testbench, whose second clock Icarus runs at the run's
+// phase. A crossing that passes a one-cycle strobe from the 50 MHz side without a handshake passes
+// with both sides on one clock and at 50 MHz of its own, and loses events at 30 MHz, where the
+// slower clock can miss the strobe.
+TEST_F(VerifyTest, AnOutputOnAClockOfItsOwnIsTakenAtItsEdges) {
+  const std::string dir = std::string(AESIM_SOURCE_DIR) + "/tests/rtl/two_clock_receiver";
+  const Outcome own = verify("'" + dir + "/tcr.toml' --formal --export-tb tb");
+  const nlohmann::json r = report();
+  expect_pass(own, r, 15);
+  for (const auto& v : r["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
+  EXPECT_NE(r["formal_run"]["notes"].dump().find("the crossing at its own 30 MHz is simulated only"), std::string::npos)
+      << r["formal_run"].dump();
+  EXPECT_EQ(last_line((dir_ / "tb").string(), "iverilog -g2005 -o sim -c tb_files.f && vvp -n sim").rfind("PASS", 0), 0u);
+  EXPECT_NE(slurp(dir_ / "tb" / "tb.v").find("always @(posedge out_clk)"), std::string::npos);
+
+  write("pcr.v", R"(`default_nettype none
+module pcr (
+    input  wire       clk,
+    input  wire       rst_n,
+    input  wire       req,
+    input  wire [9:0] addr,
+    output reg        ack,
+    input  wire       out_clk,
+    output reg        out_valid,
+    output reg  [9:0] out_addr
+);
+  reg       req_meta, req_sync, strobe, s1, s2, s3;
+  reg [9:0] word;
+  always @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      {req_meta, req_sync, strobe, ack} <= 4'd0;
+      word <= 10'd0;
+    end else begin
+      req_meta <= req;
+      req_sync <= req_meta;
+      strobe   <= 1'b0;
+      if (req_sync && !ack) begin
+        word   <= addr;
+        strobe <= 1'b1;
+        ack    <= 1'b1;
+      end else if (!req_sync && ack) begin
+        ack <= 1'b0;
+      end
+    end
+  end
+  always @(posedge out_clk or negedge rst_n) begin
+    if (!rst_n) begin
+      {s1, s2, s3, out_valid} <= 4'd0;
+      out_addr <= 10'd0;
+    end else begin
+      {s3, s2, s1} <= {s2, s1, strobe};
+      out_valid <= s2 && !s3;
+      if (s2 && !s3) out_addr <= word;
+    end
+  end
+endmodule
+`default_nettype wire
+)");
+  const std::string strobe = "top = \"pcr\"\nsources = [\"pcr.v\"]\nclock = \"50MHz\"\nreset = { port = \"rst_n\", active = \"low\" }\n"
+                             "[ports]\nclk = [\"clk\", \"out_clk\"]\nreq = \"req\"\nack = \"ack\"\naddr = \"addr\"\n"
+                             "valid = \"out_valid\"\nout_addr = \"out_addr\"\n[behaviour]\ncollisions = \"pass\"\n"
+                             "ack_latency_cycles = [3, 3]\n";
+  write("one.toml", strobe);
+  const Outcome one = verify("one.toml --out one");
+  expect_pass(one, report("one"), 12);
+  write("same.toml", edited(strobe, "\"out_clk\"]", "{ port = \"out_clk\", clock = \"50MHz\" }]"));
+  const Outcome same = verify("same.toml --out same");
+  expect_pass(same, report("same"), 12);
+  write("slow.toml", edited(strobe, "\"out_clk\"]", "{ port = \"out_clk\", clock = \"30MHz\" }]"));
+  const Outcome slow = verify("slow.toml --out slow");
+  EXPECT_EQ(slow.status, 1) << slow.err;
+  const nlohmann::json lost = report("slow");
+  EXPECT_EQ(lost["first_failure"]["check"], "lost") << lost["first_failure"].dump();
+  EXPECT_LT(lost["beats_checked"].get<double>(), 0.9 * lost["transactions"].get<double>());
+
+  const std::string description = slurp(dir + "/tcr.toml");
+  write("tcr.v", slurp(dir + "/tcr.v"));
+  expect_refused("no_clock.toml", edited(description, ", clock = \"30MHz\" }", " }"), "ports.clk[1].clock: missing");
+  expect_refused("two_clocks.toml", edited(description, "clock = \"30MHz\" }]", "clock = \"30MHz\" }, { port = \"x\", clock = \"1MHz\" }]"),
+                 "ports.clk[2]: a second clock of its own: the output side has one clock");
+  expect_refused("phase.toml", edited(description, "clock = \"30MHz\" }", "clock = \"30MHz\", phase = 1 }"),
+                 "ports.clk[1].phase: unknown key (port, clock)");
+}
+
 // An address port wider than the output's address (spio's AER-to-SpiNNaker mapper takes 16 bits
 // and its packet's slice gives 10): the proof drives the addresses both carry, as the bus and the
 // simulation do, so a solver's address in the extra bits is no counterexample; a wrong slice

@@ -25,7 +25,8 @@ class SplitMix64 {
 
 // Independent streams for one run: mixing the purpose and the index into the seed decorrelates
 // neighbouring pixels even with seed 0.
-enum class Stream : std::uint64_t { Threshold = 1, InitialCharge = 2, ShotNoise = 3, EmulatorChaos = 4, VerifyReady = 5 };
+enum class Stream : std::uint64_t { Threshold = 1, InitialCharge = 2, ShotNoise = 3, EmulatorChaos = 4, VerifyReady = 5,
+                                    VerifyClockPhase = 6 };
 
 inline SplitMix64 stream_for(std::uint64_t seed, Stream purpose, std::uint64_t index) {
   SplitMix64 mix(seed ^ (static_cast<std::uint64_t>(purpose) * 0xD1B54A32D192ED03ULL));

@@ -415,11 +415,24 @@ ReceiverDescription read_receiver_description(const std::string& path) {
     }
     std::string text;
     if (role == "clk" && value.is_array()) {
-      // ["clk_i", "usb_clk"]: the clock on each of these ports, the first the receiver's own.
+      // ["clk_i", "usb_clk"]: the clock on each of these ports, the first the receiver's own; a
+      // table { port, clock } is the output side's clock, at a frequency of its own.
       const auto& names = value.as_array();
       if (names.empty()) r.fail(key, "expected a port name or a list of them");
       for (std::size_t i = 1; i < names.size(); ++i) {
-        d.clock_also.push_back(r.identifier(r.string_of(names[i], key), key));
+        if (!names[i].is_table()) {
+          d.clock_also.push_back(r.identifier(r.string_of(names[i], key), key));
+          continue;
+        }
+        const std::string label = fmt::format("{}[{}]", key, i);
+        for (const auto& [k, v] : names[i].as_table()) {
+          if (k != "port" && k != "clock") r.fail(label + "." + k, "unknown key (port, clock)");
+          (void)v;
+        }
+        if (d.has_out_clock()) r.fail(label, "a second clock of its own: the output side has one clock");
+        d.out_clock_port = r.identifier(r.string_of(r.need(names[i], "port", label + ".port"), label + ".port"), label + ".port");
+        d.out_clock_hz = r.frequency_of(r.need(names[i], "clock", label + ".clock"), label + ".clock");
+        if (!(d.out_clock_hz >= 1e3 && d.out_clock_hz <= 10e9)) r.fail(label + ".clock", "must be 1 kHz to 10 GHz");
       }
       text = r.string_of(names[0], key);
     } else if (value.is_table() && (role == "out_addr" || role == "timestamp" || role == "flags")) {
@@ -523,6 +536,10 @@ ReceiverDescription read_receiver_description(const std::string& path) {
   for (const std::string& name : d.clock_also) {
     if (used.count(name)) r.fail("ports.clk", fmt::format("port {} is also {}", name, used[name]));
     used[name] = "ports.clk";
+  }
+  if (d.has_out_clock()) {
+    if (used.count(d.out_clock_port)) r.fail("ports.clk", fmt::format("port {} is also {}", d.out_clock_port, used[d.out_clock_port]));
+    used[d.out_clock_port] = "ports.clk";
   }
   if (const TomlValue* inputs = r.find(root, "inputs")) {
     if (!inputs->is_table()) r.fail("inputs", "expected a table of PORT = value");

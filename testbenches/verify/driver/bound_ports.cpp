@@ -74,7 +74,9 @@ void check_ports(const ReceiverDescription& d, const std::vector<RtlPort>& ports
       port_error(d, key, fmt::format("{} is {} bits; behaviour.timestamp_bits is {}", what, width, d.timestamp_bits));
     }
   }
-  for (const std::string& name : d.clock_also) {
+  std::vector<std::string> clocks = d.clock_also;
+  if (d.has_out_clock()) clocks.push_back(d.out_clock_port);
+  for (const std::string& name : clocks) {
     const RtlPort& clock = need(d, ports, "ports.clk", PortRef{name}, true);
     if (clock.width != 1) port_error(d, "ports.clk", fmt::format("port {} is {} bits; a clock is one bit", name, clock.width));
   }
@@ -94,7 +96,7 @@ std::vector<std::string> inputs_held_at_zero(const ReceiverDescription& d, const
   std::vector<std::string> held;
   for (const RtlPort& p : ports) {
     if (!p.input || p.name == d.reset_port || d.inputs.count(p.name)) continue;
-    if (std::find(d.clock_also.begin(), d.clock_also.end(), p.name) != d.clock_also.end()) continue;
+    if (std::find(d.clock_also.begin(), d.clock_also.end(), p.name) != d.clock_also.end() || p.name == d.out_clock_port) continue;
     const bool has_role = std::any_of(d.ports.begin(), d.ports.end(), [&](const auto& role) { return role.second.uses(p.name); });
     if (!has_role) held.push_back(p.name);
   }
@@ -114,6 +116,7 @@ BoundPorts bind_ports(DutInstance& dut, const ReceiverDescription& d, const std:
   BoundPorts b;
   b.clk = role("clk");
   for (const std::string& name : d.clock_also) b.clk_also.push_back(bind(dut, *find_port(ports, name), PortRef{name}));
+  if (d.has_out_clock()) b.out_clk = bind(dut, *find_port(ports, d.out_clock_port), PortRef{d.out_clock_port});
   b.req = role("req");
   b.ack = role("ack");
   b.addr = joined("addr");

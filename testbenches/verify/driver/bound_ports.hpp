@@ -58,10 +58,12 @@ struct BoundPorts {
   bool reset_active_high = false, req_active_high = true, ack_active_high = true, valid_active_high = true,
        ready_active_high = true, contention_active_high = true, special_active_high = true;
   std::vector<PortAccess> clk_also;  // further clock inputs on the same clock
+  PortAccess out_clk;                // the output side's own clock, if it has one
   void set_clk(bool high) const {
     clk.write(high ? 1 : 0);
     for (const PortAccess& c : clk_also) c.write(high ? 1 : 0);
   }
+  void set_out_clk(bool high) const { out_clk.write(high ? 1 : 0); }
   void set_reset(bool active) const { reset.write(active == reset_active_high ? 1 : 0); }
   void set_req(bool raised) const { req.write(raised == req_active_high ? 1 : 0); }
   void set_contention(bool raised) const { contention.write(raised == contention_active_high ? 1 : 0); }

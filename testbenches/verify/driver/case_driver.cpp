@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <utility>
 
 #include "aesim/bus/wired_or_lines.hpp"
 #include "aesim/random/splitmix64.hpp"
@@ -14,6 +15,17 @@ namespace aesim {
 std::uint64_t clock_period_ps(const ReceiverDescription& d) {
   // Even, so that the falling edge lies exactly half-way (also in an exported testbench).
   return std::max<std::uint64_t>(2, 2 * static_cast<std::uint64_t>(std::llround(0.5e12 / d.clock_hz)));
+}
+
+std::uint64_t out_clock_period_ps(const ReceiverDescription& d) {
+  return d.has_out_clock() ? std::max<std::uint64_t>(4, 4 * static_cast<std::uint64_t>(std::llround(0.25e12 / d.out_clock_hz))) : 0;
+}
+
+std::uint64_t out_clock_first_rise_ps(const ReceiverDescription& d, std::uint64_t seed) {
+  if (!d.has_out_clock()) return 0;
+  // Anywhere in its first period, but never at time 0, with the inputs still being set.
+  SplitMix64 phase = stream_for(seed, Stream::VerifyClockPhase, 0);
+  return 1 + phase() % (out_clock_period_ps(d) - 1);
 }
 
 namespace {
@@ -237,17 +249,20 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     }
     ports.time_in.write(time_in_reset ? 0 : time_rule.ticks(k - 1) & time_mask);
   };
+  // The consumer's ready for the output's next edge, receiver edge k the next to come (stalls count
+  // the receiver's edges).
+  auto ready_at = [&](std::uint64_t k) {
+    if (!c.replay.empty()) return k - 1 < c.replay.size() ? c.replay[k - 1].ready : true;
+    if (draining) return true;
+    const bool stalled = std::any_of(c.stalls.begin(), c.stalls.end(), [k](const auto& s) { return k >= s.first && k < s.second; });
+    return !stalled && (always_ready || (ready_rng() >> 11) < ready_below);
+  };
   // The consumer and the reset for rising edge k, set a quarter period after edge k-1 (before
-  // the falling edge, so that one evaluation takes them with it).
+  // the falling edge, so that one evaluation takes them with it); with an output clock of its own,
+  // the consumer follows that clock instead (out_step).
+  const bool out_clock = d.has_out_clock();
   auto set_controls = [&](std::uint64_t k) {
-    bool ready_k = true;
-    if (!c.replay.empty()) {
-      ready_k = k - 1 < c.replay.size() ? c.replay[k - 1].ready : true;
-    } else if (!draining) {
-      const bool stalled = std::any_of(c.stalls.begin(), c.stalls.end(),
-                                       [k](const auto& s) { return k >= s.first && k < s.second; });
-      ready_k = !stalled && (always_ready || (ready_rng() >> 11) < ready_below);
-    }
+    const bool ready_k = out_clock ? ready : ready_at(k);
     const bool reset_k = k <= reset_edges || (k >= reset_from && k < reset_from + static_cast<std::uint64_t>(c.reset_edges));
     if (drives_time) set_time(k, reset_k);
     if (ready_k == ready && reset_k == reset) return;
@@ -258,7 +273,80 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     bus.record_controls((k - 1) * period + half / 2, ready, reset);
   };
 
+  // The output side's own clock: rising edges at out_rise + j * out_period; a quarter period after
+  // each, the consumer's ready for the next; half a period after it, the falling edge.
+  const std::uint64_t out_period = out_clock_period_ps(d);
+  std::uint64_t out_next = out_clock ? out_clock_first_rise_ps(d, c.seed) : kNever;
+  enum class OutEdge { Rise, Ready, Fall } out_due = OutEdge::Rise;
+  bool out_valid_was = false, out_beat = false;
+  auto out_step = [&](std::uint64_t edges_done) {
+    const std::uint64_t t = out_next;
+    const bool trace_now = options.trace && edges_done >= options.trace_from && edges_done <= options.trace_to;
+    switch (out_due) {
+      case OutEdge::Rise: {
+        dut.eval();
+        EdgeSample s;
+        s.clock = false;
+        s.reset = reset;
+        s.ready = ready;
+        const bool valid_now = ports.valid_raised();
+        switch (d.valid_beat) {
+          case ReceiverDescription::ValidBeat::High: s.valid = valid_now; break;
+          case ReceiverDescription::ValidBeat::Rise: s.valid = valid_now && !out_valid_was; break;
+          case ReceiverDescription::ValidBeat::Change: s.valid = valid_now != out_valid_was; break;
+        }
+        out_valid_was = valid_now;
+        if (s.valid) {
+          s.out_addr = ports.out_addr.read();
+          s.timestamp = ports.timestamp.read();
+          s.flags = ports.flags.read();
+          s.special = ports.special_raised();
+        }
+        s.overflow = ports.overflow.read();
+        if (sb) sb->edge(edges_done, t, s);
+        out_beat = out_beat || s.valid;
+        if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1, s.special});
+        ports.set_out_clk(true);
+        dut.eval();
+        if (trace_now) dut.dump(t);
+        out_next = t + out_period / 4;
+        out_due = OutEdge::Ready;
+        break;
+      }
+      case OutEdge::Ready: {
+        const bool ready_next = ready_at(edges_done + 1);
+        if (ready_next != ready) {
+          ready = ready_next;
+          ports.set_ready(ready);
+          bus.record_controls(t, ready, reset);
+        }
+        out_next = t + out_period / 4;
+        out_due = OutEdge::Fall;
+        break;
+      }
+      case OutEdge::Fall:
+        ports.set_out_clk(false);
+        dut.eval();
+        if (trace_now) dut.dump(t);
+        out_next = t + out_period / 2;
+        out_due = OutEdge::Rise;
+        break;
+    }
+  };
+  // Bus changes and the output clock's edges before t_limit, in time order; true when some input
+  // changed since the last evaluation.
+  auto advance_until = [&](std::uint64_t t_limit, std::uint64_t edges_done) {
+    bool changed = false;
+    while (out_next < t_limit) {
+      apply_until(out_next, edges_done);
+      out_step(edges_done);
+      changed = true;
+    }
+    return apply_until(t_limit, edges_done) || changed;
+  };
+
   ports.set_clk(false);
+  ports.set_out_clk(false);
   ports.set_req(false);
   ports.addr.write(0);
   ports.set_contention(false);
@@ -272,7 +360,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     bus.record_controls(half / 2, ready, reset);
     bus.force(c.replay[0].req, c.replay[0].addr, c.replay[0].contention, half / 2, 0);
   }
-  apply_until(half, 0);
+  advance_until(half, 0);
   dut.eval();
   if (sb && !d.has_reset()) sb->power_up(ports.ack_raised());
 
@@ -288,10 +376,11 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   bool ended = rtl_ended(0);
   for (; k <= c.max_edges && !ended; ++k) {
     const std::uint64_t t_edge = k * period;
-    if (apply_until(t_edge, k - 1)) dut.eval();  // changes in the second half of the cycle
+    if (advance_until(t_edge, k - 1)) dut.eval();  // changes in the second half of the cycle
     if ((ended = rtl_ended(k - 1))) break;
 
     EdgeSample s;
+    s.output = !out_clock;
     s.reset = reset;
     s.ready = ready;
     s.ack = two_phase ? ack_line : ack;
@@ -302,6 +391,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       case ReceiverDescription::ValidBeat::Change: s.valid = valid_now != valid_was; break;
     }
     valid_was = valid_now;
+    if (out_clock) s.valid = false;  // the output's own edges take its beats
     if (s.valid) {
       s.out_addr = ports.out_addr.read();
       s.timestamp = ports.timestamp.read();
@@ -346,20 +436,22 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
       draining = true;
     }
     if (draining) {
-      quiet = (!s.valid && !ack && !bus.req()) ? quiet + 1 : 0;
+      // A beat at this edge, or (with an output clock of its own) at one of the output's since the last.
+      const bool beat = out_clock ? std::exchange(out_beat, false) : s.valid;
+      quiet = (!beat && !ack && !bus.req()) ? quiet + 1 : 0;
       if (quiet > quiet_needed) break;
     }
 
     // The consumer and the reset change a quarter period after the edge, amid the bus's own
     // changes, so that the waveform stays in time order.
-    apply_until(t_edge + half / 2, k);
+    advance_until(t_edge + half / 2, k);
     set_controls(k + 1);
     if (k < c.replay.size()) {
       const ReplayStep& step = c.replay[k];
       bus.force(step.req, step.addr, step.contention, t_edge + half / 2, k);
       end_answer(k, t_edge);
     }
-    apply_until(t_edge + half, k);
+    advance_until(t_edge + half, k);
     ports.set_clk(false);
     dut.eval();
     if (trace_now) dut.dump(t_edge + half);

@@ -39,6 +39,11 @@ struct CaseStats {
 
 // The receiver's clock period in whole picoseconds, rounded to an even number.
 std::uint64_t clock_period_ps(const ReceiverDescription& d);
+// The output side's own clock (ReceiverDescription::has_out_clock; 0 without one): its period in
+// whole picoseconds, a multiple of 4 (its consumer changes a quarter period after each rising
+// edge), and its first rising edge in a case of this seed.
+std::uint64_t out_clock_period_ps(const ReceiverDescription& d);
+std::uint64_t out_clock_first_rise_ps(const ReceiverDescription& d, std::uint64_t seed);
 // Rising edges the receiver spends in reset at the start of every case.
 inline constexpr std::uint64_t kResetEdges = 4;
 

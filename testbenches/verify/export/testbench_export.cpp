@@ -45,6 +45,7 @@ void write_testbench(const std::string& dir, const ReceiverDescription& d, const
   PortWiring wiring(d, ports);
   wiring.drive("clk", "clk");
   for (const std::string& name : d.clock_also) wiring.drive(PortRef{name}, "clk");
+  if (d.has_out_clock()) wiring.drive(PortRef{d.out_clock_port}, "out_clk");
   if (d.has_reset()) {
     wiring.drive_raised(PortRef{d.reset_port}, d.reset_active_high, "rst");
   }
@@ -128,7 +129,7 @@ module tb;
       #(HALF) clk = 1'b0;
     end
   end
-
+{out_clock}
   integer i;
   initial begin
     $readmemh("tb_inputs.hex", inputs, 0, N_INPUTS - 1);
@@ -144,7 +145,7 @@ module tb;
 
   integer taken = 0;
   integer errors = 0;
-  always @(posedge clk) begin
+  always @(posedge {beat_clock}) begin
     if (out_valid && ready && !rst) begin
       if (taken >= N_BEATS) begin
         if (errors == 0) $display("beat %0d at %0t ps: address %0h stamp %0d, beyond the %0d expected", taken, $time, out_addr, {stamp_text}, N_BEATS);
@@ -196,6 +197,21 @@ endmodule
                     fmt::arg("beats_read", beats_read),
                     fmt::arg("stamp_check", stamp_check), fmt::arg("stamp_text", stamp_text),
                     fmt::arg("time_counter", time_counter),
+                    fmt::arg("beat_clock", d.has_out_clock() ? "out_clk" : "clk"),
+                    fmt::arg("out_clock", !d.has_out_clock() ? std::string()
+                                          : fmt::format(R"(  // The output side's own clock: rising edges at {first} + j * {period} ps, as in aesim's run; the
+  // beats are taken at them.
+  reg out_clk = 1'b0;
+  initial begin
+    #({first});
+    forever begin
+      out_clk = 1'b1;
+      #({half}) out_clk = 1'b0;
+      #({half});
+    end
+  end
+)", fmt::arg("first", run.out_first_rise_ps), fmt::arg("period", out_clock_period_ps(d)),
+                                                        fmt::arg("half", out_clock_period_ps(d) / 2))),
                     fmt::arg("ack_order", d.two_phase() ? R"(  // A two-phase Ack changes to meet a change of Req that waits for it (req differs from ack).
   always @(ack) begin
     if ((ack === 1'b0 || ack === 1'b1) && ack !== req && !rst) begin

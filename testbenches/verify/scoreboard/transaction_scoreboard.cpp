@@ -159,9 +159,13 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     overflow_now_ = s.overflow;
     return;
   }
-  if (s.reset) {
+  if (s.clock && s.reset) {
     if (!in_reset_) clear_for_reset();
     in_reset_ = true;
+    return;
+  }
+  if (!s.clock && in_reset_) {
+    overflow_now_ = s.overflow;
     return;
   }
   if (in_reset_) {
@@ -178,7 +182,11 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     if (req_) open_transaction(req_rise_ps_, std::min(req_rise_edge_, cycle), acting_from_edge_);
   }
   overflow_now_ = s.overflow;
+  if (s.output) output_edge(cycle, t_ps, s);
+  if (s.clock) overdue(cycle, t_ps);
+}
 
+void TransactionScoreboard::output_edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s) {
   // A beat offered and not taken must wait, unchanged.
   if (held_) {
     const Beat now{s.out_addr, s.timestamp, (s.flags & 1) != 0};
@@ -213,8 +221,10 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     last_stall_edge_ = cycle;
     stalled_ever_ = true;
   }
+}
 
-  // Ack overdue: reported at the first edge past the bound, once per change.
+// Ack overdue: reported at the first edge past the bound, once per change.
+void TransactionScoreboard::overdue(std::uint64_t cycle, std::uint64_t t_ps) {
   if (!late_reported_) {
     if (Transaction* t = open(); t && req_ && !ack_) {
       std::uint64_t start = t->bound_edge;

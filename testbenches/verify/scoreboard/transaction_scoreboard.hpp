@@ -13,8 +13,11 @@
 
 namespace aesim {
 
-// What the receiver showed just before a rising clock edge, with the inputs that edge sees.
+// What the receiver showed just before a rising clock edge, with the inputs that edge sees. With an
+// output clock of its own (ReceiverDescription::has_out_clock) the receiver's edges carry the
+// handshake and reset (`clock`) and the output clock's the output stream (`output`); else both.
 struct EdgeSample {
+  bool clock = true, output = true;
   bool reset = false, ready = true, valid = false, ack = false;
   bool special = false;  // the beat offered is no event (the description's `special` role)
   std::uint64_t out_addr = 0, timestamp = 0, flags = 0, overflow = 0;
@@ -72,7 +75,8 @@ class TransactionScoreboard {
   void begin_case(const std::string& name);
   // The bus wires changed at t_ps, after `edges_done` rising edges of this case.
   void wires(std::uint64_t t_ps, std::uint64_t edges_done, bool req, std::uint64_t addr, bool contention);
-  // Rising edge `cycle` at t_ps, with what stood before it.
+  // Rising edge `cycle` at t_ps, with what stood before it; an output clock's edge is numbered by
+  // the receiver's edges done before it.
   void edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s);
   // A design without a reset: Ack as its initial values left it, before the first edge.
   void power_up(bool ack);
@@ -143,6 +147,10 @@ class TransactionScoreboard {
                                 static_cast<double>(t_ps) * 1e-12, cycle};
     if (!first_) first_ = case_first_;
   }
+  // The output stream at an edge: a beat offered, taken or held, and a consumer's stall.
+  void output_edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s);
+  // An Ack past its latency bound at the receiver's edge `cycle`.
+  void overdue(std::uint64_t cycle, std::uint64_t t_ps);
   // A word taken: an event's fields gathered from its words (event_words), then the event as a beat.
   void word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w, bool special);
   void beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b);

@@ -53,6 +53,7 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
       o.waveform = &options.exported->waveform;
       o.beats = &options.exported->beats;
       options.exported->case_name = c.name;
+      options.exported->out_first_rise_ps = out_clock_first_rise_ps(d, c.seed);
     }
     const std::uint64_t t0 = sb.transactions(), b0 = sb.beats_checked(), f0 = sb.failures();
     const CaseStats stats = run_case(dut, bound, d, c, &sb, o);

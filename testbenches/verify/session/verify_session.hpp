@@ -40,6 +40,7 @@ struct ExportedRun {
   std::vector<WaveRecord> waveform;
   std::vector<TakenBeat> beats;
   std::uint64_t end_ps = 0;
+  std::uint64_t out_first_rise_ps = 0;  // the output clock's first rising edge, where it has one of its own
 };
 
 struct VerifyOptions {
