@@ -163,6 +163,25 @@ class BusSide {
   std::uint64_t addr_ = 0;
 };
 
+// The output stream before a rising edge that takes it: a beat by the description's rule (valid's
+// level, its rise or its change since the edge before, `valid_was`), with its fields.
+void sample_output(const BoundPorts& ports, ReceiverDescription::ValidBeat rule, bool& valid_was, EdgeSample& s) {
+  const bool valid_now = ports.valid_raised();
+  switch (rule) {
+    case ReceiverDescription::ValidBeat::High: s.valid = valid_now; break;
+    case ReceiverDescription::ValidBeat::Rise: s.valid = valid_now && !valid_was; break;
+    case ReceiverDescription::ValidBeat::Change: s.valid = valid_now != valid_was; break;
+  }
+  valid_was = valid_now;
+  if (s.valid) {
+    s.out_addr = ports.out_addr.read();
+    s.timestamp = ports.timestamp.read();
+    s.flags = ports.flags.read();
+    s.special = ports.special_raised();
+  }
+  s.overflow = ports.overflow.read();
+}
+
 }  // namespace
 
 CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDescription& d, const VerifyCase& c,
@@ -289,20 +308,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
         s.clock = false;
         s.reset = reset;
         s.ready = ready;
-        const bool valid_now = ports.valid_raised();
-        switch (d.valid_beat) {
-          case ReceiverDescription::ValidBeat::High: s.valid = valid_now; break;
-          case ReceiverDescription::ValidBeat::Rise: s.valid = valid_now && !out_valid_was; break;
-          case ReceiverDescription::ValidBeat::Change: s.valid = valid_now != out_valid_was; break;
-        }
-        out_valid_was = valid_now;
-        if (s.valid) {
-          s.out_addr = ports.out_addr.read();
-          s.timestamp = ports.timestamp.read();
-          s.flags = ports.flags.read();
-          s.special = ports.special_raised();
-        }
-        s.overflow = ports.overflow.read();
+        sample_output(ports, d.valid_beat, out_valid_was, s);
         if (sb) sb->edge(edges_done, t, s);
         out_beat = out_beat || s.valid;
         if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1, s.special});
@@ -384,21 +390,11 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     s.reset = reset;
     s.ready = ready;
     s.ack = two_phase ? ack_line : ack;
-    const bool valid_now = ports.valid_raised();
-    switch (d.valid_beat) {
-      case ReceiverDescription::ValidBeat::High: s.valid = valid_now; break;
-      case ReceiverDescription::ValidBeat::Rise: s.valid = valid_now && !valid_was; break;
-      case ReceiverDescription::ValidBeat::Change: s.valid = valid_now != valid_was; break;
+    if (out_clock) {
+      s.overflow = ports.overflow.read();  // the output's own edges take its beats
+    } else {
+      sample_output(ports, d.valid_beat, valid_was, s);
     }
-    valid_was = valid_now;
-    if (out_clock) s.valid = false;  // the output's own edges take its beats
-    if (s.valid) {
-      s.out_addr = ports.out_addr.read();
-      s.timestamp = ports.timestamp.read();
-      s.flags = ports.flags.read();
-      s.special = ports.special_raised();
-    }
-    s.overflow = ports.overflow.read();
     if (sb) sb->edge(k, t_edge, s);
     if (options.beats && s.valid && ready && !reset) options.beats->push_back({s.out_addr, s.timestamp, s.flags & 1, s.special});
 
