@@ -341,14 +341,16 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   };
   // Bus changes and the output clock's edges before t_limit, in time order; true when some input
   // changed since the last evaluation.
-  auto advance_until = [&](std::uint64_t t_limit, std::uint64_t edges_done) {
-    bool changed = false;
+  auto out_steps_until = [&](std::uint64_t t_limit, std::uint64_t edges_done) __attribute__((noinline)) {
     while (out_next < t_limit) {
       apply_until(out_next, edges_done);
       out_step(edges_done);
-      changed = true;
     }
-    return apply_until(t_limit, edges_done) || changed;
+    return true;
+  };
+  auto advance_until = [&](std::uint64_t t_limit, std::uint64_t edges_done) {
+    const bool stepped = out_next < t_limit && out_steps_until(t_limit, edges_done);
+    return apply_until(t_limit, edges_done) || stepped;
   };
 
   ports.set_clk(false);

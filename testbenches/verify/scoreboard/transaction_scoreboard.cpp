@@ -182,49 +182,46 @@ void TransactionScoreboard::edge(std::uint64_t cycle, std::uint64_t t_ps, const 
     if (req_) open_transaction(req_rise_ps_, std::min(req_rise_edge_, cycle), acting_from_edge_);
   }
   overflow_now_ = s.overflow;
-  if (s.output) output_edge(cycle, t_ps, s);
-  if (s.clock) overdue(cycle, t_ps);
-}
-
-void TransactionScoreboard::output_edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s) {
-  // A beat offered and not taken must wait, unchanged.
-  if (held_) {
-    const Beat now{s.out_addr, s.timestamp, (s.flags & 1) != 0};
-    if (!s.valid) {
-      fail("stalled_output", cycle, t_ps, false, [&] {
-        return Texts{fmt::format("valid held with address 0x{:x}", held_->addr), "valid fell"};
-      });
-    } else if (now.addr != held_->addr || now.ts != held_->ts || now.flag != held_->flag) {
-      fail("stalled_output", cycle, t_ps, false, [&] {
-        return Texts{fmt::format("address 0x{:x} stamp {} flag {}", held_->addr, held_->ts, held_->flag),
-                     fmt::format("address 0x{:x} stamp {} flag {}", now.addr, now.ts, now.flag)};
-      });
+  // The output stream: a beat offered, taken or held, and a consumer's stall.
+  if (s.output) {
+    // A beat offered and not taken must wait, unchanged.
+    if (held_) {
+      const Beat now{s.out_addr, s.timestamp, (s.flags & 1) != 0};
+      if (!s.valid) {
+        fail("stalled_output", cycle, t_ps, false, [&] {
+          return Texts{fmt::format("valid held with address 0x{:x}", held_->addr), "valid fell"};
+        });
+      } else if (now.addr != held_->addr || now.ts != held_->ts || now.flag != held_->flag) {
+        fail("stalled_output", cycle, t_ps, false, [&] {
+          return Texts{fmt::format("address 0x{:x} stamp {} flag {}", held_->addr, held_->ts, held_->flag),
+                       fmt::format("address 0x{:x} stamp {} flag {}", now.addr, now.ts, now.flag)};
+        });
+      }
     }
-  }
-  held_.reset();
-  if (s.valid) {
-    const Beat b{s.out_addr, s.timestamp, (s.flags & 1) != 0};
-    if (s.ready && s.special && special_word_ < 0) {
-      ++special_beats_;  // no event: no transaction to match, though it waited as any beat does
-    } else if (s.ready) {
-      word(cycle, t_ps, b, s.special);
-    } else {
-      held_ = b;
+    held_.reset();
+    if (s.valid) {
+      const Beat b{s.out_addr, s.timestamp, (s.flags & 1) != 0};
+      if (s.ready && s.special && special_word_ < 0) {
+        ++special_beats_;  // no event: no transaction to match, though it waited as any beat does
+      } else if (s.ready) {
+        word(cycle, t_ps, b, s.special);
+      } else {
+        held_ = b;
+        last_stall_edge_ = cycle;
+        stalled_ever_ = true;
+      }
+    }
+
+    // Under "hold" a receiver with no room of its own (its valid follows ready) waits for ready with
+    // nothing offered: a consumer not ready while a transaction waits for its Ack excuses the wait too.
+    if (full_ == Full::Hold && !s.ready && !s.valid && open()) {
       last_stall_edge_ = cycle;
       stalled_ever_ = true;
     }
   }
+  if (!s.clock) return;
 
-  // Under "hold" a receiver with no room of its own (its valid follows ready) waits for ready with
-  // nothing offered: a consumer not ready while a transaction waits for its Ack excuses the wait too.
-  if (full_ == Full::Hold && !s.ready && !s.valid && open()) {
-    last_stall_edge_ = cycle;
-    stalled_ever_ = true;
-  }
-}
-
-// Ack overdue: reported at the first edge past the bound, once per change.
-void TransactionScoreboard::overdue(std::uint64_t cycle, std::uint64_t t_ps) {
+  // Ack overdue: reported at the first edge past the bound, once per change.
   if (!late_reported_) {
     if (Transaction* t = open(); t && req_ && !ack_) {
       std::uint64_t start = t->bound_edge;

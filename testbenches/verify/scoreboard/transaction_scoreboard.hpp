@@ -147,10 +147,6 @@ class TransactionScoreboard {
                                 static_cast<double>(t_ps) * 1e-12, cycle};
     if (!first_) first_ = case_first_;
   }
-  // The output stream at an edge: a beat offered, taken or held, and a consumer's stall.
-  void output_edge(std::uint64_t cycle, std::uint64_t t_ps, const EdgeSample& s);
-  // An Ack past its latency bound at the receiver's edge `cycle`.
-  void overdue(std::uint64_t cycle, std::uint64_t t_ps);
   // A word taken: an event's fields gathered from its words (event_words), then the event as a beat.
   void word(std::uint64_t cycle, std::uint64_t t_ps, const Beat& w, bool special);
   void beat(std::uint64_t cycle, std::uint64_t t_ps, const Beat& b);
