@@ -1328,6 +1328,7 @@ TEST_F(VerifyTest, AnOutputOnAClockOfItsOwnIsTakenAtItsEdges) {
   const Outcome own = verify("'" + dir + "/tcr.toml' --formal --export-tb tb");
   const nlohmann::json r = report();
   expect_pass(own, r, 15);
+  EXPECT_EQ(r["receiver"]["out_clock"], nlohmann::json::parse(R"({"port": "out_clk", "hz": 30000000.0})"));
   for (const auto& v : r["formal"]) EXPECT_EQ(v["verdict"], "proved") << v.dump();
   EXPECT_NE(r["formal_run"]["notes"].dump().find("the crossing at its own 30 MHz is simulated only"), std::string::npos)
       << r["formal_run"].dump();

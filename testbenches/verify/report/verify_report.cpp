@@ -40,6 +40,7 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   j["receiver"] = {{"description", d.file}, {"top", d.top},
                    {"collisions", to_string(d.collisions)}, {"full", to_string(d.full)},
                    {"handshake", to_string(d.handshake)}};
+  if (d.has_out_clock()) j["receiver"]["out_clock"] = {{"port", d.out_clock_port}, {"hz", d.out_clock_hz}};
   j["plan"] = plan;
   j["seed"] = seed;
   j["build"] = {{"cached", build.cached}, {"seconds", build.seconds}};
