@@ -123,8 +123,10 @@ int verify_command(const VerifyCommandOptions& opt) {
                                   f.check, f.cycle, f.expected, f.observed);
       } else {
         replay_text = "the simulation driver, replaying the counterexample's inputs, finds no failure: the proof starts "
-                      "flops without a reset at any value where Verilator starts them at 0, and its checker follows one "
-                      "transaction the solver picked where the scoreboard follows them all";
+                      "flops without a reset at any value where Verilator starts them at 0, its checker follows one "
+                      "transaction the solver picked where the scoreboard follows them all, and under \"hold\" the "
+                      "scoreboard excuses an Ack's wait from the edge where the consumer stalls, the proof from the "
+                      "edge after it";
       }
     }
   }
