@@ -431,8 +431,19 @@ ReceiverDescription read_receiver_description(const std::string& path) {
         }
         if (d.has_out_clock()) r.fail(label, "a second clock of its own: the output side has one clock");
         d.out_clock_port = r.identifier(r.string_of(r.need(names[i], "port", label + ".port"), label + ".port"), label + ".port");
-        d.out_clock_hz = r.frequency_of(r.need(names[i], "clock", label + ".clock"), label + ".clock");
-        if (!(d.out_clock_hz >= 1e3 && d.out_clock_hz <= 10e9)) r.fail(label + ".clock", "must be 1 kHz to 10 GHz");
+        const TomlValue& clock = r.need(names[i], "clock", label + ".clock");
+        if (clock.is_array()) {
+          const auto& range = clock.as_array();
+          if (range.size() != 2) r.fail(label + ".clock", "expected a frequency or a range of two, [\"24MHz\", \"100MHz\"]");
+          d.out_clock_hz = r.frequency_of(range[0], label + ".clock");
+          d.out_clock_hz_max = r.frequency_of(range[1], label + ".clock");
+          if (!(d.out_clock_hz <= d.out_clock_hz_max)) r.fail(label + ".clock", "a range from its lower frequency to its higher");
+        } else {
+          d.out_clock_hz = d.out_clock_hz_max = r.frequency_of(clock, label + ".clock");
+        }
+        for (const double hz : {d.out_clock_hz, d.out_clock_hz_max}) {
+          if (!(hz >= 1e3 && hz <= 10e9)) r.fail(label + ".clock", "must be 1 kHz to 10 GHz");
+        }
       }
       text = r.string_of(names[0], key);
     } else if (value.is_table() && (role == "out_addr" || role == "timestamp" || role == "flags")) {

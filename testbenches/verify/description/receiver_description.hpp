@@ -77,10 +77,11 @@ struct ReceiverDescription {
   // The output side's own clock (`clk = ["clk_i", { port = "usb_clk", clock = "48MHz" }]`): the
   // output stream (valid, ready, out_addr, timestamp, flags, special, overflow_count) is taken at its
   // rising edges and the consumer's ready driven in its time, at a frequency and a phase of its own
-  // (the phase drawn from each case's seed), so that a crossing between the two sides meets every
-  // alignment of their edges. Ack latencies, stamps and the reset count the receiver's clock.
+  // (the phase drawn for each case), so that a crossing between the two sides meets every alignment
+  // of their edges. `clock = ["24MHz", "100MHz"]`: a range, each case at a frequency drawn from it.
+  // Ack latencies, stamps and the reset count the receiver's clock.
   std::string out_clock_port;
-  double out_clock_hz = 0;
+  double out_clock_hz = 0, out_clock_hz_max = 0;  // equal unless a range
   bool has_out_clock() const { return !out_clock_port.empty(); }
   // The output words an event takes (`[behaviour] event_words`, 1 to 8): an interface as narrow as
   // a USB chip's 16-bit FIFO gives the address in one word and the stamp in the next. Each of

@@ -17,15 +17,20 @@ std::uint64_t clock_period_ps(const ReceiverDescription& d) {
   return std::max<std::uint64_t>(2, 2 * static_cast<std::uint64_t>(std::llround(0.5e12 / d.clock_hz)));
 }
 
-std::uint64_t out_clock_period_ps(const ReceiverDescription& d) {
-  return d.has_out_clock() ? std::max<std::uint64_t>(4, 4 * static_cast<std::uint64_t>(std::llround(0.25e12 / d.out_clock_hz))) : 0;
-}
-
-std::uint64_t out_clock_first_rise_ps(const ReceiverDescription& d, std::uint64_t seed) {
-  if (!d.has_out_clock()) return 0;
+OutClock out_clock_of(const ReceiverDescription& d, const VerifyCase& c) {
+  OutClock o;
+  if (!d.has_out_clock()) return o;
+  // The case's own draws: its seed and its name (the directed cases share one seed).
+  std::uint64_t name_hash = 0xCBF29CE484222325ULL;
+  for (const char ch : c.name) name_hash = (name_hash ^ static_cast<unsigned char>(ch)) * 0x100000001B3ULL;
+  SplitMix64 draw = stream_for(c.seed ^ name_hash, Stream::VerifyClockPhase, 0);
+  // Evenly in the logarithm of the frequency over a range (a decade's each part alike).
+  const double u = uniform01(draw);
+  o.hz = d.out_clock_hz_max > d.out_clock_hz ? d.out_clock_hz * std::pow(d.out_clock_hz_max / d.out_clock_hz, u) : d.out_clock_hz;
+  o.period_ps = std::max<std::uint64_t>(4, 4 * static_cast<std::uint64_t>(std::llround(0.25e12 / o.hz)));
   // Anywhere in its first period, but never at time 0, with the inputs still being set.
-  SplitMix64 phase = stream_for(seed, Stream::VerifyClockPhase, 0);
-  return 1 + phase() % (out_clock_period_ps(d) - 1);
+  o.first_rise_ps = 1 + draw() % (o.period_ps - 1);
+  return o;
 }
 
 namespace {
@@ -294,8 +299,9 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
 
   // The output side's own clock: rising edges at out_rise + j * out_period; a quarter period after
   // each, the consumer's ready for the next; half a period after it, the falling edge.
-  const std::uint64_t out_period = out_clock_period_ps(d);
-  std::uint64_t out_next = out_clock ? out_clock_first_rise_ps(d, c.seed) : kNever;
+  const OutClock out_clock_timing = out_clock_of(d, c);
+  const std::uint64_t out_period = out_clock_timing.period_ps;
+  std::uint64_t out_next = out_clock ? out_clock_timing.first_rise_ps : kNever;
   enum class OutEdge { Rise, Ready, Fall } out_due = OutEdge::Rise;
   bool out_valid_was = false, out_beat = false;
   auto out_step = [&](std::uint64_t edges_done) {

@@ -39,11 +39,15 @@ struct CaseStats {
 
 // The receiver's clock period in whole picoseconds, rounded to an even number.
 std::uint64_t clock_period_ps(const ReceiverDescription& d);
-// The output side's own clock (ReceiverDescription::has_out_clock; 0 without one): its period in
-// whole picoseconds, a multiple of 4 (its consumer changes a quarter period after each rising
-// edge), and its first rising edge in a case of this seed.
-std::uint64_t out_clock_period_ps(const ReceiverDescription& d);
-std::uint64_t out_clock_first_rise_ps(const ReceiverDescription& d, std::uint64_t seed);
+// The output side's own clock in a case (ReceiverDescription::has_out_clock; zeros without one):
+// its frequency (drawn from the description's range, if it gives one), its period in whole
+// picoseconds, a multiple of 4 (its consumer changes a quarter period after each rising edge), and
+// its first rising edge.
+struct OutClock {
+  double hz = 0;
+  std::uint64_t period_ps = 0, first_rise_ps = 0;
+};
+OutClock out_clock_of(const ReceiverDescription& d, const VerifyCase& c);
 // Rising edges the receiver spends in reset at the start of every case.
 inline constexpr std::uint64_t kResetEdges = 4;
 

@@ -210,8 +210,8 @@ endmodule
       #({half});
     end
   end
-)", fmt::arg("first", run.out_first_rise_ps), fmt::arg("period", out_clock_period_ps(d)),
-                                                        fmt::arg("half", out_clock_period_ps(d) / 2))),
+)", fmt::arg("first", run.out_clock.first_rise_ps), fmt::arg("period", run.out_clock.period_ps),
+                                                        fmt::arg("half", run.out_clock.period_ps / 2))),
                     fmt::arg("ack_order", d.two_phase() ? R"(  // A two-phase Ack changes to meet a change of Req that waits for it (req differs from ack).
   always @(ack) begin
     if ((ack === 1'b0 || ack === 1'b1) && ack !== req && !rst) begin

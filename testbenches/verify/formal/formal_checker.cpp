@@ -120,9 +120,12 @@ FormalChecker formal_checker(const ReceiverDescription& d, const std::vector<Rtl
   if (d.has_out_clock()) {
     // One step is one edge of one clock: the proof runs the output side on the receiver's clock.
     wiring.drive(PortRef{d.out_clock_port}, "clk");
-    c.notes.push_back(fmt::format("the proof runs {} on the receiver's clock: the crossing at its own {:g} MHz is "
+    c.notes.push_back(fmt::format("the proof runs {} on the receiver's clock: the crossing at its own {} is "
                                   "simulated only",
-                                  d.out_clock_port, d.out_clock_hz / 1e6));
+                                  d.out_clock_port,
+                                  d.out_clock_hz == d.out_clock_hz_max
+                                      ? fmt::format("{:g} MHz", d.out_clock_hz / 1e6)
+                                      : fmt::format("{:g} to {:g} MHz", d.out_clock_hz / 1e6, d.out_clock_hz_max / 1e6)));
   }
   if (d.has_reset()) {
     wiring.drive_raised(PortRef{d.reset_port}, d.reset_active_high, "in_reset");

@@ -40,7 +40,11 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
   j["receiver"] = {{"description", d.file}, {"top", d.top},
                    {"collisions", to_string(d.collisions)}, {"full", to_string(d.full)},
                    {"handshake", to_string(d.handshake)}};
-  if (d.has_out_clock()) j["receiver"]["out_clock"] = {{"port", d.out_clock_port}, {"hz", d.out_clock_hz}};
+  if (d.has_out_clock()) {
+    j["receiver"]["out_clock"] = {{"port", d.out_clock_port},
+                                  {"hz", d.out_clock_hz == d.out_clock_hz_max ? nlohmann::json(d.out_clock_hz)
+                                                                              : nlohmann::json({d.out_clock_hz, d.out_clock_hz_max})}};
+  }
   j["plan"] = plan;
   j["seed"] = seed;
   j["build"] = {{"cached", build.cached}, {"seconds", build.seconds}};
@@ -52,6 +56,7 @@ nlohmann::json verify_report(const ReceiverDescription& d, const std::string& pl
                      {"transactions", c.transactions}, {"beats_checked", c.beats}, {"failures", c.failures},
                      {"rtl_finish", c.rtl_finish.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.rtl_finish)},
                      {"first_failure", c.first_failure ? failure_json(*c.first_failure) : nlohmann::json(nullptr)}});
+    if (d.has_out_clock()) cases.back()["out_clock_hz"] = c.out_clock_hz;
   }
   j["cases"] = cases;
   return j;

@@ -53,12 +53,12 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
       o.waveform = &options.exported->waveform;
       o.beats = &options.exported->beats;
       options.exported->case_name = c.name;
-      options.exported->out_first_rise_ps = out_clock_first_rise_ps(d, c.seed);
+      options.exported->out_clock = out_clock_of(d, c);
     }
     const std::uint64_t t0 = sb.transactions(), b0 = sb.beats_checked(), f0 = sb.failures();
     const CaseStats stats = run_case(dut, bound, d, c, &sb, o);
     CaseSummary s{c.name, c.kind, stats.edges, stats.firings, sb.transactions() - t0, sb.beats_checked() - b0,
-                  sb.failures() - f0, "", sb.case_first_failure()};
+                  sb.failures() - f0, "", sb.case_first_failure(), out_clock_of(d, c).hz};
     if (s.first_failure) {
       s.first_failure->observed = shorten(s.first_failure->observed);
       s.first_failure->expected = shorten(s.first_failure->expected);

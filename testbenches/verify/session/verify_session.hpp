@@ -18,6 +18,7 @@ struct CaseSummary {
   std::uint64_t edges = 0, firings = 0, transactions = 0, beats = 0, failures = 0;
   std::string rtl_finish;  // where the RTL's $finish ended the case, if it did
   std::optional<VerifyFailure> first_failure;  // the case's own first
+  double out_clock_hz = 0;  // the output's own clock in this case, where it has one
 };
 
 struct VerifyResult {
@@ -40,7 +41,7 @@ struct ExportedRun {
   std::vector<WaveRecord> waveform;
   std::vector<TakenBeat> beats;
   std::uint64_t end_ps = 0;
-  std::uint64_t out_first_rise_ps = 0;  // the output clock's first rising edge, where it has one of its own
+  OutClock out_clock;  // the output's own clock in the exported case, where it has one
 };
 
 struct VerifyOptions {
