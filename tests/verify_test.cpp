@@ -16,6 +16,7 @@
 #include "aesim/errors/input_error.hpp"
 #include "description/receiver_description.hpp"
 #include "description/rtl_folder_key.hpp"
+#include "driver/case_driver.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace aesim {
@@ -1424,6 +1425,42 @@ endmodule
                  "ports.clk[1].phase: unknown key (port, clock)");
   expect_refused("backwards.toml", edited(description, "clock = \"30MHz\" }", "clock = [\"30MHz\", \"20MHz\"] }"),
                  "ports.clk[1].clock: a range from its lower frequency to its higher");
+}
+
+// An output clock's rising and falling edges, and its consumer's changes a quarter period after
+// each rise, never fall on an edge of the receiver's clock: at one instant the run takes the
+// receiver's edge first and a simulator both at once, so an exported testbench would part from the
+// run. Checked by brute force over every alignment the two periods make (the residues repeat after
+// half / gcd periods), for receiver clocks whose half period is odd (48 MHz) or even, over ranges
+// of output clocks, for many cases; the frequency stays within the range and 0.1 % of the draw.
+TEST(OutClockTiming, ItsEdgesAndConsumerNeverMeetTheReceiversEdges) {
+  for (const double receiver_hz : {50e6, 48e6, 33.3e6, 100e6}) {
+    ReceiverDescription d;
+    d.clock_hz = receiver_hz;
+    d.out_clock_port = "out_clk";
+    d.out_clock_hz = 20e6;
+    d.out_clock_hz_max = 200e6;
+    const std::uint64_t half = clock_period_ps(d) / 2;
+    for (int i = 0; i < 200; ++i) {
+      VerifyCase c;
+      c.name = "case " + std::to_string(i);
+      c.seed = static_cast<std::uint64_t>(1 + i % 7);
+      const OutClock o = out_clock_of(d, c);
+      ASSERT_EQ(o.period_ps % 4, 0u);
+      ASSERT_GE(o.hz, 20e6 * 0.999);
+      ASSERT_LE(o.hz, 200e6 * 1.001);
+      ASSERT_GT(o.first_rise_ps, 0u);
+      ASSERT_LT(o.first_rise_ps, o.period_ps);
+      for (std::uint64_t j = 0; j < half; ++j) {
+        const std::uint64_t rise = o.first_rise_ps + j * o.period_ps;
+        for (const std::uint64_t t : {rise, rise + o.period_ps / 4, rise + o.period_ps / 2}) {
+          ASSERT_NE(t % half, 0u) << receiver_hz << " Hz, " << c.name << ": period " << o.period_ps << ", first rise "
+                                  << o.first_rise_ps << ", meets at " << t;
+        }
+        if (j * o.period_ps % half == 0 && j > 0) break;  // every alignment seen
+      }
+    }
+  }
 }
 
 // An address port wider than the output's address (spio's AER-to-SpiNNaker mapper takes 16 bits

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include "aesim/bus/wired_or_lines.hpp"
@@ -28,8 +29,23 @@ OutClock out_clock_of(const ReceiverDescription& d, const VerifyCase& c) {
   const double u = uniform01(draw);
   o.hz = d.out_clock_hz_max > d.out_clock_hz ? d.out_clock_hz * std::pow(d.out_clock_hz_max / d.out_clock_hz, u) : d.out_clock_hz;
   o.period_ps = std::max<std::uint64_t>(4, 4 * static_cast<std::uint64_t>(std::llround(0.25e12 / o.hz)));
+  // Its edges, and its consumer's changes a quarter period after its rises, never fall on the
+  // receiver's edges: at one instant the run takes the receiver's edge first (and its inputs'
+  // changes then, recorded after it), where a simulator takes both at once (each side's flops
+  // seeing the other's values from before), and an exported testbench would part from the run.
+  // They meet the receiver's edges only at multiples of g = gcd(its period, the receiver's half
+  // period) from its first rise, so a first rise whose fall and quarter are off those multiples
+  // too never meets one; a period a few picoseconds longer makes g at least 4, so that one exists.
+  const std::uint64_t half = clock_period_ps(d) / 2;
+  while (std::gcd(o.period_ps, half) < 4) o.period_ps += 4;
+  const std::uint64_t g = std::gcd(o.period_ps, half);
+  const auto meets = [&](std::uint64_t rise) {
+    return rise % g == 0 || (rise + o.period_ps / 2) % g == 0 || (rise + o.period_ps / 4) % g == 0;
+  };
   // Anywhere in its first period, but never at time 0, with the inputs still being set.
   o.first_rise_ps = 1 + draw() % (o.period_ps - 1);
+  while (meets(o.first_rise_ps)) o.first_rise_ps = o.first_rise_ps % (o.period_ps - 1) + 1;
+  o.hz = 1e12 / static_cast<double>(o.period_ps);
   return o;
 }
 
