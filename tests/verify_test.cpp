@@ -321,6 +321,8 @@ TEST_F(VerifyTest, AClockIsAFrequencyOrAPeriodAndPlainNumbersAreInTheKeysUnit) {
     EXPECT_EQ(r["transactions"], reference["transactions"]) << name;
   }
   expect_refused("zero.toml", edited(bundled, "clock = \"50MHz\"", "clock = \"0 s\""), "clock: a period of 0 s");
+  expect_refused("word.toml", edited(bundled, "clock = \"50MHz\"", "clock = \"fast\""),
+                 "receiver description 'word.toml': clock: not a number (got 'fast')");
 }
 
 // Parameters and defines as TOML users write them: a string that reads as a Verilog integer
@@ -1423,6 +1425,9 @@ endmodule
                  "ports.clk[2]: a second clock of its own: the output side has one clock");
   expect_refused("phase.toml", edited(description, "clock = \"30MHz\" }", "clock = \"30MHz\", phase = 1 }"),
                  "ports.clk[1].phase: unknown key (port, clock)");
+  expect_refused("own_first.toml", edited(description, "[\"clk\", { port = \"out_clk\", clock = \"30MHz\" }]",
+                                          "[{ port = \"out_clk\", clock = \"30MHz\" }, \"clk\"]"),
+                 "ports.clk: the first is the receiver's own clock, as its port name (its frequency is `clock`)");
   expect_refused("backwards.toml", edited(description, "clock = \"30MHz\" }", "clock = [\"30MHz\", \"20MHz\"] }"),
                  "ports.clk[1].clock: a range from its lower frequency to its higher");
 }

@@ -99,7 +99,11 @@ class Reader {
   double quantity_of(const TomlValue& v, const std::string& label, const char* unit) const {
     if (v.is_integer()) return static_cast<double>(v.as_integer());
     if (v.is_floating()) return v.as_floating();
-    return parse_si(string_of(v, label), unit, label);
+    return si(string_of(v, label), unit, label);
+  }
+  // A number with SI prefix and unit; a malformed one fails as every key does, naming the file.
+  double si(const std::string& text, const char* unit, const std::string& label) const {
+    return parse_si(text, unit, fmt::format("receiver description '{}': {}", path_, label));
   }
   // A clock as its frequency ("50MHz", or 50e6 in Hz) or as its period ("20ns"), as datasheets and
   // timing constraints give it.
@@ -108,11 +112,11 @@ class Reader {
     std::string text = v.as_string();
     while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
     if (!text.empty() && text.back() == 's') {
-      const double period = parse_si(text, "s", label);
+      const double period = si(text, "s", label);
       if (!(period > 0)) fail(label, fmt::format("a period of {} s", period));
       return 1 / period;
     }
-    return parse_si(string_of(v, label), "Hz", label);
+    return si(string_of(v, label), "Hz", label);
   }
   std::string full_path(const std::string& text) const {
     const fs::path p = fs::path(text);
@@ -445,6 +449,7 @@ ReceiverDescription read_receiver_description(const std::string& path) {
           if (!(hz >= 1e3 && hz <= 10e9)) r.fail(label + ".clock", "must be 1 kHz to 10 GHz");
         }
       }
+      if (!names[0].is_string()) r.fail(key, "the first is the receiver's own clock, as its port name (its frequency is `clock`)");
       text = r.string_of(names[0], key);
     } else if (value.is_table() && (role == "out_addr" || role == "timestamp" || role == "flags")) {
       // { port = "fifo_data[9:0]", word = 0 }: which of an event's output words carries the role.
