@@ -73,9 +73,11 @@ VerifyResult verify_receiver(const DutLibrary& library, const std::vector<RtlPor
     if (options.progress) {
       const std::string verdict =
           s.first_failure ? fmt::format("FAIL ({} at cycle {})", s.first_failure->check, s.first_failure->cycle) : "ok";
-      std::fprintf(stderr, "  %-34s %9llu cycles %8llu transactions %8llu beats  %s%s\n", c.name.c_str(),
+      // Over a range of output clocks, the one this case ran at.
+      const std::string at = d.out_clock_hz_max > d.out_clock_hz ? fmt::format(" ({} at {:.1f} MHz)", d.out_clock_port, s.out_clock_hz / 1e6) : "";
+      std::fprintf(stderr, "  %-34s %9llu cycles %8llu transactions %8llu beats  %s%s%s\n", c.name.c_str(),
                    static_cast<unsigned long long>(s.edges), static_cast<unsigned long long>(s.transactions),
-                   static_cast<unsigned long long>(s.beats), verdict.c_str(),
+                   static_cast<unsigned long long>(s.beats), verdict.c_str(), at.c_str(),
                    s.rtl_finish.empty() ? "" : fmt::format(" (ended by the RTL's $finish at {})", s.rtl_finish).c_str());
     }
     r.cases.push_back(s);
