@@ -361,8 +361,9 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
         break;
     }
   };
-  // Bus changes and the output clock's edges before t_limit, in time order; true when some input
-  // changed since the last evaluation.
+  // The output clock's events before t_limit, each after the bus's changes before it; out of line,
+  // so that a run without such a clock keeps its per-edge loop small (about 4 % faster in
+  // receiver_rate_bench than with it inline).
   auto out_steps_until = [&](std::uint64_t t_limit, std::uint64_t edges_done) __attribute__((noinline)) {
     while (out_next < t_limit) {
       apply_until(out_next, edges_done);
@@ -370,6 +371,8 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     }
     return true;
   };
+  // Bus changes and the output clock's events before t_limit, in time order; true when some input
+  // changed since the last evaluation.
   auto advance_until = [&](std::uint64_t t_limit, std::uint64_t edges_done) {
     const bool stepped = out_next < t_limit && out_steps_until(t_limit, edges_done);
     return apply_until(t_limit, edges_done) || stepped;
