@@ -140,6 +140,7 @@ class BusSide {
     ack_line_ = ack_line;
     return answers;
   }
+  bool ack_line() const { return ack_line_; }
 
  private:
   void drive(std::uint64_t t, std::uint64_t edges_done) {
@@ -238,11 +239,10 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
   // A design without a reset starts from its initial values, never in reset.
   const std::uint64_t reset_edges = d.has_reset() ? kResetEdges : 0;
   bool ready = true, reset = d.has_reset(), ack = false, draining = false;
-  // A two-phase link: the Ack line as last seen; `ack` is the four-phase Ack of the bus behind it,
-  // high from the change that answered its Req until that Req falls (at once, where the pixels let
-  // go of it as they see the answer; a replayed sender may hold it longer).
+  // A two-phase link (its Ack line as last seen is the bus's): `ack` is the four-phase Ack of the
+  // bus behind it, high from the change that answered its Req until that Req falls (at once, where
+  // the pixels let go of it as they see the answer; a replayed sender may hold it longer).
   const bool two_phase = d.two_phase();
-  bool ack_line = false;
   auto end_answer = [&](std::uint64_t edge, std::uint64_t t_ps) {
     if (!two_phase || !ack || bus.req()) return;
     ack = false;
@@ -416,7 +416,7 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     s.output = !out_clock;
     s.reset = reset;
     s.ready = ready;
-    s.ack = two_phase ? ack_line : ack;
+    s.ack = two_phase ? bus.ack_line() : ack;
     if (out_clock) {
       s.overflow = ports.overflow.read();  // the output's own edges take its beats
     } else {
@@ -431,9 +431,8 @@ CaseStats run_case(DutInstance& dut, const BoundPorts& ports, const ReceiverDesc
     if (trace_now) dut.dump(t_edge);
     if ((ended = rtl_ended(k))) break;
     const bool ack_now = ports.ack_raised();
-    if (two_phase && ack_now != ack_line) {
-      ack_line = ack_now;
-      const bool answers = bus.ack_changed_on_link(ack_line);
+    if (two_phase && ack_now != bus.ack_line()) {
+      const bool answers = bus.ack_changed_on_link(ack_now);
       if (sb) sb->ack_changed(k, t_edge, true);
       if (answers) {
         ack = true;
