@@ -97,7 +97,7 @@ void add_verify(CLI::App& app, int& status) {
   cmd->add_option("RECEIVER", opt->description, "Receiver description, e.g. rtl/aer_receiver.toml")->required();
   cmd->add_option("--plan", opt->plan, "quick (seconds), full (millions of transactions) or a plan file")
       ->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "Seed of the scene runs' pixels and back-pressure")->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "Seed of the scene runs' pixels, back-pressure and output clock (where the output has one of its own)")->capture_default_str();
   cmd->add_option("--out", opt->out, "Folder for verify.json (and failure.vcd)")->capture_default_str();
   cmd->add_option("--export-tb", opt->export_tb, "Folder for a self-checking Verilog testbench of a scene run");
   cmd->add_flag("--formal", opt->formal,
